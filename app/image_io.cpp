@@ -1,0 +1,46 @@
+// app/image_io.cpp: PNG writing through Debian's stb_image_write, made atomic with rename().
+#include "app/image_io.h"
+
+#include "core/error.h"
+
+#include <stb_image_write.h>
+
+#include <cstdio>
+#include <string>
+#include <unistd.h>
+
+namespace wisp {
+
+void checkPngOutput(const std::filesystem::path& path)
+{
+    if (path.extension() != ".png")
+        throw UserError("--out " + path.string() + ": the output must be a .png file");
+    std::filesystem::path dir = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
+    std::error_code ec;
+    if (!std::filesystem::is_directory(dir, ec))
+        throw UserError("--out " + path.string() + ": folder '" + dir.string() + "' does not exist");
+    if (access(dir.c_str(), W_OK) != 0)
+        throw UserError("--out " + path.string() + ": folder '" + dir.string() + "' is not writable");
+    if (std::filesystem::is_directory(path, ec))
+        throw UserError("--out " + path.string() + ": is a directory");
+}
+
+void writePng(const std::filesystem::path& path, uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba)
+{
+    checkPngOutput(path);
+    std::filesystem::path temp = path;
+    temp += ".partial-" + std::to_string(getpid());
+    int stride = static_cast<int>(width * 4);
+    if (!stbi_write_png(temp.c_str(), static_cast<int>(width), static_cast<int>(height), 4, rgba.data(), stride)) {
+        std::remove(temp.c_str());
+        throw UserError("cannot write " + path.string() + " (disk full or not writable?)");
+    }
+    std::error_code ec;
+    std::filesystem::rename(temp, path, ec);
+    if (ec) {
+        std::remove(temp.c_str());
+        throw UserError("cannot write " + path.string() + ": " + ec.message());
+    }
+}
+
+}  // namespace wisp

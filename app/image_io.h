@@ -1,0 +1,16 @@
+// app/image_io.h: PNG output that is never half-written (a temporary file in the same folder,
+// renamed into place), and checks that an output path can be written before any work is done.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+namespace wisp {
+
+// Throws UserError when `path`'s folder is missing or not writable, or the name is not a .png.
+void checkPngOutput(const std::filesystem::path& path);
+// Writes tightly packed RGBA8 pixels as a PNG; atomic.
+void writePng(const std::filesystem::path& path, uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba);
+
+}  // namespace wisp

@@ -1,0 +1,326 @@
+// app/window.cpp: GLFW window, Vulkan surface and swapchain (recreated on resize, idle while
+// minimized), input to the orbit camera, and the per-frame blit from the render target.
+#include "app/window.h"
+
+#include "app/image_io.h"
+#include "core/error.h"
+#include "physics/head.h"
+#include "renderer/frame.h"
+#include "renderer/renderer.h"
+#include "renderer/vk/check.h"
+
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+
+namespace wisp {
+
+namespace {
+
+// Copies the render target's result into the acquired swapchain image.
+class PresentBlitPass : public Pass {
+public:
+    PresentBlitPass(RenderTarget& target) : target_(target) {}
+    const char* name() const override { return "present"; }
+    void setSwapchainImage(TrackedImage& image, VkExtent2D extent)
+    {
+        swapImage_ = &image;
+        swapExtent_ = extent;
+    }
+    void declare(PassIo& io) override
+    {
+        io.use(target_.result(), Access::TransferSrc);
+        io.use(*swapImage_, Access::TransferDst);
+    }
+    void record(VkCommandBuffer cmd, FrameContext&) override
+    {
+        VkExtent2D src = target_.extent();
+        VkImageBlit2 region{.sType = VK_STRUCTURE_TYPE_IMAGE_BLIT_2,
+                            .srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                            .srcOffsets = {{0, 0, 0}, {int32_t(src.width), int32_t(src.height), 1}},
+                            .dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                            .dstOffsets = {{0, 0, 0}, {int32_t(swapExtent_.width), int32_t(swapExtent_.height), 1}}};
+        VkBlitImageInfo2 info{.sType = VK_STRUCTURE_TYPE_BLIT_IMAGE_INFO_2,
+                              .srcImage = target_.resultImage().get(),
+                              .srcImageLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                              .dstImage = swapImage_->image,
+                              .dstImageLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                              .regionCount = 1,
+                              .pRegions = &region,
+                              .filter = VK_FILTER_NEAREST};
+        vkCmdBlitImage2(cmd, &info);
+    }
+
+private:
+    RenderTarget& target_;
+    TrackedImage* swapImage_ = nullptr;
+    VkExtent2D swapExtent_{};
+};
+
+struct Swapchain {
+    VkDevice device = VK_NULL_HANDLE;
+    VkSwapchainKHR handle = VK_NULL_HANDLE;
+    VkExtent2D extent{};
+    std::vector<TrackedImage> images;
+    std::vector<vk::Semaphore> renderDone;  // one per image: signalled by the frame, waited by present
+
+    ~Swapchain() { destroy(); }
+    void destroy()
+    {
+        renderDone.clear();
+        images.clear();
+        if (handle)
+            vkDestroySwapchainKHR(device, std::exchange(handle, VK_NULL_HANDLE), nullptr);
+    }
+};
+
+void createSwapchain(const vk::Context& ctx, VkSurfaceKHR surface, VkExtent2D wanted, Swapchain& sc)
+{
+    VkSurfaceCapabilitiesKHR caps;
+    VK_CHECK(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(ctx.physicalDevice(), surface, &caps));
+    uint32_t formatCount = 0;
+    VK_CHECK(vkGetPhysicalDeviceSurfaceFormatsKHR(ctx.physicalDevice(), surface, &formatCount, nullptr));
+    std::vector<VkSurfaceFormatKHR> formats(formatCount);
+    VK_CHECK(vkGetPhysicalDeviceSurfaceFormatsKHR(ctx.physicalDevice(), surface, &formatCount, formats.data()));
+    VkSurfaceFormatKHR format = formats.front();
+    for (const VkSurfaceFormatKHR& f : formats)
+        if ((f.format == VK_FORMAT_B8G8R8A8_SRGB || f.format == VK_FORMAT_R8G8B8A8_SRGB) &&
+            f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR)
+            format = f;
+    VkExtent2D extent = caps.currentExtent.width != UINT32_MAX
+                            ? caps.currentExtent
+                            : VkExtent2D{std::clamp(wanted.width, caps.minImageExtent.width, caps.maxImageExtent.width),
+                                         std::clamp(wanted.height, caps.minImageExtent.height, caps.maxImageExtent.height)};
+    uint32_t imageCount = caps.minImageCount + 1;
+    if (caps.maxImageCount > 0)
+        imageCount = std::min(imageCount, caps.maxImageCount);
+    if (!(caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_DST_BIT))
+        throw UserError("the window surface does not accept transfers (VK_IMAGE_USAGE_TRANSFER_DST_BIT)");
+
+    VkSwapchainKHR old = sc.handle;
+    VkSwapchainCreateInfoKHR info{.sType = VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR,
+                                  .surface = surface,
+                                  .minImageCount = imageCount,
+                                  .imageFormat = format.format,
+                                  .imageColorSpace = format.colorSpace,
+                                  .imageExtent = extent,
+                                  .imageArrayLayers = 1,
+                                  .imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
+                                  .imageSharingMode = VK_SHARING_MODE_EXCLUSIVE,
+                                  .preTransform = caps.currentTransform,
+                                  .compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR,
+                                  .presentMode = VK_PRESENT_MODE_FIFO_KHR,
+                                  .clipped = VK_TRUE,
+                                  .oldSwapchain = old};
+    VkSwapchainKHR handle = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateSwapchainKHR(ctx.device(), &info, nullptr, &handle));
+    sc.handle = VK_NULL_HANDLE;  // keep `old` alive until the new one exists
+    sc.destroy();
+    if (old)
+        vkDestroySwapchainKHR(ctx.device(), old, nullptr);
+    sc.device = ctx.device();
+    sc.handle = handle;
+    sc.extent = extent;
+    ctx.setName(handle, VK_OBJECT_TYPE_SWAPCHAIN_KHR, "window.swapchain");
+
+    uint32_t count = 0;
+    VK_CHECK(vkGetSwapchainImagesKHR(ctx.device(), handle, &count, nullptr));
+    std::vector<VkImage> images(count);
+    VK_CHECK(vkGetSwapchainImagesKHR(ctx.device(), handle, &count, images.data()));
+    for (VkImage image : images) {
+        sc.images.push_back({.image = image});
+        sc.renderDone.push_back(ctx.createSemaphore("window.renderDone"));
+    }
+}
+
+struct Input {
+    OrbitCamera* camera = nullptr;
+    double lastX = 0.0, lastY = 0.0;
+    bool orbiting = false, panning = false;
+};
+
+}  // namespace
+
+int runWindow(const WindowOptions& options)
+{
+    const char* display = std::getenv("DISPLAY");
+    const char* wayland = std::getenv("WAYLAND_DISPLAY");
+    if ((!display || !*display) && (!wayland || !*wayland))
+        throw UserError("no display (DISPLAY and WAYLAND_DISPLAY are unset): 'wisp view' needs a window; "
+                        "render offscreen with 'wisp render --out FILE.png' instead");
+    if (!options.screenshot.empty())
+        checkPngOutput(options.screenshot);
+    Head head = loadHead(options.headFile);
+
+    glfwSetErrorCallback([](int, const char* text) { std::fprintf(stderr, "wisp: GLFW: %s\n", text); });
+    if (!glfwInit())
+        throw UserError("cannot open a window: GLFW could not initialise (is the display reachable?)");
+    struct GlfwGuard {
+        ~GlfwGuard() { glfwTerminate(); }
+    } glfwGuard;
+    if (!glfwVulkanSupported())
+        throw UserError("cannot open a window: GLFW finds no Vulkan loader with surface support");
+
+    vk::ContextOptions contextOptions = options.context;
+    uint32_t glfwCount = 0;
+    const char** glfwExtensions = glfwGetRequiredInstanceExtensions(&glfwCount);
+    for (uint32_t i = 0; i < glfwCount; ++i)
+        contextOptions.instanceExtensions.emplace_back(glfwExtensions[i]);
+    contextOptions.presentation = true;
+    vk::Context ctx(contextOptions);
+
+    glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+    GLFWwindow* window = glfwCreateWindow(int(options.settings.width), int(options.settings.height),
+                                          ("Wisp - " + head.description.name).c_str(), nullptr, nullptr);
+    if (!window)
+        throw UserError("cannot open a window of " + std::to_string(options.settings.width) + "x" +
+                        std::to_string(options.settings.height));
+    struct WindowGuard {
+        GLFWwindow* w;
+        ~WindowGuard() { glfwDestroyWindow(w); }
+    } windowGuard{window};
+
+    VkSurfaceKHR surface = VK_NULL_HANDLE;
+    VK_CHECK(glfwCreateWindowSurface(ctx.instance(), window, nullptr, &surface));
+    struct SurfaceGuard {
+        VkInstance i;
+        VkSurfaceKHR s;
+        ~SurfaceGuard() { vkDestroySurfaceKHR(i, s, nullptr); }
+    } surfaceGuard{ctx.instance(), surface};
+    VkBool32 presentable = VK_FALSE;
+    VK_CHECK(vkGetPhysicalDeviceSurfaceSupportKHR(ctx.physicalDevice(), ctx.queueFamily(), surface, &presentable));
+    if (!presentable)
+        throw UserError("the Vulkan device '" + ctx.report().name + "' cannot present to this window");
+
+    constexpr uint32_t kFramesInFlight = 2;
+    int fbWidth = 0, fbHeight = 0;
+    glfwGetFramebufferSize(window, &fbWidth, &fbHeight);
+    RenderSettings settings = options.settings;
+    settings.width = uint32_t(std::max(fbWidth, 1));
+    settings.height = uint32_t(std::max(fbHeight, 1));
+
+    Swapchain swapchain;
+    createSwapchain(ctx, surface, {settings.width, settings.height}, swapchain);
+    settings.width = swapchain.extent.width;
+    settings.height = swapchain.extent.height;
+    Renderer renderer(ctx, settings, kFramesInFlight);
+    renderer.setHead(head);
+    Frame frame(ctx, kFramesInFlight);
+    PresentBlitPass present(renderer.target());
+    std::unique_ptr<ReadbackPass> readback;
+    std::vector<vk::Semaphore> acquired;
+    for (uint32_t i = 0; i < kFramesInFlight; ++i)
+        acquired.push_back(ctx.createSemaphore("window.acquired"));
+
+    OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(settings.width) / float(settings.height));
+    Input input{.camera = &camera};
+    glfwSetWindowUserPointer(window, &input);
+    glfwSetScrollCallback(window, [](GLFWwindow* w, double, double dy) {
+        static_cast<Input*>(glfwGetWindowUserPointer(w))->camera->zoom(std::pow(0.9f, float(dy)));
+    });
+    glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
+        if (key == GLFW_KEY_ESCAPE && action == GLFW_PRESS)
+            glfwSetWindowShouldClose(w, GLFW_TRUE);
+    });
+
+    bool rebuild = false;
+    uint32_t framesDrawn = 0;
+    auto start = std::chrono::steady_clock::now();
+    while (!glfwWindowShouldClose(window)) {
+        glfwPollEvents();
+        glfwGetFramebufferSize(window, &fbWidth, &fbHeight);
+        if (fbWidth == 0 || fbHeight == 0) {  // minimized: draw nothing until restored
+            glfwWaitEvents();
+            continue;
+        }
+        if (rebuild || uint32_t(fbWidth) != swapchain.extent.width || uint32_t(fbHeight) != swapchain.extent.height) {
+            frame.waitIdle();
+            createSwapchain(ctx, surface, {uint32_t(fbWidth), uint32_t(fbHeight)}, swapchain);
+            renderer.resize(swapchain.extent);
+            rebuild = false;
+        }
+
+        // Orbit and pan follow the mouse while a button is held.
+        double x = 0.0, y = 0.0;
+        glfwGetCursorPos(window, &x, &y);
+        bool left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+        bool middle = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+        float dx = float(x - input.lastX), dy = float(y - input.lastY);
+        if (left && input.orbiting)
+            camera.orbit(-0.3f * dx, 0.3f * dy);
+        if (middle && input.panning) {
+            float unitsPerPixel = 2.0f * camera.distance * std::tan(glm::radians(camera.fovYDeg) * 0.5f) / float(fbHeight);
+            camera.pan(-dx * unitsPerPixel, dy * unitsPerPixel);
+        }
+        input.orbiting = left;
+        input.panning = middle;
+        input.lastX = x;
+        input.lastY = y;
+
+        std::vector<TrackedImage*> transient = renderer.transientImages();
+        FrameContext& fc = frame.begin(transient);
+        VkSemaphore acquire = acquired[fc.slot];
+        uint32_t imageIndex = 0;
+        VkResult got = vkAcquireNextImageKHR(ctx.device(), swapchain.handle, UINT64_MAX, acquire, VK_NULL_HANDLE, &imageIndex);
+        if (got == VK_ERROR_OUT_OF_DATE_KHR) {
+            frame.submit(fc);  // empty, keeps the slot's fence in step
+            rebuild = true;
+            continue;
+        }
+        if (got != VK_SUBOPTIMAL_KHR)
+            VK_CHECK(got);
+
+        float seconds = std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count();
+        renderer.prepare(fc, camera, seconds);
+        TrackedImage& swapImage = swapchain.images[imageIndex];
+        swapImage.layout = VK_IMAGE_LAYOUT_UNDEFINED;  // its previous contents are not needed
+        swapImage.stages = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;  // wait for the acquire semaphore's stage
+        swapImage.accesses = VK_ACCESS_2_NONE;
+        swapImage.written = false;
+        present.setSwapchainImage(swapImage, swapchain.extent);
+        std::vector<Pass*> passes = renderer.passes();
+        passes.push_back(&present);
+        bool last = options.maxFrames > 0 && framesDrawn + 1 >= options.maxFrames;
+        if (last && !options.screenshot.empty()) {
+            readback = std::make_unique<ReadbackPass>(ctx, renderer.target());
+            passes.push_back(readback.get());
+        }
+        frame.run(fc, passes);
+        frame.transition(fc, swapImage, Access::Present);
+        VkSemaphore done = swapchain.renderDone[imageIndex];
+        frame.submit(fc, acquire, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, done);
+
+        VkPresentInfoKHR presentInfo{.sType = VK_STRUCTURE_TYPE_PRESENT_INFO_KHR,
+                                     .waitSemaphoreCount = 1,
+                                     .pWaitSemaphores = &done,
+                                     .swapchainCount = 1,
+                                     .pSwapchains = &swapchain.handle,
+                                     .pImageIndices = &imageIndex};
+        VkResult presented = vkQueuePresentKHR(ctx.queue(), &presentInfo);
+        if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR)
+            rebuild = true;
+        else
+            VK_CHECK(presented);
+        ++framesDrawn;
+        if (last)
+            glfwSetWindowShouldClose(window, GLFW_TRUE);
+    }
+    frame.waitIdle();
+    if (readback) {
+        VkExtent2D e = renderer.target().extent();
+        writePng(options.screenshot, e.width, e.height, readback->pixels());
+    }
+    std::printf("wisp: closed after %u frames\n", framesDrawn);
+    uint32_t messages = ctx.validationMessages();
+    if (messages > 0) {
+        std::fprintf(stderr, "wisp: %u Vulkan validation messages (printed above)\n", messages);
+        return kExitInternalError;
+    }
+    return 0;
+}
+
+}  // namespace wisp

@@ -1,0 +1,228 @@
+// physics/mesh.cpp: mesh loading. OBJ files are first checked line by line (numbers parse,
+// face indices exist) so that a bad file is reported with its line; tinyobjloader then reads
+// them. Other formats go through assimp.
+#include "physics/mesh.h"
+
+#include "core/error.h"
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <tiny_obj_loader.h>
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace wisp {
+
+Bounds Mesh::bounds() const
+{
+    Bounds b;
+    if (positions.empty())
+        return b;
+    b.min = b.max = positions.front();
+    for (const glm::vec3& p : positions) {
+        b.min = glm::min(b.min, p);
+        b.max = glm::max(b.max, p);
+    }
+    return b;
+}
+
+std::vector<glm::vec3> computeVertexNormals(const std::vector<glm::vec3>& positions,
+                                           const std::vector<uint32_t>& indices)
+{
+    std::vector<glm::vec3> normals(positions.size(), glm::vec3(0.0f));
+    for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+        const glm::vec3& a = positions[indices[t]];
+        const glm::vec3& b = positions[indices[t + 1]];
+        const glm::vec3& c = positions[indices[t + 2]];
+        glm::vec3 n = glm::cross(b - a, c - a);  // length = 2 * area: area weighting
+        for (size_t k = 0; k < 3; ++k)
+            normals[indices[t + k]] += n;
+    }
+    for (glm::vec3& n : normals) {
+        float len = glm::length(n);
+        n = len > 0.0f ? n / len : glm::vec3(0.0f, 1.0f, 0.0f);
+    }
+    return normals;
+}
+
+namespace {
+
+[[noreturn]] void badFile(const std::filesystem::path& path, size_t line, const std::string& what)
+{
+    throw UserError(path.string() + ":" + std::to_string(line) + ": " + what);
+}
+
+bool parseFloat(std::string_view token, float& out)
+{
+    auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), out);
+    return ec == std::errc() && end == token.data() + token.size() && std::isfinite(out);
+}
+
+// Checks the lines tinyobjloader would otherwise accept silently or mis-read: vertex records
+// with missing or non-numeric coordinates, and faces whose indices name no vertex.
+void checkObj(const std::filesystem::path& path, std::istream& in)
+{
+    std::string line;
+    size_t lineNumber = 0;
+    long positions = 0, texcoords = 0, normals = 0;
+    while (std::getline(in, line)) {
+        ++lineNumber;
+        if (!line.empty() && line.back() == '\r')
+            line.pop_back();
+        std::istringstream words(line);
+        std::string key;
+        if (!(words >> key) || key[0] == '#')
+            continue;
+        std::vector<std::string> args;
+        for (std::string w; words >> w;)
+            args.push_back(w);
+        if (key == "v" || key == "vn" || key == "vt") {
+            size_t need = key == "vt" ? 1 : 3;
+            if (args.size() < need)
+                badFile(path, lineNumber, "'" + key + "' needs " + std::to_string(need) + " numbers, found " +
+                                              std::to_string(args.size()));
+            for (size_t i = 0; i < need; ++i) {
+                float value = 0.0f;
+                if (!parseFloat(args[i], value))
+                    badFile(path, lineNumber, "'" + args[i] + "' is not a finite number");
+            }
+            (key == "v" ? positions : key == "vn" ? normals : texcoords) += 1;
+        } else if (key == "f") {
+            if (args.size() < 3)
+                badFile(path, lineNumber, "a face needs at least 3 vertices, found " + std::to_string(args.size()));
+            for (const std::string& corner : args) {
+                long counts[3] = {positions, texcoords, normals};
+                const char* names[3] = {"vertex", "texture coordinate", "normal"};
+                size_t start = 0;
+                for (int part = 0; part < 3 && start <= corner.size(); ++part) {
+                    size_t slash = corner.find('/', start);
+                    std::string field = corner.substr(start, slash == std::string::npos ? std::string::npos : slash - start);
+                    start = slash == std::string::npos ? corner.size() + 1 : slash + 1;
+                    if (field.empty() && part > 0)
+                        continue;
+                    long index = 0;
+                    auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), index);
+                    if (ec != std::errc() || end != field.data() + field.size() || index == 0)
+                        badFile(path, lineNumber, "face corner '" + corner + "' is not a valid index");
+                    long resolved = index < 0 ? counts[part] + index + 1 : index;
+                    if (resolved < 1 || resolved > counts[part])
+                        badFile(path, lineNumber, "face corner '" + corner + "' names " + names[part] + " " +
+                                                      std::to_string(index) + " but only " + std::to_string(counts[part]) +
+                                                      " are defined before it");
+                }
+            }
+        }
+    }
+    if (in.bad())
+        throw UserError(path.string() + ": read error");
+}
+
+Mesh loadObj(const std::filesystem::path& path)
+{
+    std::ifstream file(path, std::ios::binary);
+    if (!file)
+        throw UserError(path.string() + ": cannot open mesh file");
+    checkObj(path, file);
+    file.clear();
+    file.seekg(0);
+
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> materials;
+    std::string warnings, errors;
+    bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warnings, &errors, &file, nullptr, true);
+    if (!ok)
+        throw UserError(path.string() + ": " + (errors.empty() ? std::string("malformed OBJ") : errors));
+
+    Mesh mesh;
+    mesh.sourceVertices = attrib.vertices.size() / 3;
+    bool haveNormals = !attrib.normals.empty();
+    std::map<std::pair<int, int>, uint32_t> corners;  // (position, normal) -> vertex
+    for (const tinyobj::shape_t& shape : shapes) {
+        for (const tinyobj::index_t& idx : shape.mesh.indices) {
+            int normal = haveNormals ? idx.normal_index : -1;
+            auto [it, inserted] = corners.try_emplace({idx.vertex_index, normal}, static_cast<uint32_t>(mesh.positions.size()));
+            if (inserted) {
+                const float* p = &attrib.vertices[3 * static_cast<size_t>(idx.vertex_index)];
+                mesh.positions.emplace_back(p[0], p[1], p[2]);
+                if (normal >= 0) {
+                    const float* n = &attrib.normals[3 * static_cast<size_t>(normal)];
+                    glm::vec3 v(n[0], n[1], n[2]);
+                    float len = glm::length(v);
+                    mesh.normals.push_back(len > 0.0f ? v / len : glm::vec3(0.0f, 1.0f, 0.0f));
+                } else {
+                    mesh.normals.emplace_back(0.0f);
+                }
+            }
+            mesh.indices.push_back(it->second);
+        }
+    }
+    bool anyMissing = false;
+    for (const auto& [key, vertex] : corners)
+        anyMissing = anyMissing || key.second < 0;
+    if (anyMissing) {  // some corners had no normal: smooth normals over shared positions
+        std::vector<glm::vec3> smooth = computeVertexNormals(mesh.positions, mesh.indices);
+        for (const auto& [key, vertex] : corners)
+            if (key.second < 0)
+                mesh.normals[vertex] = smooth[vertex];
+    }
+    return mesh;
+}
+
+Mesh loadWithAssimp(const std::filesystem::path& path)
+{
+    Assimp::Importer importer;
+    const aiScene* scene = importer.ReadFile(path.string(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                                                aiProcess_GenSmoothNormals | aiProcess_PreTransformVertices |
+                                                                aiProcess_SortByPType);
+    if (!scene || !scene->mRootNode)
+        throw UserError(path.string() + ": cannot read mesh: " + importer.GetErrorString());
+    Mesh mesh;
+    for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+        const aiMesh* src = scene->mMeshes[m];
+        if (!(src->mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
+            continue;
+        uint32_t base = static_cast<uint32_t>(mesh.positions.size());
+        for (unsigned v = 0; v < src->mNumVertices; ++v) {
+            mesh.positions.emplace_back(src->mVertices[v].x, src->mVertices[v].y, src->mVertices[v].z);
+            glm::vec3 n = src->mNormals ? glm::vec3(src->mNormals[v].x, src->mNormals[v].y, src->mNormals[v].z)
+                                        : glm::vec3(0.0f);
+            float len = glm::length(n);
+            mesh.normals.push_back(len > 0.0f ? n / len : glm::vec3(0.0f, 1.0f, 0.0f));
+        }
+        for (unsigned f = 0; f < src->mNumFaces; ++f) {
+            const aiFace& face = src->mFaces[f];
+            if (face.mNumIndices != 3)
+                continue;
+            for (unsigned k = 0; k < 3; ++k)
+                mesh.indices.push_back(base + face.mIndices[k]);
+        }
+    }
+    mesh.sourceVertices = mesh.positions.size();
+    return mesh;
+}
+
+}  // namespace
+
+Mesh loadMesh(const std::filesystem::path& path)
+{
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec))
+        throw UserError(path.string() + ": no such mesh file");
+    if (std::filesystem::is_directory(path, ec))
+        throw UserError(path.string() + ": is a directory, not a mesh file");
+    std::string ext = path.extension().string();
+    for (char& c : ext)
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    Mesh mesh = ext == ".obj" ? loadObj(path) : loadWithAssimp(path);
+    if (mesh.indices.empty())
+        throw UserError(path.string() + ": the mesh holds no triangles");
+    return mesh;
+}
+
+}  // namespace wisp

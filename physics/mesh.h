@@ -1,0 +1,42 @@
+// physics/mesh.h: a triangle mesh as Wisp uses it (head, body, colliders): positions and unit
+// normals per vertex, 32-bit triangle indices, in the file's own units. Loads .obj through
+// tinyobjloader (checked line by line first, so errors name the line) and every other format
+// through assimp; n-gons are triangulated and missing normals generated.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace wisp {
+
+struct Bounds {
+    glm::vec3 min{0.0f};
+    glm::vec3 max{0.0f};
+    glm::vec3 center() const { return 0.5f * (min + max); }
+    glm::vec3 size() const { return max - min; }
+    float diagonal() const { return glm::length(max - min); }
+};
+
+struct Mesh {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;   // same count as positions, unit length
+    std::vector<uint32_t> indices;    // three per triangle, counter-clockwise seen from outside
+    size_t sourceVertices = 0;        // distinct positions in the file (before splitting by normal)
+
+    size_t triangleCount() const { return indices.size() / 3; }
+    Bounds bounds() const;
+};
+
+// Throws UserError naming the file (and line, for .obj) when it is missing, unreadable,
+// malformed or holds no triangles.
+Mesh loadMesh(const std::filesystem::path& path);
+
+// Area-weighted vertex normals from the triangles (used when a file has none).
+std::vector<glm::vec3> computeVertexNormals(const std::vector<glm::vec3>& positions,
+                                           const std::vector<uint32_t>& indices);
+
+}  // namespace wisp

@@ -1,0 +1,65 @@
+// renderer/camera.cpp: orbit camera maths.
+#include "renderer/camera.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace wisp {
+
+glm::vec3 OrbitCamera::position() const
+{
+    float yaw = glm::radians(yawDeg);
+    float pitch = glm::radians(pitchDeg);
+    glm::vec3 offset(std::sin(yaw) * std::cos(pitch), std::sin(pitch), std::cos(yaw) * std::cos(pitch));
+    return target + distance * offset;
+}
+
+glm::mat4 OrbitCamera::view() const
+{
+    return glm::lookAtRH(position(), target, glm::vec3(0.0f, 1.0f, 0.0f));
+}
+
+glm::mat4 OrbitCamera::projection(float aspect) const
+{
+    glm::mat4 p = glm::perspectiveRH_ZO(glm::radians(fovYDeg), aspect, nearPlane, farPlane);
+    p[1][1] *= -1.0f;  // Vulkan clip space has y pointing down
+    return p;
+}
+
+void OrbitCamera::orbit(float dYawDeg, float dPitchDeg)
+{
+    yawDeg = std::fmod(yawDeg + dYawDeg, 360.0f);
+    pitchDeg = std::clamp(pitchDeg + dPitchDeg, -85.0f, 85.0f);
+}
+
+void OrbitCamera::zoom(float factor)
+{
+    distance = std::clamp(distance * factor, nearPlane * 4.0f, farPlane * 0.5f);
+}
+
+void OrbitCamera::pan(float dxUnits, float dyUnits)
+{
+    glm::mat4 v = view();
+    glm::vec3 right(v[0][0], v[1][0], v[2][0]);
+    glm::vec3 up(v[0][1], v[1][1], v[2][1]);
+    target += right * dxUnits + up * dyUnits;
+}
+
+OrbitCamera OrbitCamera::framing(const Bounds& bounds, float aspect)
+{
+    OrbitCamera c;
+    glm::vec3 size = bounds.size();
+    // Aim a little above the centre: a bust is looked at for its head.
+    c.target = bounds.center() + glm::vec3(0.0f, 0.08f * size.y, 0.0f);
+    float radius = 0.5f * glm::length(size);
+    float halfFov = glm::radians(c.fovYDeg) * 0.5f;
+    float fitVertical = radius / std::sin(halfFov);
+    float fitHorizontal = radius / std::sin(std::atan(std::tan(halfFov) * aspect));
+    c.distance = 0.92f * std::max(fitVertical, fitHorizontal);
+    c.nearPlane = std::max(1e-4f, c.distance - 4.0f * radius) * 0.5f;
+    c.farPlane = c.distance + 8.0f * radius;
+    return c;
+}
+
+}  // namespace wisp

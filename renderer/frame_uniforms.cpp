@@ -1,0 +1,29 @@
+// renderer/frame_uniforms.cpp: one persistently mapped uniform buffer per frame in flight.
+#include "renderer/frame_uniforms.h"
+
+#include "renderer/vk/context.h"
+
+#include <cstring>
+
+namespace wisp {
+
+FrameUniforms::FrameUniforms(const vk::Context& ctx, uint32_t framesInFlight)
+{
+    for (uint32_t i = 0; i < framesInFlight; ++i)
+        buffers_.push_back(ctx.createBuffer({.size = sizeof(gpu::FrameParams),
+                                             .usage = vk::kUniform,
+                                             .memory = vk::Memory::Upload,
+                                             .name = "frame.params"}));
+}
+
+void FrameUniforms::write(uint32_t slot, const gpu::FrameParams& params)
+{
+    std::memcpy(buffers_[slot].mapped(), &params, sizeof(params));
+}
+
+VkDescriptorBufferInfo FrameUniforms::descriptor(uint32_t slot) const
+{
+    return {buffers_[slot].get(), 0, sizeof(gpu::FrameParams)};
+}
+
+}  // namespace wisp

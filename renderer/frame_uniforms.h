@@ -1,0 +1,26 @@
+// renderer/frame_uniforms.h: the FrameParams uniform block, one host-visible copy per frame in
+// flight so the CPU never writes a block the GPU may still read.
+#pragma once
+
+#include "renderer/vk/resources.h"
+#include "shaders/shared/frame_params.h"
+
+#include <vector>
+
+namespace wisp {
+
+namespace vk {
+class Context;
+}
+
+class FrameUniforms {
+public:
+    FrameUniforms(const vk::Context& ctx, uint32_t framesInFlight);
+    void write(uint32_t slot, const gpu::FrameParams& params);
+    VkDescriptorBufferInfo descriptor(uint32_t slot) const;
+
+private:
+    std::vector<vk::Buffer> buffers_;
+};
+
+}  // namespace wisp

@@ -1,0 +1,70 @@
+// renderer/render_target.h: where the scene is drawn: a (multisampled) colour and depth pair and
+// the single-sample sRGB image they resolve into, which readback copies to the host and the
+// window blits to its swapchain. Also the ReadbackPass that copies the result to a host buffer.
+#pragma once
+
+#include "renderer/pass.h"
+#include "renderer/vk/resources.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace wisp {
+
+namespace vk {
+class Context;
+}
+
+class RenderTarget {
+public:
+    static constexpr VkFormat kColorFormat = VK_FORMAT_R8G8B8A8_SRGB;
+    static constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+
+    RenderTarget(const vk::Context& ctx, VkExtent2D extent, uint32_t requestedSamples);
+    // Recreates the images at a new size (passes keep their references); device must be idle.
+    void resize(VkExtent2D extent);
+
+    VkExtent2D extent() const { return extent_; }
+    VkSampleCountFlagBits samples() const { return samples_; }
+    bool multisampled() const { return samples_ != VK_SAMPLE_COUNT_1_BIT; }
+
+    // Declares the attachments a drawing pass writes.
+    void declareDraw(PassIo& io);
+    // Begins dynamic rendering; the first pass to draw after beginFrame() clears.
+    void beginRendering(VkCommandBuffer cmd, const glm::vec3& clearColor);
+    void endRendering(VkCommandBuffer cmd);
+    void beginFrame() { cleared_ = false; }
+
+    TrackedImage& result() { return resolvedTrack_; }  // single-sample, sRGB
+    const vk::Image& resultImage() const { return resolved_; }
+    std::vector<TrackedImage*> transientImages();
+
+private:
+    const vk::Context& ctx_;
+    VkExtent2D extent_{};
+    VkSampleCountFlagBits samples_;
+    vk::Image color_;  // multisampled; empty when samples_ == 1
+    vk::Image depth_;
+    vk::Image resolved_;
+    TrackedImage colorTrack_, depthTrack_, resolvedTrack_;
+    bool cleared_ = false;
+};
+
+// Copies the render target's result into a host-visible buffer (tightly packed RGBA8).
+class ReadbackPass : public Pass {
+public:
+    ReadbackPass(const vk::Context& ctx, RenderTarget& target);
+    const char* name() const override { return "readback"; }
+    void declare(PassIo& io) override;
+    void record(VkCommandBuffer cmd, FrameContext& frame) override;
+    // Valid once the frame that recorded this pass has completed.
+    std::vector<uint8_t> pixels() const;
+
+private:
+    RenderTarget& target_;
+    vk::Buffer buffer_;
+};
+
+}  // namespace wisp

@@ -1,0 +1,55 @@
+// renderer/renderer.h: the scene renderer shared by the window and the headless front ends. It
+// owns the render target, the per-frame uniforms and the passes, in the order they run:
+//   meshes (head)  [later: physics, shadow, deep opacity, hair, OIT resolve]
+// A front end begins a Frame, calls prepare(), runs passes() plus its own tail (readback or
+// present), and submits.
+#pragma once
+
+#include "physics/head.h"
+#include "renderer/camera.h"
+#include "renderer/frame_uniforms.h"
+#include "renderer/mesh_pass.h"
+#include "renderer/render_target.h"
+#include "renderer/settings.h"
+
+#include <memory>
+#include <vector>
+
+namespace wisp {
+
+namespace vk {
+class Context;
+}
+struct FrameContext;
+
+// Turns the human-facing settings and the camera into the GPU's per-frame block.
+gpu::FrameParams pack(const RenderSettings& settings, const OrbitCamera& camera, VkExtent2D extent, float timeSeconds);
+
+class Renderer {
+public:
+    Renderer(const vk::Context& ctx, const RenderSettings& settings, uint32_t framesInFlight);
+
+    // Uploads the head mesh; call while the device is idle.
+    void setHead(const Head& head);
+    // Recreates the size-dependent images; call while the device is idle.
+    void resize(VkExtent2D extent);
+
+    // Writes this frame's uniforms and resets per-frame target state.
+    void prepare(FrameContext& frame, const OrbitCamera& camera, float timeSeconds);
+    std::vector<Pass*> passes();
+    std::vector<TrackedImage*> transientImages() { return target_->transientImages(); }
+
+    RenderTarget& target() { return *target_; }
+    RenderSettings& settings() { return settings_; }
+    const Bounds& sceneBounds() const { return bounds_; }
+
+private:
+    const vk::Context& ctx_;
+    RenderSettings settings_;
+    FrameUniforms uniforms_;
+    std::unique_ptr<RenderTarget> target_;
+    std::unique_ptr<MeshPass> meshPass_;
+    Bounds bounds_;
+};
+
+}  // namespace wisp

@@ -1,0 +1,45 @@
+// renderer/settings.h: human-facing render settings with units, defaults and ranges as named
+// constants; the CLI validates against the same constants, and pack() in renderer.cpp turns them
+// into the GPU's FrameParams.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+
+namespace wisp {
+
+struct Range {
+    double min;
+    double max;
+    bool contains(double v) const { return v >= min && v <= max; }
+};
+
+inline constexpr Range kImageSizeRange{16, 8192};        // pixels per side
+inline constexpr Range kLightElevationRange{-89, 89};    // degrees above the horizon
+inline constexpr Range kLightIntensityRange{0, 20};      // radiance scale
+
+struct LightSettings {
+    float azimuthDeg = 40.0f;    // around the up axis, 0 = in front of the face, + toward the head's left (+x)
+    float elevationDeg = 35.0f;  // above the horizontal plane
+    float intensity = 3.2f;
+    glm::vec3 color{1.0f, 0.96f, 0.9f};  // warm key light, linear RGB
+
+    glm::vec3 direction() const;  // unit vector toward the light (world space, y up, face +z)
+};
+
+struct RenderSettings {
+    uint32_t width = 1280;
+    uint32_t height = 720;
+    uint32_t samples = 4;  // MSAA for meshes: 1, 2, 4 or 8 (clamped to what the device has)
+    LightSettings light;
+    float ambient = 0.35f;                           // hemisphere ambient scale
+    glm::vec3 skyColor{0.55f, 0.62f, 0.75f};         // cool fill from above
+    glm::vec3 groundColor{0.22f, 0.2f, 0.18f};       // warm bounce from below
+    glm::vec3 background{0.035f, 0.04f, 0.05f};      // linear RGB, a dark neutral studio grey
+    float exposure = 1.0f;
+    glm::vec3 headAlbedo{0.62f, 0.6f, 0.57f};        // mannequin grey-beige
+    float headRoughness = 0.55f;
+};
+
+}  // namespace wisp

@@ -1,0 +1,181 @@
+// renderer/vk/pipeline.cpp: SPIR-V loading, pipeline layouts and graphics pipelines.
+#include "renderer/vk/pipeline.h"
+
+#include "renderer/vk/check.h"
+#include "renderer/vk/context.h"
+
+#include <array>
+#include <fstream>
+#include <stdexcept>
+#include <unistd.h>
+
+#ifndef WISP_SHADER_DIR
+#error "WISP_SHADER_DIR must name the build tree's shader directory"
+#endif
+
+namespace wisp::vk {
+
+std::filesystem::path shaderDirectory()
+{
+    std::error_code ec;
+    std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+        std::filesystem::path beside = exe.parent_path() / "shaders";
+        if (std::filesystem::is_directory(beside, ec))
+            return beside;
+    }
+    return WISP_SHADER_DIR;
+}
+
+namespace {
+
+VkShaderStageFlagBits stageOf(const std::string& fileName)
+{
+    auto ends = [&](const char* ext) {
+        std::string e = std::string(ext) + ".spv";
+        return fileName.size() >= e.size() && fileName.compare(fileName.size() - e.size(), e.size(), e) == 0;
+    };
+    if (ends(".vert")) return VK_SHADER_STAGE_VERTEX_BIT;
+    if (ends(".tesc")) return VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT;
+    if (ends(".tese")) return VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT;
+    if (ends(".geom")) return VK_SHADER_STAGE_GEOMETRY_BIT;
+    if (ends(".frag")) return VK_SHADER_STAGE_FRAGMENT_BIT;
+    if (ends(".comp")) return VK_SHADER_STAGE_COMPUTE_BIT;
+    throw std::runtime_error("shader '" + fileName + "' has no known stage extension");
+}
+
+}  // namespace
+
+ShaderModule loadShader(const Context& ctx, const std::string& fileName)
+{
+    std::filesystem::path path = shaderDirectory() / fileName;
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    if (!in)
+        throw std::runtime_error("shader '" + path.string() + "' not found: build the wisp_shaders target");
+    std::streamsize bytes = in.tellg();
+    if (bytes <= 0 || bytes % 4 != 0)
+        throw std::runtime_error("shader '" + path.string() + "' is not SPIR-V (size " + std::to_string(bytes) + ")");
+    std::vector<uint32_t> code(static_cast<size_t>(bytes) / 4);
+    in.seekg(0);
+    in.read(reinterpret_cast<char*>(code.data()), bytes);
+    VkShaderModuleCreateInfo info{.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+                                  .codeSize = static_cast<size_t>(bytes),
+                                  .pCode = code.data()};
+    VkShaderModule module = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateShaderModule(ctx.device(), &info, nullptr, &module));
+    ctx.setName(module, VK_OBJECT_TYPE_SHADER_MODULE, fileName.c_str());
+    return ShaderModule(ctx.device(), module);
+}
+
+PipelineLayoutBundle createPipelineLayout(const Context& ctx, const PipelineLayoutDesc& desc)
+{
+    std::vector<VkDescriptorSetLayoutBinding> bindings;
+    for (const DescriptorBinding& b : desc.bindings)
+        bindings.push_back({.binding = b.binding, .descriptorType = b.type, .descriptorCount = 1, .stageFlags = b.stages});
+    VkDescriptorSetLayoutCreateInfo setInfo{.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+                                            .flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR,
+                                            .bindingCount = static_cast<uint32_t>(bindings.size()),
+                                            .pBindings = bindings.data()};
+    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateDescriptorSetLayout(ctx.device(), &setInfo, nullptr, &setLayout));
+    ctx.setName(setLayout, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, desc.name);
+    PipelineLayoutBundle out{.setLayout = DescriptorSetLayout(ctx.device(), setLayout), .layout = {}};
+
+    VkPushConstantRange range{.stageFlags = desc.pushConstantStages, .offset = 0, .size = desc.pushConstantBytes};
+    VkPipelineLayoutCreateInfo info{.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+                                    .setLayoutCount = 1,
+                                    .pSetLayouts = &setLayout,
+                                    .pushConstantRangeCount = desc.pushConstantBytes ? 1u : 0u,
+                                    .pPushConstantRanges = &range};
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VK_CHECK(vkCreatePipelineLayout(ctx.device(), &info, nullptr, &layout));
+    ctx.setName(layout, VK_OBJECT_TYPE_PIPELINE_LAYOUT, desc.name);
+    out.layout = PipelineLayout(ctx.device(), layout);
+    return out;
+}
+
+Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& desc)
+{
+    std::vector<ShaderModule> modules;
+    std::vector<VkPipelineShaderStageCreateInfo> stages;
+    for (const std::string& name : desc.shaders) {
+        std::string file = name + ".spv";
+        modules.push_back(loadShader(ctx, file));
+        stages.push_back({.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                          .stage = stageOf(file),
+                          .module = modules.back(),
+                          .pName = "main"});
+    }
+
+    VkVertexInputBindingDescription binding{.binding = 0, .stride = desc.vertexStride,
+                                            .inputRate = VK_VERTEX_INPUT_RATE_VERTEX};
+    std::vector<VkVertexInputAttributeDescription> attributes;
+    for (const VertexAttribute& a : desc.attributes)
+        attributes.push_back({.location = a.location, .binding = 0, .format = a.format, .offset = a.offset});
+    VkPipelineVertexInputStateCreateInfo vertexInput{
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
+        .vertexBindingDescriptionCount = desc.vertexStride ? 1u : 0u,
+        .pVertexBindingDescriptions = &binding,
+        .vertexAttributeDescriptionCount = static_cast<uint32_t>(attributes.size()),
+        .pVertexAttributeDescriptions = attributes.data()};
+    VkPipelineInputAssemblyStateCreateInfo inputAssembly{
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO, .topology = desc.topology};
+    VkPipelineTessellationStateCreateInfo tessellation{
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_TESSELLATION_STATE_CREATE_INFO,
+        .patchControlPoints = desc.patchControlPoints};
+    VkPipelineViewportStateCreateInfo viewport{.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO,
+                                               .viewportCount = 1,
+                                               .scissorCount = 1};
+    VkPipelineRasterizationStateCreateInfo raster{.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO,
+                                                  .polygonMode = VK_POLYGON_MODE_FILL,
+                                                  .cullMode = desc.cullMode,
+                                                  .frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE,
+                                                  .lineWidth = 1.0f};
+    VkPipelineMultisampleStateCreateInfo multisample{.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO,
+                                                     .rasterizationSamples = desc.samples};
+    VkPipelineDepthStencilStateCreateInfo depth{.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO,
+                                                .depthTestEnable = desc.depthTest,
+                                                .depthWriteEnable = desc.depthWrite,
+                                                .depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL};
+    VkPipelineColorBlendAttachmentState blendAttachment{
+        .blendEnable = desc.alphaBlend,
+        .srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA,
+        .dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA,
+        .colorBlendOp = VK_BLEND_OP_ADD,
+        .srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE,
+        .dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA,
+        .alphaBlendOp = VK_BLEND_OP_ADD,
+        .colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
+                          VK_COLOR_COMPONENT_A_BIT};
+    VkPipelineColorBlendStateCreateInfo blend{.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO,
+                                              .attachmentCount = desc.colorFormat ? 1u : 0u,
+                                              .pAttachments = &blendAttachment};
+    std::array<VkDynamicState, 2> dynamicStates = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    VkPipelineDynamicStateCreateInfo dynamic{.sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO,
+                                             .dynamicStateCount = static_cast<uint32_t>(dynamicStates.size()),
+                                             .pDynamicStates = dynamicStates.data()};
+    VkPipelineRenderingCreateInfo rendering{.sType = VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO,
+                                            .colorAttachmentCount = desc.colorFormat ? 1u : 0u,
+                                            .pColorAttachmentFormats = &desc.colorFormat,
+                                            .depthAttachmentFormat = desc.depthFormat};
+    VkGraphicsPipelineCreateInfo info{.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
+                                      .pNext = &rendering,
+                                      .stageCount = static_cast<uint32_t>(stages.size()),
+                                      .pStages = stages.data(),
+                                      .pVertexInputState = &vertexInput,
+                                      .pInputAssemblyState = &inputAssembly,
+                                      .pTessellationState = desc.patchControlPoints ? &tessellation : nullptr,
+                                      .pViewportState = &viewport,
+                                      .pRasterizationState = &raster,
+                                      .pMultisampleState = &multisample,
+                                      .pDepthStencilState = &depth,
+                                      .pColorBlendState = &blend,
+                                      .pDynamicState = &dynamic,
+                                      .layout = desc.layout};
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+    ctx.setName(pipeline, VK_OBJECT_TYPE_PIPELINE, desc.name);
+    return Pipeline(ctx.device(), pipeline);
+}
+
+}  // namespace wisp::vk

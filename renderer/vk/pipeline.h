@@ -1,0 +1,63 @@
+// renderer/vk/pipeline.h: shader modules loaded from the build tree's SPIR-V, pipeline layouts
+// with one push-descriptor set, and graphics pipelines for dynamic rendering described by a
+// struct of named fields.
+#pragma once
+
+#include "renderer/vk/handle.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace wisp::vk {
+
+class Context;
+
+// Where compiled shaders live: <executable dir>/shaders, else the build tree's (compiled in).
+std::filesystem::path shaderDirectory();
+ShaderModule loadShader(const Context& ctx, const std::string& fileName);
+
+struct DescriptorBinding {
+    uint32_t binding = 0;
+    VkDescriptorType type = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    VkShaderStageFlags stages = VK_SHADER_STAGE_ALL_GRAPHICS;
+};
+
+struct PipelineLayoutDesc {
+    std::vector<DescriptorBinding> bindings;  // set 0, a push-descriptor set
+    uint32_t pushConstantBytes = 0;
+    VkShaderStageFlags pushConstantStages = VK_SHADER_STAGE_ALL_GRAPHICS;
+    const char* name = "unnamed layout";
+};
+
+struct PipelineLayoutBundle {
+    DescriptorSetLayout setLayout;
+    PipelineLayout layout;
+};
+PipelineLayoutBundle createPipelineLayout(const Context& ctx, const PipelineLayoutDesc& desc);
+
+struct VertexAttribute {
+    uint32_t location = 0;
+    VkFormat format = VK_FORMAT_R32G32B32_SFLOAT;
+    uint32_t offset = 0;
+};
+
+struct GraphicsPipelineDesc {
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    std::vector<std::string> shaders;  // file names in shaderDirectory(), stage from the extension
+    uint32_t vertexStride = 0;
+    std::vector<VertexAttribute> attributes;
+    VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    uint32_t patchControlPoints = 0;
+    VkCullModeFlags cullMode = VK_CULL_MODE_BACK_BIT;
+    bool depthTest = true;
+    bool depthWrite = true;
+    bool alphaBlend = false;
+    VkFormat colorFormat = VK_FORMAT_UNDEFINED;
+    VkFormat depthFormat = VK_FORMAT_UNDEFINED;
+    VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+    const char* name = "unnamed pipeline";
+};
+Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& desc);
+
+}  // namespace wisp::vk

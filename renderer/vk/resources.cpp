@@ -1,0 +1,85 @@
+// renderer/vk/resources.cpp: moves and destruction of Buffer and Image (their creation is in
+// Context, which knows the memory types).
+#include "renderer/vk/resources.h"
+
+#include <utility>
+
+namespace wisp::vk {
+
+Buffer::Buffer(VkDevice device, VkBuffer buffer, VkDeviceMemory memory, VkDeviceSize size, void* mapped)
+    : device_(device), buffer_(buffer), memory_(memory), size_(size), mapped_(mapped)
+{
+}
+
+Buffer& Buffer::operator=(Buffer&& other) noexcept
+{
+    if (this != &other) {
+        reset();
+        device_ = other.device_;
+        buffer_ = std::exchange(other.buffer_, VK_NULL_HANDLE);
+        memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
+        size_ = std::exchange(other.size_, 0);
+        mapped_ = std::exchange(other.mapped_, nullptr);
+    }
+    return *this;
+}
+
+void Buffer::reset()
+{
+    if (buffer_)
+        vkDestroyBuffer(device_, std::exchange(buffer_, VK_NULL_HANDLE), nullptr);
+    if (memory_)
+        vkFreeMemory(device_, std::exchange(memory_, VK_NULL_HANDLE), nullptr);  // unmaps too
+    mapped_ = nullptr;
+    size_ = 0;
+}
+
+Image::Image(VkDevice device, VkImage image, VkDeviceMemory memory, VkImageView view, const ImageDesc& desc)
+    : device_(device), image_(image), memory_(memory), view_(view), format_(desc.format), extent_(desc.extent),
+      samples_(desc.samples)
+{
+}
+
+Image& Image::operator=(Image&& other) noexcept
+{
+    if (this != &other) {
+        reset();
+        device_ = other.device_;
+        image_ = std::exchange(other.image_, VK_NULL_HANDLE);
+        memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
+        view_ = std::exchange(other.view_, VK_NULL_HANDLE);
+        format_ = other.format_;
+        extent_ = other.extent_;
+        samples_ = other.samples_;
+    }
+    return *this;
+}
+
+void Image::reset()
+{
+    if (view_)
+        vkDestroyImageView(device_, std::exchange(view_, VK_NULL_HANDLE), nullptr);
+    if (image_)
+        vkDestroyImage(device_, std::exchange(image_, VK_NULL_HANDLE), nullptr);
+    if (memory_)
+        vkFreeMemory(device_, std::exchange(memory_, VK_NULL_HANDLE), nullptr);
+}
+
+VkImageAspectFlags Image::aspect() const
+{
+    return isDepthFormat(format_) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
+}
+
+bool isDepthFormat(VkFormat format)
+{
+    switch (format) {
+    case VK_FORMAT_D16_UNORM:
+    case VK_FORMAT_D32_SFLOAT:
+    case VK_FORMAT_X8_D24_UNORM_PACK32:
+        return true;
+    default:
+        return false;
+    }
+}
+
+}  // namespace wisp::vk

@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs the Debian packages Wisp builds, runs and tests with. Idempotent: packages already
+# installed are skipped, and nothing is done when all are present. Uses sudo when not root.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libvulkan-dev glslang-tools libglm-dev libassimp-dev libtinyobjloader-dev
+  libglfw3-dev libimgui-dev libstb-dev nlohmann-json3-dev libcli11-dev libgtest-dev
+  mesa-vulkan-drivers vulkan-validationlayers ffmpeg xvfb xauth python3-matplotlib
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then
+  if command -v sudo >/dev/null 2>&1; then sudo="sudo"; else
+    echo "setup: need root or sudo to install: ${missing[*]}" >&2; exit 1
+  fi
+fi
+echo "setup: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+if ! $sudo apt-get update -qq || ! $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"; then
+  echo "setup: apt-get could not install: ${missing[*]} (check network access to the Debian mirror and 'apt-get update')" >&2
+  exit 1
+fi

@@ -1,0 +1,24 @@
+#version 460
+// mesh.vert: transforms head/body mesh vertices to clip space and passes the world-space
+// position and normal to mesh.frag.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/frame_params.h"
+#include "shared/mesh_params.h"
+
+layout(location = kMeshLocationPosition) in vec3 inPosition;
+layout(location = kMeshLocationNormal) in vec3 inNormal;
+
+layout(set = 0, binding = kFrameParamsBinding) uniform FrameBlock { FrameParams frame; };
+layout(push_constant) uniform PushBlock { MeshPush push; };
+
+layout(location = 0) out vec3 outWorldPosition;
+layout(location = 1) out vec3 outWorldNormal;
+
+void main()
+{
+    vec4 world = push.model * vec4(inPosition, 1.0);
+    outWorldPosition = world.xyz;
+    // Normal matrix: inverse transpose of the model's upper 3x3 (handles non-uniform scale).
+    outWorldNormal = transpose(inverse(mat3(push.model))) * inNormal;
+    gl_Position = frame.viewProjection * world;
+}

@@ -1,0 +1,31 @@
+// shaders/shared/frame_params.h: the per-frame uniform block (camera, light, background) read by
+// every graphics pass, and the binding it lives at. One definition for GLSL and C++.
+#ifndef WISP_SHARED_FRAME_PARAMS_H
+#define WISP_SHARED_FRAME_PARAMS_H
+#include "prelude.h"
+
+GPU_NAMESPACE_BEGIN
+
+GPU_CONST uint kFrameParamsBinding = 0;
+
+struct FrameParams {
+    mat4  view;              // world -> camera
+    mat4  projection;        // camera -> clip (Vulkan: y down, depth 0..1)
+    mat4  viewProjection;    // projection * view
+    vec3  cameraPosition;    // world space, asset units
+    float time;              // simulated seconds since the start (never wall-clock)
+    vec3  lightDirection;    // unit vector from the shading point toward the light
+    float lightIntensity;    // radiance scale of the key light, 0..10, typically 3
+    vec3  lightColor;        // linear RGB
+    float ambientIntensity;  // scale of the hemisphere ambient, 0..1
+    vec3  skyColor;          // hemisphere ambient from above (linear RGB)
+    float exposure;          // linear multiplier before tone mapping
+    vec3  groundColor;       // hemisphere ambient from below (linear RGB)
+    float viewportWidth;     // pixels
+    vec3  backgroundColor;   // linear RGB clear colour
+    float viewportHeight;    // pixels
+};
+
+GPU_NAMESPACE_END
+
+#endif

@@ -1,0 +1,40 @@
+// shaders/shared/prelude.h: lets one header be compiled as GLSL and as C++. In C++ the GLSL
+// vector and matrix types map to GLM inside namespace gpu, and GPU_FN marks shared functions
+// inline. Every header in shaders/shared/ includes this first.
+#ifndef WISP_SHARED_PRELUDE_H
+#define WISP_SHARED_PRELUDE_H
+
+#ifdef __cplusplus
+#include <cstdint>
+#include <glm/glm.hpp>
+#define GPU_NAMESPACE_BEGIN namespace gpu {
+#define GPU_NAMESPACE_END }
+#define GPU_FN inline
+#define GPU_CONST constexpr
+GPU_NAMESPACE_BEGIN
+using vec2 = glm::vec2;
+using vec3 = glm::vec3;
+using vec4 = glm::vec4;
+using uvec2 = glm::uvec2;
+using uvec4 = glm::uvec4;
+using mat3 = glm::mat3;
+using mat4 = glm::mat4;
+using uint = std::uint32_t;
+using glm::clamp;
+using glm::cross;
+using glm::dot;
+using glm::max;
+using glm::min;
+using glm::mix;
+using glm::normalize;
+using glm::pow;
+using glm::length;
+GPU_NAMESPACE_END
+#else
+#define GPU_NAMESPACE_BEGIN
+#define GPU_NAMESPACE_END
+#define GPU_FN
+#define GPU_CONST const
+#endif
+
+#endif

@@ -1,0 +1,168 @@
+// tests/test_head.cpp: the project's own head (models/head.obj + head.json): it loads, looks like
+// a bust in proportions, its scalp rule picks the top and back, its colliders cover the head;
+// the generator rebuilds the committed files byte for byte; bad descriptions are reported.
+#include "core/error.h"
+#include "physics/head.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+using namespace wisp;
+using wisp::test::TempDir;
+using wisp::test::writeFile;
+
+namespace {
+
+std::string errorOf(const std::filesystem::path& path)
+{
+    try {
+        loadHeadDescription(path);
+    } catch (const UserError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+std::string slurp(const std::filesystem::path& p)
+{
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+glm::mat3 rotation(const glm::vec3& deg)
+{
+    glm::vec3 r = glm::radians(deg);
+    glm::mat3 rx(1, 0, 0, 0, std::cos(r.x), std::sin(r.x), 0, -std::sin(r.x), std::cos(r.x));
+    glm::mat3 ry(std::cos(r.y), 0, -std::sin(r.y), 0, 1, 0, std::sin(r.y), 0, std::cos(r.y));
+    glm::mat3 rz(std::cos(r.z), std::sin(r.z), 0, -std::sin(r.z), std::cos(r.z), 0, 0, 0, 1);
+    return rz * ry * rx;
+}
+
+}  // namespace
+
+TEST(DefaultHead, LoadsAsAMannequinBust)
+{
+    Head head = loadHead(defaultHeadPath());
+    EXPECT_EQ(head.description.units, "m");
+    EXPECT_GT(head.mesh.triangleCount(), 10000u);
+    Bounds b = head.mesh.bounds();
+    // A bust in metres: about 0.4 m tall, shoulders wider than the head is deep.
+    EXPECT_GT(b.size().y, 0.25f);
+    EXPECT_LT(b.size().y, 0.6f);
+    EXPECT_GT(b.size().x, 0.25f);
+    EXPECT_LT(b.size().x, 0.7f);
+    // The head is much narrower than the shoulders: the top 20% of the bust spans well under half the width.
+    float topY = b.max.y - 0.2f * b.size().y;
+    float minX = 1e9f, maxX = -1e9f;
+    for (const glm::vec3& p : head.mesh.positions)
+        if (p.y > topY) {
+            minX = std::min(minX, p.x);
+            maxX = std::max(maxX, p.x);
+        }
+    EXPECT_LT(maxX - minX, 0.5f * b.size().x);
+}
+
+TEST(DefaultHead, ScalpIsTheTopAndBackOfTheHead)
+{
+    Head head = loadHead(defaultHeadPath());
+    ASSERT_TRUE(head.description.scalp.has_value());
+    std::vector<uint32_t> scalp = scalpTriangles(head.mesh, *head.description.scalp);
+    double fraction = double(scalp.size()) / double(head.mesh.triangleCount());
+    EXPECT_GT(fraction, 0.05);
+    EXPECT_LT(fraction, 0.45);
+    // Every scalp triangle lies in the upper half of the bust, and none faces the front squarely.
+    Bounds b = head.mesh.bounds();
+    float meanZ = 0.0f;
+    for (uint32_t t : scalp) {
+        glm::vec3 c = (head.mesh.positions[head.mesh.indices[3 * t]] + head.mesh.positions[head.mesh.indices[3 * t + 1]] +
+                       head.mesh.positions[head.mesh.indices[3 * t + 2]]) / 3.0f;
+        EXPECT_GT(c.y, b.center().y);
+        meanZ += c.z;
+    }
+    meanZ /= float(scalp.size());
+    float headMeanZ = 0.0f;
+    for (const glm::vec3& p : head.mesh.positions)
+        headMeanZ += p.z;
+    headMeanZ /= float(head.mesh.positions.size());
+    EXPECT_LT(meanZ, headMeanZ + 0.02f);  // the scalp sits toward the back, not over the face
+}
+
+TEST(DefaultHead, CollidersCoverTheCraniumFromOutside)
+{
+    Head head = loadHead(defaultHeadPath());
+    ASSERT_GE(head.description.colliders.size(), 3u);
+    ASSERT_TRUE(head.description.scalp.has_value());
+    // Scalp vertices are inside or within a few millimetres of some collider: the hair will rest there.
+    std::vector<uint32_t> scalp = scalpTriangles(head.mesh, *head.description.scalp);
+    size_t covered = 0, checked = 0;
+    for (uint32_t t : scalp) {
+        glm::vec3 p = head.mesh.positions[head.mesh.indices[3 * t]];
+        ++checked;
+        for (const Ellipsoid& e : head.description.colliders) {
+            glm::vec3 local = glm::transpose(rotation(e.rotationDeg)) * (p - e.center);
+            glm::vec3 u = local / (e.radii + glm::vec3(0.005f));
+            if (glm::dot(u, u) <= 1.0f) {
+                ++covered;
+                break;
+            }
+        }
+    }
+    EXPECT_GT(double(covered) / double(checked), 0.95);
+}
+
+TEST(DefaultHead, GeneratorRebuildsTheCommittedFiles)
+{
+    std::filesystem::path generator = std::filesystem::path(WISP_BINARY).parent_path() / "wisp_make_head";
+    if (!std::filesystem::exists(generator))
+        GTEST_SKIP() << "wisp_make_head was not built";
+    TempDir dir;
+    std::string command = "'" + generator.string() + "' --out-dir '" + dir.path().string() + "' >/dev/null 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0);
+    std::filesystem::path models = std::filesystem::path(WISP_SOURCE_DIR) / "models";
+    EXPECT_TRUE(slurp(dir / "head.obj") == slurp(models / "head.obj")) << "models/head.obj is stale: run scripts/make_head.sh";
+    EXPECT_TRUE(slurp(dir / "head.json") == slurp(models / "head.json")) << "models/head.json is stale: run scripts/make_head.sh";
+}
+
+TEST(HeadErrors, MalformedJsonNamesTheByte)
+{
+    TempDir dir;
+    writeFile(dir / "h.json", "{\"mesh\": \"head.obj\",, }");
+    std::string e = errorOf(dir / "h.json");
+    EXPECT_NE(e.find("h.json: byte"), std::string::npos) << e;
+}
+
+TEST(HeadErrors, MissingMeshKeyIsNamed)
+{
+    TempDir dir;
+    writeFile(dir / "h.json", "{\"name\": \"x\"}");
+    EXPECT_NE(errorOf(dir / "h.json").find("'mesh' is missing"), std::string::npos);
+}
+
+TEST(HeadErrors, NegativeRadiusIsNamed)
+{
+    TempDir dir;
+    writeFile(dir / "h.json", R"({"mesh": "a.obj", "colliders": [{"center": [0,0,0], "radii": [1,-1,1]}]})");
+    std::string e = errorOf(dir / "h.json");
+    EXPECT_NE(e.find("colliders[0].radii"), std::string::npos) << e;
+}
+
+TEST(HeadErrors, WrongShapeIsNamed)
+{
+    TempDir dir;
+    writeFile(dir / "h.json", R"({"mesh": "a.obj", "scalp": {"plane_point": [0,0], "plane_normal": [0,1,0]}})");
+    EXPECT_NE(errorOf(dir / "h.json").find("scalp.plane_point"), std::string::npos);
+}
+
+TEST(HeadErrors, DescriptionNamingAMissingMesh)
+{
+    TempDir dir;
+    writeFile(dir / "h.json", R"({"mesh": "gone.obj"})");
+    try {
+        loadHead(dir / "h.json");
+        FAIL() << "expected an error";
+    } catch (const UserError& e) {
+        EXPECT_NE(std::string(e.what()).find("gone.obj"), std::string::npos);
+    }
+}

@@ -1,0 +1,161 @@
+// tests/test_mesh.cpp: mesh loading: real files from ../shared/data, n-gon triangulation, CRLF,
+// generated normals, other formats through assimp, and every malformed-file path with its line.
+#include "core/error.h"
+#include "physics/mesh.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+using namespace wisp;
+using wisp::test::TempDir;
+using wisp::test::writeFile;
+
+namespace {
+
+std::string errorOf(const std::filesystem::path& path)
+{
+    try {
+        loadMesh(path);
+    } catch (const UserError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+void expectUnitNormals(const Mesh& mesh)
+{
+    ASSERT_EQ(mesh.normals.size(), mesh.positions.size());
+    for (const glm::vec3& n : mesh.normals)
+        ASSERT_NEAR(glm::length(n), 1.0f, 1e-4f);
+}
+
+}  // namespace
+
+TEST(Mesh, LoadsSintelBustWithItsCounts)
+{
+    WISP_REQUIRE_DATA(path, "sintel/sintel.obj");
+    Mesh mesh = loadMesh(path);
+    EXPECT_EQ(mesh.sourceVertices, 3046u);   // ATTRIBUTION.md: 3,046 vertices
+    EXPECT_EQ(mesh.triangleCount(), 5952u);  // and 5,952 triangles
+    expectUnitNormals(mesh);
+    Bounds b = mesh.bounds();
+    // Metres, y up: a bust some tens of centimetres tall.
+    EXPECT_GT(b.size().y, 0.2f);
+    EXPECT_LT(b.size().y, 1.0f);
+}
+
+TEST(Mesh, LoadsTressFxHeadInCentimetres)
+{
+    WISP_REQUIRE_DATA(path, "tressfx-text/head_max4.obj");
+    Mesh mesh = loadMesh(path);
+    EXPECT_GT(mesh.triangleCount(), 1000u);
+    expectUnitNormals(mesh);
+    EXPECT_GT(mesh.bounds().diagonal(), 10.0f);  // centimetres, kept as they are
+}
+
+TEST(Mesh, TriangulatesQuadsAndAcceptsCrlf)
+{
+    TempDir dir;
+    writeFile(dir / "quad.obj", "# a unit quad and a pentagon\r\nv 0 0 0\r\nv 1 0 0\r\nv 1 1 0\r\nv 0 1 0\r\n"
+                                "v 2 0 0\r\nv 3 0 0\r\nv 3.5 1 0\r\nv 2.5 2 0\r\nv 1.5 1 0\r\nf 1 2 3 4\r\nf 5 6 7 8 9\r\n");
+    Mesh mesh = loadMesh(dir / "quad.obj");
+    EXPECT_EQ(mesh.triangleCount(), 2u + 3u);
+    EXPECT_EQ(mesh.sourceVertices, 9u);
+    expectUnitNormals(mesh);
+    // No normals in the file: generated ones face +z for a CCW quad in the xy plane.
+    for (const glm::vec3& n : mesh.normals)
+        EXPECT_GT(n.z, 0.99f);
+}
+
+TEST(Mesh, KeepsFileNormalsAndNegativeIndices)
+{
+    TempDir dir;
+    writeFile(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 -2\nf -3//1 -2//1 -1//1\n");
+    Mesh mesh = loadMesh(dir / "tri.obj");
+    ASSERT_EQ(mesh.triangleCount(), 1u);
+    for (const glm::vec3& n : mesh.normals)
+        EXPECT_NEAR(n.z, -1.0f, 1e-6f);  // the file's normal, normalized
+}
+
+TEST(Mesh, LoadsOtherFormatsThroughAssimp)
+{
+    TempDir dir;
+    writeFile(dir / "tri.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                               "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                               "0 0 0\n2 0 0\n2 2 0\n0 2 0\n4 0 1 2 3\n");
+    Mesh mesh = loadMesh(dir / "tri.ply");
+    EXPECT_EQ(mesh.triangleCount(), 2u);
+    expectUnitNormals(mesh);
+    EXPECT_FLOAT_EQ(mesh.bounds().max.x, 2.0f);
+}
+
+TEST(Mesh, ComputedNormalsAreAreaWeighted)
+{
+    // Two triangles sharing vertex 0: a big one facing +z and a small one facing +x.
+    std::vector<glm::vec3> p = {{0, 0, 0}, {10, 0, 0}, {0, 10, 0}, {0, 0, -1}, {0, 1, 0}};
+    std::vector<uint32_t> idx = {0, 1, 2, 0, 3, 4};
+    std::vector<glm::vec3> n = computeVertexNormals(p, idx);
+    EXPECT_GT(n[0].z, 0.99f);  // dominated by the big triangle
+    EXPECT_GT(n[0].x, 0.0f);
+    EXPECT_NEAR(n[3].x, 1.0f, 1e-6f);
+}
+
+TEST(MeshErrors, MissingFileNamesThePath)
+{
+    std::string e = errorOf("/nonexistent/head.obj");
+    EXPECT_NE(e.find("/nonexistent/head.obj"), std::string::npos) << e;
+    EXPECT_NE(e.find("no such"), std::string::npos) << e;
+}
+
+TEST(MeshErrors, BadNumberNamesTheLine)
+{
+    TempDir dir;
+    writeFile(dir / "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 banana 0\nf 1 2 3\n");
+    std::string e = errorOf(dir / "bad.obj");
+    EXPECT_NE(e.find("bad.obj:3:"), std::string::npos) << e;
+    EXPECT_NE(e.find("banana"), std::string::npos) << e;
+}
+
+TEST(MeshErrors, ShortVertexNamesTheLine)
+{
+    TempDir dir;
+    writeFile(dir / "bad.obj", "v 0 0 0\nv 1 0\n");
+    EXPECT_NE(errorOf(dir / "bad.obj").find("bad.obj:2:"), std::string::npos);
+}
+
+TEST(MeshErrors, FaceIndexOutOfRangeNamesTheLine)
+{
+    TempDir dir;
+    writeFile(dir / "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 7\n");
+    std::string e = errorOf(dir / "bad.obj");
+    EXPECT_NE(e.find("bad.obj:5:"), std::string::npos) << e;
+    EXPECT_NE(e.find("only 3"), std::string::npos) << e;
+}
+
+TEST(MeshErrors, DegenerateFaceNamesTheLine)
+{
+    TempDir dir;
+    writeFile(dir / "bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n");
+    EXPECT_NE(errorOf(dir / "bad.obj").find("bad.obj:3:"), std::string::npos);
+}
+
+TEST(MeshErrors, NoTrianglesIsAnError)
+{
+    TempDir dir;
+    writeFile(dir / "empty.obj", "# nothing\nv 0 0 0\n");
+    EXPECT_NE(errorOf(dir / "empty.obj").find("no triangles"), std::string::npos);
+}
+
+TEST(MeshErrors, GarbageForAssimpNamesTheFile)
+{
+    TempDir dir;
+    writeFile(dir / "junk.fbx", "this is not an fbx file at all");
+    std::string e = errorOf(dir / "junk.fbx");
+    EXPECT_NE(e.find("junk.fbx"), std::string::npos) << e;
+}
+
+TEST(MeshErrors, DirectoryIsNotAMesh)
+{
+    TempDir dir;
+    EXPECT_NE(errorOf(dir.path()).find("directory"), std::string::npos);
+}

@@ -1,0 +1,66 @@
+// tests/test_support.cpp: subprocess running, temp folders, shared data lookup.
+#include "test_support.h"
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <sys/wait.h>
+
+namespace wisp::test {
+
+vk::ContextOptions validatedOptions()
+{
+    return {.validation = true};
+}
+
+namespace {
+
+std::string slurp(const std::filesystem::path& path)
+{
+    std::ifstream in(path);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+}  // namespace
+
+RunResult runWisp(const std::string& args, const std::string& envPrefix)
+{
+    TempDir dir;
+    std::string command = envPrefix + " '" WISP_BINARY "' " + args + " >'" + (dir / "out").string() + "' 2>'" +
+                          (dir / "err").string() + "' </dev/null";
+    int raw = std::system(command.c_str());
+    RunResult r;
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + (WIFSIGNALED(raw) ? WTERMSIG(raw) : 0);
+    r.out = slurp(dir / "out");
+    r.err = slurp(dir / "err");
+    return r;
+}
+
+TempDir::TempDir()
+{
+    std::random_device rd;
+    path_ = std::filesystem::temp_directory_path() / ("wisp-test-" + std::to_string(rd()) + std::to_string(rd()));
+    std::filesystem::create_directories(path_);
+}
+
+TempDir::~TempDir()
+{
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+}
+
+void writeFile(const std::filesystem::path& path, const std::string& text)
+{
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+}
+
+std::filesystem::path sharedData(const std::string& relative)
+{
+    std::filesystem::path p = std::filesystem::path(WISP_SHARED_DATA) / relative;
+    std::error_code ec;
+    return std::filesystem::exists(p, ec) ? p : std::filesystem::path();
+}
+
+}  // namespace wisp::test

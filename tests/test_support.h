@@ -1,0 +1,46 @@
+// tests/test_support.h: helpers shared by the suites: a validated Vulkan context, the real wisp
+// binary run as a subprocess, temporary folders, and paths to ../shared/data.
+#pragma once
+
+#include "renderer/vk/context.h"
+
+#include <filesystem>
+#include <string>
+
+namespace wisp::test {
+
+// A context on the default device with validation on (the suites assert zero messages).
+vk::ContextOptions validatedOptions();
+
+struct RunResult {
+    int status = -1;
+    std::string out;
+    std::string err;
+};
+// Runs the wisp binary with `args` (shell-quoted by the caller) and optional environment prefix.
+RunResult runWisp(const std::string& args, const std::string& envPrefix = "");
+
+// A fresh, empty folder under the system temp folder, removed when the object dies.
+class TempDir {
+public:
+    TempDir();
+    ~TempDir();
+    const std::filesystem::path& path() const { return path_; }
+    std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+
+private:
+    std::filesystem::path path_;
+};
+
+void writeFile(const std::filesystem::path& path, const std::string& text);
+// ../shared/data/<relative>, or an empty path when the shared data is not beside the checkout.
+std::filesystem::path sharedData(const std::string& relative);
+
+}  // namespace wisp::test
+
+// Skips the test, saying which file is missing, when shared data is absent.
+#define WISP_REQUIRE_DATA(var, relative)                                                      \
+    std::filesystem::path var = ::wisp::test::sharedData(relative);                           \
+    if (var.empty())                                                                          \
+    GTEST_SKIP() << "../shared/data/" << (relative) << " is absent: this test needs the shared " \
+                                                       "third-party assets beside the checkout"
