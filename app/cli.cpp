@@ -4,8 +4,10 @@
 
 #include "app/headless.h"
 #include "app/image_io.h"
+#include "app/simulate.h"
 #include "app/window.h"
 #include "core/error.h"
+#include "physics/hair_scene.h"
 #include "physics/head.h"
 #include "renderer/vk/context.h"
 
@@ -70,6 +72,54 @@ void addLookOptions(CLI::App* cmd, RenderSettings& s)
     cmd->add_option("--light-intensity", s.light.intensity, "key light strength")
         ->check(CLI::Range(static_cast<float>(kLightIntensityRange.min), static_cast<float>(kLightIntensityRange.max)))
         ->capture_default_str();
+}
+
+// Hair options shared by render and simulate.
+struct HairOptions {
+    GrowthSettings growth;
+    SimSettings sim;
+    std::vector<float> sphere;  // x, y, z, r
+    std::vector<float> wind;    // x, y, z
+
+    glm::vec4 sphereOrNone() const
+    {
+        return sphere.empty() ? glm::vec4(0.0f) : glm::vec4(sphere[0], sphere[1], sphere[2], sphere[3]);
+    }
+    void apply()  // values CLI11 cannot check on its own
+    {
+        if (!sphere.empty() && !(sphere[3] > 0.0f))
+            throw UserError("--sphere: the radius (4th value) must be > 0, got " + std::to_string(sphere[3]));
+        if (!wind.empty())
+            sim.wind = glm::vec3(wind[0], wind[1], wind[2]);
+    }
+};
+
+void addHairOptions(CLI::App* cmd, HairOptions& h)
+{
+    cmd->add_option("--guides", h.growth.guides, "guide strands to grow on the scalp")
+        ->check(CLI::Range(1u, 2000000u))
+        ->capture_default_str();
+    cmd->add_option("--vertices", h.growth.verticesPerStrand, "vertices per guide strand")
+        ->check(CLI::Range(kMinVerticesPerStrand, kMaxVerticesPerStrand))
+        ->capture_default_str();
+    cmd->add_option("--hair-length", h.growth.lengthMetres, "mean grown strand length, metres (scaled to the head's units)")
+        ->check(CLI::Range(0.01f, 2.0f))
+        ->capture_default_str();
+    cmd->add_option("--curl", h.growth.curlRadiusMetres, "curl radius of grown strands, metres (0 = straight)")
+        ->check(CLI::Range(0.0f, 0.1f))
+        ->capture_default_str();
+    cmd->add_flag("--poisson", h.growth.poissonDisk, "blue-noise (Poisson-disk) roots instead of area-weighted random");
+    cmd->add_option("--seed", h.growth.seed, "seed for root sampling and strand variation")->capture_default_str();
+    cmd->add_option("--substeps", h.sim.substeps, "integrate/FTL substeps per step")->check(CLI::Range(1u, 16u))->capture_default_str();
+    cmd->add_option("--step-hz", h.sim.stepHz, "fixed simulation steps per simulated second")
+        ->check(CLI::Range(30.0f, 1000.0f))
+        ->capture_default_str();
+    cmd->add_option("--grid", h.sim.gridResolution, "hair-hair grid nodes per axis")->check(CLI::Range(8u, 256u))->capture_default_str();
+    cmd->add_option("--friction", h.sim.gridFriction, "hair-hair friction (blend toward the grid velocity)")
+        ->check(CLI::Range(0.0f, 1.0f))
+        ->capture_default_str();
+    cmd->add_option("--sphere", h.sphere, "collision sphere x,y,z,r in the head's units")->delimiter(',')->expected(4);
+    cmd->add_option("--wind", h.wind, "wind x,y,z in m/s^2 (scaled to the head's units)")->delimiter(',')->expected(3);
 }
 
 int runInfo(bool json)
@@ -142,17 +192,34 @@ int runInspect(const std::string& file)
     return 0;
 }
 
-int runRender(const GlobalOptions& g, const std::string& out, const std::string& headFile, const RenderSettings& settings)
+struct RenderOptions {
+    std::string out;
+    std::string headFile;
+    RenderSettings settings;
+    HairOptions hair;
+    bool noHair = false;
+    uint32_t frames = 0;
+    float fps = 30.0f;
+};
+
+int runRender(const GlobalOptions& g, RenderOptions& o)
 {
-    checkPngOutput(out);  // fail before any GPU work
-    Head head = loadHead(headPathOrDefault(headFile));
+    checkPngOutput(o.out);  // fail before any GPU work
+    o.hair.apply();
+    std::filesystem::path headPath = headPathOrDefault(o.headFile);
+    HairScene scene;
+    if (o.noHair)
+        scene.head = loadHead(headPath);
+    else
+        scene = buildGrownScene(headPath, o.hair.growth);
     vk::Context ctx(contextOptions(g));
-    Picture picture = renderPicture(ctx, head, settings);
+    HairRun run{.scene = &scene, .sim = o.hair.sim, .frames = o.frames, .framesPerSecond = o.fps, .sphere = o.hair.sphereOrNone()};
+    Picture picture = renderPicture(ctx, scene.head, o.settings, o.noHair ? nullptr : &run);
     int status = validationStatus(ctx);
     if (status != 0)
         return status;  // a picture made with validation errors is not trusted: nothing written
-    writePng(out, picture.width, picture.height, picture.rgba);
-    std::cout << out << "\n";
+    writePng(o.out, picture.width, picture.height, picture.rgba);
+    std::cout << o.out << "\n";
     return 0;
 }
 
@@ -168,13 +235,18 @@ int runCli(int argc, char** argv)
     app.add_flag("--sync-validation", g.syncValidation, "also the validation layer's synchronization checks");
     app.add_option("--gpu", g.gpu, "Vulkan device: an index or part of a name from 'wisp info' (default: best)");
 
-    RenderSettings renderSettings;
-    std::string renderOut, renderHead;
-    CLI::App* render = app.add_subcommand("render", "render one frame offscreen into a PNG");
-    render->add_option("--out", renderOut, "output PNG file (its folder must exist)")->required();
-    render->add_option("--head", renderHead, "head: a description (.json) or a mesh (.obj, .fbx, .gltf, .ply, ...); default models/head.json");
-    addImageSize(render, renderSettings);
-    addLookOptions(render, renderSettings);
+    RenderOptions ro;
+    CLI::App* render = app.add_subcommand("render", "render one frame offscreen into a PNG (the head and its simulated guide strands)");
+    render->add_option("--out", ro.out, "output PNG file (its folder must exist)")->required();
+    render->add_option("--head", ro.headFile, "head: a description (.json) or a mesh (.obj, .fbx, .gltf, .ply, ...); default models/head.json");
+    render->add_option("--frames", ro.frames, "simulated frames before the picture (each 1/fps seconds of fixed steps)")
+        ->check(CLI::Range(0u, 100000u))
+        ->capture_default_str();
+    render->add_option("--fps", ro.fps, "simulated frames per second")->check(CLI::Range(1.0f, 1000.0f))->capture_default_str();
+    render->add_flag("--no-hair", ro.noHair, "draw the head alone");
+    addImageSize(render, ro.settings);
+    addLookOptions(render, ro.settings);
+    addHairOptions(render, ro.hair);
 
     WindowOptions windowOptions;
     CLI::App* view = app.add_subcommand("view", "the interactive window (drag: orbit, wheel: zoom, middle drag: pan, Esc: quit)");
@@ -184,6 +256,14 @@ int runCli(int argc, char** argv)
     view->add_option("--frames", windowOptions.maxFrames, "close after this many frames (0 = run until closed)")
         ->check(CLI::NonNegativeNumber);
     view->add_option("--screenshot", windowOptions.screenshot, "write the last frame to this PNG when closing");
+
+    SimulateOptions sim;
+    HairOptions simHair;
+    CLI::App* simulate = app.add_subcommand("simulate", "physics only, headless: quality metrics as text or JSON");
+    simulate->add_option("--head", sim.headFile, "head description (.json) or mesh file; default models/head.json");
+    simulate->add_option("--steps", sim.steps, "fixed simulation steps to run")->check(CLI::Range(1u, 10000000u))->capture_default_str();
+    simulate->add_flag("--json", sim.json, "print one JSON object");
+    addHairOptions(simulate, simHair);
 
     bool infoJson = false;
     CLI::App* info = app.add_subcommand("info", "list Vulkan devices and the features Wisp uses");
@@ -229,12 +309,23 @@ int runCli(int argc, char** argv)
 
     try {
         if (*render)
-            return runRender(g, renderOut, renderHead, renderSettings);
+            return runRender(g, ro);
         if (*view) {
             windowOptions.context = contextOptions(g);
             if (windowOptions.headFile.empty())
                 windowOptions.headFile = defaultHeadPath().string();
             return runWindow(windowOptions);
+        }
+        if (*simulate) {
+            sim.context = contextOptions(g);
+            if (sim.headFile.empty())
+                sim.headFile = defaultHeadPath().string();
+            simHair.apply();
+            sim.growth = simHair.growth;
+            sim.sim = simHair.sim;
+            if (!simHair.sphere.empty())
+                sim.sphere = simHair.sphereOrNone();
+            return runSimulate(sim);
         }
         if (*info)
             return runInfo(infoJson);

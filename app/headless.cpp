@@ -1,17 +1,50 @@
-// app/headless.cpp: one offscreen frame: begin, prepare, scene passes, readback, submit, wait.
+// app/headless.cpp: offscreen frames: the simulated frames run the physics pass alone (one submit
+// per batch), then one full frame renders and reads back the picture.
 #include "app/headless.h"
 
+#include "physics/gpu_solver.h"
 #include "renderer/frame.h"
 #include "renderer/renderer.h"
 
+#include <cmath>
+#include <memory>
+
 namespace wisp {
 
-Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSettings& settings)
+Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSettings& settings, const HairRun* hair)
 {
     Renderer renderer(ctx, settings, 1);
     renderer.setHead(head);
     Frame frame(ctx, 1);
     ReadbackPass readback(ctx, renderer.target());
+
+    std::unique_ptr<GpuSolver> solver;
+    SimSetup setup;
+    glm::mat4 headTransform(1.0f);
+    if (hair) {
+        setup = makeSimSetup(hair->sim, hair->scene->strands, hair->scene->gpuColliders, hair->scene->unitsPerMetre);
+        solver = std::make_unique<GpuSolver>(ctx, hair->scene->strands, setup, headTransform);
+        renderer.attachHair(*solver, hair->scene->strands);
+        // Fixed steps only: each frame advances exactly round(stepHz / fps) steps of 1 / stepHz.
+        uint32_t stepsPerFrame = std::max(1u, uint32_t(std::lround(hair->sim.stepHz / hair->framesPerSecond)));
+        float stepSeconds = 1.0f / hair->sim.stepHz;
+        uint32_t totalSteps = hair->frames * stepsPerFrame;
+        constexpr uint32_t kBatch = 32;
+        for (uint32_t done = 0; done < totalSteps;) {
+            uint32_t n = std::min(kBatch, totalSteps - done);
+            std::vector<gpu::SimStep> steps;
+            for (uint32_t k = 0; k < n; ++k)
+                steps.push_back(makeStep(setup, headTransform, hair->sphere, float(done + k) * stepSeconds));
+            renderer.setSteps(std::move(steps));
+            FrameContext& fc = frame.begin({});
+            std::vector<Pass*> passes = {renderer.physics()};
+            frame.run(fc, passes);
+            frame.submit(fc);
+            frame.waitIdle();
+            done += n;
+        }
+        renderer.setSteps({});
+    }
 
     float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
     OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), aspect);

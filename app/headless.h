@@ -2,7 +2,8 @@
 // them back. Used by `wisp render` (and later `record` and `sweep`), and by the rendering tests.
 #pragma once
 
-#include "physics/head.h"
+#include "physics/hair_scene.h"
+#include "physics/simulation.h"
 #include "renderer/camera.h"
 #include "renderer/settings.h"
 #include "renderer/vk/context.h"
@@ -18,7 +19,18 @@ struct Picture {
     std::vector<uint8_t> rgba;  // tightly packed, top row first, sRGB
 };
 
-// Renders one frame of `head` as the default camera frames it. Deterministic for a device.
-Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSettings& settings);
+// Hair to simulate and draw with the head.
+struct HairRun {
+    const HairScene* scene = nullptr;
+    SimSettings sim;
+    uint32_t frames = 0;               // simulated frames before the picture
+    float framesPerSecond = 30.0f;     // simulated time per frame = 1 / fps
+    glm::vec4 sphere{0.0f};            // the user's sphere (xyz, radius; 0 = none)
+};
+
+// Renders one frame of `head` (with `hair` when given) as the default camera frames it.
+// Deterministic for a device.
+Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSettings& settings,
+                      const HairRun* hair = nullptr);
 
 }  // namespace wisp

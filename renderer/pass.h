@@ -22,6 +22,7 @@ enum class Access {
     ComputeRead,       // storage read in compute shaders
     ComputeWrite,      // storage write (or read-modify-write) in compute shaders
     VertexShaderRead,  // storage read in vertex, tessellation or geometry shaders
+    VertexInput,       // read as a vertex buffer
     Present,           // handed to the presentation engine
 };
 

@@ -70,9 +70,28 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
     uniforms_.write(frame.slot, pack(settings_, camera, target_->extent(), timeSeconds));
 }
 
+void Renderer::attachHair(GpuSolver& solver, const StrandSet& strands)
+{
+    physicsPass_ = std::make_unique<PhysicsPass>(solver);
+    guidePass_ = std::make_unique<GuidePass>(ctx_, *target_, uniforms_, solver, uint32_t(strands.strandCount()),
+                                             strands.verticesPerStrand);
+}
+
+void Renderer::setSteps(std::vector<gpu::SimStep> steps)
+{
+    if (physicsPass_)
+        physicsPass_->setSteps(std::move(steps));
+}
+
 std::vector<Pass*> Renderer::passes()
 {
-    return {meshPass_.get()};
+    std::vector<Pass*> list;
+    if (physicsPass_)
+        list.push_back(physicsPass_.get());
+    list.push_back(meshPass_.get());
+    if (guidePass_)
+        list.push_back(guidePass_.get());
+    return list;
 }
 
 }  // namespace wisp

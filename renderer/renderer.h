@@ -1,6 +1,7 @@
 // renderer/renderer.h: the scene renderer shared by the window and the headless front ends. It
 // owns the render target, the per-frame uniforms and the passes, in the order they run:
-//   meshes (head)  [later: physics, shadow, deep opacity, hair, OIT resolve]
+//   physics (when hair is attached) | meshes (head) | guides (simulated guide strands as lines)
+//   [later: shadow, deep opacity, hair, OIT resolve]
 // A front end begins a Frame, calls prepare(), runs passes() plus its own tail (readback or
 // present), and submits.
 #pragma once
@@ -8,7 +9,9 @@
 #include "physics/head.h"
 #include "renderer/camera.h"
 #include "renderer/frame_uniforms.h"
+#include "renderer/guide_pass.h"
 #include "renderer/mesh_pass.h"
+#include "renderer/physics_pass.h"
 #include "renderer/render_target.h"
 #include "renderer/settings.h"
 
@@ -31,6 +34,11 @@ public:
 
     // Uploads the head mesh; call while the device is idle.
     void setHead(const Head& head);
+    // Simulates and draws guide strands from `solver` (which must outlive the renderer).
+    void attachHair(GpuSolver& solver, const StrandSet& strands);
+    // The simulation steps to record in the next frame (none: the hair holds still).
+    void setSteps(std::vector<gpu::SimStep> steps);
+    PhysicsPass* physics() { return physicsPass_.get(); }
     // Recreates the size-dependent images; call while the device is idle.
     void resize(VkExtent2D extent);
 
@@ -49,6 +57,8 @@ private:
     FrameUniforms uniforms_;
     std::unique_ptr<RenderTarget> target_;
     std::unique_ptr<MeshPass> meshPass_;
+    std::unique_ptr<PhysicsPass> physicsPass_;
+    std::unique_ptr<GuidePass> guidePass_;
     Bounds bounds_;
 };
 

@@ -21,7 +21,7 @@ vk::DeviceReport usable(uint32_t index, const char* name, VkPhysicalDeviceType t
     r.name = name;
     r.type = type;
     r.queueFamily = 0;
-    r.vulkan13 = r.dynamicRendering = r.synchronization2 = true;
+    r.vulkan13 = r.dynamicRendering = r.synchronization2 = r.maintenance4 = true;
     r.tessellationShader = r.geometryShader = r.fragmentStoresAndAtomics = true;
     r.timestamps = r.pushDescriptor = r.swapchain = true;
     return r;

@@ -61,6 +61,7 @@ std::vector<std::string> DeviceReport::missing(bool needSwapchain) const
     need(vulkan13, "Vulkan 1.3");
     need(dynamicRendering, "dynamicRendering");
     need(synchronization2, "synchronization2");
+    need(maintenance4, "maintenance4");
     need(tessellationShader, "tessellationShader");
     need(geometryShader, "geometryShader");
     need(fragmentStoresAndAtomics, "fragmentStoresAndAtomics");
@@ -125,6 +126,7 @@ std::vector<DeviceReport> queryDevices(VkInstance instance)
         vkGetPhysicalDeviceFeatures2(pd, &features);
         r.dynamicRendering = r.vulkan13 && f13.dynamicRendering;
         r.synchronization2 = r.vulkan13 && f13.synchronization2;
+        r.maintenance4 = r.vulkan13 && f13.maintenance4;
         r.tessellationShader = features.features.tessellationShader;
         r.geometryShader = features.features.geometryShader;
         r.fragmentStoresAndAtomics = features.features.fragmentStoresAndAtomics;
@@ -310,7 +312,8 @@ Context::Context(const ContextOptions& options)
         VkPhysicalDeviceVulkan13Features f13{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
                                              .pNext = report_.floatAtomicAdd ? &atomicFloat : nullptr,
                                              .synchronization2 = VK_TRUE,
-                                             .dynamicRendering = VK_TRUE};
+                                             .dynamicRendering = VK_TRUE,
+                                             .maintenance4 = VK_TRUE};
         VkPhysicalDeviceFeatures2 features{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &f13};
         features.features.tessellationShader = VK_TRUE;
         features.features.geometryShader = VK_TRUE;

@@ -36,6 +36,7 @@ struct DeviceReport {
     bool vulkan13 = false;              // dynamic rendering and synchronization2 are core there
     bool dynamicRendering = false;
     bool synchronization2 = false;
+    bool maintenance4 = false;          // glslang's SPIR-V 1.6 uses LocalSizeId, which needs it
     bool tessellationShader = false;
     bool geometryShader = false;
     bool fragmentStoresAndAtomics = false;

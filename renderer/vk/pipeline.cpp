@@ -178,4 +178,36 @@ Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& 
     return Pipeline(ctx.device(), pipeline);
 }
 
+Pipeline createComputePipeline(const Context& ctx, VkPipelineLayout layout, const std::string& shader, const char* name)
+{
+    std::string file = shader + ".spv";
+    ShaderModule module = loadShader(ctx, file);
+    VkComputePipelineCreateInfo info{.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+                                     .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                                               .stage = stageOf(file),
+                                               .module = module,
+                                               .pName = "main"},
+                                     .layout = layout};
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+    ctx.setName(pipeline, VK_OBJECT_TYPE_PIPELINE, name);
+    return Pipeline(ctx.device(), pipeline);
+}
+
+void computeToComputeBarrier(VkCommandBuffer cmd)
+{
+    VkMemoryBarrier2 barrier{.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+                             .srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                             .srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                             .dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                             .dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
+    VkDependencyInfo dep{.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1, .pMemoryBarriers = &barrier};
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+uint32_t groupCount(uint32_t items, uint32_t groupSize)
+{
+    return (items + groupSize - 1) / groupSize;
+}
+
 }  // namespace wisp::vk

@@ -59,5 +59,10 @@ struct GraphicsPipelineDesc {
     const char* name = "unnamed pipeline";
 };
 Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& desc);
+Pipeline createComputePipeline(const Context& ctx, VkPipelineLayout layout, const std::string& shader, const char* name);
+
+// A compute -> compute dependency on all shader storage (between dispatches of one pass).
+void computeToComputeBarrier(VkCommandBuffer cmd);
+uint32_t groupCount(uint32_t items, uint32_t groupSize);  // ceil(items / groupSize)
 
 }  // namespace wisp::vk

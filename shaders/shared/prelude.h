@@ -16,6 +16,8 @@ using vec2 = glm::vec2;
 using vec3 = glm::vec3;
 using vec4 = glm::vec4;
 using uvec2 = glm::uvec2;
+using uvec3 = glm::uvec3;
+using ivec3 = glm::ivec3;
 using uvec4 = glm::uvec4;
 using mat3 = glm::mat3;
 using mat4 = glm::mat4;
@@ -28,6 +30,14 @@ using glm::min;
 using glm::mix;
 using glm::normalize;
 using glm::pow;
+using glm::abs;
+using glm::floor;
+using glm::fract;
+using glm::sqrt;
+using glm::sin;
+using glm::cos;
+using glm::exp;
+using glm::transpose;
 using glm::length;
 GPU_NAMESPACE_END
 #else

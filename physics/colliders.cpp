@@ -1,0 +1,116 @@
+// physics/colliders.cpp: ellipsoid conversion, penetration, automatic fit.
+#include "physics/colliders.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace wisp {
+
+glm::mat3 rotationFromDegrees(const glm::vec3& xyzDegrees)
+{
+    glm::vec3 r = glm::radians(xyzDegrees);
+    glm::mat3 rx(1, 0, 0, 0, std::cos(r.x), std::sin(r.x), 0, -std::sin(r.x), std::cos(r.x));
+    glm::mat3 ry(std::cos(r.y), 0, -std::sin(r.y), 0, 1, 0, std::sin(r.y), 0, std::cos(r.y));
+    glm::mat3 rz(std::cos(r.z), std::sin(r.z), 0, -std::sin(r.z), std::cos(r.z), 0, 0, 0, 1);
+    return rz * ry * rx;
+}
+
+gpu::Ellipsoid toGpu(const Ellipsoid& e)
+{
+    gpu::Ellipsoid g{};
+    g.rotation = glm::mat4(rotationFromDegrees(e.rotationDeg));
+    g.center = e.center;
+    g.radii = e.radii;
+    return g;
+}
+
+float penetrationDepth(const std::vector<gpu::Ellipsoid>& colliders, const glm::vec3& p)
+{
+    float deepest = 0.0f;
+    for (const gpu::Ellipsoid& e : colliders)
+        deepest = std::max(deepest, gpu::ellipsoidContact(e, p, 0.0f).depth);
+    return deepest;
+}
+
+namespace {
+
+Ellipsoid fitBand(const Mesh& mesh, float yTop, float yBottom, float insideFraction, const char* name)
+{
+    std::vector<glm::vec3> band;
+    for (const glm::vec3& p : mesh.positions)
+        if (p.y <= yTop && p.y >= yBottom)
+            band.push_back(p);
+    Ellipsoid e;
+    e.name = name;
+    if (band.empty()) {
+        e.center = glm::vec3(0.0f, 0.5f * (yTop + yBottom), 0.0f);
+        e.radii = glm::vec3(std::max(1e-3f, 0.5f * (yTop - yBottom)));
+        return e;
+    }
+    glm::vec3 lo = band.front(), hi = band.front();
+    for (const glm::vec3& p : band) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    e.center = 0.5f * (lo + hi);
+    e.radii = glm::max(0.5f * (hi - lo), glm::vec3(1e-4f));
+    if (insideFraction > 0.0f) {
+        std::vector<float> r;
+        for (const glm::vec3& p : band)
+            r.push_back(glm::length((p - e.center) / e.radii));
+        size_t k = std::min(r.size() - 1, static_cast<size_t>(insideFraction * float(r.size())));
+        std::nth_element(r.begin(), r.begin() + std::ptrdiff_t(k), r.end());
+        e.radii *= std::max(r[k], 1e-3f);
+    }
+    return e;
+}
+
+}  // namespace
+
+std::vector<Ellipsoid> fitColliders(const Mesh& mesh)
+{
+    Bounds b = mesh.bounds();
+    float h = b.size().y;
+    float cut1 = b.max.y - 0.32f * h;
+    float cut2 = b.max.y - 0.5f * h;
+    Ellipsoid cranium = fitBand(mesh, b.max.y, cut1, 0.0f, "cranium");
+    // The skull: as wide and deep as the top band, as tall as it is wide, its top at the head's
+    // top; then scaled so that 98% of the vertices above its centre (the scalp) lie inside.
+    cranium.radii.y = 0.55f * (cranium.radii.x + cranium.radii.z);
+    cranium.center.y = b.max.y - cranium.radii.y;
+    std::vector<float> r;
+    for (const glm::vec3& p : mesh.positions)
+        if (p.y > cranium.center.y)
+            r.push_back(glm::length((p - cranium.center) / cranium.radii));
+    if (!r.empty()) {
+        size_t k = std::min(r.size() - 1, static_cast<size_t>(0.98f * float(r.size())));
+        std::nth_element(r.begin(), r.begin() + std::ptrdiff_t(k), r.end());
+        cranium.radii *= std::max(r[k], 1e-3f);
+    }
+    return {cranium, fitBand(mesh, cut1, cut2, 0.9f, "neck"), fitBand(mesh, cut2, b.min.y, 0.0f, "shoulders")};
+}
+
+ScalpRule defaultScalpRule(const Ellipsoid& cranium)
+{
+    ScalpRule rule;
+    rule.planePoint = cranium.center - glm::vec3(0.0f, 0.15f * cranium.radii.y, 0.0f);
+    rule.planeNormal = glm::normalize(glm::vec3(0.0f, 1.0f, -0.45f));
+    rule.faceDirection = glm::vec3(0.0f, 0.0f, 1.0f);
+    rule.faceMaxDot = 0.35f;
+    return rule;
+}
+
+float unitsPerMetre(const Head& head)
+{
+    const std::string& u = head.description.units;
+    if (u == "m")
+        return 1.0f;
+    if (u == "cm")
+        return 100.0f;
+    if (u == "mm")
+        return 1000.0f;
+    // A bust (head, neck, shoulders) is about 0.6 m along its bounding box's diagonal.
+    return std::max(head.mesh.bounds().diagonal(), 1e-6f) / 0.6f;
+}
+
+}  // namespace wisp

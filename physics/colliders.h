@@ -1,0 +1,34 @@
+// physics/colliders.h: the head's collision ellipsoids: conversion to the GPU form, the deepest
+// penetration of a point, and the automatic fit for meshes that come without any.
+#pragma once
+
+#include "physics/head.h"
+#include "shaders/shared/sim.h"
+
+#include <vector>
+
+namespace wisp {
+
+gpu::Ellipsoid toGpu(const Ellipsoid& e);
+glm::mat3 rotationFromDegrees(const glm::vec3& xyzDegrees);  // R = Rz * Ry * Rx
+
+// How far `p` (head space) lies inside the deepest collider; 0 when outside all.
+float penetrationDepth(const std::vector<gpu::Ellipsoid>& colliders, const glm::vec3& p);
+
+// Fits ellipsoids to a bust-like mesh with no description (y up, face toward +z):
+//  - "cranium": as wide and deep as the vertices in the top 32% of the height, as tall as it is
+//    wide, its top at the mesh's top, then scaled uniformly so that 98% of the vertices above its
+//    centre lie inside (hair rests on the skull, not in it);
+//  - "neck": the vertices between 32% and 50% from the top, fitted the same way;
+//  - "shoulders": the lower half, fitted the same way but not scaled up (it only stops hair
+//    falling through the body).
+std::vector<Ellipsoid> fitColliders(const Mesh& mesh);
+
+// A scalp rule for a bare mesh, derived from the fitted cranium: above a plane a little below its
+// centre, tilted so the hairline is higher at the front, excluding the face.
+ScalpRule defaultScalpRule(const Ellipsoid& cranium);
+
+// Scene scale in asset units per metre: from the description's units, else from the bust's size.
+float unitsPerMetre(const Head& head);
+
+}  // namespace wisp

@@ -1,0 +1,199 @@
+// physics/cpu_solver.cpp: the reference solver. integrateStrand mirrors sim_integrate.comp line
+// for line; the grid functions mirror grid_clear/splat/normalize/gather.comp.
+#include "physics/cpu_solver.h"
+
+namespace wisp {
+
+using namespace gpu;
+
+std::vector<RestVertex> restVertices(const StrandSet& strands)
+{
+    std::vector<RestVertex> out(strands.vertexCount());
+    uint32_t V = strands.verticesPerStrand;
+    for (size_t g = 0; g < out.size(); ++g) {
+        out[g].position = strands.rest[g];
+        out[g].segmentLength = g % V == 0 ? 0.0f : glm::length(strands.rest[g] - strands.rest[g - 1]);
+    }
+    return out;
+}
+
+CpuSolver::CpuSolver(const StrandSet& strands, const SimSetup& setup, const glm::mat4& headTransform)
+    : strands_(strands), setup_(setup), rest_(restVertices(strands)), state_(initialState(strands, headTransform)),
+      grid_(setup.params.gridNodeCount), gridVelocity_(setup.params.gridNodeCount)
+{
+}
+
+void CpuSolver::step(const SimStep& first)
+{
+    SimStep sub = first;
+    for (uint32_t k = 0; k < setup_.substeps; ++k) {
+        sub.time = first.time + float(k) * setup_.params.dt;
+        for (uint32_t s = 0; s < setup_.params.strandCount; ++s)
+            integrateStrand(s, sub);
+    }
+    gridClear();
+    gridSplat(first);
+    gridNormalize();
+    gridGather(first);
+}
+
+void CpuSolver::integrateStrand(uint32_t s, const SimStep& step)
+{
+    const SimParams& params = setup_.params;
+    std::vector<vec4>& positions = state_.positions;
+    std::vector<vec4>& velocities = state_.velocities;
+    std::vector<vec4>& tangents = state_.tangents;
+
+    auto penalty = [&](vec3 x) {
+        vec3 a(0.0f);
+        for (uint32_t c = 0; c < params.colliderCount; ++c) {
+            Contact k = headColliderContact(params.colliders[c], step.headTransform, x, params.collisionMargin);
+            if (k.depth > 0.0f)
+                a += params.penaltyStiffness * k.depth * k.normal;
+        }
+        if (step.sphereRadius > 0.0f) {
+            Contact k = sphereContact(step.sphereCenter, step.sphereRadius, x, params.collisionMargin);
+            if (k.depth > 0.0f)
+                a += params.penaltyStiffness * k.depth * k.normal;
+        }
+        return a;
+    };
+    auto pushOut = [&](vec3 p) {
+        for (uint32_t c = 0; c < params.colliderCount; ++c) {
+            Contact k = headColliderContact(params.colliders[c], step.headTransform, p, 0.0f);
+            if (k.depth > 0.0f)
+                p += k.depth * k.normal;
+        }
+        if (step.sphereRadius > 0.0f) {
+            Contact k = sphereContact(step.sphereCenter, step.sphereRadius, p, 0.0f);
+            if (k.depth > 0.0f)
+                p += k.depth * k.normal;
+        }
+        return p;
+    };
+
+    uint32_t V = params.verticesPerStrand;
+    uint32_t base = s * V;
+    StrandInfo info = strands_.strands[s];
+    SimPart part = params.parts[info.part];
+    float dt = params.dt;
+    mat3 R = mat3(step.headTransform);
+    vec3 wind = strandWind(params.wind, params.windFrequency, step.time, info.seed);
+    bool finite = true;
+    vec3 lastTangent(0.0f);
+
+    vec3 prevX = vec3(positions[base]);
+    vec3 prevP = vec3(step.headTransform * vec4(rest_[base].position, 1.0f));
+    bool prevPinned = true;
+    mat3 frame = R;
+
+    for (uint32_t i = 1; i < V; ++i) {
+        uint32_t g = base + i;
+        vec3 x = vec3(positions[g]);
+        vec3 v = vec3(velocities[g]);
+        RestVertex r = rest_[g];
+        vec3 restWorld = vec3(step.headTransform * vec4(r.position, 1.0f));
+        vec3 restDir = (r.position - rest_[g - 1].position) / r.segmentLength;
+        vec3 targetDir = frame * restDir;
+        bool pinned = i < info.pinnedRoot || (info.pinnedTip != 0u && i == V - 1u);
+
+        vec3 p;
+        vec3 d(0.0f);
+        if (pinned) {
+            p = restWorld;
+        } else {
+            vec3 segment = x - prevX;
+            float segLen = length(segment);
+            vec3 t = segLen > 1e-12f ? segment / segLen : targetDir;
+            vec3 a = params.gravity - part.drag * v + windAcceleration(t, wind) + penalty(x);
+            p = x + dt * v + dt * dt * a;
+            p = mix(p, restWorld, globalShapeWeight(part.globalStiffness, i, V));
+            p = mix(p, prevP + r.segmentLength * targetDir, part.localStiffness);
+            p = pushOut(p);
+            vec3 before = p;
+            p = ftlProject(prevP, p, r.segmentLength);
+            d = p - before;
+        }
+        finite = finite && isFinite3(p);
+
+        vec3 prevV = (prevP - prevX) / dt;
+        if (!prevPinned)
+            prevV -= part.ftlDamping * d / dt;
+        positions[g - 1] = vec4(prevP, positions[g - 1].w);
+        velocities[g - 1] = vec4(prevV, 0.0f);
+        vec3 actualDir = normalize(p - prevP);
+        tangents[g - 1] = vec4(actualDir, 0.0f);
+        lastTangent = actualDir;
+
+        frame = transportFrame(frame, targetDir, actualDir);
+        prevX = x;
+        prevP = p;
+        prevPinned = pinned;
+    }
+    positions[base + V - 1] = vec4(prevP, positions[base + V - 1].w);
+    velocities[base + V - 1] = vec4((prevP - prevX) / dt, 0.0f);
+    tangents[base + V - 1] = vec4(lastTangent, 0.0f);
+
+    if (!finite) {
+        for (uint32_t i = 0; i < V; ++i) {
+            positions[base + i] = vec4(vec3(step.headTransform * vec4(rest_[base + i].position, 1.0f)), positions[base + i].w);
+            velocities[base + i] = vec4(0.0f);
+            uint32_t j = std::min(i + 1u, V - 1u);
+            tangents[base + i] = vec4(R * normalize(rest_[base + j].position - rest_[base + j - 1].position), 0.0f);
+        }
+        state_.nonfiniteResets += 1;
+    }
+}
+
+void CpuSolver::gridClear()
+{
+    for (GridNode& n : grid_)
+        n = GridNode{vec3(0.0f), 0.0f};
+}
+
+void CpuSolver::gridSplat(const SimStep& step)
+{
+    const SimParams& params = setup_.params;
+    for (size_t g = 0; g < state_.positions.size(); ++g) {
+        GridCell cell = gridCell(vec3(state_.positions[g]), step.gridOrigin, params.gridCellSize);
+        if (!cellInside(cell.base, params.gridResolution))
+            continue;
+        vec3 v = vec3(state_.velocities[g]);
+        for (uint32_t k = 0; k < 8; ++k) {
+            float w = cornerWeight(cell.frac, k);
+            uint32_t n = gridIndex(cell.base + cornerOffset(k), params.gridResolution);
+            grid_[n].density += w;
+            grid_[n].momentum += w * v;
+        }
+    }
+}
+
+void CpuSolver::gridNormalize()
+{
+    for (size_t n = 0; n < grid_.size(); ++n) {
+        const GridNode& node = grid_[n];
+        vec3 velocity = node.density > kGridMinDensity ? node.momentum / node.density : vec3(0.0f);
+        gridVelocity_[n] = vec4(velocity, node.density);
+    }
+}
+
+void CpuSolver::gridGather(const SimStep& step)
+{
+    const SimParams& params = setup_.params;
+    for (size_t g = 0; g < state_.positions.size(); ++g) {
+        if (state_.positions[g].w == 0.0f)
+            continue;
+        GridCell cell = gridCell(vec3(state_.positions[g]), step.gridOrigin, params.gridCellSize);
+        if (!cellInside(cell.base, params.gridResolution))
+            continue;
+        GridSample gs = gridSampleZero();
+        for (uint32_t k = 0; k < 8; ++k) {
+            vec4 node = gridVelocity_[gridIndex(cell.base + cornerOffset(k), params.gridResolution)];
+            gs = gridAccumulate(gs, cell.frac, k, vec3(node), node.w);
+        }
+        vec3 v = gridBlend(vec3(state_.velocities[g]), gs, params.gridFriction, params.gridRepulsion, params.gridCellSize);
+        state_.velocities[g] = vec4(v, 0.0f);
+    }
+}
+
+}  // namespace wisp

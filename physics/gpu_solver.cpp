@@ -1,0 +1,171 @@
+// physics/gpu_solver.cpp: buffer creation, pipelines and the recorded dispatch sequence.
+#include "physics/gpu_solver.h"
+
+#include "core/error.h"
+#include "physics/cpu_solver.h"
+#include "renderer/vk/check.h"
+#include "renderer/vk/context.h"
+#include "renderer/vk/pipeline.h"
+
+#include <array>
+#include <cstring>
+
+namespace wisp {
+
+static_assert(sizeof(gpu::SimParams) == 1744, "SimParams must match its std140 layout");
+static_assert(sizeof(gpu::SimStep) == 96, "SimStep must match its push-constant layout");
+static_assert(sizeof(gpu::RestVertex) == 16 && sizeof(gpu::StrandInfo) == 16 && sizeof(gpu::GridNode) == 16);
+static_assert(offsetof(gpu::SimParams, parts) == 80 && offsetof(gpu::SimParams, colliders) == 208);
+
+GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const SimSetup& setup, const glm::mat4& headTransform)
+    : ctx_(ctx), setup_(setup), vertexCount_(uint32_t(strands.vertexCount()))
+{
+    if (!ctx.report().floatAtomicAdd)
+        throw UserError("the Vulkan device '" + ctx.report().name +
+                        "' has no float atomic add on buffers (VK_EXT_shader_atomic_float), which the hair-hair grid needs");
+    SimState initial = initialState(strands, headTransform);
+    std::vector<gpu::RestVertex> rest = restVertices(strands);
+    size_t vec4Bytes = size_t(vertexCount_) * sizeof(glm::vec4);
+    size_t gridBytes = size_t(setup.params.gridNodeCount) * sizeof(gpu::GridNode);
+    deviceBytes_ = 4 * vec4Bytes + rest.size() * sizeof(gpu::RestVertex) + strands.strands.size() * sizeof(gpu::StrandInfo) +
+                   2 * gridBytes;
+    if (deviceBytes_ > ctx.report().deviceLocalBytes)
+        throw UserError("the simulation needs " + std::to_string(deviceBytes_) + " bytes of GPU memory but '" +
+                        ctx.report().name + "' has " + std::to_string(ctx.report().deviceLocalBytes));
+
+    constexpr VkBufferUsageFlags kStorageCopy = vk::kStorage | vk::kTransferSrc | vk::kTransferDst;
+    params_ = ctx.createBufferWithData({.size = sizeof(gpu::SimParams), .usage = vk::kUniform, .name = "sim.params"},
+                                       &setup.params, sizeof(gpu::SimParams));
+    positions_ = ctx.createBufferWithData({.size = vec4Bytes, .usage = kStorageCopy | vk::kVertex, .name = "guide.positions"},
+                                          initial.positions.data(), vec4Bytes);
+    velocities_ = ctx.createBufferWithData({.size = vec4Bytes, .usage = kStorageCopy, .name = "guide.velocities"},
+                                           initial.velocities.data(), vec4Bytes);
+    tangents_ = ctx.createBufferWithData({.size = vec4Bytes, .usage = kStorageCopy | vk::kVertex, .name = "guide.tangents"},
+                                         initial.tangents.data(), vec4Bytes);
+    rest_ = ctx.createBufferWithData({.size = rest.size() * sizeof(gpu::RestVertex), .usage = kStorageCopy, .name = "guide.rest"},
+                                     rest.data(), rest.size() * sizeof(gpu::RestVertex));
+    strands_ = ctx.createBufferWithData({.size = strands.strands.size() * sizeof(gpu::StrandInfo), .usage = kStorageCopy,
+                                         .name = "guide.strands"},
+                                        strands.strands.data(), strands.strands.size() * sizeof(gpu::StrandInfo));
+    grid_ = ctx.createBuffer({.size = gridBytes, .usage = kStorageCopy, .name = "grid.accumulators"});
+    gridVelocity_ = ctx.createBuffer({.size = gridBytes, .usage = kStorageCopy, .name = "grid.velocity"});
+    gpu::SimCounters zero{};
+    counters_ = ctx.createBufferWithData({.size = sizeof(gpu::SimCounters), .usage = kStorageCopy, .name = "sim.counters"},
+                                         &zero, sizeof(zero));
+    positionsTrack_ = {.buffer = positions_.get()};
+    tangentsTrack_ = {.buffer = tangents_.get()};
+
+    std::vector<vk::DescriptorBinding> bindings = {{gpu::kSimBindingParams, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
+    for (uint32_t b : {gpu::kSimBindingPositions, gpu::kSimBindingVelocities, gpu::kSimBindingRest, gpu::kSimBindingStrands,
+                       gpu::kSimBindingTangents, gpu::kSimBindingGrid, gpu::kSimBindingGridVelocity, gpu::kSimBindingCounters})
+        bindings.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT});
+    vk::PipelineLayoutBundle layout = vk::createPipelineLayout(
+        ctx, {.bindings = bindings, .pushConstantBytes = sizeof(gpu::SimStep),
+              .pushConstantStages = VK_SHADER_STAGE_COMPUTE_BIT, .name = "sim.layout"});
+    setLayout_ = std::move(layout.setLayout);
+    layout_ = std::move(layout.layout);
+    integrate_ = vk::createComputePipeline(ctx, layout_, "sim_integrate.comp", "sim.integrate");
+    clear_ = vk::createComputePipeline(ctx, layout_, "grid_clear.comp", "grid.clear");
+    splat_ = vk::createComputePipeline(ctx, layout_, "grid_splat.comp", "grid.splat");
+    normalize_ = vk::createComputePipeline(ctx, layout_, "grid_normalize.comp", "grid.normalize");
+    gather_ = vk::createComputePipeline(ctx, layout_, "grid_gather.comp", "grid.gather");
+}
+
+void GpuSolver::recordStep(VkCommandBuffer cmd, const gpu::SimStep& step)
+{
+    std::array<VkDescriptorBufferInfo, 9> infos = {
+        VkDescriptorBufferInfo{params_, 0, VK_WHOLE_SIZE}, {positions_, 0, VK_WHOLE_SIZE}, {velocities_, 0, VK_WHOLE_SIZE},
+        {rest_, 0, VK_WHOLE_SIZE}, {strands_, 0, VK_WHOLE_SIZE}, {tangents_, 0, VK_WHOLE_SIZE},
+        {grid_, 0, VK_WHOLE_SIZE}, {gridVelocity_, 0, VK_WHOLE_SIZE}, {counters_, 0, VK_WHOLE_SIZE}};
+    std::array<uint32_t, 9> bindingOf = {gpu::kSimBindingParams, gpu::kSimBindingPositions, gpu::kSimBindingVelocities,
+                                         gpu::kSimBindingRest, gpu::kSimBindingStrands, gpu::kSimBindingTangents,
+                                         gpu::kSimBindingGrid, gpu::kSimBindingGridVelocity, gpu::kSimBindingCounters};
+    std::array<VkWriteDescriptorSet, 9> writes{};
+    for (size_t i = 0; i < writes.size(); ++i)
+        writes[i] = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                     .dstBinding = bindingOf[i],
+                     .descriptorCount = 1,
+                     .descriptorType = i == 0 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                     .pBufferInfo = &infos[i]};
+
+    const gpu::SimParams& p = setup_.params;
+    uint32_t strandGroups = vk::groupCount(p.strandCount, gpu::kSimGroupSize);
+    uint32_t vertexGroups = vk::groupCount(p.strandCount * p.verticesPerStrand, gpu::kSimGroupSize);
+    uint32_t nodeGroups = vk::groupCount(p.gridNodeCount, gpu::kSimGroupSize);
+    auto dispatch = [&](VkPipeline pipeline, uint32_t groups, const gpu::SimStep& push) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+        ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, uint32_t(writes.size()), writes.data());
+        vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+        vkCmdDispatch(cmd, groups, 1, 1);
+    };
+
+    gpu::SimStep sub = step;
+    for (uint32_t k = 0; k < setup_.substeps; ++k) {
+        sub.time = step.time + float(k) * p.dt;
+        dispatch(integrate_, strandGroups, sub);
+        vk::computeToComputeBarrier(cmd);
+    }
+    dispatch(clear_, nodeGroups, step);
+    vk::computeToComputeBarrier(cmd);
+    dispatch(splat_, vertexGroups, step);
+    vk::computeToComputeBarrier(cmd);
+    dispatch(normalize_, nodeGroups, step);
+    vk::computeToComputeBarrier(cmd);
+    dispatch(gather_, vertexGroups, step);
+    vk::computeToComputeBarrier(cmd);  // the next step's integrate reads the gathered velocities
+}
+
+std::vector<uint8_t> GpuSolver::download(const vk::Buffer& buffer) const
+{
+    vk::Buffer host = ctx_.createBuffer({.size = buffer.size(), .usage = vk::kTransferDst, .memory = vk::Memory::Readback,
+                                         .name = "sim.readback"});
+    ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+        VkMemoryBarrier2 before{.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+                                .srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                                .srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT,
+                                .dstStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                                .dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT};
+        VkDependencyInfo dep{.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1, .pMemoryBarriers = &before};
+        vkCmdPipelineBarrier2(cmd, &dep);
+        VkBufferCopy region{.size = buffer.size()};
+        vkCmdCopyBuffer(cmd, buffer, host, 1, &region);
+        VkMemoryBarrier2 after{.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+                               .srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                               .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                               .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT,
+                               .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT};
+        dep.pMemoryBarriers = &after;
+        vkCmdPipelineBarrier2(cmd, &dep);
+    });
+    std::vector<uint8_t> bytes(size_t(buffer.size()));
+    std::memcpy(bytes.data(), host.mapped(), bytes.size());
+    return bytes;
+}
+
+SimState GpuSolver::readState() const
+{
+    SimState s;
+    auto asVec4 = [](const std::vector<uint8_t>& bytes) {
+        std::vector<glm::vec4> out(bytes.size() / sizeof(glm::vec4));
+        std::memcpy(out.data(), bytes.data(), out.size() * sizeof(glm::vec4));
+        return out;
+    };
+    s.positions = asVec4(download(positions_));
+    s.velocities = asVec4(download(velocities_));
+    s.tangents = asVec4(download(tangents_));
+    std::vector<uint8_t> counters = download(counters_);
+    gpu::SimCounters c{};
+    std::memcpy(&c, counters.data(), sizeof(c));
+    s.nonfiniteResets = c.nonfiniteResets;
+    return s;
+}
+
+std::vector<gpu::GridNode> GpuSolver::readGrid() const
+{
+    std::vector<uint8_t> bytes = download(grid_);
+    std::vector<gpu::GridNode> out(bytes.size() / sizeof(gpu::GridNode));
+    std::memcpy(out.data(), bytes.data(), out.size() * sizeof(gpu::GridNode));
+    return out;
+}
+
+}  // namespace wisp

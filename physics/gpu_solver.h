@@ -1,0 +1,52 @@
+// physics/gpu_solver.h: the GPU solver's buffers and dispatch sequence. One step records
+//   substeps x sim_integrate | grid_clear | grid_splat | grid_normalize | grid_gather
+// with a compute->compute barrier between every producer and consumer (a workgroup barrier()
+// does not order work across workgroups). It talks to the device only through renderer/vk; the
+// model and the maths stay in physics/ and shaders/shared/.
+#pragma once
+
+#include "physics/simulation.h"
+#include "renderer/pass.h"
+#include "renderer/vk/handle.h"
+#include "renderer/vk/resources.h"
+
+namespace wisp {
+
+namespace vk {
+class Context;
+}
+
+class GpuSolver {
+public:
+    GpuSolver(const vk::Context& ctx, const StrandSet& strands, const SimSetup& setup, const glm::mat4& headTransform);
+
+    // Records one fixed step (all substeps and the grid). step.time is the step's start.
+    void recordStep(VkCommandBuffer cmd, const gpu::SimStep& step);
+
+    // Copies the state back (waits for the device): for metrics and tests.
+    SimState readState() const;
+    std::vector<gpu::GridNode> readGrid() const;
+
+    const vk::Buffer& positions() const { return positions_; }
+    const vk::Buffer& tangents() const { return tangents_; }
+    // For passes that read the simulation's output in the same frame.
+    TrackedBuffer& positionsTrack() { return positionsTrack_; }
+    TrackedBuffer& tangentsTrack() { return tangentsTrack_; }
+    uint32_t vertexCount() const { return vertexCount_; }
+    uint64_t deviceBytes() const { return deviceBytes_; }
+
+private:
+    std::vector<uint8_t> download(const vk::Buffer& buffer) const;
+
+    const vk::Context& ctx_;
+    SimSetup setup_;
+    uint32_t vertexCount_ = 0;
+    uint64_t deviceBytes_ = 0;
+    vk::Buffer params_, positions_, velocities_, rest_, strands_, tangents_, grid_, gridVelocity_, counters_;
+    TrackedBuffer positionsTrack_, tangentsTrack_;
+    vk::DescriptorSetLayout setLayout_;
+    vk::PipelineLayout layout_;
+    vk::Pipeline integrate_, clear_, splat_, normalize_, gather_;
+};
+
+}  // namespace wisp

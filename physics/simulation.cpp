@@ -1,0 +1,116 @@
+// physics/simulation.cpp: settings packing, initial state and metrics.
+#include "physics/simulation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace wisp {
+
+SimSetup makeSimSetup(const SimSettings& s, const StrandSet& strands, const std::vector<gpu::Ellipsoid>& colliders,
+                      float unitsPerMetre)
+{
+    if (colliders.size() > gpu::kSimMaxColliders)
+        throw std::invalid_argument("more than " + std::to_string(gpu::kSimMaxColliders) + " colliders");
+    if (strands.parts.size() > gpu::kSimMaxParts)
+        throw std::invalid_argument("more than " + std::to_string(gpu::kSimMaxParts) + " hair parts");
+    SimSetup setup;
+    gpu::SimParams& p = setup.params;
+    setup.substeps = s.substeps;
+    p.gravity = glm::vec3(0.0f, -s.gravity * unitsPerMetre, 0.0f);
+    p.dt = 1.0f / (s.stepHz * float(s.substeps));
+    p.wind = s.wind * unitsPerMetre;
+    p.windFrequency = s.windFrequency;
+    p.strandCount = uint32_t(strands.strandCount());
+    p.verticesPerStrand = strands.verticesPerStrand;
+    p.colliderCount = uint32_t(colliders.size());
+    p.gridResolution = s.gridResolution;
+    p.gridNodeCount = s.gridResolution * s.gridResolution * s.gridResolution;
+    p.penaltyStiffness = s.penaltyStiffness;
+    p.collisionMargin = s.collisionMarginMetres * unitsPerMetre;
+    p.gridFriction = s.gridFriction;
+    p.gridRepulsion = s.gridRepulsion;
+    p.partCount = uint32_t(strands.parts.size());
+    for (size_t i = 0; i < strands.parts.size(); ++i) {
+        const PartSettings& part = strands.parts[i];
+        p.parts[i] = {part.globalStiffness, part.localStiffness, part.ftlDamping, part.drag};
+    }
+    for (size_t i = 0; i < colliders.size(); ++i)
+        p.colliders[i] = colliders[i];
+
+    // The grid: a cube around the rest pose grown by the longest strand (hair can swing that far),
+    // wide enough to hold that box however the head turns.
+    Bounds b = strands.bounds();
+    float reach = strands.maxLength();
+    setup.gridCenterHead = b.center();
+    setup.gridSide = glm::length(b.size() + glm::vec3(2.0f * reach));
+    p.gridCellSize = setup.gridSide / float(s.gridResolution - 1);
+    return setup;
+}
+
+gpu::SimStep makeStep(const SimSetup& setup, const glm::mat4& headTransform, const glm::vec4& sphere, float time)
+{
+    gpu::SimStep step{};
+    step.headTransform = headTransform;
+    step.sphereCenter = glm::vec3(sphere);
+    step.sphereRadius = sphere.w;
+    step.gridOrigin = glm::vec3(headTransform * glm::vec4(setup.gridCenterHead, 1.0f)) - glm::vec3(0.5f * setup.gridSide);
+    step.time = time;
+    return step;
+}
+
+SimState initialState(const StrandSet& strands, const glm::mat4& headTransform)
+{
+    SimState state;
+    uint32_t V = strands.verticesPerStrand;
+    state.positions.resize(strands.vertexCount());
+    state.velocities.assign(strands.vertexCount(), glm::vec4(0.0f));
+    state.tangents.resize(strands.vertexCount());
+    for (size_t s = 0; s < strands.strandCount(); ++s) {
+        const gpu::StrandInfo& info = strands.strands[s];
+        for (uint32_t i = 0; i < V; ++i) {
+            size_t g = s * V + i;
+            bool pinned = i < info.pinnedRoot || (info.pinnedTip != 0u && i == V - 1);
+            state.positions[g] = glm::vec4(glm::vec3(headTransform * glm::vec4(strands.rest[g], 1.0f)), pinned ? 0.0f : 1.0f);
+            uint32_t j = std::min(i + 1, V - 1);
+            glm::vec3 t = strands.rest[s * V + j] - strands.rest[s * V + j - 1];
+            state.tangents[g] = glm::vec4(glm::mat3(headTransform) * glm::normalize(t), 0.0f);
+        }
+    }
+    return state;
+}
+
+SimMetrics measure(const SimState& state, const StrandSet& strands, const SimSetup& setup, const gpu::SimStep& step)
+{
+    SimMetrics m;
+    uint32_t V = strands.verticesPerStrand;
+    glm::mat3 R(step.headTransform);
+    glm::vec3 t(step.headTransform[3]);
+    std::vector<gpu::Ellipsoid> colliders(setup.params.colliders, setup.params.colliders + setup.params.colliderCount);
+    for (size_t s = 0; s < strands.strandCount(); ++s) {
+        const gpu::StrandInfo& info = strands.strands[s];
+        for (uint32_t i = 0; i < V; ++i) {
+            size_t g = s * V + i;
+            glm::vec3 p(state.positions[g]);
+            m.kineticEnergy += 0.5f * glm::dot(glm::vec3(state.velocities[g]), glm::vec3(state.velocities[g]));
+            bool pinned = i < info.pinnedRoot || (info.pinnedTip != 0u && i == V - 1);
+            if (!pinned) {  // roots sit on the scalp, which the colliders enclose by design
+                glm::vec3 local = glm::transpose(R) * (p - t);
+                for (const gpu::Ellipsoid& e : colliders)
+                    m.maxPenetration = std::max(m.maxPenetration, gpu::ellipsoidContact(e, local, 0.0f).depth);
+                if (step.sphereRadius > 0.0f)
+                    m.maxPenetration = std::max(m.maxPenetration, step.sphereRadius - glm::length(p - step.sphereCenter));
+            }
+            if (pinned)
+                m.rootDrift = std::max(m.rootDrift, glm::length(p - glm::vec3(step.headTransform * glm::vec4(strands.rest[g], 1.0f))));
+            if (i > 0) {
+                float rest = glm::length(strands.rest[g] - strands.rest[g - 1]);
+                float now = glm::length(p - glm::vec3(state.positions[g - 1]));
+                m.maxStretch = std::max(m.maxStretch, std::abs(now - rest) / rest);
+            }
+        }
+    }
+    return m;
+}
+
+}  // namespace wisp

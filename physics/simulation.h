@@ -1,0 +1,57 @@
+// physics/simulation.h: what a simulation run is configured with (human-facing settings with
+// units and ranges), how it packs into the GPU's SimParams and per-step SimStep, the state both
+// solvers advance, and the quality metrics `wisp simulate` reports.
+#pragma once
+
+#include "physics/strands.h"
+#include "shaders/shared/sim.h"
+
+#include <vector>
+
+namespace wisp {
+
+struct SimSettings {
+    float stepHz = 120.0f;                  // fixed steps per simulated second, 30 .. 1000
+    uint32_t substeps = 2;                  // integrate/FTL substeps per step, 1 .. 16
+    float gravity = 9.81f;                  // m/s², downward (scaled to the head's units)
+    glm::vec3 wind{0.0f};                   // m/s² (scaled to the head's units)
+    float windFrequency = 0.35f;            // Hz of gusts
+    uint32_t gridResolution = 32;           // hair-hair grid nodes per axis, 8 .. 256
+    float gridFriction = 0.05f;             // Petrovic blend, 0 .. 1
+    float gridRepulsion = 0.0f;             // volume-keeping push, 0 .. 1
+    float penaltyStiffness = 4000.0f;       // 1/s², 0 .. 100000
+    float collisionMarginMetres = 0.003f;   // colliders act this far outside their surface
+};
+
+// Everything needed to run: packed parameters plus the grid's placement relative to the head.
+struct SimSetup {
+    gpu::SimParams params{};
+    uint32_t substeps = 1;           // integrate/FTL passes per step (each params.dt long)
+    glm::vec3 gridCenterHead{0.0f};  // grid centre in head space (the grid follows the head)
+    float gridSide = 0.0f;           // asset units
+};
+
+SimSetup makeSimSetup(const SimSettings& settings, const StrandSet& strands,
+                      const std::vector<gpu::Ellipsoid>& colliders, float unitsPerMetre);
+gpu::SimStep makeStep(const SimSetup& setup, const glm::mat4& headTransform, const glm::vec4& sphere, float time);
+
+// The simulated state, one entry per vertex (world space).
+struct SimState {
+    std::vector<glm::vec4> positions;   // xyz, w = inverse mass (0 pinned)
+    std::vector<glm::vec4> velocities;  // xyz
+    std::vector<glm::vec4> tangents;    // xyz
+    uint32_t nonfiniteResets = 0;
+};
+
+// The rest pose placed by `headTransform`, at rest.
+SimState initialState(const StrandSet& strands, const glm::mat4& headTransform);
+
+struct SimMetrics {
+    float maxStretch = 0.0f;       // max |length - rest| / rest over all segments
+    float maxPenetration = 0.0f;   // deepest vertex inside any collider (or the sphere), asset units
+    float rootDrift = 0.0f;        // max distance of a pinned vertex from where the head puts it
+    float kineticEnergy = 0.0f;    // 0.5 sum |v|² (unit mass per vertex)
+};
+SimMetrics measure(const SimState& state, const StrandSet& strands, const SimSetup& setup, const gpu::SimStep& step);
+
+}  // namespace wisp

@@ -1,0 +1,328 @@
+// shaders/shared/sim.h: the hair simulation's GPU interface and its pure math, compiled as GLSL by
+// the compute kernels and as C++ by the CPU reference solver (physics/cpu_solver.cpp).
+// Conventions: world space is the head's asset units (y up); time in seconds; accelerations in
+// asset units / s². A strand is V consecutive vertices, root first.
+#ifndef WISP_SHARED_SIM_H
+#define WISP_SHARED_SIM_H
+#include "prelude.h"
+
+GPU_NAMESPACE_BEGIN
+
+// Threads per workgroup in every simulation kernel (a define: a constant would make glslang emit
+// LocalSizeId, which needs maintenance4).
+#define SIM_GROUP_SIZE 64
+GPU_CONST uint kSimGroupSize = SIM_GROUP_SIZE;
+GPU_CONST uint kSimMaxColliders = 16;   // ellipsoids in SimParams (the user's sphere is separate)
+GPU_CONST uint kSimMaxParts = 8;        // hair parts with their own parameters (a groom in pieces)
+GPU_CONST float kGridMinDensity = 1e-4f; // grid nodes lighter than this carry no velocity
+
+// Bindings of the simulation kernels (one push-descriptor set).
+GPU_CONST uint kSimBindingParams = 0;        // uniform SimParams (SimStep is a push constant)
+GPU_CONST uint kSimBindingPositions = 1;     // vec4[]: xyz position, w inverse mass (0 = pinned)
+GPU_CONST uint kSimBindingVelocities = 2;    // vec4[]: xyz velocity, w unused
+GPU_CONST uint kSimBindingRest = 3;          // RestVertex[]
+GPU_CONST uint kSimBindingStrands = 4;       // StrandInfo[]
+GPU_CONST uint kSimBindingTangents = 5;      // vec4[]: xyz unit tangent toward the tip, w unused
+GPU_CONST uint kSimBindingGrid = 6;          // GridNode[] (splat accumulators)
+GPU_CONST uint kSimBindingGridVelocity = 7;  // vec4[]: xyz grid velocity, w density
+GPU_CONST uint kSimBindingCounters = 8;      // SimCounters
+
+// An ellipsoid collider: a point p is inside when |R^T (p - center) / radii| < 1.
+struct Ellipsoid {
+    mat4  rotation;    // columns 0..2: the ellipsoid's axes in world space (orthonormal)
+    vec3  center;      // world space
+    float pad0;
+    vec3  radii;       // along the axes, > 0
+    float pad1;
+};
+
+// Per hair part (one loaded file, or the grown guides): the parameters a user tunes per asset.
+struct SimPart {
+    float globalStiffness;  // pull toward the rest pose in the head frame per step, [0, 1], at the root
+    float localStiffness;   // pull of each segment toward its rest direction in its parent's frame, [0, 1]
+    float ftlDamping;       // s_damp of Muller et al. 2012, [0, 1]
+    float drag;             // velocity damping, 1/s
+};
+
+// Fixed for a run (a uniform block): forces, the grid's size, the parts and colliders.
+struct SimParams {
+    vec3  gravity;            // world acceleration, asset units / s²
+    float dt;                 // one substep, seconds (fixed)
+    vec3  wind;               // direction * strength, asset units / s²
+    float windFrequency;      // Hz of the gust modulation
+    uint  strandCount;        // real strands; threads past them return
+    uint  verticesPerStrand;  // V, 4..64
+    uint  colliderCount;      // ellipsoids in use, <= kSimMaxColliders
+    uint  gridResolution;     // nodes per axis (the grid is a cube)
+    float penaltyStiffness;   // k of the penalty force k * depth * n, 1/s²
+    float collisionMargin;    // colliders act this far outside their surface, asset units
+    float gridFriction;       // Petrovic et al. 2005 blend toward the grid velocity, [0, 1]
+    float gridRepulsion;      // push along -grad(density) per unit density gradient, asset units² / s
+    float gridCellSize;       // asset units
+    uint  partCount;
+    uint  gridNodeCount;      // gridResolution³
+    float pad0;
+    SimPart parts[kSimMaxParts];
+    Ellipsoid colliders[kSimMaxColliders];  // in head space: they move with the head
+};
+
+// What changes from step to step (push constants): the head's pose, the user's sphere, time.
+struct SimStep {
+    mat4  headTransform;  // head space -> world (rigid): roots, rest pose and colliders follow it
+    vec3  sphereCenter;   // the user's collision sphere, world space
+    float sphereRadius;   // 0 disables it
+    vec3  gridOrigin;     // world position of grid node (0, 0, 0)
+    float time;           // simulated seconds at the start of this substep
+};
+
+struct RestVertex {
+    vec3  position;       // rest position in head space
+    float segmentLength;  // rest length of the segment to the parent vertex (0 at the root)
+};
+
+struct StrandInfo {
+    uint part;        // index into SimParams.parts
+    uint pinnedRoot;  // leading vertices that follow the head rigidly (>= 1)
+    uint pinnedTip;   // 1 when the tip is pinned too (TressFX bothEndsImmovable)
+    uint seed;        // per-strand random seed (wind variation)
+};
+
+// Splat accumulators: float atomics add into these.
+struct GridNode {
+    vec3  momentum;  // sum of weight * velocity
+    float density;   // sum of trilinear weights
+};
+
+struct SimCounters {
+    uint nonfiniteResets;  // strands reset to rest after a NaN or infinity (cumulative)
+    uint pad0;
+    uint pad1;
+    uint pad2;
+};
+
+// ---- Pure math ---------------------------------------------------------------------------
+
+// PCG hash (O'Neill 2014, as in Jarzynski & Olano 2020, "Hash Functions for GPU Rendering").
+GPU_FN uint hashUint(uint v)
+{
+    uint state = v * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+// A uniform number in [0, 1) from a hash.
+GPU_FN float hashToUnit(uint v)
+{
+    return float(hashUint(v) >> 8u) * (1.0f / 16777216.0f);
+}
+
+// The wind a strand feels at time t: the base wind modulated by a slow gust (sine) with a
+// per-strand phase and gain, so neighbouring strands do not move in lockstep.
+GPU_FN vec3 strandWind(vec3 wind, float frequencyHz, float t, uint seed)
+{
+    float phase = 6.2831853f * hashToUnit(seed);
+    float gain = 0.75f + 0.5f * hashToUnit(seed ^ 0x9E3779B9u);
+    float gust = 0.65f + 0.35f * sin(6.2831853f * frequencyHz * t + phase);
+    return wind * (gain * gust);
+}
+
+// Wind on a segment with unit direction t (the TressFX wind term): (t x w) x t = w - t (t . w),
+// the part of w perpendicular to the segment, so a strand aligned with the wind feels none.
+GPU_FN vec3 windAcceleration(vec3 t, vec3 w)
+{
+    return cross(cross(t, w), t);
+}
+
+struct Contact {
+    vec3  normal;  // outward unit normal at the closest surface point (approximate for ellipsoids)
+    float depth;   // how far inside (including the margin); <= 0 when outside
+};
+
+// Sphere contact, exact.
+GPU_FN Contact sphereContact(vec3 center, float radius, vec3 p, float margin)
+{
+    Contact c;
+    vec3 d = p - center;
+    float len = length(d);
+    c.normal = len > 1e-12f ? d / len : vec3(0.0f, 1.0f, 0.0f);
+    c.depth = radius + margin - len;
+    return c;
+}
+
+// Ellipsoid contact along the ray from the centre: in the ellipsoid's unit-sphere space the
+// point q = R^T (p - c) / r lies at radius |q|; its radial projection onto the surface is
+// c + R (r * q / |q|), the depth is the distance to it, and the normal is the implicit
+// function's gradient there, R (q / r) normalized. Exact for spheres, close for the mildly
+// eccentric ellipsoids of heads (the error vanishes at the surface, where contacts matter).
+GPU_FN Contact ellipsoidContact(Ellipsoid e, vec3 p, float margin)
+{
+    Contact c;
+    mat3 R = mat3(e.rotation);
+    vec3 radii = e.radii + vec3(margin);
+    vec3 local = transpose(R) * (p - e.center);
+    vec3 q = local / radii;
+    float len = length(q);
+    if (len < 1e-12f) {
+        c.normal = R * vec3(0.0f, 1.0f, 0.0f);
+        c.depth = radii.y;
+        return c;
+    }
+    vec3 surface = radii * (q / len);
+    c.normal = normalize(R * (surface / (radii * radii)));
+    c.depth = (1.0f - len) * length(surface);
+    return c;
+}
+
+// A head-space ellipsoid against a world-space point, for a head posed by the rigid `head`.
+GPU_FN Contact headColliderContact(Ellipsoid e, mat4 head, vec3 p, float margin)
+{
+    mat3 R = mat3(head);
+    vec3 local = transpose(R) * (p - vec3(head[3]));
+    Contact c = ellipsoidContact(e, local, margin);
+    c.normal = R * c.normal;
+    return c;
+}
+
+// Follow-the-leader projection (Muller et al. 2012, eq. 4): p moves onto the sphere of radius
+// restLength around its parent, along the line through both.
+GPU_FN vec3 ftlProject(vec3 parent, vec3 p, float restLength)
+{
+    vec3 d = p - parent;
+    float len = length(d);
+    if (len < 1e-12f)
+        return parent + vec3(0.0f, -restLength, 0.0f);
+    return parent + d * (restLength / len);
+}
+
+// The smallest rotation taking unit vector a to unit vector b (Rodrigues' formula written
+// with v = a x b, c = a . b: R = I + [v]x + [v]x² / (1 + c)). Near-opposite vectors return the
+// identity (the constraint just does not turn the frame that step).
+GPU_FN mat3 minimalRotation(vec3 a, vec3 b)
+{
+    vec3 v = cross(a, b);
+    float c = dot(a, b);
+    if (c < -0.9999f)
+        return mat3(1.0f);
+    float k = 1.0f / (1.0f + c);
+    return mat3(v.x * v.x * k + c, v.y * v.x * k + v.z, v.z * v.x * k - v.y,
+                v.x * v.y * k - v.z, v.y * v.y * k + c, v.z * v.y * k + v.x,
+                v.x * v.z * k + v.y, v.y * v.z * k - v.x, v.z * v.z * k + c);
+}
+
+// True when no component is NaN or infinite (comparisons with NaN are false).
+GPU_FN bool isFinite3(vec3 p)
+{
+    return abs(p.x) <= 3.0e38f && abs(p.y) <= 3.0e38f && abs(p.z) <= 3.0e38f;
+}
+
+// Carries the local-shape frame from a segment to the next: rotate it by the smallest rotation
+// from the rest-predicted direction to the actual one, then re-orthonormalize (Gram-Schmidt) so
+// float error cannot accumulate along 64 vertices. A segment that flipped by more than ~170
+// degrees (a collision kicked it back) leaves the frame as it was.
+GPU_FN mat3 transportFrame(mat3 frame, vec3 predictedDir, vec3 actualDir)
+{
+    vec3 a = normalize(predictedDir);
+    vec3 b = normalize(actualDir);
+    if (dot(a, b) < -0.985f)
+        return frame;
+    mat3 f = minimalRotation(a, b) * frame;
+    vec3 x = normalize(f[0]);
+    vec3 y = normalize(f[1] - dot(f[1], x) * x);
+    return mat3(x, y, cross(x, y));
+}
+
+// Global shape: how strongly vertex i of V is pulled to its rest pose, strongest at the root.
+GPU_FN float globalShapeWeight(float stiffness, uint i, uint V)
+{
+    float u = float(i) / float(V - 1u);
+    return stiffness * (1.0f - u) * (1.0f - u);
+}
+
+// ---- The hair-hair grid (Petrovic et al. 2005) ---------------------------------------------
+
+struct GridCell {
+    ivec3 base;  // the lower corner node
+    vec3  frac;  // position inside the cell, [0, 1)³
+};
+
+GPU_FN GridCell gridCell(vec3 p, vec3 origin, float cellSize)
+{
+    GridCell g;
+    vec3 x = (p - origin) / cellSize;
+    vec3 f = floor(x);
+    g.base = ivec3(f);
+    g.frac = x - f;
+    return g;
+}
+
+// Trilinear weight of corner k (bit 0: +x, bit 1: +y, bit 2: +z); the 8 weights sum to 1.
+GPU_FN float cornerWeight(vec3 frac, uint k)
+{
+    float wx = (k & 1u) != 0u ? frac.x : 1.0f - frac.x;
+    float wy = (k & 2u) != 0u ? frac.y : 1.0f - frac.y;
+    float wz = (k & 4u) != 0u ? frac.z : 1.0f - frac.z;
+    return wx * wy * wz;
+}
+
+GPU_FN ivec3 cornerOffset(uint k)
+{
+    return ivec3(int(k & 1u), int((k >> 1u) & 1u), int((k >> 2u) & 1u));
+}
+
+// True when all 8 corners of the cell are inside a grid of n nodes per axis.
+GPU_FN bool cellInside(ivec3 base, uint n)
+{
+    int last = int(n) - 2;
+    return base.x >= 0 && base.y >= 0 && base.z >= 0 && base.x <= last && base.y <= last && base.z <= last;
+}
+
+GPU_FN uint gridIndex(ivec3 node, uint n)
+{
+    return uint(node.x) + n * (uint(node.y) + n * uint(node.z));
+}
+
+// The gather's running sums over the 8 corners.
+struct GridSample {
+    vec3  velocity;      // sum of w * v over corners with density
+    float weight;        // sum of w over those corners
+    vec3  densityGrad;   // d(density)/d(cell coordinates), trilinear derivative
+    float pad;
+};
+
+GPU_FN GridSample gridSampleZero()
+{
+    GridSample s;
+    s.velocity = vec3(0.0f);
+    s.weight = 0.0f;
+    s.densityGrad = vec3(0.0f);
+    s.pad = 0.0f;
+    return s;
+}
+
+GPU_FN GridSample gridAccumulate(GridSample s, vec3 frac, uint k, vec3 nodeVelocity, float nodeDensity)
+{
+    float w = cornerWeight(frac, k);
+    if (nodeDensity > kGridMinDensity) {
+        s.velocity += w * nodeVelocity;
+        s.weight += w;
+    }
+    // d/dx of the trilinear weight: +-1 along x times the other two factors.
+    vec3 sign = vec3((k & 1u) != 0u ? 1.0f : -1.0f, (k & 2u) != 0u ? 1.0f : -1.0f, (k & 4u) != 0u ? 1.0f : -1.0f);
+    float wx = (k & 1u) != 0u ? frac.x : 1.0f - frac.x;
+    float wy = (k & 2u) != 0u ? frac.y : 1.0f - frac.y;
+    float wz = (k & 4u) != 0u ? frac.z : 1.0f - frac.z;
+    s.densityGrad += nodeDensity * sign * vec3(wy * wz, wx * wz, wx * wy);
+    return s;
+}
+
+// v <- (1 - friction) v + friction v_grid, then v -= repulsion * grad(density) (per asset unit).
+GPU_FN vec3 gridBlend(vec3 v, GridSample s, float friction, float repulsion, float cellSize)
+{
+    if (s.weight > 0.0f)
+        v = mix(v, s.velocity / s.weight, friction);
+    return v - repulsion * s.densityGrad / cellSize;
+}
+
+GPU_NAMESPACE_END
+
+#endif
