@@ -25,15 +25,16 @@ int runSimulate(const SimulateOptions& o)
     Frame frame(ctx, 1);
     glm::vec4 sphere = o.sphere.value_or(glm::vec4(0.0f));
 
-    constexpr uint32_t kBatch = 25;  // steps per submit
+    // Steps go in batches of one submit each; the last step of a batch is submitted alone, so the
+    // positions before and after it give the kinetic energy of the motion.
+    constexpr uint32_t kBatch = 25;
     float stepSeconds = 1.0f / o.sim.stepHz;
     nlohmann::json energy = nlohmann::json::array();
     double gpuMs = 0.0;
     uint32_t done = 0;
-    while (done < o.steps) {
-        uint32_t n = std::min(kBatch, o.steps - done);
+    auto submit = [&](uint32_t count) {
         std::vector<gpu::SimStep> steps;
-        for (uint32_t k = 0; k < n; ++k)
+        for (uint32_t k = 0; k < count; ++k)
             steps.push_back(makeStep(setup, head, sphere, float(done + k) * stepSeconds));
         physics.setSteps(std::move(steps));
         FrameContext& fc = frame.begin({});
@@ -43,9 +44,18 @@ int runSimulate(const SimulateOptions& o)
         frame.waitIdle();
         for (const vk::ScopeTime& t : frame.timings())
             gpuMs += t.milliseconds;
-        done += n;
-        SimState state = solver.readState();
-        SimMetrics m = measure(state, scene.strands, setup, makeStep(setup, head, sphere, float(done) * stepSeconds));
+        done += count;
+    };
+    SimState state;
+    SimMetrics m;
+    while (done < o.steps) {
+        uint32_t n = std::min(kBatch, o.steps - done);
+        if (n > 1)
+            submit(n - 1);
+        std::vector<glm::vec4> before = solver.readState().positions;
+        submit(1);
+        state = solver.readState();
+        m = measure(state, before, stepSeconds, scene.strands, setup, makeStep(setup, head, sphere, float(done) * stepSeconds));
         energy.push_back({{"step", done}, {"value", m.kineticEnergy}});
         if (!o.json)
             std::fprintf(stderr, "\rsimulate: %u / %u steps", done, o.steps);
@@ -53,8 +63,6 @@ int runSimulate(const SimulateOptions& o)
     if (!o.json)
         std::fprintf(stderr, "\n");
 
-    SimState state = solver.readState();
-    SimMetrics m = measure(state, scene.strands, setup, makeStep(setup, head, sphere, float(done) * stepSeconds));
     float diagonal = scene.head.mesh.bounds().diagonal();
     nlohmann::json out = {{"steps", o.steps},
                           {"strands", scene.strands.strandCount()},

@@ -85,6 +85,7 @@ void CpuSolver::integrateStrand(uint32_t s, const SimStep& step)
     vec3 prevX = vec3(positions[base]);
     vec3 prevP = vec3(step.headTransform * vec4(rest_[base].position, 1.0f));
     bool prevPinned = true;
+    vec3 prevShift(0.0f);  // see sim_integrate.comp: local shape stays out of the velocity
     mat3 frame = R;
 
     for (uint32_t i = 1; i < V; ++i) {
@@ -99,6 +100,7 @@ void CpuSolver::integrateStrand(uint32_t s, const SimStep& step)
 
         vec3 p;
         vec3 d(0.0f);
+        vec3 shift(0.0f);
         if (pinned) {
             p = restWorld;
         } else {
@@ -108,7 +110,9 @@ void CpuSolver::integrateStrand(uint32_t s, const SimStep& step)
             vec3 a = params.gravity - part.drag * v + windAcceleration(t, wind) + penalty(x);
             p = x + dt * v + dt * dt * a;
             p = mix(p, restWorld, globalShapeWeight(part.globalStiffness, i, V));
+            vec3 beforeShape = p;
             p = mix(p, prevP + r.segmentLength * targetDir, part.localStiffness);
+            shift = p - beforeShape;
             p = pushOut(p);
             vec3 before = p;
             p = ftlProject(prevP, p, r.segmentLength);
@@ -116,7 +120,7 @@ void CpuSolver::integrateStrand(uint32_t s, const SimStep& step)
         }
         finite = finite && isFinite3(p);
 
-        vec3 prevV = (prevP - prevX) / dt;
+        vec3 prevV = (prevP - prevX - prevShift) / dt;
         if (!prevPinned)
             prevV -= part.ftlDamping * d / dt;
         positions[g - 1] = vec4(prevP, positions[g - 1].w);
@@ -129,9 +133,10 @@ void CpuSolver::integrateStrand(uint32_t s, const SimStep& step)
         prevX = x;
         prevP = p;
         prevPinned = pinned;
+        prevShift = shift;
     }
     positions[base + V - 1] = vec4(prevP, positions[base + V - 1].w);
-    velocities[base + V - 1] = vec4((prevP - prevX) / dt, 0.0f);
+    velocities[base + V - 1] = vec4((prevP - prevX - prevShift) / dt, 0.0f);
     tangents[base + V - 1] = vec4(lastTangent, 0.0f);
 
     if (!finite) {

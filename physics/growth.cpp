@@ -131,16 +131,18 @@ StrandSet growGuides(const Mesh& mesh, const ScalpRule& scalp, const std::vector
         glm::vec3 outward = root.position - crown;
         outward.y = 0.0f;
         outward = glm::length(outward) > 1e-6f * unitsPerMetre ? glm::normalize(outward) : glm::vec3(0.0f);
-        glm::vec3 comb = glm::normalize(outward + glm::vec3(0.0f, 0.0f, -1.3f));  // the head faces +z
-        glm::vec3 bend = down + 0.7f * comb;
+        glm::vec3 comb = glm::normalize(outward + glm::vec3(0.0f, 0.0f, -2.5f));  // the head faces +z
+
         float length = s.lengthMetres * unitsPerMetre * (1.0f + s.lengthVariation * (2.0f * rng.next() - 1.0f));
         float segment = length / float(s.verticesPerStrand - 1);
         float curlPhase = 6.2831853f * rng.next();
         glm::vec3 dir = root.normal;
         points[0] = root.position;
         for (uint32_t i = 1; i < s.verticesPerStrand; ++i) {
-            // Bend toward the styling gravity, more as the strand grows away from the root.
-            dir = glm::normalize(dir + s.styleGravity * (float(i) / float(s.verticesPerStrand - 1) + 0.35f) * bend);
+            // Near the root the comb turns the strand back and outward; further out gravity takes over.
+            float u = float(i) / float(s.verticesPerStrand - 1);
+            glm::vec3 bend = 1.5f * (1.0f - u) * comb + (u + 0.2f) * down;
+            dir = glm::normalize(dir + s.styleGravity * bend);
             glm::vec3 p = points[i - 1] + segment * dir;
             for (const gpu::Ellipsoid& e : colliders) {  // drape over the head instead of through it
                 gpu::Contact c = gpu::ellipsoidContact(e, p, clearance);

@@ -80,7 +80,8 @@ SimState initialState(const StrandSet& strands, const glm::mat4& headTransform)
     return state;
 }
 
-SimMetrics measure(const SimState& state, const StrandSet& strands, const SimSetup& setup, const gpu::SimStep& step)
+SimMetrics measure(const SimState& state, const std::vector<glm::vec4>& previous, float stepSeconds,
+                   const StrandSet& strands, const SimSetup& setup, const gpu::SimStep& step)
 {
     SimMetrics m;
     uint32_t V = strands.verticesPerStrand;
@@ -92,7 +93,8 @@ SimMetrics measure(const SimState& state, const StrandSet& strands, const SimSet
         for (uint32_t i = 0; i < V; ++i) {
             size_t g = s * V + i;
             glm::vec3 p(state.positions[g]);
-            m.kineticEnergy += 0.5f * glm::dot(glm::vec3(state.velocities[g]), glm::vec3(state.velocities[g]));
+            glm::vec3 motion = (p - glm::vec3(previous[g])) / stepSeconds;
+            m.kineticEnergy += 0.5f * glm::dot(motion, motion);
             bool pinned = i < info.pinnedRoot || (info.pinnedTip != 0u && i == V - 1);
             if (!pinned) {  // roots sit on the scalp, which the colliders enclose by design
                 glm::vec3 local = glm::transpose(R) * (p - t);

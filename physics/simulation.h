@@ -50,8 +50,14 @@ struct SimMetrics {
     float maxStretch = 0.0f;       // max |length - rest| / rest over all segments
     float maxPenetration = 0.0f;   // deepest vertex inside any collider (or the sphere), asset units
     float rootDrift = 0.0f;        // max distance of a pinned vertex from where the head puts it
-    float kineticEnergy = 0.0f;    // 0.5 sum |v|² (unit mass per vertex)
+    // 0.5 sum |dx/dt|² over the last step (unit mass per vertex): the motion a viewer sees. Not
+    // from the velocity buffer: Muller's correction term keeps a steady velocity along each strand
+    // (about s_damp g dt / (1 - s_damp) at rest) that FTL cancels every step; it is damping
+    // bookkeeping, not motion.
+    float kineticEnergy = 0.0f;
 };
-SimMetrics measure(const SimState& state, const StrandSet& strands, const SimSetup& setup, const gpu::SimStep& step);
+// `previous`: positions one step before `state` (for the kinetic energy); `stepSeconds`: that step.
+SimMetrics measure(const SimState& state, const std::vector<glm::vec4>& previous, float stepSeconds,
+                   const StrandSet& strands, const SimSetup& setup, const gpu::SimStep& step);
 
 }  // namespace wisp

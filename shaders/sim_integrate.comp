@@ -6,7 +6,10 @@
 //      segment toward its rest direction in its parent's frame (local shape, TressFX);
 //   3. push out of the colliders (a safety net for large steps), then follow-the-leader:
 //      p_i <- p_{i-1} + L_i (p_i - p_{i-1}) / |p_i - p_{i-1}|, remembering d_i = p_i(after) - p_i(before);
-//   4. v_i = (p_i - x_i) / dt - s_damp d_{i+1} / dt (Muller et al. 2012, eq. 9), the tip without d_{i+1};
+//   4. v_i = (p_i - x_i - l_i) / dt - s_damp d_{i+1} / dt (Muller et al. 2012, eq. 9), the tip without
+//      d_{i+1}; l_i is the local-shape displacement, kept out of the velocity: the pull moves only the
+//      child (it is not momentum-conserving), and fed into the velocity it pumps energy into the hair
+//      (measured: hair never came to rest); as a pure position correction it holds the style and settles;
 //   5. a strand with any non-finite value is reset to its rest pose and counted.
 // Vertex i-1 is finished (written) while vertex i is processed, so no per-strand arrays are needed.
 #extension GL_GOOGLE_include_directive : require
@@ -66,6 +69,7 @@ void main()
     vec3 prevX = positions[base].xyz;
     vec3 prevP = (step.headTransform * vec4(rest[base].position, 1.0)).xyz;
     bool prevPinned = true;
+    vec3 prevShift = vec3(0.0);  // the parent's local-shape displacement (kept out of its velocity)
     mat3 frame = R;  // the parent's frame for local shape: head axes transported along the strand
 
     for (uint i = 1u; i < V; ++i) {
@@ -80,6 +84,7 @@ void main()
 
         vec3 p;
         vec3 d = vec3(0.0);
+        vec3 shift = vec3(0.0);
         if (pinned) {
             p = restWorld;
         } else {
@@ -89,7 +94,9 @@ void main()
             vec3 a = params.gravity - part.drag * v + windAcceleration(t, wind) + penalty(x);
             p = x + dt * v + dt * dt * a;
             p = mix(p, restWorld, globalShapeWeight(part.globalStiffness, i, V));
+            vec3 beforeShape = p;
             p = mix(p, prevP + r.segmentLength * targetDir, part.localStiffness);
+            shift = p - beforeShape;
             p = pushOut(p);
             vec3 before = p;
             p = ftlProject(prevP, p, r.segmentLength);
@@ -98,7 +105,7 @@ void main()
         finite = finite && isFinite3(p);
 
         // Finish the parent: its velocity needs this vertex's correction d_i.
-        vec3 prevV = (prevP - prevX) / dt;
+        vec3 prevV = (prevP - prevX - prevShift) / dt;
         if (!prevPinned)
             prevV -= part.ftlDamping * d / dt;
         positions[g - 1u].xyz = prevP;
@@ -111,10 +118,11 @@ void main()
         prevX = x;
         prevP = p;
         prevPinned = pinned;
+        prevShift = shift;
     }
     // The tip has no d_{i+1}.
     positions[base + V - 1u].xyz = prevP;
-    velocities[base + V - 1u].xyz = (prevP - prevX) / dt;
+    velocities[base + V - 1u].xyz = (prevP - prevX - prevShift) / dt;
     tangents[base + V - 1u] = vec4(lastTangent, 0.0);
 
     if (!finite) {
