@@ -80,6 +80,47 @@ struct HairOptions {
     SimSettings sim;
     std::vector<float> sphere;  // x, y, z, r
     std::vector<float> wind;    // x, y, z
+    std::vector<std::string> hairFiles;
+    float hairScale = 0.0f;          // 0: automatic placement
+    std::vector<float> hairOffset;   // x, y, z
+    std::optional<float> globalStiffness, localStiffness, damping, drag;
+
+    // The head with grown guides, or with the hair files as parts.
+    HairScene buildScene(const std::filesystem::path& headPath) const
+    {
+        if (hairFiles.empty()) {
+            HairScene scene = buildGrownScene(headPath, growth);
+            overrideParts(scene.strands);
+            return scene;
+        }
+        std::vector<HairPartSource> parts;
+        for (const std::string& file : hairFiles) {
+            HairPartSource part{.file = file, .placement = std::nullopt, .settings = styledPartDefaults()};
+            part.settings.name = std::filesystem::path(file).stem().string();
+            if (hairScale > 0.0f || !hairOffset.empty()) {
+                HairAsset probe = loadHairAsset(file);
+                HairPlacement placement = autoPlacement(probe, loadHead(headPath).mesh.bounds());
+                if (hairScale > 0.0f)
+                    placement.scale = hairScale;
+                if (!hairOffset.empty())
+                    placement.offset = glm::vec3(hairOffset[0], hairOffset[1], hairOffset[2]);
+                part.placement = placement;
+            }
+            parts.push_back(part);
+        }
+        HairScene scene = buildLoadedScene(headPath, parts, growth.verticesPerStrand);
+        overrideParts(scene.strands);
+        return scene;
+    }
+    void overrideParts(StrandSet& strands) const
+    {
+        for (PartSettings& p : strands.parts) {
+            p.globalStiffness = globalStiffness.value_or(p.globalStiffness);
+            p.localStiffness = localStiffness.value_or(p.localStiffness);
+            p.ftlDamping = damping.value_or(p.ftlDamping);
+            p.drag = drag.value_or(p.drag);
+        }
+    }
 
     glm::vec4 sphereOrNone() const
     {
@@ -118,6 +159,18 @@ void addHairOptions(CLI::App* cmd, HairOptions& h)
     cmd->add_option("--friction", h.sim.gridFriction, "hair-hair friction (blend toward the grid velocity)")
         ->check(CLI::Range(0.0f, 1.0f))
         ->capture_default_str();
+    cmd->add_option("--hair", h.hairFiles,
+                    "hair file to load instead of growing guides (TressFX .tfx 2/3/4, cyHair .hair); repeat for a groom in parts")
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--hair-scale", h.hairScale, "scale loaded hair by this (default: automatic when units clearly differ)")
+        ->check(CLI::Range(1e-6f, 1e6f));
+    cmd->add_option("--hair-offset", h.hairOffset, "move loaded hair by x,y,z (head units) after scaling")->delimiter(',')->expected(3);
+    cmd->add_option("--global-stiffness", h.globalStiffness, "pull toward the rest pose per step at the root, every part")
+        ->check(CLI::Range(0.0f, 1.0f));
+    cmd->add_option("--local-stiffness", h.localStiffness, "pull of each segment toward its rest direction per step, every part")
+        ->check(CLI::Range(0.0f, 1.0f));
+    cmd->add_option("--damping", h.damping, "FTL velocity correction s_damp (Muller 2012), every part")->check(CLI::Range(0.0f, 1.0f));
+    cmd->add_option("--drag", h.drag, "air drag, 1/s, every part")->check(CLI::Range(0.0f, 100.0f));
     cmd->add_option("--sphere", h.sphere, "collision sphere x,y,z,r in the head's units")->delimiter(',')->expected(4);
     cmd->add_option("--wind", h.wind, "wind x,y,z in m/s^2 (scaled to the head's units)")->delimiter(',')->expected(3);
 }
@@ -182,6 +235,11 @@ int runInfo(bool json)
 
 int runInspect(const std::string& file)
 {
+    std::string ext = std::filesystem::path(file).extension().string();
+    if (ext == ".tfx" || ext == ".hair") {
+        std::cout << describeHairAsset(loadHairAsset(file)).dump() << "\n";
+        return 0;
+    }
     Mesh mesh = loadMesh(file);
     Bounds b = mesh.bounds();
     nlohmann::json out = {{"kind", "mesh"},
@@ -211,7 +269,7 @@ int runRender(const GlobalOptions& g, RenderOptions& o)
     if (o.noHair)
         scene.head = loadHead(headPath);
     else
-        scene = buildGrownScene(headPath, o.hair.growth);
+        scene = o.hair.buildScene(headPath);
     vk::Context ctx(contextOptions(g));
     HairRun run{.scene = &scene, .sim = o.hair.sim, .frames = o.frames, .framesPerSecond = o.fps, .sphere = o.hair.sphereOrNone()};
     Picture picture = renderPicture(ctx, scene.head, o.settings, o.noHair ? nullptr : &run);
@@ -260,9 +318,13 @@ int runCli(int argc, char** argv)
     SimulateOptions sim;
     HairOptions simHair;
     CLI::App* simulate = app.add_subcommand("simulate", "physics only, headless: quality metrics as text or JSON");
-    simulate->add_option("--head", sim.headFile, "head description (.json) or mesh file; default models/head.json");
+    std::string simHead;
+    simulate->add_option("--head", simHead, "head description (.json) or mesh file; default models/head.json");
     simulate->add_option("--steps", sim.steps, "fixed simulation steps to run")->check(CLI::Range(1u, 10000000u))->capture_default_str();
     simulate->add_flag("--json", sim.json, "print one JSON object");
+    simulate->add_flag("--profile", sim.profile,
+                       "time each kernel: --warmup steps, then --steps steps each timed on its own (median and p95)");
+    simulate->add_option("--warmup", sim.warmup, "steps before timing with --profile")->check(CLI::Range(0u, 100000u))->capture_default_str();
     addHairOptions(simulate, simHair);
 
     bool infoJson = false;
@@ -270,8 +332,10 @@ int runCli(int argc, char** argv)
     info->add_flag("--json", infoJson, "print JSON instead of text");
 
     std::string inspectFile;
-    CLI::App* inspect = app.add_subcommand("inspect", "print what a mesh file holds, as one JSON object");
-    inspect->add_option("file", inspectFile, "a mesh file (.obj through tinyobjloader, others through assimp)")->required();
+    CLI::App* inspect = app.add_subcommand("inspect", "print what a hair or mesh file holds, as one JSON object");
+    inspect->add_option("file", inspectFile,
+                        "a hair file (.tfx: TressFX 2/3/4, .hair: cyHair) or a mesh (.obj through tinyobjloader, others through assimp)")
+        ->required();
 
     // CLI11 reports a mistyped command only as "a subcommand is required": name it instead.
     for (int i = 1; i < argc; ++i) {
@@ -318,14 +382,12 @@ int runCli(int argc, char** argv)
         }
         if (*simulate) {
             sim.context = contextOptions(g);
-            if (sim.headFile.empty())
-                sim.headFile = defaultHeadPath().string();
             simHair.apply();
-            sim.growth = simHair.growth;
             sim.sim = simHair.sim;
             if (!simHair.sphere.empty())
                 sim.sphere = simHair.sphereOrNone();
-            return runSimulate(sim);
+            HairScene scene = simHair.buildScene(headPathOrDefault(simHead));
+            return runSimulate(sim, scene);
         }
         if (*info)
             return runInfo(infoJson);

@@ -1,42 +1,42 @@
-// app/simulate.cpp: runs fixed steps in batches (one submit each), samples the kinetic energy
-// after every batch, and reports the final quality metrics.
+// app/simulate.cpp: runs fixed steps in batches (one submit each); the last step of each batch is
+// submitted alone so the positions before and after it give the kinetic energy of the motion.
 #include "app/simulate.h"
 
 #include "physics/gpu_solver.h"
-#include "physics/hair_scene.h"
 #include "renderer/frame.h"
+#include "core/error.h"
 #include "renderer/physics_pass.h"
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
+#include <map>
 #include <iostream>
 
 namespace wisp {
 
-int runSimulate(const SimulateOptions& o)
+SimulationReport simulateHeadless(const vk::Context& ctx, const HairScene& scene, const SimSettings& sim, uint32_t steps,
+                                  const Motion& motion, uint32_t sampleEvery, const std::function<void(uint32_t)>& progress)
 {
-    HairScene scene = buildGrownScene(o.headFile, o.growth);
-    SimSetup setup = makeSimSetup(o.sim, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
-    vk::Context ctx(o.context);
-    glm::mat4 head(1.0f);
-    GpuSolver solver(ctx, scene.strands, setup, head);
+    SimSetup setup = makeSimSetup(sim, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
+    GpuSolver solver(ctx, scene.strands, setup, motion.head(0.0f));
     PhysicsPass physics(solver);
     Frame frame(ctx, 1);
-    glm::vec4 sphere = o.sphere.value_or(glm::vec4(0.0f));
+    float stepSeconds = 1.0f / sim.stepHz;
+    auto stepAt = [&](uint32_t n) {
+        float t = float(n) * stepSeconds;
+        return makeStep(setup, motion.head(t), motion.sphere(t), t);
+    };
 
-    // Steps go in batches of one submit each; the last step of a batch is submitted alone, so the
-    // positions before and after it give the kinetic energy of the motion.
-    constexpr uint32_t kBatch = 25;
-    float stepSeconds = 1.0f / o.sim.stepHz;
-    nlohmann::json energy = nlohmann::json::array();
+    SimulationReport report;
     double gpuMs = 0.0;
     uint32_t done = 0;
     auto submit = [&](uint32_t count) {
-        std::vector<gpu::SimStep> steps;
+        std::vector<gpu::SimStep> list;
         for (uint32_t k = 0; k < count; ++k)
-            steps.push_back(makeStep(setup, head, sphere, float(done + k) * stepSeconds));
-        physics.setSteps(std::move(steps));
+            list.push_back(stepAt(done + k));
+        physics.setSteps(std::move(list));
         FrameContext& fc = frame.begin({});
         std::vector<Pass*> passes = {&physics};
         frame.run(fc, passes);
@@ -46,52 +46,136 @@ int runSimulate(const SimulateOptions& o)
             gpuMs += t.milliseconds;
         done += count;
     };
-    SimState state;
-    SimMetrics m;
-    while (done < o.steps) {
-        uint32_t n = std::min(kBatch, o.steps - done);
+    while (done < steps) {
+        uint32_t n = std::min(std::max(sampleEvery, 1u), steps - done);
         if (n > 1)
             submit(n - 1);
         std::vector<glm::vec4> before = solver.readState().positions;
         submit(1);
-        state = solver.readState();
-        m = measure(state, before, stepSeconds, scene.strands, setup, makeStep(setup, head, sphere, float(done) * stepSeconds));
-        energy.push_back({{"step", done}, {"value", m.kineticEnergy}});
+        report.state = solver.readState();
+        report.last = measure(report.state, before, stepSeconds, scene.strands, setup, stepAt(done));
+        report.energy.emplace_back(done, report.last.kineticEnergy);
+        if (progress)
+            progress(done);
+    }
+    report.gpuMsPerStep = gpuMs / double(std::max(steps, 1u));
+    report.nonfiniteResets = report.state.nonfiniteResets;
+    return report;
+}
+
+std::vector<DispatchTiming> profilePhysics(const vk::Context& ctx, const HairScene& scene, const SimSettings& sim,
+                                           uint32_t warmupSteps, uint32_t timedSteps)
+{
+    SimSetup setup = makeSimSetup(sim, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
+    GpuSolver solver(ctx, scene.strands, setup, glm::mat4(1.0f));
+    vk::GpuTimer timer(ctx, 8, "profile.timestamps");
+    std::map<std::string, std::vector<double>> samples;
+    std::vector<std::string> order;
+    std::vector<double> totals;
+    for (uint32_t n = 0; n < warmupSteps + timedSteps; ++n) {
+        gpu::SimStep step = makeStep(setup, glm::mat4(1.0f), glm::vec4(0.0f), float(n) / sim.stepHz);
+        ctx.submitAndWait([&](VkCommandBuffer cmd) {
+            timer.reset(cmd);
+            solver.recordStep(cmd, step, &timer);
+        });
+        if (n < warmupSteps)
+            continue;
+        double total = 0.0;
+        for (const vk::ScopeTime& t : timer.read()) {
+            if (!samples.count(t.name))
+                order.push_back(t.name);
+            samples[t.name].push_back(t.milliseconds);
+            total += t.milliseconds;
+        }
+        totals.push_back(total);
+    }
+    auto stats = [](const std::string& name, std::vector<double> v) {
+        std::sort(v.begin(), v.end());
+        return DispatchTiming{name, v[v.size() / 2], v[std::min(v.size() - 1, v.size() * 95 / 100)]};
+    };
+    std::vector<DispatchTiming> out;
+    for (const std::string& name : order)
+        out.push_back(stats(name, samples[name]));
+    out.push_back(stats("step", totals));
+    return out;
+}
+
+int runSimulate(const SimulateOptions& o, const HairScene& scene)
+{
+    vk::Context ctx(o.context);
+    if (o.profile) {
+        std::vector<DispatchTiming> timings = profilePhysics(ctx, scene, o.sim, o.warmup, o.steps);
+        nlohmann::json out = {{"strands", scene.strands.strandCount()},
+                              {"vertices_per_strand", scene.strands.verticesPerStrand},
+                              {"vertices", scene.strands.vertexCount()},
+                              {"grid_resolution", o.sim.gridResolution},
+                              {"substeps", o.sim.substeps},
+                              {"warmup_steps", o.warmup},
+                              {"timed_steps", o.steps},
+                              {"device", ctx.report().name}};
+        for (const DispatchTiming& t : timings)
+            out["ms"][t.name] = {{"median", t.medianMs}, {"p95", t.p95Ms}};
+        if (o.json) {
+            std::cout << out.dump() << "\n";
+        } else {
+            std::printf("%zu guides x %u vertices, grid %u^3, %u substeps on %s (%u warm-up, %u timed steps)\n",
+                        scene.strands.strandCount(), scene.strands.verticesPerStrand, o.sim.gridResolution, o.sim.substeps,
+                        ctx.report().name.c_str(), o.warmup, o.steps);
+            for (const DispatchTiming& t : timings)
+                std::printf("  %-15s median %8.4f ms   p95 %8.4f ms\n", t.name.c_str(), t.medianMs, t.p95Ms);
+        }
+        return ctx.validationMessages() > 0 ? kExitInternalError : 0;
+    }
+    Motion motion;
+    glm::vec4 sphere = o.sphere.value_or(glm::vec4(0.0f));
+    motion.sphere = [sphere](float) { return sphere; };
+    SimulationReport r = simulateHeadless(ctx, scene, o.sim, o.steps, motion, 25, [&](uint32_t done) {
         if (!o.json)
             std::fprintf(stderr, "\rsimulate: %u / %u steps", done, o.steps);
-    }
+    });
     if (!o.json)
         std::fprintf(stderr, "\n");
 
+    SimSetup setup = makeSimSetup(o.sim, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
     float diagonal = scene.head.mesh.bounds().diagonal();
+    nlohmann::json energy = nlohmann::json::array();
+    for (const auto& [step, value] : r.energy)
+        energy.push_back({{"step", step}, {"value", value}});
+    nlohmann::json parts = nlohmann::json::array();
+    for (const PartSettings& p : scene.strands.parts)
+        parts.push_back({{"name", p.name}, {"global_stiffness", p.globalStiffness}, {"local_stiffness", p.localStiffness},
+                         {"damping", p.ftlDamping}, {"drag", p.drag}});
     nlohmann::json out = {{"steps", o.steps},
                           {"strands", scene.strands.strandCount()},
                           {"vertices", scene.strands.vertexCount()},
                           {"vertices_per_strand", scene.strands.verticesPerStrand},
+                          {"parts", parts},
                           {"substeps", setup.substeps},
                           {"step_hz", o.sim.stepHz},
-                          {"max_stretch", m.maxStretch},
-                          {"max_penetration", m.maxPenetration / diagonal},
-                          {"root_drift", m.rootDrift},
-                          {"nonfinite_resets", state.nonfiniteResets},
+                          {"max_stretch", r.last.maxStretch},
+                          {"max_penetration", r.last.maxPenetration / diagonal},
+                          {"root_drift", r.last.rootDrift},
+                          {"nonfinite_resets", r.nonfiniteResets},
                           {"kinetic_energy", energy},
-                          {"gpu_ms_per_step", gpuMs / double(o.steps)},
+                          {"gpu_ms_per_step", r.gpuMsPerStep},
+                          {"grid_resolution", o.sim.gridResolution},
                           {"colliders", scene.colliders.size()},
                           {"colliders_fitted", scene.collidersFitted},
                           {"device", ctx.report().name}};
     if (o.json) {
         std::cout << out.dump() << "\n";
     } else {
-        std::printf("%zu guides x %u vertices, %u steps at %g Hz x %u substeps on %s\n", scene.strands.strandCount(),
-                    scene.strands.verticesPerStrand, o.steps, double(o.sim.stepHz), setup.substeps, ctx.report().name.c_str());
+        std::printf("%zu guides x %u vertices in %zu part(s), %u steps at %g Hz x %u substeps on %s\n",
+                    scene.strands.strandCount(), scene.strands.verticesPerStrand, scene.strands.parts.size(), o.steps,
+                    double(o.sim.stepHz), setup.substeps, ctx.report().name.c_str());
         std::printf("  max stretch       %.3g\n  max penetration   %.3g of the head's diagonal\n  root drift        %.3g\n"
                     "  non-finite resets %u\n  kinetic energy    %.4g (last)\n  GPU time per step %.4f ms\n",
-                    double(m.maxStretch), double(m.maxPenetration / diagonal), double(m.rootDrift), state.nonfiniteResets,
-                    double(m.kineticEnergy), gpuMs / double(o.steps));
+                    double(r.last.maxStretch), double(r.last.maxPenetration / diagonal), double(r.last.rootDrift),
+                    r.nonfiniteResets, double(r.last.kineticEnergy), r.gpuMsPerStep);
     }
     if (ctx.validationMessages() > 0) {
         std::fprintf(stderr, "wisp: %u Vulkan validation messages (printed above)\n", ctx.validationMessages());
-        return 1;
+        return kExitInternalError;
     }
     return 0;
 }

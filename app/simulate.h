@@ -1,26 +1,56 @@
-// app/simulate.h: `wisp simulate`: physics only, headless, with quality metrics (stretch,
-// penetration, root drift, resets, kinetic energy over time, GPU time per step) as text or JSON.
+// app/simulate.h: headless physics: `wisp simulate` (quality metrics as text or JSON) and the
+// run loop behind it, which tests also drive with scripted head and sphere motion.
 #pragma once
 
-#include "physics/growth.h"
+#include "physics/hair_scene.h"
 #include "physics/simulation.h"
 #include "renderer/vk/context.h"
 
+#include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace wisp {
 
+// Where the head and the sphere are at simulated time t (seconds).
+struct Motion {
+    std::function<glm::mat4(float)> head = [](float) { return glm::mat4(1.0f); };
+    std::function<glm::vec4(float)> sphere = [](float) { return glm::vec4(0.0f); };  // xyz, radius (0: none)
+};
+
+struct SimulationReport {
+    SimMetrics last;                                     // after the final step
+    std::vector<std::pair<uint32_t, float>> energy;      // (step, kinetic energy) every sample
+    double gpuMsPerStep = 0.0;
+    uint32_t nonfiniteResets = 0;
+    SimState state;                                      // the final state
+};
+
+// Runs `steps` fixed steps on the GPU, sampling every `sampleEvery` steps.
+SimulationReport simulateHeadless(const vk::Context& ctx, const HairScene& scene, const SimSettings& sim, uint32_t steps,
+                                  const Motion& motion = {}, uint32_t sampleEvery = 25,
+                                  const std::function<void(uint32_t)>& progress = {});
+
+// Per-dispatch GPU time of a physics step: warm up, then time every step on its own.
+struct DispatchTiming {
+    std::string name;
+    double medianMs = 0.0;
+    double p95Ms = 0.0;
+};
+std::vector<DispatchTiming> profilePhysics(const vk::Context& ctx, const HairScene& scene, const SimSettings& sim,
+                                           uint32_t warmupSteps, uint32_t timedSteps);
+
 struct SimulateOptions {
     vk::ContextOptions context;
-    std::string headFile;
-    GrowthSettings growth;
     SimSettings sim;
     uint32_t steps = 1000;
     std::optional<glm::vec4> sphere;  // centre xyz and radius, asset units
     bool json = false;
+    bool profile = false;     // per-dispatch timings instead of the quality run
+    uint32_t warmup = 60;     // steps before timing (profile)
 };
 
-int runSimulate(const SimulateOptions& options);
+int runSimulate(const SimulateOptions& options, const HairScene& scene);
 
 }  // namespace wisp

@@ -90,6 +90,29 @@ std::vector<Ellipsoid> fitColliders(const Mesh& mesh)
     return {cranium, fitBand(mesh, cut1, cut2, 0.9f, "neck"), fitBand(mesh, cut2, b.min.y, 0.0f, "shoulders")};
 }
 
+void shrinkCollidersToRestPose(std::vector<Ellipsoid>& colliders, const StrandSet& strands)
+{
+    uint32_t V = strands.verticesPerStrand;
+    for (Ellipsoid& e : colliders) {
+        glm::mat3 R = rotationFromDegrees(e.rotationDeg);
+        std::vector<float> inside;  // normalized radii of the free vertices inside this collider
+        size_t free = 0;
+        for (size_t s = 0; s < strands.strandCount(); ++s)
+            for (uint32_t i = strands.strands[s].pinnedRoot; i < V; ++i) {
+                ++free;
+                float r = glm::length((glm::transpose(R) * (strands.rest[s * V + i] - e.center)) / e.radii);
+                if (r < 1.0f)
+                    inside.push_back(r);
+            }
+        size_t allowed = free / 100;
+        if (inside.size() <= allowed)
+            continue;
+        std::sort(inside.begin(), inside.end());
+        float scale = inside[allowed];  // all but `allowed` of the inside vertices end up outside
+        e.radii *= std::max(scale, 0.05f);
+    }
+}
+
 ScalpRule defaultScalpRule(const Ellipsoid& cranium)
 {
     ScalpRule rule;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "physics/head.h"
+#include "physics/strands.h"
 #include "shaders/shared/sim.h"
 
 #include <vector>
@@ -23,6 +24,11 @@ float penetrationDepth(const std::vector<gpu::Ellipsoid>& colliders, const glm::
 //  - "shoulders": the lower half, fitted the same way but not scaled up (it only stops hair
 //    falling through the body).
 std::vector<Ellipsoid> fitColliders(const Mesh& mesh);
+
+// A styled groom's rest pose must start outside the colliders, or they fight its style: each
+// collider shrinks (uniformly about its centre) until 99% of the strands' free rest vertices lie
+// outside it (a percentile, so that a few strands tucked into the head do not collapse it).
+void shrinkCollidersToRestPose(std::vector<Ellipsoid>& colliders, const StrandSet& strands);
 
 // A scalp rule for a bare mesh, derived from the fitted cranium: above a plane a little below its
 // centre, tilted so the hairline is higher at the front, excluding the face.

@@ -71,7 +71,7 @@ GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const Sim
     gather_ = vk::createComputePipeline(ctx, layout_, "grid_gather.comp", "grid.gather");
 }
 
-void GpuSolver::recordStep(VkCommandBuffer cmd, const gpu::SimStep& step)
+void GpuSolver::recordStep(VkCommandBuffer cmd, const gpu::SimStep& step, vk::GpuTimer* timer)
 {
     std::array<VkDescriptorBufferInfo, 9> infos = {
         VkDescriptorBufferInfo{params_, 0, VK_WHOLE_SIZE}, {positions_, 0, VK_WHOLE_SIZE}, {velocities_, 0, VK_WHOLE_SIZE},
@@ -99,20 +99,38 @@ void GpuSolver::recordStep(VkCommandBuffer cmd, const gpu::SimStep& step)
         vkCmdDispatch(cmd, groups, 1, 1);
     };
 
+    auto begin = [&](const char* scope) {
+        if (timer)
+            timer->begin(cmd, scope);
+    };
+    auto end = [&] {
+        if (timer)
+            timer->end(cmd);
+    };
     gpu::SimStep sub = step;
+    begin("integrate");
     for (uint32_t k = 0; k < setup_.substeps; ++k) {
         sub.time = step.time + float(k) * p.dt;
         dispatch(integrate_, strandGroups, sub);
         vk::computeToComputeBarrier(cmd);
     }
+    end();
+    begin("grid_clear");
     dispatch(clear_, nodeGroups, step);
     vk::computeToComputeBarrier(cmd);
+    end();
+    begin("grid_splat");
     dispatch(splat_, vertexGroups, step);
     vk::computeToComputeBarrier(cmd);
+    end();
+    begin("grid_normalize");
     dispatch(normalize_, nodeGroups, step);
     vk::computeToComputeBarrier(cmd);
+    end();
+    begin("grid_gather");
     dispatch(gather_, vertexGroups, step);
     vk::computeToComputeBarrier(cmd);  // the next step's integrate reads the gathered velocities
+    end();
 }
 
 std::vector<uint8_t> GpuSolver::download(const vk::Buffer& buffer) const

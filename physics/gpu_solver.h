@@ -9,6 +9,7 @@
 #include "renderer/pass.h"
 #include "renderer/vk/handle.h"
 #include "renderer/vk/resources.h"
+#include "renderer/vk/timestamps.h"
 
 namespace wisp {
 
@@ -20,8 +21,10 @@ class GpuSolver {
 public:
     GpuSolver(const vk::Context& ctx, const StrandSet& strands, const SimSetup& setup, const glm::mat4& headTransform);
 
-    // Records one fixed step (all substeps and the grid). step.time is the step's start.
-    void recordStep(VkCommandBuffer cmd, const gpu::SimStep& step);
+    // Records one fixed step (all substeps and the grid). step.time is the step's start. With a
+    // timer, each kernel's dispatches are a timed scope: integrate (all substeps), grid_clear,
+    // grid_splat, grid_normalize, grid_gather.
+    void recordStep(VkCommandBuffer cmd, const gpu::SimStep& step, vk::GpuTimer* timer = nullptr);
 
     // Copies the state back (waits for the device): for metrics and tests.
     SimState readState() const;

@@ -1,7 +1,10 @@
 // physics/hair_scene.cpp: head, colliders and strands assembled.
 #include "physics/hair_scene.h"
 
+#include "core/error.h"
 #include "physics/colliders.h"
+
+#include <stdexcept>
 
 namespace wisp {
 
@@ -29,6 +32,50 @@ HairScene buildGrownScene(const std::filesystem::path& headFile, const GrowthSet
     scene.head = loadHead(headFile);
     prepareHead(scene);
     scene.strands = growGuides(scene.head.mesh, scene.scalp, scene.gpuColliders, growth, scene.unitsPerMetre);
+    return scene;
+}
+
+PartSettings styledPartDefaults()
+{
+    PartSettings p;
+    p.globalStiffness = 0.1f;
+    p.localStiffness = 0.4f;
+    return p;
+}
+
+HairScene buildLoadedScene(const std::filesystem::path& headFile, const std::vector<HairPartSource>& parts,
+                           uint32_t verticesPerStrand)
+{
+    if (parts.empty())
+        throw std::invalid_argument("buildLoadedScene: no hair files");
+    if (parts.size() > gpu::kSimMaxParts)
+        throw UserError("at most " + std::to_string(gpu::kSimMaxParts) + " hair files can be loaded at once, got " +
+                        std::to_string(parts.size()));
+    HairScene scene;
+    scene.head = loadHead(headFile);
+    prepareHead(scene);
+    scene.strands.verticesPerStrand = verticesPerStrand;
+    Bounds headBounds = scene.head.mesh.bounds();
+    for (uint32_t index = 0; index < parts.size(); ++index) {
+        const HairPartSource& source = parts[index];
+        HairAsset asset = loadHairAsset(source.file);
+        HairPlacement placement = source.placement ? *source.placement : autoPlacement(asset, headBounds);
+        PartSettings settings = source.settings;
+        if (settings.name.empty() || settings.name == PartSettings{}.name)
+            settings.name = source.file.stem().string();
+        scene.strands.parts.push_back(settings);
+        for (const HairStrand& strand : asset.strands) {
+            std::vector<glm::vec3> placed;
+            placed.reserve(strand.points.size());
+            for (const glm::vec3& p : strand.points)
+                placed.push_back(applyPlacement(placement, p));
+            scene.strands.add(resampleStrand(placed, verticesPerStrand), index, strand.pinnedRoot, strand.pinnedTip);
+        }
+    }
+    shrinkCollidersToRestPose(scene.colliders, scene.strands);
+    scene.gpuColliders.clear();
+    for (const Ellipsoid& e : scene.colliders)
+        scene.gpuColliders.push_back(toGpu(e));
     return scene;
 }
 

@@ -4,10 +4,12 @@
 #pragma once
 
 #include "physics/growth.h"
+#include "physics/hair_asset.h"
 #include "physics/head.h"
 #include "physics/strands.h"
 
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 namespace wisp {
@@ -24,5 +26,19 @@ struct HairScene {
 
 // Loads the head and grows guides on it.
 HairScene buildGrownScene(const std::filesystem::path& headFile, const GrowthSettings& growth);
+
+// One hair file of a groom, with how to place it and its own simulation parameters.
+struct HairPartSource {
+    std::filesystem::path file;
+    std::optional<HairPlacement> placement;  // none: autoPlacement against the head
+    PartSettings settings;                    // name defaults to the file's stem
+};
+
+// Loads the head and the hair files (each a part), resampled to `verticesPerStrand`.
+HairScene buildLoadedScene(const std::filesystem::path& headFile, const std::vector<HairPartSource>& parts,
+                           uint32_t verticesPerStrand);
+
+// The default parameters of a loaded (styled) part: it keeps its shape more than grown hair.
+PartSettings styledPartDefaults();
 
 }  // namespace wisp

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
@@ -109,10 +110,12 @@ struct BallScene {
     SimSetup setup;
 };
 
-BallScene ballScene(uint32_t strandCount, uint32_t V, const SimSettings& settings)
+// `hanging`: strands hang straight down from their roots (near equilibrium) instead of growing outward.
+BallScene ballScene(uint32_t strandCount, uint32_t V, const SimSettings& settings, float colliderRadius = 0.1f,
+                    bool hanging = false)
 {
     BallScene b;
-    Ellipsoid ball{.name = "ball", .center = glm::vec3(0), .radii = glm::vec3(0.1f), .rotationDeg = glm::vec3(0)};
+    Ellipsoid ball{.name = "ball", .center = glm::vec3(0), .radii = glm::vec3(colliderRadius), .rotationDeg = glm::vec3(0)};
     b.colliders.push_back(toGpu(ball));
     b.strands.verticesPerStrand = V;
     b.strands.parts.push_back(PartSettings{});
@@ -123,7 +126,8 @@ BallScene ballScene(uint32_t strandCount, uint32_t V, const SimSettings& setting
         glm::vec3 n(r * std::cos(phi), y, r * std::sin(phi));
         std::vector<glm::vec3> points(V);
         for (uint32_t i = 0; i < V; ++i)
-            points[i] = n * (0.1f + 0.15f * float(i) / float(V - 1));
+            points[i] = hanging ? 0.1f * n - glm::vec3(0.0f, 0.15f * float(i) / float(V - 1), 0.0f)
+                                : n * (0.1f + 0.15f * float(i) / float(V - 1));
         b.strands.add(points, 0, 1, false);
     }
     b.setup = makeSimSetup(settings, b.strands, b.colliders, 1.0f);
@@ -244,27 +248,31 @@ Agreement agreement(const SimState& a, const SimState& b)
 
 }  // namespace
 
-// After one step the two agree to float rounding. Contacts (sphere, head, frame flips) then
-// amplify rounding chaotically, about tenfold every five steps (measured: 1e-8 after 1 step,
-// 2e-7 after 5, 5e-5 after 10, a few millimetres at the worst vertex after 40), so the long run
-// checks that most vertices still agree closely and none has gone elsewhere.
-TEST_P(GpuMatchesCpu, OneStepExactlyAndFortyStepsClosely)
+// One step with every term (gravity, wind, drag, shape, head motion, the sphere and the head
+// colliders in contact, the grid) agrees to float rounding. Over many steps a chain of 32 or 64
+// links swinging far from equilibrium is chaotic: rounding differences grow about tenfold every
+// five steps (measured: 1e-8 after 1 step, 5e-5 after 10, millimetres after 40 at the worst
+// vertex), whatever the implementation. So the long comparison runs hanging strands near
+// equilibrium, nudged by wind, the grid and the turning head, with no contacts, where it must stay
+// at rounding level.
+TEST_P(GpuMatchesCpu, OneStepWithContactsAndFortyStepsWithout)
 {
     GpuCpuCase c = GetParam();
     SimSettings s;
     s.wind = glm::vec3(4.0f, 0.0f, 1.0f);
     s.gridFriction = 0.1f;
     s.gridResolution = 16;
-    BallScene b = ballScene(c.strands, c.vertices, s);
-    // The sphere passes through the hair while the head turns a little: every term is exercised.
-    auto stepAt = [&](uint32_t n) {
-        float t = float(n) / s.stepHz;
-        glm::mat4 head = glm::rotate(glm::mat4(1.0f), 0.3f * std::sin(2.0f * t), glm::vec3(0, 1, 0));
-        glm::vec4 sphere(0.25f - 0.5f * t, 0.15f, 0.0f, 0.06f);
-        return makeStep(b.setup, head, sphere, t);
-    };
     vk::Context ctx(test::validatedOptions());
-    for (uint32_t steps : {1u, 40u}) {
+    for (bool contacts : {true, false}) {
+        // Without contacts the collider sits well inside the roots and there is no sphere.
+        BallScene b = ballScene(c.strands, c.vertices, s, contacts ? 0.1f : 0.03f, !contacts);
+        uint32_t steps = contacts ? 1 : 40;
+        auto stepAt = [&](uint32_t n) {
+            float t = float(n) / s.stepHz;
+            glm::mat4 head = glm::rotate(glm::mat4(1.0f), 0.3f * std::sin(2.0f * t), glm::vec3(0, 1, 0));
+            glm::vec4 sphere = contacts ? glm::vec4(0.25f - 0.5f * t, 0.15f, 0.0f, 0.06f) : glm::vec4(0.0f);
+            return makeStep(b.setup, head, sphere, t);
+        };
         CpuSolver cpu(b.strands, b.setup, glm::mat4(1.0f));
         for (uint32_t n = 0; n < steps; ++n)
             cpu.step(stepAt(n));
@@ -272,14 +280,10 @@ TEST_P(GpuMatchesCpu, OneStepExactlyAndFortyStepsClosely)
         SimState gpu = runGpu(ctx, gpuSolver, b.setup, steps, stepAt, 7);
         ASSERT_EQ(gpu.positions.size(), cpu.state().positions.size());
         Agreement a = agreement(gpu, cpu.state());
-        if (steps == 1) {
-            EXPECT_LT(a.max, 1e-6f) << "one step";
-            for (size_t i = 0; i < gpu.velocities.size(); ++i)
-                ASSERT_LT(glm::length(glm::vec3(gpu.velocities[i]) - glm::vec3(cpu.state().velocities[i])), 1e-3f) << i;
-        } else {
-            EXPECT_LT(a.p90, 1e-4f) << "40 steps";
-            EXPECT_LT(a.max, 0.02f) << "40 steps";
-        }
+        std::fprintf(stderr, "%s: max %g p90 %g\n", contacts ? "contacts, 1 step" : "no contacts, 40 steps", double(a.max), double(a.p90));
+        EXPECT_LT(a.max, contacts ? 1e-6f : 2e-6f);
+        for (size_t i = 0; i < gpu.velocities.size(); ++i)
+            ASSERT_LT(glm::length(glm::vec3(gpu.velocities[i]) - glm::vec3(cpu.state().velocities[i])), 1e-3f) << i;
         EXPECT_EQ(gpu.nonfiniteResets, 0u);
         EXPECT_EQ(cpu.state().nonfiniteResets, 0u);
     }

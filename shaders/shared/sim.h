@@ -231,11 +231,12 @@ GPU_FN mat3 transportFrame(mat3 frame, vec3 predictedDir, vec3 actualDir)
     return mat3(x, y, cross(x, y));
 }
 
-// Global shape: how strongly vertex i of V is pulled to its rest pose, strongest at the root.
+// Global shape: how strongly vertex i of V is pulled to its rest pose: strongest at the root,
+// falling linearly to a quarter at the tip (tips still hold a styled shape).
 GPU_FN float globalShapeWeight(float stiffness, uint i, uint V)
 {
     float u = float(i) / float(V - 1u);
-    return stiffness * (1.0f - u) * (1.0f - u);
+    return stiffness * (1.0f - 0.75f * u);
 }
 
 // ---- The hair-hair grid (Petrovic et al. 2005) ---------------------------------------------
