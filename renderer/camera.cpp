@@ -56,7 +56,7 @@ OrbitCamera OrbitCamera::framing(const Bounds& bounds, float aspect)
     float halfFov = glm::radians(c.fovYDeg) * 0.5f;
     float fitVertical = radius / std::sin(halfFov);
     float fitHorizontal = radius / std::sin(std::atan(std::tan(halfFov) * aspect));
-    c.distance = 0.92f * std::max(fitVertical, fitHorizontal);
+    c.distance = 0.8f * std::max(fitVertical, fitHorizontal);
     c.nearPlane = std::max(1e-4f, c.distance - 4.0f * radius) * 0.5f;
     c.farPlane = c.distance + 8.0f * radius;
     return c;
