@@ -17,15 +17,47 @@ static_assert(sizeof(gpu::SimStep) == 96, "SimStep must match its push-constant 
 static_assert(sizeof(gpu::RestVertex) == 16 && sizeof(gpu::StrandInfo) == 16 && sizeof(gpu::GridNode) == 16);
 static_assert(offsetof(gpu::SimParams, parts) == 80 && offsetof(gpu::SimParams, colliders) == 208);
 
+namespace {
+
+// Strand-major (the CPU's order) to the GPU's interleaved slots (gpu::vertexSlot), and back.
+template <typename T>
+std::vector<T> toSlots(const std::vector<T>& strandMajor, uint32_t strands, uint32_t V, T padding)
+{
+    std::vector<T> out(size_t(gpu::paddedStrandCount(strands)) * V, padding);
+    for (uint32_t s = 0; s < strands; ++s)
+        for (uint32_t i = 0; i < V; ++i)
+            out[gpu::vertexSlot(s, i, V)] = strandMajor[size_t(s) * V + i];
+    return out;
+}
+
+template <typename T>
+std::vector<T> fromSlots(const std::vector<T>& slots, uint32_t strands, uint32_t V)
+{
+    std::vector<T> out(size_t(strands) * V);
+    for (uint32_t s = 0; s < strands; ++s)
+        for (uint32_t i = 0; i < V; ++i)
+            out[size_t(s) * V + i] = slots[gpu::vertexSlot(s, i, V)];
+    return out;
+}
+
+}  // namespace
+
 GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const SimSetup& setup, const glm::mat4& headTransform)
     : ctx_(ctx), setup_(setup), vertexCount_(uint32_t(strands.vertexCount()))
 {
     if (!ctx.report().floatAtomicAdd)
         throw UserError("the Vulkan device '" + ctx.report().name +
                         "' has no float atomic add on buffers (VK_EXT_shader_atomic_float), which the hair-hair grid needs");
-    SimState initial = initialState(strands, headTransform);
-    std::vector<gpu::RestVertex> rest = restVertices(strands);
-    size_t vec4Bytes = size_t(vertexCount_) * sizeof(glm::vec4);
+    uint32_t count = uint32_t(strands.strandCount());
+    uint32_t V = strands.verticesPerStrand;
+    SimState strandMajor = initialState(strands, headTransform);
+    SimState initial;  // in slots; padding slots are pinned (w = 0) and never touched
+    initial.positions = toSlots(strandMajor.positions, count, V, glm::vec4(0.0f));
+    initial.velocities = toSlots(strandMajor.velocities, count, V, glm::vec4(0.0f));
+    initial.tangents = toSlots(strandMajor.tangents, count, V, glm::vec4(0.0f));
+    std::vector<gpu::RestVertex> rest = toSlots(restVertices(strands), count, V, gpu::RestVertex{glm::vec3(0.0f), 1.0f});
+    slotCount_ = uint32_t(initial.positions.size());
+    size_t vec4Bytes = size_t(slotCount_) * sizeof(glm::vec4);
     size_t gridBytes = size_t(setup.params.gridNodeCount) * sizeof(gpu::GridNode);
     deviceBytes_ = 4 * vec4Bytes + rest.size() * sizeof(gpu::RestVertex) + strands.strands.size() * sizeof(gpu::StrandInfo) +
                    2 * gridBytes;
@@ -64,9 +96,9 @@ GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const Sim
               .pushConstantStages = VK_SHADER_STAGE_COMPUTE_BIT, .name = "sim.layout"});
     setLayout_ = std::move(layout.setLayout);
     layout_ = std::move(layout.layout);
-    integrate_ = vk::createComputePipeline(ctx, layout_, "sim_integrate.comp", "sim.integrate");
+    integrate_ = vk::createComputePipeline(ctx, layout_, "sim_integrate.comp", "sim.integrate", /*kSplatToGrid=*/false);
+    integrateSplat_ = vk::createComputePipeline(ctx, layout_, "sim_integrate.comp", "sim.integrate+splat", /*kSplatToGrid=*/true);
     clear_ = vk::createComputePipeline(ctx, layout_, "grid_clear.comp", "grid.clear");
-    splat_ = vk::createComputePipeline(ctx, layout_, "grid_splat.comp", "grid.splat");
     normalize_ = vk::createComputePipeline(ctx, layout_, "grid_normalize.comp", "grid.normalize");
     gather_ = vk::createComputePipeline(ctx, layout_, "grid_gather.comp", "grid.gather");
 }
@@ -90,7 +122,7 @@ void GpuSolver::recordStep(VkCommandBuffer cmd, const gpu::SimStep& step, vk::Gp
 
     const gpu::SimParams& p = setup_.params;
     uint32_t strandGroups = vk::groupCount(p.strandCount, gpu::kSimGroupSize);
-    uint32_t vertexGroups = vk::groupCount(p.strandCount * p.verticesPerStrand, gpu::kSimGroupSize);
+    uint32_t vertexGroups = vk::groupCount(slotCount_, gpu::kSimGroupSize);
     uint32_t nodeGroups = vk::groupCount(p.gridNodeCount, gpu::kSimGroupSize);
     auto dispatch = [&](VkPipeline pipeline, uint32_t groups, const gpu::SimStep& push) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
@@ -107,21 +139,18 @@ void GpuSolver::recordStep(VkCommandBuffer cmd, const gpu::SimStep& step, vk::Gp
         if (timer)
             timer->end(cmd);
     };
-    gpu::SimStep sub = step;
-    begin("integrate");
-    for (uint32_t k = 0; k < setup_.substeps; ++k) {
-        sub.time = step.time + float(k) * p.dt;
-        dispatch(integrate_, strandGroups, sub);
-        vk::computeToComputeBarrier(cmd);
-    }
-    end();
+    // The clear runs first: the last substep splats into the grid as it finishes each strand.
     begin("grid_clear");
     dispatch(clear_, nodeGroups, step);
     vk::computeToComputeBarrier(cmd);
     end();
-    begin("grid_splat");
-    dispatch(splat_, vertexGroups, step);
-    vk::computeToComputeBarrier(cmd);
+    gpu::SimStep sub = step;
+    begin("integrate+splat");
+    for (uint32_t k = 0; k < setup_.substeps; ++k) {
+        sub.time = step.time + float(k) * p.dt;
+        dispatch(k + 1 == setup_.substeps ? integrateSplat_ : integrate_, strandGroups, sub);
+        vk::computeToComputeBarrier(cmd);
+    }
     end();
     begin("grid_normalize");
     dispatch(normalize_, nodeGroups, step);
@@ -168,9 +197,10 @@ SimState GpuSolver::readState() const
         std::memcpy(out.data(), bytes.data(), out.size() * sizeof(glm::vec4));
         return out;
     };
-    s.positions = asVec4(download(positions_));
-    s.velocities = asVec4(download(velocities_));
-    s.tangents = asVec4(download(tangents_));
+    uint32_t strands = setup_.params.strandCount, V = setup_.params.verticesPerStrand;
+    s.positions = fromSlots(asVec4(download(positions_)), strands, V);
+    s.velocities = fromSlots(asVec4(download(velocities_)), strands, V);
+    s.tangents = fromSlots(asVec4(download(tangents_)), strands, V);
     std::vector<uint8_t> counters = download(counters_);
     gpu::SimCounters c{};
     std::memcpy(&c, counters.data(), sizeof(c));

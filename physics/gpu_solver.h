@@ -1,5 +1,6 @@
 // physics/gpu_solver.h: the GPU solver's buffers and dispatch sequence. One step records
-//   substeps x sim_integrate | grid_clear | grid_splat | grid_normalize | grid_gather
+//   grid_clear | substeps x sim_integrate (the last one also splats into the grid) |
+//   grid_normalize | grid_gather
 // with a compute->compute barrier between every producer and consumer (a workgroup barrier()
 // does not order work across workgroups). It talks to the device only through renderer/vk; the
 // model and the maths stay in physics/ and shaders/shared/.
@@ -22,11 +23,12 @@ public:
     GpuSolver(const vk::Context& ctx, const StrandSet& strands, const SimSetup& setup, const glm::mat4& headTransform);
 
     // Records one fixed step (all substeps and the grid). step.time is the step's start. With a
-    // timer, each kernel's dispatches are a timed scope: integrate (all substeps), grid_clear,
-    // grid_splat, grid_normalize, grid_gather.
+    // timer, each kernel's dispatches are a timed scope: grid_clear, integrate+splat (all
+    // substeps), grid_normalize, grid_gather.
     void recordStep(VkCommandBuffer cmd, const gpu::SimStep& step, vk::GpuTimer* timer = nullptr);
 
-    // Copies the state back (waits for the device): for metrics and tests.
+    // Copies the state back in strand-major order (waits for the device): for metrics and tests.
+    // On the GPU, vertex i of strand s is at gpu::vertexSlot(s, i, V).
     SimState readState() const;
     std::vector<gpu::GridNode> readGrid() const;
 
@@ -44,12 +46,13 @@ private:
     const vk::Context& ctx_;
     SimSetup setup_;
     uint32_t vertexCount_ = 0;
+    uint32_t slotCount_ = 0;  // vertices in the interleaved buffers, padding included
     uint64_t deviceBytes_ = 0;
     vk::Buffer params_, positions_, velocities_, rest_, strands_, tangents_, grid_, gridVelocity_, counters_;
     TrackedBuffer positionsTrack_, tangentsTrack_;
     vk::DescriptorSetLayout setLayout_;
     vk::PipelineLayout layout_;
-    vk::Pipeline integrate_, clear_, splat_, normalize_, gather_;
+    vk::Pipeline integrate_, integrateSplat_, clear_, normalize_, gather_;
 };
 
 }  // namespace wisp

@@ -8,6 +8,7 @@
 #include "renderer/vk/context.h"
 #include "renderer/vk/pipeline.h"
 #include "shaders/shared/guide_params.h"
+#include "shaders/shared/sim.h"
 
 namespace wisp {
 
@@ -19,8 +20,8 @@ GuidePass::GuidePass(const vk::Context& ctx, RenderTarget& target, FrameUniforms
     indices.reserve(size_t(strandCount) * (verticesPerStrand - 1) * 2);
     for (uint32_t s = 0; s < strandCount; ++s)
         for (uint32_t i = 1; i < verticesPerStrand; ++i) {
-            indices.push_back(s * verticesPerStrand + i - 1);
-            indices.push_back(s * verticesPerStrand + i);
+            indices.push_back(gpu::vertexSlot(s, i - 1, verticesPerStrand));  // the solver's interleaved layout
+            indices.push_back(gpu::vertexSlot(s, i, verticesPerStrand));
         }
     indexCount_ = uint32_t(indices.size());
     indices_ = ctx.createBufferWithData({.size = indices.size() * sizeof(uint32_t), .usage = vk::kIndex, .name = "guides.indices"},

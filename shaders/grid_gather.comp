@@ -10,8 +10,9 @@ layout(local_size_x = SIM_GROUP_SIZE) in;
 void main()
 {
     uint g = gl_GlobalInvocationID.x;
-    if (g >= params.strandCount * params.verticesPerStrand)
-        return;
+    if (g >= paddedStrandCount(params.strandCount) * params.verticesPerStrand ||
+        strandOfSlot(g, params.verticesPerStrand) >= params.strandCount)
+        return;  // past the end, or a padding slot of the last strand block
     if (positions[g].w == 0.0)
         return;  // pinned
     GridCell cell = gridCell(positions[g].xyz, step.gridOrigin, params.gridCellSize);

@@ -3,6 +3,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "shared/frame_params.h"
 #include "shared/guide_params.h"
+#include "shared/sim.h"
 
 layout(location = kGuideLocationPosition) in vec4 inPosition;
 layout(set = 0, binding = kFrameParamsBinding) uniform FrameBlock { FrameParams frame; };
@@ -11,7 +12,7 @@ layout(location = 0) out vec3 outColor;
 
 void main()
 {
-    float along = float(uint(gl_VertexIndex) % push.verticesPerStrand) / float(push.verticesPerStrand - 1u);
+    float along = float(vertexOfSlot(uint(gl_VertexIndex), push.verticesPerStrand)) / float(push.verticesPerStrand - 1u);
     outColor = mix(push.rootColor, push.tipColor, along);
     gl_Position = frame.viewProjection * vec4(inPosition.xyz, 1.0);
 }

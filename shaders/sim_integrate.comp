@@ -12,10 +12,64 @@
 //      (measured: hair never came to rest); as a pure position correction it holds the style and settles;
 //   5. a strand with any non-finite value is reset to its rest pose and counted.
 // Vertex i-1 is finished (written) while vertex i is processed, so no per-strand arrays are needed.
+//
+// The variant with kSplatToGrid (the step's last substep) also splats the hair-hair grid for its
+// strand: consecutive vertices of a strand usually fall in the same grid cell, so their trilinear
+// contributions are summed in registers and added with one set of float atomics per run of
+// vertices, instead of one per vertex (atomics on the same nodes were the step's bottleneck).
+// The sums are CpuSolver::gridSplat's, up to float order (a strand reset for non-finite values
+// keeps the finite contributions it made before the reset; the CPU splats its rest pose).
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_shader_atomic_float : require
 #include "sim_common.glsl"
 
 layout(local_size_x = SIM_GROUP_SIZE) in;
+layout(constant_id = 0) const bool kSplatToGrid = false;
+layout(set = 0, binding = kSimBindingGrid, std430) buffer Grid { GridNode grid[]; };
+
+// The run of vertices being summed: the cell they share and each corner's density and momentum.
+ivec3 runCell = ivec3(-1);
+bool runOpen = false;
+float runDensity[8];
+vec3 runMomentum[8];
+
+void flushRun()
+{
+    if (!runOpen)
+        return;
+    for (uint k = 0u; k < 8u; ++k) {
+        uint n = gridIndex(runCell + cornerOffset(k), params.gridResolution);
+        atomicAdd(grid[n].density, runDensity[k]);
+        atomicAdd(grid[n].momentum.x, runMomentum[k].x);
+        atomicAdd(grid[n].momentum.y, runMomentum[k].y);
+        atomicAdd(grid[n].momentum.z, runMomentum[k].z);
+    }
+    runOpen = false;
+}
+
+// Adds a finished vertex (position p, velocity v) to the run, flushing when it leaves the cell.
+void splatVertex(vec3 p, vec3 v)
+{
+    if (!isFinite3(p) || !isFinite3(v))
+        return;  // a strand about to be reset contributes nothing non-finite
+    GridCell cell = gridCell(p, step.gridOrigin, params.gridCellSize);
+    if (!cellInside(cell.base, params.gridResolution))
+        return;
+    if (!runOpen || cell.base != runCell) {
+        flushRun();
+        runCell = cell.base;
+        runOpen = true;
+        for (uint k = 0u; k < 8u; ++k) {
+            runDensity[k] = 0.0;
+            runMomentum[k] = vec3(0.0);
+        }
+    }
+    for (uint k = 0u; k < 8u; ++k) {
+        float w = cornerWeight(cell.frac, k);
+        runDensity[k] += w;
+        runMomentum[k] += w * v;
+    }
+}
 
 // Acceleration from the colliders' penalty forces k * depth * n at x.
 vec3 penalty(vec3 x)
@@ -56,7 +110,7 @@ void main()
     if (s >= params.strandCount)
         return;  // threads past the last strand write nothing
     uint V = params.verticesPerStrand;
-    uint base = s * V;
+    uint base = vertexSlot(s, 0u, V);  // vertex i is at base + i * kSimStrandBlock
     StrandInfo info = strands[s];
     SimPart part = params.parts[info.part];
     float dt = params.dt;
@@ -73,12 +127,13 @@ void main()
     mat3 frame = R;  // the parent's frame for local shape: head axes transported along the strand
 
     for (uint i = 1u; i < V; ++i) {
-        uint g = base + i;
+        uint g = base + i * kSimStrandBlock;
+        uint parent = g - kSimStrandBlock;
         vec3 x = positions[g].xyz;
         vec3 v = velocities[g].xyz;
         RestVertex r = rest[g];
         vec3 restWorld = (step.headTransform * vec4(r.position, 1.0)).xyz;
-        vec3 restDir = (r.position - rest[g - 1u].position) / r.segmentLength;
+        vec3 restDir = (r.position - rest[parent].position) / r.segmentLength;
         vec3 targetDir = frame * restDir;
         bool pinned = i < info.pinnedRoot || (info.pinnedTip != 0u && i == V - 1u);
 
@@ -108,10 +163,12 @@ void main()
         vec3 prevV = (prevP - prevX - prevShift) / dt;
         if (!prevPinned)
             prevV -= part.ftlDamping * d / dt;
-        positions[g - 1u].xyz = prevP;
-        velocities[g - 1u].xyz = prevV;
+        positions[parent].xyz = prevP;
+        velocities[parent].xyz = prevV;
+        if (kSplatToGrid)
+            splatVertex(prevP, prevV);
         vec3 actualDir = normalize(p - prevP);  // |p - prevP| = L_i > 0 after FTL
-        tangents[g - 1u] = vec4(actualDir, 0.0);
+        tangents[parent] = vec4(actualDir, 0.0);
         lastTangent = actualDir;
 
         frame = transportFrame(frame, targetDir, actualDir);
@@ -121,16 +178,23 @@ void main()
         prevShift = shift;
     }
     // The tip has no d_{i+1}.
-    positions[base + V - 1u].xyz = prevP;
-    velocities[base + V - 1u].xyz = (prevP - prevX - prevShift) / dt;
-    tangents[base + V - 1u] = vec4(lastTangent, 0.0);
+    uint tip = base + (V - 1u) * kSimStrandBlock;
+    vec3 tipV = (prevP - prevX - prevShift) / dt;
+    positions[tip].xyz = prevP;
+    velocities[tip].xyz = tipV;
+    tangents[tip] = vec4(lastTangent, 0.0);
+    if (kSplatToGrid) {
+        splatVertex(prevP, tipV);
+        flushRun();
+    }
 
     if (!finite) {
         for (uint i = 0u; i < V; ++i) {
-            positions[base + i].xyz = (step.headTransform * vec4(rest[base + i].position, 1.0)).xyz;
-            velocities[base + i].xyz = vec3(0.0);
-            uint j = min(i + 1u, V - 1u);
-            tangents[base + i] = vec4(R * normalize(rest[base + j].position - rest[base + j - 1u].position), 0.0);
+            uint g = base + i * kSimStrandBlock;
+            positions[g].xyz = (step.headTransform * vec4(rest[g].position, 1.0)).xyz;
+            velocities[g].xyz = vec3(0.0);
+            uint j = base + min(i + 1u, V - 1u) * kSimStrandBlock;
+            tangents[g] = vec4(R * normalize(rest[j].position - rest[j - kSimStrandBlock].position), 0.0);
         }
         atomicAdd(counters.nonfiniteResets, 1u);
     }

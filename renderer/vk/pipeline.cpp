@@ -178,15 +178,20 @@ Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& 
     return Pipeline(ctx.device(), pipeline);
 }
 
-Pipeline createComputePipeline(const Context& ctx, VkPipelineLayout layout, const std::string& shader, const char* name)
+Pipeline createComputePipeline(const Context& ctx, VkPipelineLayout layout, const std::string& shader, const char* name,
+                               std::optional<bool> boolConstant0)
 {
     std::string file = shader + ".spv";
     ShaderModule module = loadShader(ctx, file);
+    VkBool32 value = boolConstant0.value_or(false) ? VK_TRUE : VK_FALSE;
+    VkSpecializationMapEntry entry{.constantID = 0, .offset = 0, .size = sizeof(VkBool32)};
+    VkSpecializationInfo specialization{.mapEntryCount = 1, .pMapEntries = &entry, .dataSize = sizeof(value), .pData = &value};
     VkComputePipelineCreateInfo info{.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
                                      .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
                                                .stage = stageOf(file),
                                                .module = module,
-                                               .pName = "main"},
+                                               .pName = "main",
+                                               .pSpecializationInfo = boolConstant0 ? &specialization : nullptr},
                                      .layout = layout};
     VkPipeline pipeline = VK_NULL_HANDLE;
     VK_CHECK(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));

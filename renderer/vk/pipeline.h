@@ -6,6 +6,7 @@
 #include "renderer/vk/handle.h"
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -59,7 +60,9 @@ struct GraphicsPipelineDesc {
     const char* name = "unnamed pipeline";
 };
 Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& desc);
-Pipeline createComputePipeline(const Context& ctx, VkPipelineLayout layout, const std::string& shader, const char* name);
+// `boolConstant0`, when set, is the shader's specialization constant 0 (a bool variant switch).
+Pipeline createComputePipeline(const Context& ctx, VkPipelineLayout layout, const std::string& shader, const char* name,
+                               std::optional<bool> boolConstant0 = std::nullopt);
 
 // A compute -> compute dependency on all shader storage (between dispatches of one pass).
 void computeToComputeBarrier(VkCommandBuffer cmd);

@@ -100,6 +100,35 @@ struct SimCounters {
     uint pad2;
 };
 
+// ---- Vertex layout on the GPU ------------------------------------------------------------
+// Strands are interleaved in blocks of kSimStrandBlock: vertex i of strand s lives at
+//   ((s / 32) * V + i) * 32 + s % 32,
+// so the 32 threads of a warp, each walking its own strand root to tip, read vertex i of 32
+// strands from 512 consecutive bytes (coalesced) instead of from 32 places V * 16 bytes apart.
+// The per-vertex kernels see the same slots; padding slots (strand >= strandCount) are skipped.
+// The CPU reference keeps the plain strand-major order; GpuSolver converts on upload and readback.
+GPU_CONST uint kSimStrandBlock = 32u;
+
+GPU_FN uint vertexSlot(uint strand, uint i, uint V)
+{
+    return ((strand / kSimStrandBlock) * V + i) * kSimStrandBlock + strand % kSimStrandBlock;
+}
+
+GPU_FN uint strandOfSlot(uint slot, uint V)
+{
+    return (slot / (kSimStrandBlock * V)) * kSimStrandBlock + slot % kSimStrandBlock;
+}
+
+GPU_FN uint vertexOfSlot(uint slot, uint V)
+{
+    return (slot / kSimStrandBlock) % V;
+}
+
+GPU_FN uint paddedStrandCount(uint strands)
+{
+    return (strands + kSimStrandBlock - 1u) / kSimStrandBlock * kSimStrandBlock;
+}
+
 // ---- Pure math ---------------------------------------------------------------------------
 
 // PCG hash (O'Neill 2014, as in Jarzynski & Olano 2020, "Hash Functions for GPU Rendering").
