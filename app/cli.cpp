@@ -159,6 +159,9 @@ void addHairOptions(CLI::App* cmd, HairOptions& h)
     cmd->add_option("--friction", h.sim.gridFriction, "hair-hair friction (blend toward the grid velocity)")
         ->check(CLI::Range(0.0f, 1.0f))
         ->capture_default_str();
+    cmd->add_option("--repulsion", h.sim.gridRepulsion, "hair-hair repulsion along the density gradient (keeps volume; 0 = off)")
+        ->check(CLI::Range(0.0f, 1.0f))
+        ->capture_default_str();
     cmd->add_option("--hair", h.hairFiles,
                     "hair file to load instead of growing guides (TressFX .tfx 2/3/4, cyHair .hair); repeat for a groom in parts")
         ->check(CLI::ExistingFile);

@@ -193,3 +193,92 @@ TEST(Window, OpensUnderXvfbDrawsAndClosesCleanly)
     EXPECT_TRUE(std::filesystem::exists(dir / "shot.png"));
     EXPECT_EQ(r.err.find("validation"), std::string::npos) << r.err;
 }
+
+TEST(Cli, SimulatePrintsTheMetricsAsJson)
+{
+    auto r = runWisp("--validation simulate --guides 40 --steps 30 --wind 2,0,0 --sphere 0,0.1,0.15,0.04 --json");
+    ASSERT_EQ(r.status, 0) << r.err;
+    nlohmann::json j = nlohmann::json::parse(r.out);
+    for (const char* key : {"steps", "strands", "vertices", "max_stretch", "max_penetration", "root_drift",
+                            "nonfinite_resets", "kinetic_energy", "gpu_ms_per_step"})
+        EXPECT_TRUE(j.contains(key)) << key;
+    EXPECT_EQ(j["steps"], 30);
+    EXPECT_EQ(j["strands"], 40);
+    EXPECT_EQ(j["vertices"], 40 * 16);
+    EXPECT_LT(j["max_stretch"].get<double>(), 1e-4);
+    EXPECT_EQ(j["nonfinite_resets"], 0);
+    EXPECT_GE(j["kinetic_energy"].size(), 1u);
+}
+
+TEST(Cli, SimulateProfileTimesEveryKernel)
+{
+    auto r = runWisp("simulate --profile --json --guides 20 --warmup 2 --steps 4");
+    ASSERT_EQ(r.status, 0) << r.err;
+    nlohmann::json j = nlohmann::json::parse(r.out);
+    for (const char* kernel : {"grid_clear", "integrate+splat", "grid_normalize", "grid_gather", "step"}) {
+        ASSERT_TRUE(j["ms"].contains(kernel)) << kernel;
+        EXPECT_GE(j["ms"][kernel]["median"].get<double>(), 0.0);
+        EXPECT_GE(j["ms"][kernel]["p95"].get<double>(), j["ms"][kernel]["median"].get<double>());
+    }
+}
+
+TEST(Cli, InspectHairPrintsOneJsonObject)
+{
+    WISP_REQUIRE_DATA(hair, "sintel/sintel_hair_11400x16.tfx");
+    auto r = runWisp("inspect '" + hair.string() + "'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(lineCount(r.out), 1u);
+    nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["kind"], "hair");
+    EXPECT_EQ(j["format"], "tfx4");
+    EXPECT_EQ(j["strands"], 11400);
+    EXPECT_EQ(j["vertices"], 11400 * 16);
+    EXPECT_EQ(j["vertices_per_strand"][0], 16);
+    EXPECT_EQ(j["vertices_per_strand"][1], 16);
+}
+
+TEST(Cli, RenderLoadedHairInParts)
+{
+    WISP_REQUIRE_DATA(front, "tressfx-text/hair_front_16_guide.tfx");
+    WISP_REQUIRE_DATA(tail, "tressfx-text/hair_tail_16_guide.tfx");
+    WISP_REQUIRE_DATA(head, "tressfx-text/head_max4.obj");
+    auto r = runWisp("--validation simulate --json --steps 20 --head '" + head.string() + "' --hair '" + front.string() +
+                     "' --hair '" + tail.string() + "'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["strands"], 93 + 474);
+    ASSERT_EQ(j["parts"].size(), 2u);
+    EXPECT_EQ(j["parts"][0]["name"], "hair_front_16_guide");
+    EXPECT_EQ(j["parts"][1]["name"], "hair_tail_16_guide");
+    EXPECT_EQ(j["nonfinite_resets"], 0);
+}
+
+TEST(BadInput, BrokenHairFileNamesFileAndOffset)
+{
+    TempDir dir;
+    writeFile(dir / "broken.tfx", std::string("\x00\x00\x80\x40", 4) + std::string(40, '\x01'));  // 4.0, then garbage
+    auto r = runWisp("simulate --hair '" + (dir / "broken.tfx").string() + "' --steps 1");
+    expectUserError(r, "broken.tfx");
+    EXPECT_NE(r.err.find("byte"), std::string::npos) << r.err;
+    expectUserError(runWisp("inspect '" + (dir / "broken.tfx").string() + "'"), "broken.tfx");
+}
+
+TEST(BadInput, MissingHairFile)
+{
+    expectUserError(runWisp("simulate --hair /nonexistent/groom.tfx"), "/nonexistent/groom.tfx");
+}
+
+TEST(BadInput, SphereNeedsAPositiveRadius)
+{
+    expectUserError(runWisp("simulate --sphere 0,0,0,-1 --steps 1"), "--sphere");
+    expectUserError(runWisp("simulate --sphere 0,0,0 --steps 1"), "--sphere");
+}
+
+TEST(BadInput, OutOfRangePhysicsValues)
+{
+    auto r = runWisp("simulate --vertices 3");
+    expectUserError(r, "--vertices");
+    EXPECT_NE(r.err.find("64"), std::string::npos) << r.err;
+    expectUserError(runWisp("simulate --friction 1.5"), "--friction");
+    expectUserError(runWisp("simulate --guides 0"), "--guides");
+}

@@ -360,3 +360,71 @@ TEST(GpuSolver, WorkloadLargerThanMemoryIsRefusedWithSizes)
         EXPECT_NE(what.find("bytes"), std::string::npos) << what;
     }
 }
+
+// ---- Root sampling -----------------------------------------------------------------------------
+
+namespace {
+
+// Two triangles in the plane z = 0: one of area 0.5, one of area 4.5 (nine times larger).
+Mesh twoTriangles()
+{
+    Mesh m;
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {10, 0, 0}, {13, 0, 0}, {10, 3, 0}};
+    m.normals.assign(6, glm::vec3(0, 0, 1));
+    m.indices = {0, 1, 2, 3, 4, 5};
+    return m;
+}
+
+}  // namespace
+
+TEST(RootSampling, AreaWeightedAndDeterministic)
+{
+    Mesh m = twoTriangles();
+    std::vector<RootSample> a = sampleRoots(m, {0, 1}, 20000, false, 7);
+    std::vector<RootSample> b = sampleRoots(m, {0, 1}, 20000, false, 7);
+    size_t onSmall = 0;
+    for (size_t i = 0; i < a.size(); ++i) {
+        ASSERT_EQ(a[i].position, b[i].position);  // same seed, same roots
+        onSmall += a[i].triangle == 0 ? 1 : 0;
+        EXPECT_NEAR(a[i].normal.z, 1.0f, 1e-6f);
+    }
+    // Area-weighted: 10% of the roots on the small triangle (binomial sigma about 0.2%).
+    EXPECT_NEAR(double(onSmall) / 20000.0, 0.1, 0.01);
+    // Uniform inside a triangle: the mean of the big one's samples is its centroid.
+    glm::vec3 mean(0.0f);
+    size_t n = 0;
+    for (const RootSample& r : a)
+        if (r.triangle == 1) {
+            mean += r.position;
+            ++n;
+        }
+    mean /= float(n);
+    EXPECT_NEAR(mean.x, 11.0f, 0.03f);
+    EXPECT_NEAR(mean.y, 1.0f, 0.03f);
+    EXPECT_NE(sampleRoots(m, {0, 1}, 10, false, 8)[0].position, a[0].position);  // another seed differs
+}
+
+TEST(RootSampling, PoissonDiskKeepsRootsApart)
+{
+    Mesh m = twoTriangles();
+    std::vector<RootSample> plain = sampleRoots(m, {1}, 400, false, 3);
+    std::vector<RootSample> blue = sampleRoots(m, {1}, 400, true, 3);
+    auto minDistance = [](const std::vector<RootSample>& s) {
+        float best = 1e9f;
+        for (size_t i = 0; i < s.size(); ++i)
+            for (size_t j = i + 1; j < s.size(); ++j)
+                best = std::min(best, glm::length(s[i].position - s[j].position));
+        return best;
+    };
+    ASSERT_EQ(blue.size(), 400u);
+    // 400 disks tiling 4.5 square units have radius sqrt(4.5 / (400 pi)) = 0.06; blue noise keeps
+    // roots well apart, random sampling does not.
+    EXPECT_GT(minDistance(blue), 0.03f);
+    EXPECT_LT(minDistance(plain), 0.01f);
+}
+
+TEST(RootSampling, AnEmptyScalpIsAClearError)
+{
+    Mesh m = twoTriangles();
+    EXPECT_THROW(sampleRoots(m, {}, 10, false, 1), UserError);
+}
