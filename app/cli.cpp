@@ -16,6 +16,7 @@
 
 #include <cstdio>
 #include <iostream>
+#include <sstream>
 
 namespace wisp {
 
@@ -84,6 +85,8 @@ struct HairOptions {
     float hairScale = 0.0f;          // 0: automatic placement
     std::vector<float> hairOffset;   // x, y, z
     std::optional<float> globalStiffness, localStiffness, damping, drag;
+    std::optional<bool> zUp, mirrorZ;            // placement overrides for loaded hair
+    std::vector<std::string> partOverrides;      // "PART:key=value,key=value" (PART: index or name)
 
     // The head with grown guides, or with the hair files as parts.
     HairScene buildScene(const std::filesystem::path& headPath) const
@@ -97,13 +100,15 @@ struct HairOptions {
         for (const std::string& file : hairFiles) {
             HairPartSource part{.file = file, .placement = std::nullopt, .settings = styledPartDefaults()};
             part.settings.name = std::filesystem::path(file).stem().string();
-            if (hairScale > 0.0f || !hairOffset.empty()) {
+            if (hairScale > 0.0f || !hairOffset.empty() || zUp || mirrorZ) {
                 HairAsset probe = loadHairAsset(file);
                 HairPlacement placement = autoPlacement(probe, loadHead(headPath).mesh.bounds());
                 if (hairScale > 0.0f)
                     placement.scale = hairScale;
                 if (!hairOffset.empty())
                     placement.offset = glm::vec3(hairOffset[0], hairOffset[1], hairOffset[2]);
+                placement.zUpToYUp = zUp.value_or(placement.zUpToYUp);
+                placement.mirrorZ = mirrorZ.value_or(placement.mirrorZ);
                 part.placement = placement;
             }
             parts.push_back(part);
@@ -119,6 +124,55 @@ struct HairOptions {
             p.localStiffness = localStiffness.value_or(p.localStiffness);
             p.ftlDamping = damping.value_or(p.ftlDamping);
             p.drag = drag.value_or(p.drag);
+        }
+        for (const std::string& spec : partOverrides)
+            applyPartOverride(strands.parts, spec);
+    }
+    // "PART:key=value,...", PART a part's index or name; keys global, local, damping, drag.
+    static void applyPartOverride(std::vector<PartSettings>& parts, const std::string& spec)
+    {
+        auto bad = [&](const std::string& why) { throw UserError("--part " + spec + ": " + why); };
+        size_t colon = spec.find(':');
+        if (colon == std::string::npos)
+            bad("expected PART:key=value[,key=value...] (PART: a part's index or name)");
+        std::string which = spec.substr(0, colon);
+        PartSettings* part = nullptr;
+        std::string names;
+        for (size_t i = 0; i < parts.size(); ++i) {
+            names += (i ? ", " : "") + std::to_string(i) + " " + parts[i].name;
+            if (which == std::to_string(i) || which == parts[i].name)
+                part = &parts[i];
+        }
+        if (!part)
+            bad("no part '" + which + "' (parts: " + names + ")");
+        std::stringstream list(spec.substr(colon + 1));
+        for (std::string item; std::getline(list, item, ',');) {
+            size_t eq = item.find('=');
+            if (eq == std::string::npos)
+                bad("'" + item + "' is not key=value");
+            std::string key = item.substr(0, eq);
+            float value = 0.0f;
+            try {
+                size_t used = 0;
+                value = std::stof(item.substr(eq + 1), &used);
+                if (used != item.size() - eq - 1)
+                    throw std::invalid_argument(item);
+            } catch (const std::exception&) {
+                bad("'" + item.substr(eq + 1) + "' is not a number");
+            }
+            float limit = key == "drag" ? 100.0f : 1.0f;
+            if (!(value >= 0.0f && value <= limit))
+                bad(key + " must be in [0, " + (key == "drag" ? std::string("100") : std::string("1")) + "]");
+            if (key == "global")
+                part->globalStiffness = value;
+            else if (key == "local")
+                part->localStiffness = value;
+            else if (key == "damping")
+                part->ftlDamping = value;
+            else if (key == "drag")
+                part->drag = value;
+            else
+                bad("unknown key '" + key + "' (global, local, damping, drag)");
         }
     }
 
@@ -146,6 +200,9 @@ void addHairOptions(CLI::App* cmd, HairOptions& h)
     cmd->add_option("--hair-length", h.growth.lengthMetres, "mean grown strand length, metres (scaled to the head's units)")
         ->check(CLI::Range(0.01f, 2.0f))
         ->capture_default_str();
+    cmd->add_option("--length-variation", h.growth.lengthVariation, "relative spread of grown strand lengths")
+        ->check(CLI::Range(0.0f, 0.9f))
+        ->capture_default_str();
     cmd->add_option("--curl", h.growth.curlRadiusMetres, "curl radius of grown strands, metres (0 = straight)")
         ->check(CLI::Range(0.0f, 0.1f))
         ->capture_default_str();
@@ -168,6 +225,10 @@ void addHairOptions(CLI::App* cmd, HairOptions& h)
     cmd->add_option("--hair-scale", h.hairScale, "scale loaded hair by this (default: automatic when units clearly differ)")
         ->check(CLI::Range(1e-6f, 1e6f));
     cmd->add_option("--hair-offset", h.hairOffset, "move loaded hair by x,y,z (head units) after scaling")->delimiter(',')->expected(3);
+    cmd->add_option("--hair-z-up", h.zUp, "loaded hair is z-up: turn it y-up (default: automatic, true for cyHair)");
+    cmd->add_option("--hair-mirror-z", h.mirrorZ, "mirror loaded hair's z (default: automatic, true for TressFX 3)");
+    cmd->add_option("--part", h.partOverrides,
+                    "one part's parameters: PART:key=value,... with PART its index or file name, keys global, local, damping, drag");
     cmd->add_option("--global-stiffness", h.globalStiffness, "pull toward the rest pose per step at the root, every part")
         ->check(CLI::Range(0.0f, 1.0f));
     cmd->add_option("--local-stiffness", h.localStiffness, "pull of each segment toward its rest direction per step, every part")

@@ -282,3 +282,27 @@ TEST(BadInput, OutOfRangePhysicsValues)
     expectUserError(runWisp("simulate --friction 1.5"), "--friction");
     expectUserError(runWisp("simulate --guides 0"), "--guides");
 }
+
+TEST(Cli, EachPartTakesItsOwnParameters)
+{
+    WISP_REQUIRE_DATA(front, "tressfx-text/hair_front_16_guide.tfx");
+    WISP_REQUIRE_DATA(tail, "tressfx-text/hair_tail_16_guide.tfx");
+    WISP_REQUIRE_DATA(head, "tressfx-text/head_max4.obj");
+    auto r = runWisp("simulate --json --steps 2 --head '" + head.string() + "' --hair '" + front.string() + "' --hair '" +
+                     tail.string() + "' --part 1:global=0.5,drag=3 --part hair_front_16_guide:local=0.05");
+    ASSERT_EQ(r.status, 0) << r.err;
+    nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_FLOAT_EQ(j["parts"][1]["global_stiffness"].get<float>(), 0.5f);
+    EXPECT_FLOAT_EQ(j["parts"][1]["drag"].get<float>(), 3.0f);
+    EXPECT_FLOAT_EQ(j["parts"][0]["local_stiffness"].get<float>(), 0.05f);
+    EXPECT_NE(j["parts"][0]["global_stiffness"], j["parts"][1]["global_stiffness"]);
+}
+
+TEST(BadInput, BadPartSettings)
+{
+    expectUserError(runWisp("simulate --steps 1 --part 3:global=0.1"), "no part '3'");
+    expectUserError(runWisp("simulate --steps 1 --part 0:global=2"), "global must be in [0, 1]");
+    expectUserError(runWisp("simulate --steps 1 --part 0:stiff=0.1"), "unknown key 'stiff'");
+    expectUserError(runWisp("simulate --steps 1 --part 0:global=abc"), "not a number");
+    expectUserError(runWisp("simulate --steps 1 --part global=0.1"), "PART:key=value");
+}

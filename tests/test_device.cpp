@@ -212,3 +212,32 @@ TEST(FrameBarriers, UndeclaredReadIsCaughtBySyncValidation)
     EXPECT_GT(messages, 0u);
     EXPECT_NE(err.find("HAZARD"), std::string::npos) << err;
 }
+
+namespace {
+
+// Records a fill into a fresh buffer in each of `frames` frames and retires the buffer into the
+// frame (freed when its fence signals). Freed any earlier, the validation layer reports it (and
+// lavapipe crashes: which is why there is no in-process counter-test).
+uint32_t fillThrowawayBuffers(int frames)
+{
+    vk::Context ctx(test::validatedOptions());
+    {
+        Frame frame(ctx, 2);
+        for (int n = 0; n < frames; ++n) {
+            FrameContext& fc = frame.begin({});
+            vk::Buffer temp = ctx.createBuffer({.size = 4096, .usage = vk::kTransferDst, .name = "test.throwaway"});
+            vkCmdFillBuffer(fc.cmd, temp, 0, VK_WHOLE_SIZE, uint32_t(n));
+            fc.retire(std::move(temp));
+            frame.submit(fc);
+        }
+        frame.waitIdle();
+    }
+    return ctx.validationMessages();
+}
+
+}  // namespace
+
+TEST(FrameDeletion, RetiredObjectsLiveUntilTheirFrameIsDone)
+{
+    EXPECT_EQ(fillThrowawayBuffers(5), 0u);
+}
