@@ -26,4 +26,15 @@ VkDescriptorBufferInfo FrameUniforms::descriptor(uint32_t slot) const
     return {buffers_[slot].get(), 0, sizeof(gpu::FrameParams)};
 }
 
+void FrameUniforms::push(const vk::Context& ctx, VkCommandBuffer cmd, VkPipelineLayout layout, uint32_t slot) const
+{
+    VkDescriptorBufferInfo params = descriptor(slot);
+    VkWriteDescriptorSet write{.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                               .dstBinding = gpu::kFrameParamsBinding,
+                               .descriptorCount = 1,
+                               .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                               .pBufferInfo = &params};
+    ctx.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &write);
+}
+
 }  // namespace wisp

@@ -18,6 +18,8 @@ public:
     FrameUniforms(const vk::Context& ctx, uint32_t framesInFlight);
     void write(uint32_t slot, const gpu::FrameParams& params);
     VkDescriptorBufferInfo descriptor(uint32_t slot) const;
+    // Pushes this slot's block at kFrameParamsBinding of set 0 (a push-descriptor set).
+    void push(const vk::Context& ctx, VkCommandBuffer cmd, VkPipelineLayout layout, uint32_t slot) const;
 
 private:
     std::vector<vk::Buffer> buffers_;

@@ -57,13 +57,7 @@ void GuidePass::record(VkCommandBuffer cmd, FrameContext& frame)
 {
     target_.beginRendering(cmd, glm::vec3(0.0f));
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
-    VkDescriptorBufferInfo params = uniforms_.descriptor(frame.slot);
-    VkWriteDescriptorSet write{.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-                               .dstBinding = gpu::kFrameParamsBinding,
-                               .descriptorCount = 1,
-                               .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
-                               .pBufferInfo = &params};
-    ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &write);
+    uniforms_.push(ctx_, cmd, layout_, frame.slot);
     gpu::GuidePush push{.rootColor = glm::vec3(0.08f, 0.03f, 0.01f),
                         .verticesPerStrand = verticesPerStrand_,
                         .tipColor = glm::vec3(0.75f, 0.42f, 0.16f),

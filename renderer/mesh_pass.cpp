@@ -80,13 +80,7 @@ void MeshPass::record(VkCommandBuffer cmd, FrameContext& frame)
     target_.beginRendering(cmd, clearColor_);
     if (indexCount_ > 0) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
-        VkDescriptorBufferInfo params = uniforms_.descriptor(frame.slot);
-        VkWriteDescriptorSet write{.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-                                   .dstBinding = gpu::kFrameParamsBinding,
-                                   .descriptorCount = 1,
-                                   .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
-                                   .pBufferInfo = &params};
-        ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &write);
+        uniforms_.push(ctx_, cmd, layout_, frame.slot);
         gpu::MeshPush push{.model = model_, .albedo = albedo_, .roughness = roughness_};
         vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push), &push);
         VkDeviceSize offset = 0;

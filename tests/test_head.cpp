@@ -2,6 +2,7 @@
 // a bust in proportions, its scalp rule picks the top and back, its colliders cover the head;
 // the generator rebuilds the committed files byte for byte; bad descriptions are reported.
 #include "core/error.h"
+#include "physics/colliders.h"
 #include "physics/head.h"
 #include "test_support.h"
 
@@ -29,15 +30,6 @@ std::string slurp(const std::filesystem::path& p)
 {
     std::ifstream in(p, std::ios::binary);
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-glm::mat3 rotation(const glm::vec3& deg)
-{
-    glm::vec3 r = glm::radians(deg);
-    glm::mat3 rx(1, 0, 0, 0, std::cos(r.x), std::sin(r.x), 0, -std::sin(r.x), std::cos(r.x));
-    glm::mat3 ry(std::cos(r.y), 0, -std::sin(r.y), 0, 1, 0, std::sin(r.y), 0, std::cos(r.y));
-    glm::mat3 rz(std::cos(r.z), std::sin(r.z), 0, -std::sin(r.z), std::cos(r.z), 0, 0, 0, 1);
-    return rz * ry * rx;
 }
 
 }  // namespace
@@ -101,7 +93,7 @@ TEST(DefaultHead, CollidersCoverTheCraniumFromOutside)
         glm::vec3 p = head.mesh.positions[head.mesh.indices[3 * t]];
         ++checked;
         for (const Ellipsoid& e : head.description.colliders) {
-            glm::vec3 local = glm::transpose(rotation(e.rotationDeg)) * (p - e.center);
+            glm::vec3 local = glm::transpose(rotationFromDegrees(e.rotationDeg)) * (p - e.center);
             glm::vec3 u = local / (e.radii + glm::vec3(0.005f));
             if (glm::dot(u, u) <= 1.0f) {
                 ++covered;

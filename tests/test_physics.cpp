@@ -18,6 +18,7 @@
 #include <functional>
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
+#include <memory>
 
 using namespace wisp;
 
@@ -161,64 +162,66 @@ SimState runGpu(const vk::Context& ctx, GpuSolver& solver, const SimSetup& setup
 
 // ---- CPU reference, by hand ------------------------------------------------------------------
 
-TEST(CpuReference, OneStepOfOneSegmentByHand)
-{
-    // A root at the origin and one free vertex at (1, 0, 0), at rest; gravity -10 in y; no drag,
-    // shape, wind, grid or colliders; one substep of 0.1 s.
+namespace {
+
+// A straight strand of four unit segments along +x, at rest, with only gravity -10 in y acting
+// (no drag, shape, wind, grid or colliders); one substep of 0.1 s is run on the CPU reference.
+struct OneStep {
     StrandSet strands;
-    strands.verticesPerStrand = 4;
+    SimSetup setup;
+    std::unique_ptr<CpuSolver> cpu;
+};
+
+OneStep oneStepOfAStraightStrand(float ftlDamping)
+{
+    OneStep o;
+    o.strands.verticesPerStrand = 4;
     PartSettings part;
     part.globalStiffness = part.localStiffness = part.drag = 0.0f;
-    part.ftlDamping = 0.0f;
-    strands.parts.push_back(part);
-    strands.add({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}}, 0, 1, false);
+    part.ftlDamping = ftlDamping;
+    o.strands.parts.push_back(part);
+    o.strands.add({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}}, 0, 1, false);
     SimSettings s;
     s.stepHz = 10.0f;
     s.substeps = 1;
     s.gravity = 10.0f;
     s.gridFriction = 0.0f;
     s.gridResolution = 8;
-    SimSetup setup = makeSimSetup(s, strands, {}, 1.0f);
-    CpuSolver cpu(strands, setup, glm::mat4(1.0f));
-    cpu.step(makeStep(setup, glm::mat4(1.0f), glm::vec4(0.0f), 0.0f));
+    o.setup = makeSimSetup(s, o.strands, {}, 1.0f);
+    o.cpu = std::make_unique<CpuSolver>(o.strands, o.setup, glm::mat4(1.0f));
+    o.cpu->step(makeStep(o.setup, glm::mat4(1.0f), glm::vec4(0.0f), 0.0f));
+    return o;
+}
+
+}  // namespace
+
+TEST(CpuReference, OneStepOfOneSegmentByHand)
+{
+    OneStep o = oneStepOfAStraightStrand(0.0f);
+    const SimState& state = o.cpu->state();
     // Predicted: every free vertex drops by dt² g = 0.1 to y = -0.1. FTL: vertex 1 moves onto
     // the unit circle around the root along (1, -0.1): (1, -0.1) / sqrt(1.01).
-    glm::vec3 p1(cpu.state().positions[1]);
+    glm::vec3 p1(state.positions[1]);
     EXPECT_NEAR(p1.x, 1.0f / std::sqrt(1.01f), 1e-6f);
     EXPECT_NEAR(p1.y, -0.1f / std::sqrt(1.01f), 1e-6f);
     // With s_damp = 0 the velocity is the plain (p - x) / dt.
-    glm::vec3 v1(cpu.state().velocities[1]);
+    glm::vec3 v1(state.velocities[1]);
     EXPECT_NEAR(v1.y, (p1.y - 0.0f) / 0.1f, 1e-5f);
     // Every segment keeps its length exactly.
     for (int i = 1; i < 4; ++i)
-        EXPECT_NEAR(glm::length(glm::vec3(cpu.state().positions[i]) - glm::vec3(cpu.state().positions[i - 1])), 1.0f, 1e-6f);
+        EXPECT_NEAR(glm::length(glm::vec3(state.positions[i]) - glm::vec3(state.positions[i - 1])), 1.0f, 1e-6f);
 }
 
 TEST(CpuReference, VelocityCorrectionUsesTheChildsCorrection)
 {
-    // Same strand with s_damp = 1: v_1 = (p_1 - x_1)/dt - d_2/dt, d_2 = vertex 2's FTL correction.
-    StrandSet strands;
-    strands.verticesPerStrand = 4;
-    PartSettings part;
-    part.globalStiffness = part.localStiffness = part.drag = 0.0f;
-    part.ftlDamping = 1.0f;
-    strands.parts.push_back(part);
-    strands.add({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}}, 0, 1, false);
-    SimSettings s;
-    s.stepHz = 10.0f;
-    s.substeps = 1;
-    s.gravity = 10.0f;
-    s.gridFriction = 0.0f;
-    s.gridResolution = 8;
-    SimSetup setup = makeSimSetup(s, strands, {}, 1.0f);
-    CpuSolver cpu(strands, setup, glm::mat4(1.0f));
-    cpu.step(makeStep(setup, glm::mat4(1.0f), glm::vec4(0.0f), 0.0f));
-    glm::vec3 p1(cpu.state().positions[1]), p2(cpu.state().positions[2]);
+    // With s_damp = 1: v_1 = (p_1 - x_1)/dt - d_2/dt, d_2 = vertex 2's FTL correction.
+    OneStep o = oneStepOfAStraightStrand(1.0f);
+    const SimState& state = o.cpu->state();
+    glm::vec3 p1(state.positions[1]), p2(state.positions[2]);
     glm::vec3 predicted2(2.0f, -0.1f, 0.0f);
     glm::vec3 d2 = p2 - predicted2;
     glm::vec3 expected = (p1 - glm::vec3(1, 0, 0)) / 0.1f - d2 / 0.1f;
-    glm::vec3 v1(cpu.state().velocities[1]);
-    EXPECT_NEAR(glm::length(v1 - expected), 0.0f, 1e-5f);
+    EXPECT_NEAR(glm::length(glm::vec3(state.velocities[1]) - expected), 0.0f, 1e-5f);
 }
 
 // ---- GPU against the CPU reference -------------------------------------------------------------
