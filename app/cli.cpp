@@ -16,6 +16,7 @@
 
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 namespace wisp {
@@ -216,6 +217,11 @@ void addHairOptions(CLI::App* cmd, HairOptions& h)
     cmd->add_option("--friction", h.sim.gridFriction, "hair-hair friction (blend toward the grid velocity)")
         ->check(CLI::Range(0.0f, 1.0f))
         ->capture_default_str();
+    cmd->add_option("--grid-atomics", h.sim.gridAtomics,
+                    "hair grid sums: fixed (64-bit fixed point, deterministic) or float (float atomics)")
+        ->transform(CLI::CheckedTransformer(std::map<std::string, SimSettings::GridAtomics>{
+            {"fixed", SimSettings::GridAtomics::Fixed}, {"float", SimSettings::GridAtomics::Float}}))
+        ->capture_default_str();
     cmd->add_option("--repulsion", h.sim.gridRepulsion, "hair-hair repulsion along the density gradient (keeps volume; 0 = off)")
         ->check(CLI::Range(0.0f, 1.0f))
         ->capture_default_str();
@@ -265,6 +271,7 @@ int runInfo(bool json)
                            {"timestamp_period_ns", d.timestampPeriodNs},
                            {"pipeline_statistics", d.pipelineStatisticsQuery},
                            {"float_atomic_add", d.floatAtomicAdd},
+                           {"int64_atomics", d.int64Atomics},
                            {"push_descriptor", d.pushDescriptor},
                            {"max_tessellation_generation_level", d.maxTessellationGenerationLevel},
                            {"max_tessellation_patch_size", d.maxTessellationPatchSize},
@@ -286,8 +293,9 @@ int runInfo(bool json)
                   << "  geometry shader:              " << yes(d.geometryShader) << " (max output vertices "
                   << d.maxGeometryOutputVertices << ")\n"
                   << "  fragment stores and atomics:  " << yes(d.fragmentStoresAndAtomics) << "\n"
-                  << "  float atomic add (buffers):   " << yes(d.floatAtomicAdd)
-                  << (d.floatAtomicAdd ? "" : " (the hair grid falls back to fixed point)") << "\n"
+                  << "  float atomic add (buffers):   " << yes(d.floatAtomicAdd) << "\n"
+                  << "  64-bit integer atomics:       " << yes(d.int64Atomics)
+                  << " (the deterministic fixed-point hair grid" << (d.int64Atomics ? ")" : "; float atomics instead)") << "\n"
                   << "  timestamps:                   " << yes(d.timestamps) << " (" << d.timestampValidBits
                   << " valid bits, " << d.timestampPeriodNs << " ns per tick)\n"
                   << "  pipeline statistics:          " << yes(d.pipelineStatisticsQuery) << "\n"

@@ -109,6 +109,7 @@ int runSimulate(const SimulateOptions& o, const HairScene& scene)
                               {"vertices_per_strand", scene.strands.verticesPerStrand},
                               {"vertices", scene.strands.vertexCount()},
                               {"grid_resolution", o.sim.gridResolution},
+                              {"grid_atomics", o.sim.gridAtomics == SimSettings::GridAtomics::Fixed ? "fixed" : "float"},
                               {"substeps", o.sim.substeps},
                               {"warmup_steps", o.warmup},
                               {"timed_steps", o.steps},

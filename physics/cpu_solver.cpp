@@ -163,7 +163,7 @@ void CpuSolver::gridSplat(const SimStep& step)
         GridCell cell = gridCell(vec3(state_.positions[g]), step.gridOrigin, params.gridCellSize);
         if (!cellInside(cell.base, params.gridResolution))
             continue;
-        vec3 v = vec3(state_.velocities[g]);
+        vec3 v = clampSpeed(vec3(state_.velocities[g]), params.gridMaxSplatSpeed);
         for (uint32_t k = 0; k < 8; ++k) {
             float w = cornerWeight(cell.frac, k);
             uint32_t n = gridIndex(cell.base + cornerOffset(k), params.gridResolution);

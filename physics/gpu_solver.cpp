@@ -12,10 +12,10 @@
 
 namespace wisp {
 
-static_assert(sizeof(gpu::SimParams) == 1744, "SimParams must match its std140 layout");
+static_assert(sizeof(gpu::SimParams) == 1760, "SimParams must match its std140 layout");
 static_assert(sizeof(gpu::SimStep) == 96, "SimStep must match its push-constant layout");
 static_assert(sizeof(gpu::RestVertex) == 16 && sizeof(gpu::StrandInfo) == 16 && sizeof(gpu::GridNode) == 16);
-static_assert(offsetof(gpu::SimParams, parts) == 80 && offsetof(gpu::SimParams, colliders) == 208);
+static_assert(offsetof(gpu::SimParams, parts) == 96 && offsetof(gpu::SimParams, colliders) == 224);
 
 namespace {
 
@@ -45,9 +45,16 @@ std::vector<T> fromSlots(const std::vector<T>& slots, uint32_t strands, uint32_t
 GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const SimSetup& setup, const glm::mat4& headTransform)
     : ctx_(ctx), setup_(setup), vertexCount_(uint32_t(strands.vertexCount()))
 {
-    if (!ctx.report().floatAtomicAdd)
+    // The grid's sums: fixed point where asked for and possible, else float atomics (and back).
+    bool wantFixed = setup.params.gridFixedScale > 0.0f;
+    fixedGrid_ = wantFixed ? ctx.report().int64Atomics : !ctx.report().floatAtomicAdd;
+    if (fixedGrid_ && !ctx.report().int64Atomics)
         throw UserError("the Vulkan device '" + ctx.report().name +
-                        "' has no float atomic add on buffers (VK_EXT_shader_atomic_float), which the hair-hair grid needs");
+                        "' has neither float nor 64-bit integer buffer atomics, which the hair-hair grid needs");
+    if (fixedGrid_ && setup_.params.gridFixedScale <= 0.0f)
+        setup_.params.gridFixedScale = gridFixedScale(strands.vertexCount(), setup_.params.gridMaxSplatSpeed);
+    if (!fixedGrid_)
+        setup_.params.gridFixedScale = 0.0f;
     uint32_t count = uint32_t(strands.strandCount());
     uint32_t V = strands.verticesPerStrand;
     SimState strandMajor = initialState(strands, headTransform);
@@ -58,7 +65,8 @@ GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const Sim
     std::vector<gpu::RestVertex> rest = toSlots(restVertices(strands), count, V, gpu::RestVertex{glm::vec3(0.0f), 1.0f});
     slotCount_ = uint32_t(initial.positions.size());
     size_t vec4Bytes = size_t(slotCount_) * sizeof(glm::vec4);
-    size_t gridBytes = size_t(setup.params.gridNodeCount) * sizeof(gpu::GridNode);
+    size_t gridBytes = size_t(setup.params.gridNodeCount) *
+                       (fixedGrid_ ? gpu::kGridFixedWordsPerNode * sizeof(int64_t) : sizeof(gpu::GridNode));
     deviceBytes_ = 4 * vec4Bytes + rest.size() * sizeof(gpu::RestVertex) + strands.strands.size() * sizeof(gpu::StrandInfo) +
                    2 * gridBytes;
     if (deviceBytes_ > ctx.report().deviceLocalBytes)
@@ -67,7 +75,7 @@ GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const Sim
 
     constexpr VkBufferUsageFlags kStorageCopy = vk::kStorage | vk::kTransferSrc | vk::kTransferDst;
     params_ = ctx.createBufferWithData({.size = sizeof(gpu::SimParams), .usage = vk::kUniform, .name = "sim.params"},
-                                       &setup.params, sizeof(gpu::SimParams));
+                                       &setup_.params, sizeof(gpu::SimParams));
     positions_ = ctx.createBufferWithData({.size = vec4Bytes, .usage = kStorageCopy | vk::kVertex, .name = "guide.positions"},
                                           initial.positions.data(), vec4Bytes);
     velocities_ = ctx.createBufferWithData({.size = vec4Bytes, .usage = kStorageCopy, .name = "guide.velocities"},
@@ -80,7 +88,8 @@ GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const Sim
                                          .name = "guide.strands"},
                                         strands.strands.data(), strands.strands.size() * sizeof(gpu::StrandInfo));
     grid_ = ctx.createBuffer({.size = gridBytes, .usage = kStorageCopy, .name = "grid.accumulators"});
-    gridVelocity_ = ctx.createBuffer({.size = gridBytes, .usage = kStorageCopy, .name = "grid.velocity"});
+    gridVelocity_ = ctx.createBuffer({.size = size_t(setup.params.gridNodeCount) * sizeof(glm::vec4), .usage = kStorageCopy,
+                                      .name = "grid.velocity"});
     gpu::SimCounters zero{};
     counters_ = ctx.createBufferWithData({.size = sizeof(gpu::SimCounters), .usage = kStorageCopy, .name = "sim.counters"},
                                          &zero, sizeof(zero));
@@ -96,10 +105,14 @@ GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const Sim
               .pushConstantStages = VK_SHADER_STAGE_COMPUTE_BIT, .name = "sim.layout"});
     setLayout_ = std::move(layout.setLayout);
     layout_ = std::move(layout.layout);
-    integrate_ = vk::createComputePipeline(ctx, layout_, "sim_integrate.comp", "sim.integrate", /*kSplatToGrid=*/false);
-    integrateSplat_ = vk::createComputePipeline(ctx, layout_, "sim_integrate.comp", "sim.integrate+splat", /*kSplatToGrid=*/true);
-    clear_ = vk::createComputePipeline(ctx, layout_, "grid_clear.comp", "grid.clear");
-    normalize_ = vk::createComputePipeline(ctx, layout_, "grid_normalize.comp", "grid.normalize");
+    // The fixed-point grid's kernels are separate SPIR-V (they need 64-bit integer atomics, the
+    // float ones need float atomics); the splatting substep is a specialization of integrate.
+    std::string variant = fixedGrid_ ? "_fixed" : "";
+    integrate_ = vk::createComputePipeline(ctx, layout_, "sim_integrate" + variant + ".comp", "sim.integrate", /*kSplatToGrid=*/false);
+    integrateSplat_ = vk::createComputePipeline(ctx, layout_, "sim_integrate" + variant + ".comp", "sim.integrate+splat",
+                                                /*kSplatToGrid=*/true);
+    clear_ = vk::createComputePipeline(ctx, layout_, "grid_clear" + variant + ".comp", "grid.clear");
+    normalize_ = vk::createComputePipeline(ctx, layout_, "grid_normalize" + variant + ".comp", "grid.normalize");
     gather_ = vk::createComputePipeline(ctx, layout_, "grid_gather.comp", "grid.gather");
 }
 
@@ -211,8 +224,19 @@ SimState GpuSolver::readState() const
 std::vector<gpu::GridNode> GpuSolver::readGrid() const
 {
     std::vector<uint8_t> bytes = download(grid_);
-    std::vector<gpu::GridNode> out(bytes.size() / sizeof(gpu::GridNode));
-    std::memcpy(out.data(), bytes.data(), out.size() * sizeof(gpu::GridNode));
+    std::vector<gpu::GridNode> out(setup_.params.gridNodeCount);
+    if (!fixedGrid_) {
+        std::memcpy(out.data(), bytes.data(), out.size() * sizeof(gpu::GridNode));
+        return out;
+    }
+    std::vector<int64_t> words(bytes.size() / sizeof(int64_t));
+    std::memcpy(words.data(), bytes.data(), words.size() * sizeof(int64_t));
+    double inv = 1.0 / double(setup_.params.gridFixedScale);
+    for (size_t n = 0; n < out.size(); ++n) {
+        const int64_t* w = &words[n * gpu::kGridFixedWordsPerNode];
+        out[n].density = float(double(w[0]) * inv);
+        out[n].momentum = glm::vec3(float(double(w[1]) * inv), float(double(w[2]) * inv), float(double(w[3]) * inv));
+    }
     return out;
 }
 

@@ -39,6 +39,8 @@ public:
     TrackedBuffer& tangentsTrack() { return tangentsTrack_; }
     uint32_t vertexCount() const { return vertexCount_; }
     uint64_t deviceBytes() const { return deviceBytes_; }
+    // True when the grid sums in 64-bit fixed point (deterministic), false for float atomics.
+    bool fixedPointGrid() const { return fixedGrid_; }
 
 private:
     std::vector<uint8_t> download(const vk::Buffer& buffer) const;
@@ -47,6 +49,7 @@ private:
     SimSetup setup_;
     uint32_t vertexCount_ = 0;
     uint32_t slotCount_ = 0;  // vertices in the interleaved buffers, padding included
+    bool fixedGrid_ = false;
     uint64_t deviceBytes_ = 0;
     vk::Buffer params_, positions_, velocities_, rest_, strands_, tangents_, grid_, gridVelocity_, counters_;
     TrackedBuffer positionsTrack_, tangentsTrack_;

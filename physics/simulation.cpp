@@ -31,6 +31,10 @@ SimSetup makeSimSetup(const SimSettings& s, const StrandSet& strands, const std:
     p.gridFriction = s.gridFriction;
     p.gridRepulsion = s.gridRepulsion;
     p.partCount = uint32_t(strands.parts.size());
+    p.gridMaxSplatSpeed = gpu::kGridMaxSplatSpeed * unitsPerMetre;
+    p.gridFixedScale = s.gridAtomics == SimSettings::GridAtomics::Fixed
+                           ? gridFixedScale(strands.vertexCount(), p.gridMaxSplatSpeed)
+                           : 0.0f;
     for (size_t i = 0; i < strands.parts.size(); ++i) {
         const PartSettings& part = strands.parts[i];
         p.parts[i] = {part.globalStiffness, part.localStiffness, part.ftlDamping, part.drag};
@@ -46,6 +50,12 @@ SimSetup makeSimSetup(const SimSettings& s, const StrandSet& strands, const std:
     setup.gridSide = glm::length(b.size() + glm::vec3(2.0f * reach));
     p.gridCellSize = setup.gridSide / float(s.gridResolution - 1);
     return setup;
+}
+
+float gridFixedScale(uint64_t vertexCount, float maxSplatSpeed)
+{
+    double worst = double(std::max<uint64_t>(vertexCount, 1)) * std::max(1.0, double(maxSplatSpeed));
+    return float(std::ldexp(1.0, 62) / worst);
 }
 
 gpu::SimStep makeStep(const SimSetup& setup, const glm::mat4& headTransform, const glm::vec4& sphere, float time)

@@ -21,6 +21,10 @@ struct SimSettings {
     float gridRepulsion = 0.0f;             // volume-keeping push, 0 .. 1
     float penaltyStiffness = 4000.0f;       // 1/s², 0 .. 100000
     float collisionMarginMetres = 0.003f;   // colliders act this far outside their surface
+    // The hair-hair grid's sums: 64-bit fixed point (deterministic: the same run gives the same
+    // bits) or float atomics (order-dependent in the last bits). Each falls back to the other on a
+    // device that lacks it.
+    enum class GridAtomics { Fixed, Float } gridAtomics = GridAtomics::Fixed;
 };
 
 // Everything needed to run: packed parameters plus the grid's placement relative to the head.
@@ -33,6 +37,9 @@ struct SimSetup {
 
 SimSetup makeSimSetup(const SimSettings& settings, const StrandSet& strands,
                       const std::vector<gpu::Ellipsoid>& colliders, float unitsPerMetre);
+// The largest scale at which no fixed-point grid node can overflow 2^62: every vertex adds at
+// most 1 (density) or maxSpeed (each momentum component) to a node.
+float gridFixedScale(uint64_t vertexCount, float maxSplatSpeed);
 gpu::SimStep makeStep(const SimSetup& setup, const glm::mat4& headTransform, const glm::vec4& sphere, float time);
 
 // The simulated state, one entry per vertex (world space).

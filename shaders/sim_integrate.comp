@@ -20,12 +20,17 @@
 // The sums are CpuSolver::gridSplat's, up to float order (a strand reset for non-finite values
 // keeps the finite contributions it made before the reset; the CPU splats its rest pose).
 #extension GL_GOOGLE_include_directive : require
+#ifdef GRID_FIXED
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_EXT_shader_atomic_int64 : require
+#else
 #extension GL_EXT_shader_atomic_float : require
+#endif
 #include "sim_common.glsl"
+#include "grid_storage.glsl"
 
 layout(local_size_x = SIM_GROUP_SIZE) in;
 layout(constant_id = 0) const bool kSplatToGrid = false;
-layout(set = 0, binding = kSimBindingGrid, std430) buffer Grid { GridNode grid[]; };
 
 // The run of vertices being summed: the cell they share and each corner's density and momentum.
 ivec3 runCell = ivec3(-1);
@@ -37,13 +42,8 @@ void flushRun()
 {
     if (!runOpen)
         return;
-    for (uint k = 0u; k < 8u; ++k) {
-        uint n = gridIndex(runCell + cornerOffset(k), params.gridResolution);
-        atomicAdd(grid[n].density, runDensity[k]);
-        atomicAdd(grid[n].momentum.x, runMomentum[k].x);
-        atomicAdd(grid[n].momentum.y, runMomentum[k].y);
-        atomicAdd(grid[n].momentum.z, runMomentum[k].z);
-    }
+    for (uint k = 0u; k < 8u; ++k)
+        gridAdd(gridIndex(runCell + cornerOffset(k), params.gridResolution), runDensity[k], runMomentum[k]);
     runOpen = false;
 }
 
@@ -52,6 +52,7 @@ void splatVertex(vec3 p, vec3 v)
 {
     if (!isFinite3(p) || !isFinite3(v))
         return;  // a strand about to be reset contributes nothing non-finite
+    v = clampSpeed(v, params.gridMaxSplatSpeed);
     GridCell cell = gridCell(p, step.gridOrigin, params.gridCellSize);
     if (!cellInside(cell.base, params.gridResolution))
         return;

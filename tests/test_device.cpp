@@ -24,6 +24,7 @@ vk::DeviceReport usable(uint32_t index, const char* name, VkPhysicalDeviceType t
     r.vulkan13 = r.dynamicRendering = r.synchronization2 = r.maintenance4 = true;
     r.tessellationShader = r.geometryShader = r.fragmentStoresAndAtomics = true;
     r.timestamps = r.pushDescriptor = r.swapchain = true;
+    r.floatAtomicAdd = r.int64Atomics = true;
     return r;
 }
 

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <functional>
 #include <glm/gtc/matrix_transform.hpp>
@@ -93,11 +94,21 @@ TEST(SimMath, WindActsAcrossTheStrandOnly)
     glm::vec3 across = gpu::windAcceleration(glm::vec3(0, -1, 0), w);
     EXPECT_NEAR(across.x, 3.0f, 1e-6f);
     EXPECT_NEAR(across.y, 0.0f, 1e-6f);
-    // Gusts stay within [0.75 * 0.3, 1.25 * 1.0] of the base wind and differ between strands.
+    // Gusts differ between strands and over time, and stay within [0.15, 1.25] of the base wind
+    // in strength (0.75..1.25 gain x 0.2..1.0 gust and turbulence).
     float a = gpu::strandWind(w, 0.5f, 1.0f, 1).x, b = gpu::strandWind(w, 0.5f, 1.0f, 2).x;
     EXPECT_NE(a, b);
-    EXPECT_GT(a, 0.0f);
-    EXPECT_LE(a, 3.0f * 1.25f);
+    float lo = 1e9f, hi = -1e9f;
+    for (float t = 0.0f; t < 60.0f; t += 0.01f) {
+        float x = gpu::strandWind(w, 0.5f, t, 7).x / 3.0f;
+        lo = std::min(lo, x);
+        hi = std::max(hi, x);
+    }
+    EXPECT_GE(lo, 0.15f);
+    EXPECT_LE(hi, 1.25f);
+    EXPECT_GT(hi - lo, 0.3f);  // it does vary
+    // The noise is smooth: small steps in time change it little.
+    EXPECT_NEAR(gpu::valueNoise(3.50f, 9), gpu::valueNoise(3.51f, 9), 0.03f);
 }
 
 // ---- Scenes for the solver tests -------------------------------------------------------------
@@ -300,13 +311,17 @@ INSTANTIATE_TEST_SUITE_P(AwkwardSizes, GpuMatchesCpu,
                              return std::to_string(param.param.strands) + "x" + std::to_string(param.param.vertices);
                          });
 
-TEST(GpuSolver, GridSplatConservesDensity)
+class GridAtomicsModes : public testing::TestWithParam<SimSettings::GridAtomics> {};
+
+TEST_P(GridAtomicsModes, SplatConservesDensity)
 {
     SimSettings s;
     s.gridResolution = 24;
+    s.gridAtomics = GetParam();
     BallScene b = ballScene(100, 16, s);
     vk::Context ctx(test::validatedOptions());
     GpuSolver solver(ctx, b.strands, b.setup, glm::mat4(1.0f));
+    EXPECT_EQ(solver.fixedPointGrid(), GetParam() == SimSettings::GridAtomics::Fixed);
     runGpu(ctx, solver, b.setup, 3, [&](uint32_t n) { return makeStep(b.setup, glm::mat4(1.0f), glm::vec4(0.0f), float(n) / 120.0f); });
     double density = 0.0;
     for (const gpu::GridNode& node : solver.readGrid())
@@ -320,6 +335,45 @@ TEST(GpuSolver, GridSplatConservesDensity)
         cpuDensity += node.density;
     EXPECT_NEAR(cpuDensity, double(b.strands.vertexCount()), 1e-3 * double(b.strands.vertexCount()));
     EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Modes, GridAtomicsModes,
+                         testing::Values(SimSettings::GridAtomics::Fixed, SimSettings::GridAtomics::Float),
+                         [](const testing::TestParamInfo<SimSettings::GridAtomics>& param) {
+                             return param.param == SimSettings::GridAtomics::Fixed ? "Fixed" : "Float";
+                         });
+
+TEST(GpuSolver, FixedPointGridIsDeterministic)
+{
+    // Integer sums commute: two runs of the same steps give the same bits, whatever order the
+    // device ran the threads in (float atomics do not promise this).
+    SimSettings s;
+    s.wind = glm::vec3(4.0f, 0.0f, 1.0f);
+    s.gridFriction = 0.2f;
+    BallScene b = ballScene(300, 16, s);
+    vk::Context ctx(test::validatedOptions());
+    auto stepAt = [&](uint32_t n) {
+        return makeStep(b.setup, glm::mat4(1.0f), glm::vec4(0.1f, 0.15f, 0.0f, 0.05f), float(n) / 120.0f);
+    };
+    GpuSolver first(ctx, b.strands, b.setup, glm::mat4(1.0f));
+    GpuSolver second(ctx, b.strands, b.setup, glm::mat4(1.0f));
+    SimState a = runGpu(ctx, first, b.setup, 60, stepAt, 20);
+    SimState c = runGpu(ctx, second, b.setup, 60, stepAt, 20);
+    ASSERT_TRUE(first.fixedPointGrid());
+    EXPECT_EQ(std::memcmp(a.positions.data(), c.positions.data(), a.positions.size() * sizeof(glm::vec4)), 0);
+    EXPECT_EQ(std::memcmp(a.velocities.data(), c.velocities.data(), a.velocities.size() * sizeof(glm::vec4)), 0);
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
+TEST(SimMath, FixedPointScaleCannotOverflow)
+{
+    // The worst node sum, every vertex's full weight at the largest splat speed, stays below 2^62.
+    for (uint64_t vertices : {1ull, 1000ull, 3200000ull, 100000000ull})
+        for (float speed : {0.5f, 20.0f, 2000.0f}) {
+            double worst = double(vertices) * std::max(1.0, double(speed)) * double(gridFixedScale(vertices, speed));
+            EXPECT_LE(worst, std::ldexp(1.0, 62) * 1.0001);
+            EXPECT_GT(worst, std::ldexp(1.0, 61));  // and uses most of the range
+        }
 }
 
 TEST(GpuSolver, NonFiniteValuesResetStrandsAndAreCounted)

@@ -74,6 +74,24 @@ TEST_F(HeadRender, TwoRendersAreByteIdentical)
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 
+TEST_F(HeadRender, WithSimulatedHairTwoRendersAreByteIdentical)
+{
+    // The fixed-point hair grid makes the whole simulated picture reproducible.
+    GrowthSettings growth;
+    growth.guides = 300;
+    HairScene scene = buildGrownScene(defaultHeadPath(), growth);
+    HairRun run{.scene = &scene, .sim = SimSettings{}, .frames = 12, .framesPerSecond = 30.0f,
+                .sphere = glm::vec4(0.0f, 0.1f, -0.12f, 0.05f)};
+    run.sim.wind = glm::vec3(3.0f, 0.0f, 0.0f);
+    vk::Context ctx(test::validatedOptions());
+    Picture a = renderPicture(ctx, scene.head, smallSettings(), &run);
+    Picture b = renderPicture(ctx, scene.head, smallSettings(), &run);
+    EXPECT_TRUE(a.rgba == b.rgba);
+    Picture still = renderPicture(ctx, scene.head, smallSettings());
+    EXPECT_FALSE(a.rgba == still.rgba);  // the hair is in the picture
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
 TEST_F(HeadRender, CoversAPlausiblePartOfTheFrame)
 {
     vk::Context ctx(test::validatedOptions());

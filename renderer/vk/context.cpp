@@ -66,6 +66,7 @@ std::vector<std::string> DeviceReport::missing(bool needSwapchain) const
     need(geometryShader, "geometryShader");
     need(fragmentStoresAndAtomics, "fragmentStoresAndAtomics");
     need(timestamps, "timestamps (timestampComputeAndGraphics)");
+    need(floatAtomicAdd || int64Atomics, "buffer atomics for the hair grid (float add or 64-bit integer)");
     need(pushDescriptor, "VK_KHR_push_descriptor");
     if (needSwapchain)
         need(swapchain, "VK_KHR_swapchain");
@@ -119,8 +120,9 @@ std::vector<DeviceReport> queryDevices(VkInstance instance)
 
         VkPhysicalDeviceShaderAtomicFloatFeaturesEXT atomicFloat{
             .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT};
-        VkPhysicalDeviceVulkan13Features f13{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
+        VkPhysicalDeviceVulkan12Features f12{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
                                              .pNext = atomicFloatExt ? &atomicFloat : nullptr};
+        VkPhysicalDeviceVulkan13Features f13{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES, .pNext = &f12};
         VkPhysicalDeviceFeatures2 features{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
                                            .pNext = r.vulkan13 ? &f13 : nullptr};
         vkGetPhysicalDeviceFeatures2(pd, &features);
@@ -133,6 +135,7 @@ std::vector<DeviceReport> queryDevices(VkInstance instance)
         r.vertexPipelineStoresAndAtomics = features.features.vertexPipelineStoresAndAtomics;
         r.pipelineStatisticsQuery = features.features.pipelineStatisticsQuery;
         r.floatAtomicAdd = r.vulkan13 && atomicFloatExt && atomicFloat.shaderBufferFloat32AtomicAdd;
+        r.int64Atomics = r.vulkan13 && features.features.shaderInt64 && f12.shaderBufferInt64Atomics;
 
         uint32_t familyCount = 0;
         vkGetPhysicalDeviceQueueFamilyProperties(pd, &familyCount, nullptr);
@@ -309,8 +312,11 @@ Context::Context(const ContextOptions& options)
             .shaderBufferFloat32AtomicAdd = VK_TRUE};
         if (report_.floatAtomicAdd)
             deviceExtensionNames.push_back(VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME);
-        VkPhysicalDeviceVulkan13Features f13{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
+        VkPhysicalDeviceVulkan12Features f12{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
                                              .pNext = report_.floatAtomicAdd ? &atomicFloat : nullptr,
+                                             .shaderBufferInt64Atomics = report_.int64Atomics};
+        VkPhysicalDeviceVulkan13Features f13{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
+                                             .pNext = &f12,
                                              .synchronization2 = VK_TRUE,
                                              .dynamicRendering = VK_TRUE,
                                              .maintenance4 = VK_TRUE};
@@ -320,6 +326,7 @@ Context::Context(const ContextOptions& options)
         features.features.fragmentStoresAndAtomics = VK_TRUE;
         features.features.vertexPipelineStoresAndAtomics = report_.vertexPipelineStoresAndAtomics;
         features.features.pipelineStatisticsQuery = report_.pipelineStatisticsQuery;
+        features.features.shaderInt64 = report_.int64Atomics;
         VkDeviceCreateInfo deviceInfo{.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
                                       .pNext = &features,
                                       .queueCreateInfoCount = 1,

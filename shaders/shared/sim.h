@@ -61,7 +61,11 @@ struct SimParams {
     float gridCellSize;       // asset units
     uint  partCount;
     uint  gridNodeCount;      // gridResolution³
+    float gridFixedScale;     // fixed-point grid: integer units per unit of density or momentum; 0 = float atomics
+    float gridMaxSplatSpeed;  // velocities splatted into the grid are clamped to this, asset units / s
     float pad0;
+    float pad1;
+    float pad2;
     SimPart parts[kSimMaxParts];
     Ellipsoid colliders[kSimMaxColliders];  // in head space: they move with the head
 };
@@ -87,7 +91,14 @@ struct StrandInfo {
     uint seed;        // per-strand random seed (wind variation)
 };
 
-// Splat accumulators: float atomics add into these.
+// Splat accumulators: float atomics add into these. The fixed-point grid (the GRID_FIXED shader
+// variants) keeps the same four sums as 64-bit integers scaled by SimParams.gridFixedScale, four
+// per node: integer adds commute, so its result does not depend on the order threads run in.
+GPU_CONST uint kGridFixedWordsPerNode = 4u;
+// The fixed-point scale is chosen so no node can overflow: each vertex adds weights summing to 1
+// and momenta of at most kGridMaxSplatSpeed (metres per second, in the head's units) to a node.
+GPU_CONST float kGridMaxSplatSpeed = 20.0f;
+
 struct GridNode {
     vec3  momentum;  // sum of weight * velocity
     float density;   // sum of trilinear weights
@@ -145,14 +156,27 @@ GPU_FN float hashToUnit(uint v)
     return float(hashUint(v) >> 8u) * (1.0f / 16777216.0f);
 }
 
-// The wind a strand feels at time t: the base wind modulated by a slow gust (sine) with a
-// per-strand phase and gain, so neighbouring strands do not move in lockstep.
+// Smooth 1D value noise in [0, 1): hashed values at integer x, blended with a smoothstep.
+GPU_FN float valueNoise(float x, uint seed)
+{
+    float cell = floor(x);
+    float f = x - cell;
+    uint i = uint(int(cell) + 1048576);  // keep the hash input positive for negative x
+    float a = hashToUnit(i * 1664525u + seed);
+    float b = hashToUnit((i + 1u) * 1664525u + seed);
+    return mix(a, b, f * f * (3.0f - 2.0f * f));
+}
+
+// The wind a strand feels at time t: the base wind modulated by a slow gust (sine) and turbulence
+// (value noise at about 2.3 times the gust frequency), with a per-strand phase, gain and noise
+// stream, so neighbouring strands do not move in lockstep. The factor stays within [0.15, 1.25].
 GPU_FN vec3 strandWind(vec3 wind, float frequencyHz, float t, uint seed)
 {
     float phase = 6.2831853f * hashToUnit(seed);
     float gain = 0.75f + 0.5f * hashToUnit(seed ^ 0x9E3779B9u);
-    float gust = 0.65f + 0.35f * sin(6.2831853f * frequencyHz * t + phase);
-    return wind * (gain * gust);
+    float gust = 0.6f + 0.25f * sin(6.2831853f * frequencyHz * t + phase);
+    float turbulence = 0.3f * (valueNoise(2.3f * frequencyHz * t + phase, seed) - 0.5f);
+    return wind * (gain * (gust + turbulence));
 }
 
 // Wind on a segment with unit direction t (the TressFX wind term): (t x w) x t = w - t (t . w),
@@ -236,6 +260,14 @@ GPU_FN mat3 minimalRotation(vec3 a, vec3 b)
     return mat3(v.x * v.x * k + c, v.y * v.x * k + v.z, v.z * v.x * k - v.y,
                 v.x * v.y * k - v.z, v.y * v.y * k + c, v.z * v.y * k + v.x,
                 v.x * v.z * k + v.y, v.y * v.z * k - v.x, v.z * v.z * k + c);
+}
+
+// The velocity a vertex splats into the grid, no faster than maxSpeed (it bounds what a grid node
+// can hold, which the fixed-point grid's overflow-safe scale relies on).
+GPU_FN vec3 clampSpeed(vec3 v, float maxSpeed)
+{
+    float speed = length(v);
+    return speed > maxSpeed ? v * (maxSpeed / speed) : v;
 }
 
 // True when no component is NaN or infinite (comparisons with NaN are false).
