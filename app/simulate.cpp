@@ -48,6 +48,7 @@ SimulationReport simulateHeadless(const vk::Context& ctx, const HairScene& scene
     };
     while (done < steps) {
         uint32_t n = std::min(std::max(sampleEvery, 1u), steps - done);
+        double msBefore = gpuMs;
         if (n > 1)
             submit(n - 1);
         std::vector<glm::vec4> before = solver.readState().positions;
@@ -55,6 +56,7 @@ SimulationReport simulateHeadless(const vk::Context& ctx, const HairScene& scene
         report.state = solver.readState();
         report.last = measure(report.state, before, stepSeconds, scene.strands, setup, stepAt(done));
         report.energy.emplace_back(done, report.last.kineticEnergy);
+        report.stepMs.emplace_back(done, (gpuMs - msBefore) / double(n));
         if (progress)
             progress(done);
     }
@@ -89,6 +91,21 @@ std::vector<DispatchTiming> profilePhysics(const vk::Context& ctx, const HairSce
         }
         totals.push_back(total);
     }
+    // The same steps recorded 25 to a command buffer under one scope, as `simulate` runs them:
+    // the batch's time divided by its steps, per batch.
+    constexpr uint32_t kBatch = 25;
+    std::vector<double> batched;
+    for (uint32_t b = 0; b < std::max(1u, timedSteps / kBatch); ++b) {
+        ctx.submitAndWait([&](VkCommandBuffer cmd) {
+            timer.reset(cmd);
+            timer.begin(cmd, "batch");
+            for (uint32_t k = 0; k < kBatch; ++k)
+                solver.recordStep(cmd, makeStep(setup, glm::mat4(1.0f), glm::vec4(0.0f),
+                                                float(warmupSteps + timedSteps + b * kBatch + k) / sim.stepHz));
+            timer.end(cmd);
+        });
+        batched.push_back(timer.read().front().milliseconds / double(kBatch));
+    }
     auto stats = [](const std::string& name, std::vector<double> v) {
         std::sort(v.begin(), v.end());
         return DispatchTiming{name, v[v.size() / 2], v[std::min(v.size() - 1, v.size() * 95 / 100)]};
@@ -97,6 +114,7 @@ std::vector<DispatchTiming> profilePhysics(const vk::Context& ctx, const HairSce
     for (const std::string& name : order)
         out.push_back(stats(name, samples[name]));
     out.push_back(stats("step", totals));
+    out.push_back(stats("step_in_batches_of_25", batched));
     return out;
 }
 
@@ -142,6 +160,9 @@ int runSimulate(const SimulateOptions& o, const HairScene& scene)
     nlohmann::json energy = nlohmann::json::array();
     for (const auto& [step, value] : r.energy)
         energy.push_back({{"step", step}, {"value", value}});
+    nlohmann::json stepMs = nlohmann::json::array();
+    for (const auto& [step, value] : r.stepMs)
+        stepMs.push_back({{"step", step}, {"ms", value}});
     nlohmann::json parts = nlohmann::json::array();
     for (const PartSettings& p : scene.strands.parts)
         parts.push_back({{"name", p.name}, {"global_stiffness", p.globalStiffness}, {"local_stiffness", p.localStiffness},
@@ -159,6 +180,7 @@ int runSimulate(const SimulateOptions& o, const HairScene& scene)
                           {"nonfinite_resets", r.nonfiniteResets},
                           {"kinetic_energy", energy},
                           {"gpu_ms_per_step", r.gpuMsPerStep},
+                          {"gpu_ms_per_step_over_time", stepMs},
                           {"grid_resolution", o.sim.gridResolution},
                           {"colliders", scene.colliders.size()},
                           {"colliders_fitted", scene.collidersFitted},

@@ -22,6 +22,7 @@ struct Motion {
 struct SimulationReport {
     SimMetrics last;                                     // after the final step
     std::vector<std::pair<uint32_t, float>> energy;      // (step, kinetic energy) every sample
+    std::vector<std::pair<uint32_t, double>> stepMs;     // (step, GPU ms per step since the last sample)
     double gpuMsPerStep = 0.0;
     uint32_t nonfiniteResets = 0;
     SimState state;                                      // the final state
