@@ -394,6 +394,9 @@ int runCli(int argc, char** argv)
     simulate->add_option("--head", simHead, "head description (.json) or mesh file; default models/head.json");
     simulate->add_option("--steps", sim.steps, "fixed simulation steps to run")->check(CLI::Range(1u, 10000000u))->capture_default_str();
     simulate->add_flag("--json", sim.json, "print one JSON object");
+    simulate->add_option("--sample-every", sim.sampleEvery, "steps between samples of the kinetic energy (each reads the state back)")
+        ->check(CLI::Range(1u, 10000000u))
+        ->capture_default_str();
     simulate->add_flag("--profile", sim.profile,
                        "time each kernel: --warmup steps, then --steps steps each timed on its own (median and p95)");
     simulate->add_option("--warmup", sim.warmup, "steps before timing with --profile")->check(CLI::Range(0u, 100000u))->capture_default_str();

@@ -148,7 +148,7 @@ int runSimulate(const SimulateOptions& o, const HairScene& scene)
     Motion motion;
     glm::vec4 sphere = o.sphere.value_or(glm::vec4(0.0f));
     motion.sphere = [sphere](float) { return sphere; };
-    SimulationReport r = simulateHeadless(ctx, scene, o.sim, o.steps, motion, 25, [&](uint32_t done) {
+    SimulationReport r = simulateHeadless(ctx, scene, o.sim, o.steps, motion, o.sampleEvery, [&](uint32_t done) {
         if (!o.json)
             std::fprintf(stderr, "\rsimulate: %u / %u steps", done, o.steps);
     });

@@ -53,6 +53,7 @@ private:
     uint64_t deviceBytes_ = 0;
     vk::Buffer params_, positions_, velocities_, rest_, strands_, tangents_, grid_, gridVelocity_, counters_;
     TrackedBuffer positionsTrack_, tangentsTrack_;
+    mutable vk::Buffer readback_;  // host-visible, reused by every readState/readGrid
     vk::DescriptorSetLayout setLayout_;
     vk::PipelineLayout layout_;
     vk::Pipeline integrate_, integrateSplat_, clear_, normalize_, gather_;
