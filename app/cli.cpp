@@ -379,8 +379,14 @@ int runCli(int argc, char** argv)
     addHairOptions(render, ro.hair);
 
     WindowOptions windowOptions;
-    CLI::App* view = app.add_subcommand("view", "the interactive window (drag: orbit, wheel: zoom, middle drag: pan, Esc: quit)");
-    view->add_option("--head", windowOptions.headFile, "head description (.json) or mesh file; default models/head.json");
+    HairOptions viewHair;
+    std::string viewHead;
+    bool viewNoHair = false;
+    CLI::App* view = app.add_subcommand(
+        "view", "the interactive window with the hair simulated live (drag: orbit, wheel: zoom, middle drag: pan, Space: pause, Esc: quit)");
+    view->add_option("--head", viewHead, "head description (.json) or mesh file; default models/head.json");
+    view->add_flag("--no-hair", viewNoHair, "show the head alone");
+    addHairOptions(view, viewHair);
     addImageSize(view, windowOptions.settings);
     addLookOptions(view, windowOptions.settings);
     view->add_option("--frames", windowOptions.maxFrames, "close after this many frames (0 = run until closed)")
@@ -450,9 +456,17 @@ int runCli(int argc, char** argv)
         if (*render)
             return runRender(g, ro);
         if (*view) {
+            requireDisplay();  // before any loading
             windowOptions.context = contextOptions(g);
-            if (windowOptions.headFile.empty())
-                windowOptions.headFile = defaultHeadPath().string();
+            viewHair.apply();
+            HairScene scene;
+            if (viewNoHair)
+                scene.head = loadHead(headPathOrDefault(viewHead));
+            else
+                scene = viewHair.buildScene(headPathOrDefault(viewHead));
+            windowOptions.scene = &scene;
+            windowOptions.sim = viewHair.sim;
+            windowOptions.sphere = viewHair.sphereOrNone();
             return runWindow(windowOptions);
         }
         if (*simulate) {

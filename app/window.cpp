@@ -4,6 +4,7 @@
 
 #include "app/image_io.h"
 #include "core/error.h"
+#include "physics/gpu_solver.h"
 #include "physics/head.h"
 #include "renderer/frame.h"
 #include "renderer/renderer.h"
@@ -14,6 +15,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <memory>
 #include <cstdio>
 #include <cstdlib>
 
@@ -141,20 +144,26 @@ struct Input {
     OrbitCamera* camera = nullptr;
     double lastX = 0.0, lastY = 0.0;
     bool orbiting = false, panning = false;
+    bool pauseToggled = false;
 };
 
 }  // namespace
 
-int runWindow(const WindowOptions& options)
+void requireDisplay()
 {
     const char* display = std::getenv("DISPLAY");
     const char* wayland = std::getenv("WAYLAND_DISPLAY");
     if ((!display || !*display) && (!wayland || !*wayland))
         throw UserError("no display (DISPLAY and WAYLAND_DISPLAY are unset): 'wisp view' needs a window; "
                         "render offscreen with 'wisp render --out FILE.png' instead");
+}
+
+int runWindow(const WindowOptions& options)
+{
+    requireDisplay();
     if (!options.screenshot.empty())
         checkPngOutput(options.screenshot);
-    Head head = loadHead(options.headFile);
+    const Head& head = options.scene->head;
 
     glfwSetErrorCallback([](int, const char* text) { std::fprintf(stderr, "wisp: GLFW: %s\n", text); });
     if (!glfwInit())
@@ -209,6 +218,20 @@ int runWindow(const WindowOptions& options)
     settings.height = swapchain.extent.height;
     Renderer renderer(ctx, settings, kFramesInFlight);
     renderer.setHead(head);
+    std::unique_ptr<GpuSolver> solver;
+    SimSetup setup;
+    const glm::mat4 headTransform(1.0f);
+    if (options.scene->strands.strandCount() > 0) {
+        setup = makeSimSetup(options.sim, options.scene->strands, options.scene->gpuColliders, options.scene->unitsPerMetre);
+        solver = std::make_unique<GpuSolver>(ctx, options.scene->strands, setup, headTransform);
+        renderer.attachHair(*solver, options.scene->strands);
+    }
+    constexpr uint32_t kMaxStepsPerFrame = 8;  // beyond this the simulation slows down instead of spiralling
+    const float stepSeconds = 1.0f / options.sim.stepHz;
+    const uint32_t scriptedStepsPerFrame = std::max(1u, uint32_t(std::lround(options.sim.stepHz / 60.0f)));
+    uint64_t stepsDone = 0;
+    double pendingSeconds = 0.0;
+    bool paused = false;
     Frame frame(ctx, kFramesInFlight);
     PresentBlitPass present(renderer.target());
     std::unique_ptr<ReadbackPass> readback;
@@ -225,11 +248,15 @@ int runWindow(const WindowOptions& options)
     glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
         if (key == GLFW_KEY_ESCAPE && action == GLFW_PRESS)
             glfwSetWindowShouldClose(w, GLFW_TRUE);
+        if (key == GLFW_KEY_SPACE && action == GLFW_PRESS) {
+            Input* in = static_cast<Input*>(glfwGetWindowUserPointer(w));
+            in->pauseToggled = !in->pauseToggled;
+        }
     });
 
     bool rebuild = false;
     uint32_t framesDrawn = 0;
-    auto start = std::chrono::steady_clock::now();
+    auto lastFrame = std::chrono::steady_clock::now();
     while (!glfwWindowShouldClose(window)) {
         glfwPollEvents();
         glfwGetFramebufferSize(window, &fbWidth, &fbHeight);
@@ -274,8 +301,31 @@ int runWindow(const WindowOptions& options)
         if (got != VK_SUBOPTIMAL_KHR)
             VK_CHECK(got);
 
-        float seconds = std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count();
-        renderer.prepare(fc, camera, seconds);
+        // The simulation advances in fixed steps only: real time decides how many are due.
+        auto now = std::chrono::steady_clock::now();
+        double elapsed = std::chrono::duration<double>(now - lastFrame).count();
+        lastFrame = now;
+        paused = input.pauseToggled;
+        uint32_t due = 0;
+        if (!paused && solver) {
+            if (options.maxFrames > 0) {
+                due = scriptedStepsPerFrame;
+            } else {
+                pendingSeconds += elapsed;
+                due = uint32_t(pendingSeconds / stepSeconds);
+                pendingSeconds -= double(due) * stepSeconds;
+                if (due > kMaxStepsPerFrame) {
+                    due = kMaxStepsPerFrame;
+                    pendingSeconds = 0.0;
+                }
+            }
+        }
+        std::vector<gpu::SimStep> steps;
+        for (uint32_t k = 0; k < due; ++k)
+            steps.push_back(makeStep(setup, headTransform, options.sphere, float(stepsDone + k) * stepSeconds));
+        stepsDone += due;
+        renderer.setSteps(std::move(steps));
+        renderer.prepare(fc, camera, float(stepsDone) * stepSeconds);
         TrackedImage& swapImage = swapchain.images[imageIndex];
         swapImage.layout = VK_IMAGE_LAYOUT_UNDEFINED;  // its previous contents are not needed
         swapImage.stages = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;  // wait for the acquire semaphore's stage

@@ -1,8 +1,13 @@
 // app/window.h: the interactive front end: a GLFW window whose swapchain receives the renderer's
-// result by a blit each frame. Orbit (left drag), zoom (wheel), pan (middle drag), Esc quits;
-// resize and minimize are handled. Without a display it says so and points to `wisp render`.
+// result by a blit each frame, with the hair simulated live (real time is accumulated and spent in
+// fixed steps, at most kMaxStepsPerFrame a frame; with --frames, exactly one frame's worth of
+// steps per frame, so a scripted run is reproducible). Orbit (left drag), zoom (wheel), pan
+// (middle drag), Space pauses, Esc quits; resize and minimize are handled. Without a display it
+// says so and points to `wisp render`.
 #pragma once
 
+#include "physics/hair_scene.h"
+#include "physics/simulation.h"
 #include "renderer/settings.h"
 #include "renderer/vk/context.h"
 
@@ -14,11 +19,15 @@ namespace wisp {
 struct WindowOptions {
     vk::ContextOptions context;
     RenderSettings settings;
-    std::string headFile;
+    const HairScene* scene = nullptr;  // the head and its hair (no strands: the head alone)
+    SimSettings sim;
+    glm::vec4 sphere{0.0f};            // the user's sphere (xyz, radius; 0 = none)
     uint32_t maxFrames = 0;  // 0 = until the window is closed
     std::string screenshot;  // PNG of the last frame, written on exit when set
 };
 
+// Throws UserError, pointing to `wisp render`, when there is no display to open a window on.
+void requireDisplay();
 int runWindow(const WindowOptions& options);
 
 }  // namespace wisp

@@ -306,3 +306,24 @@ TEST(BadInput, BadPartSettings)
     expectUserError(runWisp("simulate --steps 1 --part 0:global=abc"), "not a number");
     expectUserError(runWisp("simulate --steps 1 --part global=0.1"), "PART:key=value");
 }
+
+TEST(Window, ScriptedRunsWithHairAreReproducible)
+{
+    // With --frames every frame advances one frame's worth of fixed steps, and the hair grid sums
+    // in fixed point: two runs give the same screenshot, and it differs from the bald head.
+    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb): cannot test the window here";
+    TempDir dir;
+    std::string common = "view --width 200 --height 150 --frames 12 --guides 200 --wind 3,0,0 --screenshot ";
+    auto xvfb = "xvfb-run -a -s '-screen 0 640x480x24'";
+    ASSERT_EQ(runWisp(common + "'" + (dir / "a.png").string() + "'", xvfb).status, 0);
+    ASSERT_EQ(runWisp(common + "'" + (dir / "b.png").string() + "'", xvfb).status, 0);
+    ASSERT_EQ(runWisp("view --width 200 --height 150 --frames 12 --no-hair --screenshot '" + (dir / "bald.png").string() + "'",
+                      xvfb).status, 0);
+    auto slurp = [](const std::filesystem::path& p) {
+        std::ifstream in(p, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    };
+    EXPECT_EQ(slurp(dir / "a.png"), slurp(dir / "b.png"));
+    EXPECT_NE(slurp(dir / "a.png"), slurp(dir / "bald.png"));
+}
