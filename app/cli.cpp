@@ -4,6 +4,7 @@
 
 #include "app/headless.h"
 #include "app/image_io.h"
+#include "app/settings_registry.h"
 #include "app/simulate.h"
 #include "app/window.h"
 #include "core/error.h"
@@ -377,6 +378,8 @@ int runCli(int argc, char** argv)
     addImageSize(render, ro.settings);
     addLookOptions(render, ro.settings);
     addHairOptions(render, ro.hair);
+    std::vector<std::string> renderSets;
+    render->add_option("--set", renderSets, "NAME=VALUE for any setting in 'wisp settings' (repeatable)");
 
     WindowOptions windowOptions;
     HairOptions viewHair;
@@ -387,6 +390,8 @@ int runCli(int argc, char** argv)
     view->add_option("--head", viewHead, "head description (.json) or mesh file; default models/head.json");
     view->add_flag("--no-hair", viewNoHair, "show the head alone");
     addHairOptions(view, viewHair);
+    std::vector<std::string> viewSets;
+    view->add_option("--set", viewSets, "NAME=VALUE for any setting in 'wisp settings' (repeatable)");
     addImageSize(view, windowOptions.settings);
     addLookOptions(view, windowOptions.settings);
     view->add_option("--frames", windowOptions.maxFrames, "close after this many frames (0 = run until closed)")
@@ -407,6 +412,10 @@ int runCli(int argc, char** argv)
                        "time each kernel: --warmup steps, then --steps steps each timed on its own (median and p95)");
     simulate->add_option("--warmup", sim.warmup, "steps before timing with --profile")->check(CLI::Range(0u, 100000u))->capture_default_str();
     addHairOptions(simulate, simHair);
+    std::vector<std::string> simulateSets;
+    simulate->add_option("--set", simulateSets, "NAME=VALUE for any setting in 'wisp settings' (repeatable)");
+
+    CLI::App* settingsCmd = app.add_subcommand("settings", "list every setting --set takes: names, units, ranges and defaults");
 
     bool infoJson = false;
     CLI::App* info = app.add_subcommand("info", "list Vulkan devices and the features Wisp uses");
@@ -453,11 +462,20 @@ int runCli(int argc, char** argv)
     }
 
     try {
-        if (*render)
+        if (*settingsCmd) {
+            std::cout << settingsTable();
+            return 0;
+        }
+        if (*render) {
+            for (const std::string& a : renderSets)
+                applySetting({&ro.hair.growth, &ro.hair.sim, &ro.settings}, a);
             return runRender(g, ro);
+        }
         if (*view) {
             requireDisplay();  // before any loading
             windowOptions.context = contextOptions(g);
+            for (const std::string& a : viewSets)
+                applySetting({&viewHair.growth, &viewHair.sim, &windowOptions.settings}, a);
             viewHair.apply();
             HairScene scene;
             if (viewNoHair)
@@ -471,6 +489,8 @@ int runCli(int argc, char** argv)
         }
         if (*simulate) {
             sim.context = contextOptions(g);
+            for (const std::string& a : simulateSets)
+                applySetting({&simHair.growth, &simHair.sim, nullptr}, a);
             simHair.apply();
             sim.sim = simHair.sim;
             if (!simHair.sphere.empty())

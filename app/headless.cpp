@@ -24,7 +24,7 @@ Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSett
     if (hair) {
         setup = makeSimSetup(hair->sim, hair->scene->strands, hair->scene->gpuColliders, hair->scene->unitsPerMetre);
         solver = std::make_unique<GpuSolver>(ctx, hair->scene->strands, setup, headTransform);
-        renderer.attachHair(*solver, hair->scene->strands);
+        renderer.attachHair(*solver, hair->scene->strands, hair->scene->unitsPerMetre);
         // Fixed steps only: each frame advances exactly round(stepHz / fps) steps of 1 / stepHz.
         uint32_t stepsPerFrame = std::max(1u, uint32_t(std::lround(hair->sim.stepHz / hair->framesPerSecond)));
         float stepSeconds = 1.0f / hair->sim.stepHz;

@@ -224,7 +224,7 @@ int runWindow(const WindowOptions& options)
     if (options.scene->strands.strandCount() > 0) {
         setup = makeSimSetup(options.sim, options.scene->strands, options.scene->gpuColliders, options.scene->unitsPerMetre);
         solver = std::make_unique<GpuSolver>(ctx, options.scene->strands, setup, headTransform);
-        renderer.attachHair(*solver, options.scene->strands);
+        renderer.attachHair(*solver, options.scene->strands, options.scene->unitsPerMetre);
     }
     constexpr uint32_t kMaxStepsPerFrame = 8;  // beyond this the simulation slows down instead of spiralling
     const float stepSeconds = 1.0f / options.sim.stepHz;

@@ -34,6 +34,7 @@ public:
 
     const vk::Buffer& positions() const { return positions_; }
     const vk::Buffer& tangents() const { return tangents_; }
+    const vk::Buffer& params() const { return params_; }  // the SimParams uniform block (colliders)
     // For passes that read the simulation's output in the same frame.
     TrackedBuffer& positionsTrack() { return positionsTrack_; }
     TrackedBuffer& tangentsTrack() { return tangentsTrack_; }

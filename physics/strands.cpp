@@ -4,6 +4,7 @@
 #include "core/error.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace wisp {
@@ -48,6 +49,68 @@ Bounds StrandSet::bounds() const
         b.max = glm::max(b.max, p);
     }
     return b;
+}
+
+std::vector<glm::uvec4> guideTriangles(const StrandSet& strands)
+{
+    size_t n = strands.strandCount();
+    uint32_t V = strands.verticesPerStrand;
+    std::vector<glm::uvec4> out(n);
+    if (n == 0)
+        return out;
+    Bounds b;
+    b.min = b.max = strands.rest[0];
+    for (size_t s = 0; s < n; ++s) {
+        b.min = glm::min(b.min, strands.rest[s * V]);
+        b.max = glm::max(b.max, strands.rest[s * V]);
+    }
+    // About two roots per cell: cell = (volume of the roots' box / n)^(1/3), at least a tiny size.
+    glm::vec3 size = glm::max(b.size(), glm::vec3(1e-6f));
+    float cell = std::max(std::cbrt(2.0f * size.x * size.y * size.z / float(n)), 1e-3f * glm::length(size));
+    glm::ivec3 dims = glm::ivec3(size / cell) + 1;
+    auto cellOf = [&](const glm::vec3& p) { return glm::clamp(glm::ivec3((p - b.min) / cell), glm::ivec3(0), dims - 1); };
+    auto key = [&](glm::ivec3 c) { return (size_t(c.z) * size_t(dims.y) + size_t(c.y)) * size_t(dims.x) + size_t(c.x); };
+    std::vector<std::vector<uint32_t>> grid(size_t(dims.x) * dims.y * dims.z);
+    for (uint32_t s = 0; s < n; ++s)
+        grid[key(cellOf(strands.rest[size_t(s) * V]))].push_back(s);
+    for (uint32_t s = 0; s < n; ++s) {
+        glm::vec3 p = strands.rest[size_t(s) * V];
+        glm::ivec3 c = cellOf(p);
+        uint32_t best[2] = {s, s};
+        float bestD[2] = {1e30f, 1e30f};
+        // Grow the search ring until two neighbours are found and no closer one can lie outside it.
+        for (int r = 1;; ++r) {
+            for (int z = c.z - r; z <= c.z + r; ++z)
+                for (int y = c.y - r; y <= c.y + r; ++y)
+                    for (int x = c.x - r; x <= c.x + r; ++x) {
+                        if (x < 0 || y < 0 || z < 0 || x >= dims.x || y >= dims.y || z >= dims.z)
+                            continue;
+                        bool shell = std::max({std::abs(x - c.x), std::abs(y - c.y), std::abs(z - c.z)}) >= r - 1;
+                        if (r > 1 && !shell)
+                            continue;  // inner cells were searched in earlier rings
+                        for (uint32_t o : grid[key({x, y, z})]) {
+                            if (o == s)
+                                continue;
+                            float d = glm::length(strands.rest[size_t(o) * V] - p);
+                            if (d < bestD[0] && o != best[0] && o != best[1]) {
+                                best[1] = best[0];
+                                bestD[1] = bestD[0];
+                                best[0] = o;
+                                bestD[0] = d;
+                            } else if (d < bestD[1] && o != best[0] && o != best[1]) {
+                                best[1] = o;
+                                bestD[1] = d;
+                            }
+                        }
+                    }
+            bool covered = c.x - r <= 0 && c.y - r <= 0 && c.z - r <= 0 && c.x + r >= dims.x - 1 &&
+                           c.y + r >= dims.y - 1 && c.z + r >= dims.z - 1;
+            if ((bestD[1] < 1e29f && bestD[1] <= float(r - 1) * cell) || covered)
+                break;
+        }
+        out[s] = glm::uvec4(s, bestD[0] < 1e29f ? best[0] : s, bestD[1] < 1e29f ? best[1] : s, 0u);
+    }
+    return out;
 }
 
 }  // namespace wisp

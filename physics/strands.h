@@ -36,4 +36,9 @@ struct StrandSet {
     void add(const std::vector<glm::vec3>& points, uint32_t part, uint32_t pinnedRoot, bool pinnedTip);
 };
 
+// For multi-strand interpolation: each guide with its two nearest neighbours by root distance
+// (x: the guide, y, z: the neighbours, w: 0), found through a uniform grid over the roots. A lone
+// guide is its own neighbour.
+std::vector<glm::uvec4> guideTriangles(const StrandSet& strands);
+
 }  // namespace wisp

@@ -142,6 +142,10 @@ std::vector<uint8_t> ReadbackPass::pixels() const
 {
     std::vector<uint8_t> out(static_cast<size_t>(buffer_.size()));
     std::memcpy(out.data(), buffer_.mapped(), out.size());
+    // The picture is opaque: the attachment's alpha holds hair coverage (alpha-to-coverage), not
+    // transparency, and must not make image viewers blend the PNG with their own background.
+    for (size_t i = 3; i < out.size(); i += 4)
+        out[i] = 255;
     return out;
 }
 

@@ -1,7 +1,7 @@
 // renderer/renderer.h: the scene renderer shared by the window and the headless front ends. It
 // owns the render target, the per-frame uniforms and the passes, in the order they run:
-//   physics (when hair is attached) | meshes (head) | guides (simulated guide strands as lines)
-//   [later: shadow, deep opacity, hair, OIT resolve]
+//   physics (when hair is attached) | meshes (head) | hair (tessellated strands) | guides (lines, optional)
+//   [later: shadow, deep opacity, OIT resolve]
 // A front end begins a Frame, calls prepare(), runs passes() plus its own tail (readback or
 // present), and submits.
 #pragma once
@@ -10,6 +10,7 @@
 #include "renderer/camera.h"
 #include "renderer/frame_uniforms.h"
 #include "renderer/guide_pass.h"
+#include "renderer/hair_pass.h"
 #include "renderer/mesh_pass.h"
 #include "renderer/physics_pass.h"
 #include "renderer/render_target.h"
@@ -34,11 +35,15 @@ public:
 
     // Uploads the head mesh; call while the device is idle.
     void setHead(const Head& head);
-    // Simulates and draws guide strands from `solver` (which must outlive the renderer).
-    void attachHair(GpuSolver& solver, const StrandSet& strands);
+    // Simulates `strands` with `solver` (which must outlive the renderer) and draws them as hair;
+    // unitsPerMetre converts the strand settings' metres into the head's units.
+    void attachHair(GpuSolver& solver, const StrandSet& strands, float unitsPerMetre);
+    // The draw the current settings make (for the CLI and UI to report).
+    HairDrawCounts hairCounts() const;
     // The simulation steps to record in the next frame (none: the hair holds still).
     void setSteps(std::vector<gpu::SimStep> steps);
     PhysicsPass* physics() { return physicsPass_.get(); }
+    HairPass* hair() { return hairPass_.get(); }
     // Recreates the size-dependent images; call while the device is idle.
     void resize(VkExtent2D extent);
 
@@ -59,6 +64,11 @@ private:
     std::unique_ptr<MeshPass> meshPass_;
     std::unique_ptr<PhysicsPass> physicsPass_;
     std::unique_ptr<GuidePass> guidePass_;
+    std::unique_ptr<HairPass> hairPass_;
+    uint32_t guideCount_ = 0;
+    uint32_t verticesPerStrand_ = 0;
+    float unitsPerMetre_ = 1.0f;
+    float lodReferenceDistance_ = 1.0f;  // the default framing's distance: full detail at or nearer
     Bounds bounds_;
 };
 

@@ -28,6 +28,31 @@ struct LightSettings {
     glm::vec3 direction() const;  // unit vector toward the light (world space, y up, face +z)
 };
 
+enum class Interpolation { Single, Multi, Mixed };
+
+inline constexpr Range kStrandsPerGuideRange{1, 4096};
+inline constexpr Range kDivisionsRange{1, 1024};
+inline constexpr Range kStrandWidthRange{0.00001, 0.01};   // metres
+inline constexpr Range kClumpRadiusRange{0.0, 0.1};        // metres
+inline constexpr Range kDeviationRange{0.0, 0.1};          // metres
+
+// How the simulated guides become drawn strands (renderer/hair_pass.cpp, shaders/hair.*).
+struct StrandSettings {
+    uint32_t strandsPerGuide = 32;                 // strands drawn per guide (the guide is one of them)
+    uint32_t divisions = 24;                       // segments per drawn strand
+    Interpolation interpolation = Interpolation::Mixed;
+    float clumpRadiusMetres = 0.01f;               // single-strand disc radius
+    float deviationMetres = 0.012f;                // strength of random deviations
+    float widthMetres = 0.0005f;                   // ribbon width at the root
+    bool lod = true;                               // fewer, wider strands with distance
+    float lodMinFraction = 0.2f;                   // LOD never draws fewer than this share of strands
+    float minPixelWidth = 1.0f;                    // narrower ribbons are widened, alpha = coverage
+    glm::vec3 rootColor{0.03f, 0.014f, 0.006f};    // dark brown at the root (linear RGB)
+    glm::vec3 tipColor{0.2f, 0.09f, 0.035f};       // lighter toward the tip
+    float specularShift = 0.12f;                   // Scheuermann lobe shift
+    bool showGuides = false;                       // also draw the guides as lines
+};
+
 struct RenderSettings {
     uint32_t width = 1280;
     uint32_t height = 720;
@@ -40,6 +65,7 @@ struct RenderSettings {
     float exposure = 1.0f;
     glm::vec3 headAlbedo{0.62f, 0.6f, 0.57f};        // mannequin grey-beige
     float headRoughness = 0.55f;
+    StrandSettings strands;
 };
 
 }  // namespace wisp

@@ -24,6 +24,7 @@ struct FrameParams {
     float viewportWidth;     // pixels
     vec3  backgroundColor;   // linear RGB clear colour
     float viewportHeight;    // pixels
+    mat4  headTransform;     // head space -> world this frame (rigid); the colliders move with it
 };
 
 GPU_NAMESPACE_END

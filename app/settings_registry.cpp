@@ -1,0 +1,217 @@
+// app/settings_registry.cpp: the table of settings. Each entry reads and writes one member of the
+// settings structs, with the range constants those structs define.
+#include "app/settings_registry.h"
+
+#include "core/error.h"
+
+#include <charconv>
+#include <cmath>
+#include <sstream>
+
+namespace wisp {
+
+namespace {
+
+[[noreturn]] void bad(const std::string& name, const std::string& value, const std::string& why)
+{
+    throw UserError("--set " + name + "=" + value + ": " + why);
+}
+
+double number(const std::string& name, const std::string& value, double lo, double hi, const std::string& unit)
+{
+    double v = 0.0;
+    auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
+    if (ec != std::errc() || end != value.data() + value.size() || !std::isfinite(v))
+        bad(name, value, "not a number");
+    if (v < lo || v > hi) {
+        std::ostringstream s;
+        s << "out of range: allowed " << lo << " .. " << hi << (unit.empty() ? "" : " " + unit);
+        bad(name, value, s.str());
+    }
+    return v;
+}
+
+uint32_t integer(const std::string& name, const std::string& value, double lo, double hi)
+{
+    double v = number(name, value, lo, hi, "");
+    if (v != std::floor(v))
+        bad(name, value, "not a whole number");
+    return uint32_t(v);
+}
+
+bool onOff(const std::string& name, const std::string& value)
+{
+    if (value == "on" || value == "1" || value == "true")
+        return true;
+    if (value == "off" || value == "0" || value == "false")
+        return false;
+    bad(name, value, "allowed: on | off");
+}
+
+template <typename T>
+std::string text(T v)
+{
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+#define WISP_NEED(refs, member, name)                                                 \
+    if (!(refs).member)                                                                \
+    throw UserError("--set " + std::string(name) + ": this command does not use it")
+
+std::vector<SettingSpec> buildSpecs()
+{
+    std::vector<SettingSpec> specs;
+    auto add = [&](SettingSpec spec) { specs.push_back(std::move(spec)); };
+
+    add({"guides", "", "1 .. 2000000", "guide strands grown on the scalp",
+         [](const SettingsRefs& r) { return r.growth ? text(r.growth->guides) : "-"; },
+         [](const SettingsRefs& r, const std::string& v) {
+             WISP_NEED(r, growth, "guides");
+             r.growth->guides = integer("guides", v, 1, 2000000);
+         }});
+    add({"vertices_per_strand", "", "4 .. 64", "vertices per simulated guide",
+         [](const SettingsRefs& r) { return r.growth ? text(r.growth->verticesPerStrand) : "-"; },
+         [](const SettingsRefs& r, const std::string& v) {
+             WISP_NEED(r, growth, "vertices_per_strand");
+             r.growth->verticesPerStrand = integer("vertices_per_strand", v, kMinVerticesPerStrand, kMaxVerticesPerStrand);
+         }});
+    add({"strands_per_guide", "", "1 .. 4096", "strands drawn per guide (more than 64 through instancing)",
+         [](const SettingsRefs& r) { return r.render ? text(r.render->strands.strandsPerGuide) : "-"; },
+         [](const SettingsRefs& r, const std::string& v) {
+             WISP_NEED(r, render, "strands_per_guide");
+             r.render->strands.strandsPerGuide = integer("strands_per_guide", v, kStrandsPerGuideRange.min, kStrandsPerGuideRange.max);
+         }});
+    add({"divisions", "", "1 .. 1024", "segments per drawn strand (more than 64 through more patches)",
+         [](const SettingsRefs& r) { return r.render ? text(r.render->strands.divisions) : "-"; },
+         [](const SettingsRefs& r, const std::string& v) {
+             WISP_NEED(r, render, "divisions");
+             r.render->strands.divisions = integer("divisions", v, kDivisionsRange.min, kDivisionsRange.max);
+         }});
+    add({"interpolation", "", "single | multi | mixed", "strands around one guide (clumps), between three, or both",
+         [](const SettingsRefs& r) {
+             if (!r.render)
+                 return std::string("-");
+             Interpolation i = r.render->strands.interpolation;
+             return std::string(i == Interpolation::Single ? "single" : i == Interpolation::Multi ? "multi" : "mixed");
+         },
+         [](const SettingsRefs& r, const std::string& v) {
+             WISP_NEED(r, render, "interpolation");
+             if (v == "single")
+                 r.render->strands.interpolation = Interpolation::Single;
+             else if (v == "multi")
+                 r.render->strands.interpolation = Interpolation::Multi;
+             else if (v == "mixed")
+                 r.render->strands.interpolation = Interpolation::Mixed;
+             else
+                 bad("interpolation", v, "allowed: single | multi | mixed");
+         }});
+    add({"deviation", "m", "0 .. 0.1", "strength of random strand deviations",
+         [](const SettingsRefs& r) { return r.render ? text(r.render->strands.deviationMetres) : "-"; },
+         [](const SettingsRefs& r, const std::string& v) {
+             WISP_NEED(r, render, "deviation");
+             r.render->strands.deviationMetres = float(number("deviation", v, kDeviationRange.min, kDeviationRange.max, "m"));
+         }});
+    add({"clump_radius", "m", "0 .. 0.1", "radius of the disc single-strand interpolation fills",
+         [](const SettingsRefs& r) { return r.render ? text(r.render->strands.clumpRadiusMetres) : "-"; },
+         [](const SettingsRefs& r, const std::string& v) {
+             WISP_NEED(r, render, "clump_radius");
+             r.render->strands.clumpRadiusMetres =
+                 float(number("clump_radius", v, kClumpRadiusRange.min, kClumpRadiusRange.max, "m"));
+         }});
+    add({"width", "m", "1e-05 .. 0.01", "strand width at the root",
+         [](const SettingsRefs& r) { return r.render ? text(r.render->strands.widthMetres) : "-"; },
+         [](const SettingsRefs& r, const std::string& v) {
+             WISP_NEED(r, render, "width");
+             r.render->strands.widthMetres = float(number("width", v, kStrandWidthRange.min, kStrandWidthRange.max, "m"));
+         }});
+    add({"lod", "", "on | off", "fewer, wider strands with camera distance",
+         [](const SettingsRefs& r) { return r.render ? std::string(r.render->strands.lod ? "on" : "off") : "-"; },
+         [](const SettingsRefs& r, const std::string& v) {
+             WISP_NEED(r, render, "lod");
+             r.render->strands.lod = onOff("lod", v);
+         }});
+    add({"show_guides", "", "on | off", "also draw the simulated guides as lines",
+         [](const SettingsRefs& r) { return r.render ? std::string(r.render->strands.showGuides ? "on" : "off") : "-"; },
+         [](const SettingsRefs& r, const std::string& v) {
+             WISP_NEED(r, render, "show_guides");
+             r.render->strands.showGuides = onOff("show_guides", v);
+         }});
+    add({"step_hz", "1/s", "30 .. 1000", "fixed simulation steps per simulated second",
+         [](const SettingsRefs& r) { return r.sim ? text(r.sim->stepHz) : "-"; },
+         [](const SettingsRefs& r, const std::string& v) {
+             WISP_NEED(r, sim, "step_hz");
+             r.sim->stepHz = float(number("step_hz", v, 30, 1000, "1/s"));
+         }});
+    add({"substeps", "", "1 .. 16", "integrate/FTL passes per step",
+         [](const SettingsRefs& r) { return r.sim ? text(r.sim->substeps) : "-"; },
+         [](const SettingsRefs& r, const std::string& v) {
+             WISP_NEED(r, sim, "substeps");
+             r.sim->substeps = integer("substeps", v, 1, 16);
+         }});
+    add({"friction", "", "0 .. 1", "hair-hair friction: blend toward the grid velocity",
+         [](const SettingsRefs& r) { return r.sim ? text(r.sim->gridFriction) : "-"; },
+         [](const SettingsRefs& r, const std::string& v) {
+             WISP_NEED(r, sim, "friction");
+             r.sim->gridFriction = float(number("friction", v, 0, 1, ""));
+         }});
+    add({"grid", "", "8 .. 256", "hair-hair grid nodes per axis",
+         [](const SettingsRefs& r) { return r.sim ? text(r.sim->gridResolution) : "-"; },
+         [](const SettingsRefs& r, const std::string& v) {
+             WISP_NEED(r, sim, "grid");
+             r.sim->gridResolution = integer("grid", v, 8, 256);
+         }});
+    add({"samples", "", "1 | 2 | 4 | 8", "MSAA samples",
+         [](const SettingsRefs& r) { return r.render ? text(r.render->samples) : "-"; },
+         [](const SettingsRefs& r, const std::string& v) {
+             WISP_NEED(r, render, "samples");
+             uint32_t n = integer("samples", v, 1, 8);
+             if (n != 1 && n != 2 && n != 4 && n != 8)
+                 bad("samples", v, "allowed: 1 | 2 | 4 | 8");
+             r.render->samples = n;
+         }});
+    return specs;
+}
+
+}  // namespace
+
+const std::vector<SettingSpec>& settingSpecs()
+{
+    static const std::vector<SettingSpec> specs = buildSpecs();
+    return specs;
+}
+
+void applySetting(const SettingsRefs& refs, const std::string& assignment)
+{
+    size_t eq = assignment.find('=');
+    if (eq == std::string::npos || eq == 0)
+        throw UserError("--set " + assignment + ": expected NAME=VALUE (see 'wisp settings')");
+    std::string name = assignment.substr(0, eq);
+    for (const SettingSpec& spec : settingSpecs())
+        if (spec.name == name) {
+            spec.set(refs, assignment.substr(eq + 1));
+            return;
+        }
+    throw UserError("--set " + assignment + ": unknown setting '" + name + "' (see 'wisp settings')");
+}
+
+std::string settingsTable()
+{
+    GrowthSettings growth;
+    SimSettings sim;
+    RenderSettings render;
+    SettingsRefs defaults{&growth, &sim, &render};
+    std::ostringstream out;
+    out << "NAME                 UNIT  RANGE                    DEFAULT    DESCRIPTION\n";
+    for (const SettingSpec& s : settingSpecs()) {
+        std::string value = s.get(defaults);
+        out << s.name << std::string(21 - std::min<size_t>(20, s.name.size()), ' ') << s.unit
+            << std::string(6 - std::min<size_t>(5, s.unit.size()), ' ') << s.range
+            << std::string(25 - std::min<size_t>(24, s.range.size()), ' ') << value
+            << std::string(11 - std::min<size_t>(10, value.size()), ' ') << s.description << "\n";
+    }
+    return out.str();
+}
+
+}  // namespace wisp

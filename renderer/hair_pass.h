@@ -1,0 +1,70 @@
+// renderer/hair_pass.h: the simulated guides drawn as a full head of hair: tessellation (Bezier,
+// more strands per guide, deviations) -> geometry shader (camera-facing ribbons) -> Kajiya-Kay
+// fragments, reading the guides straight from the solver's buffers in the same frame.
+#pragma once
+
+#include "physics/strands.h"
+#include "renderer/pass.h"
+#include "renderer/settings.h"
+#include "renderer/vk/handle.h"
+#include "renderer/vk/resources.h"
+#include "shaders/shared/strands.h"
+
+namespace wisp {
+
+namespace vk {
+class Context;
+}
+class RenderTarget;
+class FrameUniforms;
+class GpuSolver;
+
+// What a draw produces for given settings: the Vulkan limits split it into patches and instances,
+// never cap it (the CLI and UI report these).
+struct HairDrawCounts {
+    uint32_t guides = 0;
+    uint32_t strandsPerGuide = 0;   // as drawn (before LOD)
+    uint32_t divisions = 0;         // segments per strand
+    uint32_t lengthChunks = 0;      // patches along a strand: ceil(divisions / 64)
+    uint32_t strandChunks = 0;      // instances: ceil(strands per guide / 64)
+    uint64_t strands() const { return uint64_t(guides) * strandsPerGuide; }
+    uint64_t segments() const { return strands() * divisions; }
+};
+HairDrawCounts hairDrawCounts(uint32_t guides, const StrandSettings& settings);
+
+class HairPass : public Pass {
+public:
+    HairPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& uniforms, GpuSolver& solver,
+             const StrandSet& strands);
+    const char* name() const override { return "hair"; }
+    void declare(PassIo& io) override;
+    void record(VkCommandBuffer cmd, FrameContext& frame) override;
+
+    // This frame's parameters (settings, LOD, the head's pose).
+    void setPush(const gpu::HairPush& push) { push_ = push; }
+    const HairDrawCounts& counts() const { return counts_; }
+    // Pipeline statistics of the last recorded draw (after its frame completed): how many
+    // tessellation evaluations, geometry-shader invocations and primitives the draw produced.
+    struct Statistics {
+        uint64_t tessEvaluations = 0;
+        uint64_t geometryInvocations = 0;
+        uint64_t geometryPrimitives = 0;
+    };
+    Statistics statistics() const;
+    void setCounts(const HairDrawCounts& counts) { counts_ = counts; }
+
+private:
+    const vk::Context& ctx_;
+    RenderTarget& target_;
+    FrameUniforms& uniforms_;
+    GpuSolver& solver_;
+    vk::DescriptorSetLayout setLayout_;
+    vk::PipelineLayout layout_;
+    vk::Pipeline pipeline_;
+    vk::Buffer triangles_;
+    vk::QueryPool statistics_;  // empty where the device has no pipeline statistics
+    gpu::HairPush push_{};
+    HairDrawCounts counts_;
+};
+
+}  // namespace wisp

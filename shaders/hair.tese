@@ -1,0 +1,92 @@
+#version 460
+// hair.tese: a point of one strand. The guide's C1 Bezier (shared/strands.h) is evaluated at the
+// strand's parameter t; a single-strand strand is offset in the guide's clump disc, a
+// multi-strand one blends three guides with barycentric weights (Nalu); random deviations come
+// last, and every generated strand is then pushed out of the head's colliders.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/frame_params.h"
+#include "shared/strands.h"
+
+layout(isolines, equal_spacing) in;
+layout(push_constant) uniform PushBlock { HairPush push; };
+layout(set = 0, binding = kHairBindingFrame) uniform FrameBlock { FrameParams frame; };
+layout(set = 0, binding = kHairBindingSim) uniform SimBlock { SimParams sim; };
+layout(set = 0, binding = kHairBindingPositions, std430) readonly buffer Positions { vec4 positions[]; };
+layout(set = 0, binding = kHairBindingTriangles, std430) readonly buffer Triangles { uvec4 triangles[]; };
+
+layout(location = 0) patch in uint patchGuide;
+layout(location = 1) patch in uint patchStrandBase;
+layout(location = 2) patch in uint patchLines;
+layout(location = 3) patch in uint patchDivisionBase;
+layout(location = 4) patch in uint patchDivisions;
+
+layout(location = 0) out vec3 outWorld;
+layout(location = 1) out vec3 outTangent;
+layout(location = 2) out float outT;
+layout(location = 3) flat out uint outStrand;  // guide * strandsPerGuide + s
+layout(location = 4) out float outLodAlpha;
+
+vec3 guidePoint(uint guide, uint i)
+{
+    return positions[vertexSlot(guide, i, push.verticesPerStrand)].xyz;
+}
+
+// The guide's curve at t: position and (unnormalized) tangent.
+void evaluateGuide(uint guide, float t, out vec3 p, out vec3 tangent)
+{
+    uint V = push.verticesPerStrand;
+    uint seg = curveSegment(t, V);
+    float u = curveLocal(t, V, seg);
+    Bezier b = catmullRomBezier(guidePoint(guide, seg == 0u ? 0u : seg - 1u), guidePoint(guide, seg),
+                                guidePoint(guide, seg + 1u), guidePoint(guide, min(seg + 2u, V - 1u)));
+    p = bezierPoint(b, u);
+    tangent = bezierTangent(b, u);
+}
+
+vec3 pushOutOfColliders(vec3 p)
+{
+    for (uint c = 0u; c < sim.colliderCount; ++c) {
+        Contact k = headColliderContact(sim.colliders[c], frame.headTransform, p, 0.0);
+        if (k.depth > 0.0)
+            p += k.depth * k.normal;
+    }
+    return p;
+}
+
+void main()
+{
+    uint s = patchStrandBase + uint(round(gl_TessCoord.y * float(patchLines)));
+    float t = (float(patchDivisionBase) + gl_TessCoord.x * float(patchDivisions)) / float(push.divisions);
+    uint guide = patchGuide;
+
+    vec3 p, tangent;
+    evaluateGuide(guide, t, p, tangent);
+    if (strandIsMulti(push.interpolation, s)) {
+        uvec4 tri = triangles[guide];
+        vec3 w = triangleWeights(guide, s);
+        vec3 p1, t1, p2, t2;
+        evaluateGuide(tri.y, t, p1, t1);
+        evaluateGuide(tri.z, t, p2, t2);
+        p = w.x * p + w.y * p1 + w.z * p2;
+        tangent = w.x * tangent + w.y * t1 + w.z * t2;
+    }
+    vec3 T = normalize(tangent);
+    mat3 f = strandFrame(T);
+    if (!strandIsMulti(push.interpolation, s)) {
+        vec2 d = discOffset(guide, s);
+        p += push.clumpRadius * clumpTaper(t) * (d.x * f[1] + d.y * f[2]);
+    }
+    float a = deviationAngle(guide, s);
+    p += push.deviation * deviationProfile(guide, s, t) * (cos(a) * f[1] + sin(a) * f[2]);
+    // Every generated strand is kept out of the head's colliders: blends of two outside points,
+    // and offsets across a guide lying on the scalp, would otherwise fall inside the head.
+    if (s != 0u)
+        p = pushOutOfColliders(p);
+
+    outWorld = p;
+    outTangent = T;
+    outT = t;
+    outStrand = guide * push.strandsPerGuide + s;
+    outLodAlpha = lodAlpha(s, push.lodStrands);
+    gl_Position = frame.viewProjection * vec4(p, 1.0);
+}

@@ -1,0 +1,227 @@
+// shaders/shared/strands.h: how simulated guides become a head of hair in the tessellation
+// stages, and the pure math of it, shared by hair.tesc/.tese/.geom/.frag and the C++ tests:
+// C1 cubic Bezier segments from the guide polyline (uniform Catmull-Rom tangents), strands around
+// a guide (single-strand interpolation: a tapered disc, i.e. clumps) or between three guides
+// (multi-strand interpolation, barycentric, Nalu), random deviations (Rapp 2014's five profiles),
+// continuous level of detail, and Kajiya-Kay shading with two shifted lobes (Scheuermann 2004).
+// Conventions: world space in the head's units; t in [0, 1] runs root to tip.
+#ifndef WISP_SHARED_STRANDS_H
+#define WISP_SHARED_STRANDS_H
+#include "prelude.h"
+#include "sim.h"
+
+GPU_NAMESPACE_BEGIN
+
+// Tessellation limits of every device here (and Vulkan's guaranteed minimum is 64 too): more
+// strands or divisions than this come from more patches, never from a silently capped level.
+GPU_CONST uint kMaxTessLevel = 64u;
+
+// Bindings of the hair pass (one push-descriptor set).
+GPU_CONST uint kHairBindingFrame = 0;      // uniform FrameParams
+GPU_CONST uint kHairBindingSim = 1;        // uniform SimParams (colliders for multi-strand correction)
+GPU_CONST uint kHairBindingPositions = 2;  // the solver's positions (interleaved slots, sim.h)
+GPU_CONST uint kHairBindingTriangles = 3;  // uvec4 per guide: the guide and its two neighbours
+
+GPU_CONST uint kInterpolationSingle = 0u;
+GPU_CONST uint kInterpolationMulti = 1u;
+GPU_CONST uint kInterpolationMixed = 2u;   // alternate strands single / multi
+
+// Push constants of the hair pass.
+struct HairPush {
+    uint  guideCount;
+    uint  verticesPerStrand;  // V of the guides
+    uint  strandsPerGuide;    // S as asked (instances cover it in chunks of up to 64)
+    uint  divisions;          // D segments per strand as asked (patches along the strand cover it)
+    uint  lengthChunks;       // patches along each strand: ceil(D / 64)
+    uint  interpolation;      // kInterpolation*
+    float clumpRadius;        // single-strand disc radius, asset units
+    float deviation;          // strength of random deviations, asset units
+    float width;              // strand width at the root, asset units
+    float lodStrands;         // strands per guide drawn after LOD (continuous, <= S)
+    float lodWidthScale;      // width multiplier from LOD (keeps coverage as strands thin out)
+    float minPixelWidth;      // ribbons narrower than this are widened, alpha scaled by coverage
+    vec3  rootColor;          // linear RGB albedo at the root
+    float specularShift;      // Scheuermann's primary-lobe shift along the normal (secondary: opposite)
+    vec3  tipColor;           // linear RGB albedo at the tip
+    uint  samples;            // MSAA samples of the target (for the coverage mask)
+};
+
+// ---- Curves -----------------------------------------------------------------------------------
+
+struct Bezier {
+    vec3 b0;
+    vec3 b1;
+    vec3 b2;
+    vec3 b3;
+};
+
+// Segment i..i+1 of a polyline as a cubic Bezier with Catmull-Rom tangents (p_{i+1} - p_{i-1}) / 2,
+// so neighbouring segments share position and tangent at their joint (C1). Ends repeat the end point.
+GPU_FN Bezier catmullRomBezier(vec3 pPrev, vec3 p0, vec3 p1, vec3 pNext)
+{
+    Bezier b;
+    b.b0 = p0;
+    b.b1 = p0 + (p1 - pPrev) / 6.0f;
+    b.b2 = p1 - (pNext - p0) / 6.0f;
+    b.b3 = p1;
+    return b;
+}
+
+GPU_FN vec3 bezierPoint(Bezier b, float u)
+{
+    float v = 1.0f - u;
+    return v * v * v * b.b0 + 3.0f * v * v * u * b.b1 + 3.0f * v * u * u * b.b2 + u * u * u * b.b3;
+}
+
+GPU_FN vec3 bezierTangent(Bezier b, float u)
+{
+    float v = 1.0f - u;
+    return 3.0f * v * v * (b.b1 - b.b0) + 6.0f * v * u * (b.b2 - b.b1) + 3.0f * u * u * (b.b3 - b.b2);
+}
+
+// Which segment a parameter t in [0, 1] falls in, and where in it.
+GPU_FN uint curveSegment(float t, uint V)
+{
+    return min(uint(t * float(V - 1u)), V - 2u);
+}
+
+GPU_FN float curveLocal(float t, uint V, uint segment)
+{
+    return t * float(V - 1u) - float(segment);
+}
+
+// ---- Strands around and between guides ---------------------------------------------------------
+
+// Two unit vectors perpendicular to the tangent t (a frame for offsets around the strand).
+GPU_FN mat3 strandFrame(vec3 t)
+{
+    vec3 helper = abs(t.y) < 0.9f ? vec3(0.0f, 1.0f, 0.0f) : vec3(1.0f, 0.0f, 0.0f);
+    vec3 n = normalize(cross(t, helper));
+    return mat3(t, n, cross(t, n));
+}
+
+// The clump profile: zero at the root (strands grow from one follicle region), full a fifth of
+// the way down, narrowing again toward the tip (wet-look clumps); in [0, 1].
+GPU_FN float clumpTaper(float t)
+{
+    float grow = clamp(t / 0.2f, 0.0f, 1.0f);
+    return grow * grow * (3.0f - 2.0f * grow) * (1.0f - 0.6f * t);
+}
+
+// Strand s of a guide: its polar position in the clump disc, uniform over the disc's area
+// (strand 0 is the guide itself).
+GPU_FN vec2 discOffset(uint guide, uint s)
+{
+    if (s == 0u)
+        return vec2(0.0f);
+    uint h = hashUint(guide * 9781u + s * 6271u + 17u);
+    float r = sqrt(hashToUnit(h));
+    float a = 6.2831853f * hashToUnit(h ^ 0x68E31DA4u);
+    return vec2(r * cos(a), r * sin(a));
+}
+
+// Barycentric weights of strand s between three guides, uniform over the triangle; they sum to 1.
+GPU_FN vec3 triangleWeights(uint guide, uint s)
+{
+    uint h = hashUint(guide * 7919u + s * 104729u + 3u);
+    float r1 = sqrt(hashToUnit(h));
+    float r2 = hashToUnit(h ^ 0xB5297A4Du);
+    return vec3(1.0f - r1, r1 * (1.0f - r2), r1 * r2);
+}
+
+// Whether strand s uses multi-strand interpolation under the chosen mode.
+GPU_FN bool strandIsMulti(uint interpolation, uint s)
+{
+    if (interpolation == kInterpolationMulti)
+        return s != 0u;
+    if (interpolation == kInterpolationMixed)
+        return (s & 1u) == 1u;
+    return false;
+}
+
+// Random deviations (Rapp 2014): with probability 1/2 a strand strays from its guide along one of
+// five profiles over t: a Gaussian near the root (strays), two Gaussians lower down, a sharp
+// exponential at the tip (flyaways) and a gradual one (drift). Returns the profile's weight at t
+// (0 for strands that do not deviate); the direction comes from deviationDirection().
+GPU_FN float deviationProfile(uint guide, uint s, float t)
+{
+    uint h = hashUint(guide * 3571u + s * 2903u + 101u);
+    if (hashToUnit(h) < 0.5f)
+        return 0.0f;
+    uint kind = uint(5.0f * hashToUnit(h ^ 0x1B873593u)) % 5u;
+    if (kind == 0u)
+        return exp(-pow((t - 0.12f) / 0.08f, 2.0f));
+    if (kind == 1u)
+        return exp(-pow((t - 0.45f) / 0.12f, 2.0f));
+    if (kind == 2u)
+        return exp(-pow((t - 0.75f) / 0.12f, 2.0f));
+    if (kind == 3u)
+        return exp(12.0f * (t - 1.0f));
+    return exp(3.0f * (t - 1.0f)) * t;
+}
+
+// The deviation's direction in the strand's perpendicular plane, as an angle.
+GPU_FN float deviationAngle(uint guide, uint s)
+{
+    return 6.2831853f * hashToUnit(hashUint(guide * 613u + s * 7727u + 55u));
+}
+
+// ---- Level of detail ----------------------------------------------------------------------------
+
+// How much of strand s is drawn when lodStrands strands per guide are wanted: whole strands below
+// the count, the next one fading in with the fraction (so the count changes without popping).
+GPU_FN float lodAlpha(uint s, float lodStrands)
+{
+    return clamp(lodStrands - float(s), 0.0f, 1.0f);
+}
+
+// ---- Coverage ----------------------------------------------------------------------------------
+
+// The MSAA samples a hair fragment covers: round(coverage x samples) of them (rounded up or down
+// by a hash, so the average is right), starting at a sample chosen by the strand. Unlike
+// alpha-to-coverage, whose mask depends on alpha alone, overlapping thin strands then fill
+// different samples and their coverage adds up. Deterministic: a hash of strand and pixel.
+GPU_FN uint coverageMask(float coverage, uint samples, uint strand, uint pixelHash)
+{
+    float wanted = clamp(coverage, 0.0f, 1.0f) * float(samples);
+    uint k = uint(wanted);
+    if (hashToUnit(hashUint(strand * 2246822519u + pixelHash)) < wanted - float(k))
+        k += 1u;
+    if (k == 0u)
+        return 0u;
+    uint all = samples >= 32u ? 0xFFFFFFFFu : (1u << samples) - 1u;
+    uint run = k >= 32u ? 0xFFFFFFFFu : (1u << k) - 1u;
+    uint rot = hashUint(strand * 3266489917u + 7u) % samples;
+    uint mask = rot == 0u ? run : ((run << rot) | (run >> (samples - rot)));
+    return mask & all;
+}
+
+// ---- Shading (Kajiya & Kay 1989, with Scheuermann 2004's two shifted specular lobes) ------------
+
+// sin of the angle between the tangent and a direction: the strand's "cosine" for a cylinder.
+GPU_FN float strandSin(vec3 t, vec3 d)
+{
+    float c = dot(t, d);
+    return sqrt(max(0.0f, 1.0f - c * c));
+}
+
+// Radiance of a hair strand: Kajiya-Kay diffuse sin(T, L) and two specular lobes around the half
+// vector, their tangents shifted along the normal in opposite directions (primary: white, sharp;
+// secondary: tinted by the hair colour, broader), as Scheuermann's real-time model does. All
+// directions point away from the shading point.
+GPU_FN vec3 kajiyaKay(vec3 t, vec3 n, vec3 l, vec3 v, vec3 albedo, float shift, vec3 lightRadiance)
+{
+    vec3 h = normalize(l + v);
+    vec3 t1 = normalize(t + shift * n);
+    vec3 t2 = normalize(t - 0.5f * shift * n);
+    float diffuse = mix(0.25f, 1.0f, strandSin(t, l));
+    float spec1 = pow(strandSin(t1, h), 120.0f);
+    float spec2 = pow(strandSin(t2, h), 24.0f);
+    float facing = clamp(dot(n, l) * 0.5f + 0.5f, 0.0f, 1.0f);  // soften the unlit side
+    vec3 color = albedo * diffuse / 3.14159265f + vec3(0.02f * spec1) + 0.15f * albedo * spec2;
+    return color * lightRadiance * facing;
+}
+
+GPU_NAMESPACE_END
+
+#endif

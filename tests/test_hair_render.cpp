@@ -1,0 +1,258 @@
+// tests/test_hair_render.cpp: the strands renderer. The CPU twin of the tessellation math (Bezier
+// C1 joints, interpolation weights, deterministic deviations); the pipeline-statistics counts the
+// settings imply, across the 64 limits; rendered images: coverage of the scalp region, a
+// horizontal strand visible, determinism, more strands covering more pixels.
+#include "app/headless.h"
+#include "physics/gpu_solver.h"
+#include "physics/hair_scene.h"
+#include "renderer/frame.h"
+#include "renderer/renderer.h"
+#include "shaders/shared/strands.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+using namespace wisp;
+
+// ---- CPU twin of the tessellation math --------------------------------------------------------
+
+TEST(StrandMath, BezierSegmentsJoinWithC1Continuity)
+{
+    std::vector<glm::vec3> p = {{0, 0, 0}, {1, 0.2f, 0}, {2, -0.3f, 0.5f}, {2.5f, -1.0f, 1.0f}, {3, -2.5f, 1.0f}};
+    auto segment = [&](int i) {
+        int n = int(p.size());
+        return gpu::catmullRomBezier(p[size_t(std::max(i - 1, 0))], p[size_t(i)], p[size_t(i + 1)],
+                                     p[size_t(std::min(i + 2, n - 1))]);
+    };
+    for (int i = 0; i + 2 < int(p.size()); ++i) {
+        gpu::Bezier a = segment(i), b = segment(i + 1);
+        EXPECT_LT(glm::length(gpu::bezierPoint(a, 1.0f) - gpu::bezierPoint(b, 0.0f)), 1e-6f);      // C0
+        EXPECT_LT(glm::length(gpu::bezierTangent(a, 1.0f) - gpu::bezierTangent(b, 0.0f)), 1e-5f);  // C1
+        EXPECT_LT(glm::length(gpu::bezierPoint(a, 0.0f) - p[size_t(i)]), 1e-6f);                  // interpolates
+    }
+    // Parameter mapping: t = 0 and 1 are the strand's ends, segments in order.
+    EXPECT_EQ(gpu::curveSegment(0.0f, 5), 0u);
+    EXPECT_EQ(gpu::curveSegment(1.0f, 5), 3u);
+    EXPECT_NEAR(gpu::curveLocal(1.0f, 5, 3), 1.0f, 1e-6f);
+    EXPECT_EQ(gpu::curveSegment(0.49f, 5), 1u);
+}
+
+TEST(StrandMath, InterpolationWeightsSumToOneAndDiscIsFilled)
+{
+    float maxR = 0.0f;
+    for (uint32_t s = 1; s < 2000; ++s) {
+        glm::vec3 w = gpu::triangleWeights(s % 97, s);
+        EXPECT_NEAR(w.x + w.y + w.z, 1.0f, 1e-6f);
+        EXPECT_GE(std::min({w.x, w.y, w.z}), 0.0f);
+        glm::vec2 d = gpu::discOffset(s % 97, s);
+        EXPECT_LE(glm::length(d), 1.0f + 1e-6f);
+        maxR = std::max(maxR, glm::length(d));
+    }
+    EXPECT_GT(maxR, 0.95f);                                  // reaches the rim
+    EXPECT_EQ(gpu::discOffset(5, 0), glm::vec2(0.0f));       // strand 0 is the guide
+    EXPECT_FALSE(gpu::strandIsMulti(gpu::kInterpolationMulti, 0));
+    EXPECT_TRUE(gpu::strandIsMulti(gpu::kInterpolationMixed, 3));
+    EXPECT_FALSE(gpu::strandIsMulti(gpu::kInterpolationMixed, 4));
+}
+
+TEST(StrandMath, DeviationsAreDeterministicAndAboutHalfTheStrands)
+{
+    uint32_t deviating = 0;
+    for (uint32_t s = 0; s < 4000; ++s) {
+        float a = gpu::deviationProfile(s / 40, s % 40, 0.75f);
+        EXPECT_EQ(a, gpu::deviationProfile(s / 40, s % 40, 0.75f));  // same guide and strand, same value
+        bool any = false;
+        for (float t = 0.0f; t <= 1.0f; t += 0.05f)
+            any = any || gpu::deviationProfile(s / 40, s % 40, t) > 1e-3f;
+        deviating += any ? 1u : 0u;
+    }
+    EXPECT_NEAR(double(deviating) / 4000.0, 0.5, 0.04);
+}
+
+TEST(StrandMath, LodFadesTheLastStrandInstead)
+{
+    EXPECT_EQ(gpu::lodAlpha(3, 8.0f), 1.0f);
+    EXPECT_NEAR(gpu::lodAlpha(8, 8.4f), 0.4f, 1e-6f);
+    EXPECT_EQ(gpu::lodAlpha(9, 8.4f), 0.0f);
+}
+
+TEST(StrandMath, DrawCountsSplitPastTheTessellationLimits)
+{
+    StrandSettings s;
+    s.strandsPerGuide = 150;
+    s.divisions = 130;
+    HairDrawCounts c = hairDrawCounts(10, s);
+    EXPECT_EQ(c.strandChunks, 3u);   // 64 + 64 + 22
+    EXPECT_EQ(c.lengthChunks, 3u);   // 44 + 43 + 43
+    EXPECT_EQ(c.strands(), 1500u);   // nothing capped
+    EXPECT_EQ(c.segments(), 1500u * 130u);
+}
+
+// ---- On the device ------------------------------------------------------------------------------
+
+namespace {
+
+struct HairFrame {
+    Picture picture;
+    HairPass::Statistics stats;
+};
+
+HairFrame renderHairFrame(const vk::Context& ctx, const HairScene& scene, const RenderSettings& settings)
+{
+    Renderer renderer(ctx, settings, 1);
+    renderer.setHead(scene.head);
+    SimSetup setup = makeSimSetup(SimSettings{}, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
+    GpuSolver solver(ctx, scene.strands, setup, glm::mat4(1.0f));
+    renderer.attachHair(solver, scene.strands, scene.unitsPerMetre);
+    Frame frame(ctx, 1);
+    ReadbackPass readback(ctx, renderer.target());
+    OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(settings.width) / float(settings.height));
+    std::vector<TrackedImage*> transient = renderer.transientImages();
+    FrameContext& fc = frame.begin(transient);
+    renderer.prepare(fc, camera, 0.0f);
+    std::vector<Pass*> passes = renderer.passes();
+    passes.push_back(&readback);
+    frame.run(fc, passes);
+    frame.submit(fc);
+    frame.waitIdle();
+    return {{settings.width, settings.height, readback.pixels()}, renderer.hair()->statistics()};
+}
+
+HairScene smallScene(uint32_t guides)
+{
+    GrowthSettings g;
+    g.guides = guides;
+    return buildGrownScene(defaultHeadPath(), g);
+}
+
+}  // namespace
+
+TEST(HairRender, PipelineStatisticsCountWhatTheSettingsAsk)
+{
+    vk::Context ctx(test::validatedOptions());
+    if (!ctx.report().pipelineStatisticsQuery)
+        GTEST_SKIP() << "the device has no pipeline statistics queries";
+    HairScene scene = smallScene(7);
+    struct Case {
+        uint32_t strands, divisions;
+    };
+    for (Case c : {Case{3, 5}, Case{1, 1}, Case{70, 9}, Case{5, 100}}) {
+        RenderSettings s;
+        s.width = 96;
+        s.height = 64;
+        s.strands.strandsPerGuide = c.strands;
+        s.strands.divisions = c.divisions;
+        s.strands.lod = false;
+        HairFrame f = renderHairFrame(ctx, scene, s);
+        uint64_t lines = 7ull * c.strands * c.divisions;
+        std::fprintf(stderr, "S=%u D=%u: GS invocations %s primitives %s TES %s (expected lines %s)\n", c.strands,
+                     c.divisions, std::to_string(f.stats.geometryInvocations).c_str(),
+                     std::to_string(f.stats.geometryPrimitives).c_str(), std::to_string(f.stats.tessEvaluations).c_str(),
+                     std::to_string(lines).c_str());
+        EXPECT_EQ(f.stats.geometryInvocations, lines) << "S=" << c.strands << " D=" << c.divisions;
+        EXPECT_EQ(f.stats.geometryPrimitives, 2 * lines);  // a two-triangle ribbon per line (all in front of the camera)
+        EXPECT_GE(f.stats.tessEvaluations, 7ull * c.strands * (c.divisions + 1) / 2);
+    }
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
+namespace {
+
+// How much the hair changes the picture: the summed colour difference from the bald render
+// (thin strands change pixels partly, so counting changed pixels saturates where hair overlaps).
+double ink(const Picture& a, const Picture& b)
+{
+    double sum = 0.0;
+    for (size_t i = 0; i < a.rgba.size(); i += 4)
+        sum += std::abs(a.rgba[i] - b.rgba[i]) + std::abs(a.rgba[i + 1] - b.rgba[i + 1]) + std::abs(a.rgba[i + 2] - b.rgba[i + 2]);
+    return sum;
+}
+
+// Pixels that differ from the same render without hair.
+size_t changedPixels(const Picture& a, const Picture& b)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < a.rgba.size(); i += 4)
+        if (std::abs(a.rgba[i] - b.rgba[i]) + std::abs(a.rgba[i + 1] - b.rgba[i + 1]) + std::abs(a.rgba[i + 2] - b.rgba[i + 2]) > 12)
+            ++n;
+    return n;
+}
+
+RenderSettings imageSettings()
+{
+    RenderSettings s;
+    s.width = 240;
+    s.height = 180;
+    return s;
+}
+
+}  // namespace
+
+TEST(HairRender, HairCoversTheScalpAndMoreStrandsCoverMore)
+{
+    vk::Context ctx(test::validatedOptions());
+    HairScene scene = smallScene(300);
+    RenderSettings s = imageSettings();
+    Picture bald = renderPicture(ctx, scene.head, s);
+    s.strands.strandsPerGuide = 8;
+    HairFrame fewer = renderHairFrame(ctx, scene, s);
+    s.strands.strandsPerGuide = 16;
+    HairFrame more = renderHairFrame(ctx, scene, s);
+    HairFrame again = renderHairFrame(ctx, scene, s);
+    size_t covered8 = changedPixels(fewer.picture, bald), covered16 = changedPixels(more.picture, bald);
+    double ink8 = ink(fewer.picture, bald), ink16 = ink(more.picture, bald);
+    std::fprintf(stderr, "changed pixels: 8 strands %zu, 16 strands %zu of %u; ink %g, %g\n", covered8, covered16,
+                 s.width * s.height, ink8, ink16);
+    EXPECT_GT(covered8, size_t(s.width * s.height) / 50);  // the hair is on screen
+    EXPECT_GE(covered16, covered8);                        // doubling the strands covers more pixels
+    EXPECT_GT(ink16, 1.15 * ink8);                         // and covers them more
+    EXPECT_TRUE(more.picture.rgba == again.picture.rgba);  // and the same settings give the same image
+    // The hair sits on the upper half of the picture, where the scalp is.
+    size_t upper = 0, lower = 0;
+    for (uint32_t y = 0; y < s.height; ++y)
+        for (uint32_t x = 0; x < s.width; ++x) {
+            size_t i = 4 * (size_t(y) * s.width + x);
+            bool changed = std::abs(more.picture.rgba[i] - bald.rgba[i]) > 12;
+            (y < s.height / 2 ? upper : lower) += changed ? 1 : 0;
+        }
+    EXPECT_GT(upper, lower);
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
+TEST(HairRender, AHorizontalStrandKeepsItsWidth)
+{
+    // One guide lying horizontally across the view (the seed offset ribbons along screen x, so
+    // such a strand collapsed to nothing): its ribbon must cover pixels in a band, not a line.
+    vk::Context ctx(test::validatedOptions());
+    HairScene scene = smallScene(1);
+    std::vector<glm::vec3> points(scene.strands.verticesPerStrand);
+    for (uint32_t i = 0; i < points.size(); ++i)
+        points[i] = glm::vec3(-0.15f + 0.3f * float(i) / float(points.size() - 1), 0.3f, 0.2f);  // above the head
+    scene.strands.rest.assign(points.begin(), points.end());
+    scene.strands.strands.resize(1);
+    scene.strands.strands[0].pinnedRoot = 1;
+    scene.gpuColliders.clear();
+    RenderSettings s = imageSettings();
+    s.strands.strandsPerGuide = 1;
+    s.strands.widthMetres = 0.004f;  // a few pixels wide at this distance
+    s.strands.lod = false;
+    Picture bald = renderPicture(ctx, scene.head, s);
+    HairFrame f = renderHairFrame(ctx, scene, s);
+    // Count, per column, the rows the strand covers.
+    uint32_t columns = 0, maxRows = 0;
+    for (uint32_t x = 0; x < s.width; ++x) {
+        uint32_t rows = 0;
+        for (uint32_t y = 0; y < s.height; ++y) {
+            size_t i = 4 * (size_t(y) * s.width + x);
+            rows += std::abs(f.picture.rgba[i] - bald.rgba[i]) + std::abs(f.picture.rgba[i + 1] - bald.rgba[i + 1]) > 12 ? 1 : 0;
+        }
+        columns += rows > 0 ? 1 : 0;
+        maxRows = std::max(maxRows, rows);
+    }
+    EXPECT_GT(columns, s.width / 4);  // it spans the view horizontally
+    EXPECT_GE(maxRows, 2u);           // and has width
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
