@@ -351,6 +351,8 @@ int runRender(const GlobalOptions& g, RenderOptions& o)
         return status;  // a picture made with validation errors is not trusted: nothing written
     writePng(o.out, picture.width, picture.height, picture.rgba);
     std::cout << o.out << "\n";
+    if (!picture.hairCounts.empty())
+        std::cout << picture.hairCounts << "\n";
     return 0;
 }
 

@@ -57,7 +57,16 @@ Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSett
     frame.run(fc, passes);
     frame.submit(fc);
     frame.waitIdle();
-    return {settings.width, settings.height, readback.pixels()};
+    std::string counts;
+    if (hair) {
+        HairDrawCounts c = renderer.hairCounts();
+        counts = "hair: " + std::to_string(c.guides) + " guides x " + std::to_string(c.strandsPerGuide) + " strands x " +
+                 std::to_string(c.divisions) + " divisions = " + std::to_string(c.segments()) + " segments, drawn as " +
+                 std::to_string(uint64_t(c.guides) * c.lengthChunks * c.strandChunks) + " patches of up to " +
+                 std::to_string(c.strandsPerPatch) + " strands x " + std::to_string((c.divisions + c.lengthChunks - 1) / c.lengthChunks) +
+                 " divisions (" + std::to_string(c.strandChunks) + " instances)";
+    }
+    return {settings.width, settings.height, readback.pixels(), counts};
 }
 
 }  // namespace wisp

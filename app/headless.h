@@ -9,6 +9,7 @@
 #include "renderer/vk/context.h"
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace wisp {
@@ -17,6 +18,7 @@ struct Picture {
     uint32_t width = 0;
     uint32_t height = 0;
     std::vector<uint8_t> rgba;  // tightly packed, top row first, sRGB
+    std::string hairCounts;     // what the hair draw was split into (empty without hair)
 };
 
 // Hair to simulate and draw with the head.

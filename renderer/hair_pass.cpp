@@ -10,6 +10,7 @@
 #include "renderer/vk/context.h"
 #include "renderer/vk/pipeline.h"
 
+#include <algorithm>
 #include <array>
 
 namespace wisp {
@@ -21,7 +22,7 @@ constexpr VkQueryPipelineStatisticFlags kStatistics = VK_QUERY_PIPELINE_STATISTI
                                                       VK_QUERY_PIPELINE_STATISTIC_TESSELLATION_EVALUATION_SHADER_INVOCATIONS_BIT;
 }  // namespace
 
-static_assert(sizeof(gpu::HairPush) == 80, "HairPush must fit the 128 bytes of push constants every device has");
+static_assert(sizeof(gpu::HairPush) == 96, "HairPush must fit the 128 bytes of push constants every device has");
 
 HairDrawCounts hairDrawCounts(uint32_t guides, const StrandSettings& s)
 {
@@ -30,7 +31,9 @@ HairDrawCounts hairDrawCounts(uint32_t guides, const StrandSettings& s)
     c.strandsPerGuide = s.strandsPerGuide;
     c.divisions = s.divisions;
     c.lengthChunks = (s.divisions + gpu::kMaxTessLevel - 1) / gpu::kMaxTessLevel;
-    c.strandChunks = (s.strandsPerGuide + gpu::kMaxTessLevel - 1) / gpu::kMaxTessLevel;
+    uint32_t divisionsPerPatch = (s.divisions + c.lengthChunks - 1) / c.lengthChunks;
+    c.strandsPerPatch = std::clamp(gpu::kMaxPatchVertices / (divisionsPerPatch + 1), 1u, gpu::kMaxTessLevel);
+    c.strandChunks = (s.strandsPerGuide + c.strandsPerPatch - 1) / c.strandsPerPatch;
     return c;
 }
 

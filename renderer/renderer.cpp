@@ -91,6 +91,7 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
     push.strandsPerGuide = counts.strandsPerGuide;
     push.divisions = counts.divisions;
     push.lengthChunks = counts.lengthChunks;
+    push.strandsPerPatch = counts.strandsPerPatch;
     push.interpolation = s.interpolation == Interpolation::Single  ? gpu::kInterpolationSingle
                          : s.interpolation == Interpolation::Multi ? gpu::kInterpolationMulti
                                                                    : gpu::kInterpolationMixed;

@@ -1,7 +1,7 @@
 #version 460
 // hair.tesc: sets each patch's isolines: as many lines (strands) as this instance's chunk of the
-// strands per guide holds after level of detail (at most 64), and this length chunk's share of the
-// divisions (at most 64). Patches with no strand left are culled (outer level 0).
+// strands per guide holds after level of detail (push.strandsPerPatch, at most 64), and this length
+// chunk's share of the divisions (at most 64). Patches with no strand left are culled (level 0).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/strands.h"
 
@@ -20,9 +20,9 @@ void main()
 {
     uint guide = inPatch[0] / push.lengthChunks;
     uint chunk = inPatch[0] % push.lengthChunks;
-    uint strandBase = inChunk[0] * kMaxTessLevel;
+    uint strandBase = inChunk[0] * push.strandsPerPatch;
     uint wanted = min(push.strandsPerGuide, uint(ceil(push.lodStrands)));
-    uint lines = wanted > strandBase ? min(kMaxTessLevel, wanted - strandBase) : 0u;
+    uint lines = wanted > strandBase ? min(push.strandsPerPatch, wanted - strandBase) : 0u;
     uint base = push.divisions / push.lengthChunks;
     uint extra = push.divisions % push.lengthChunks;
     uint divisions = base + (chunk < extra ? 1u : 0u);

@@ -45,11 +45,8 @@ void evaluateGuide(uint guide, float t, out vec3 p, out vec3 tangent)
 
 vec3 pushOutOfColliders(vec3 p)
 {
-    for (uint c = 0u; c < sim.colliderCount; ++c) {
-        Contact k = headColliderContact(sim.colliders[c], frame.headTransform, p, 0.0);
-        if (k.depth > 0.0)
-            p += k.depth * k.normal;
-    }
+    for (uint c = 0u; c < sim.colliderCount; ++c)
+        p = pushOutOfCollider(sim.colliders[c], frame.headTransform, p);
     return p;
 }
 

@@ -327,3 +327,38 @@ TEST(Window, ScriptedRunsWithHairAreReproducible)
     EXPECT_EQ(slurp(dir / "a.png"), slurp(dir / "b.png"));
     EXPECT_NE(slurp(dir / "a.png"), slurp(dir / "bald.png"));
 }
+
+TEST(Cli, SettingsListsEveryNameWithRangeAndDefault)
+{
+    auto r = runWisp("settings");
+    ASSERT_EQ(r.status, 0) << r.err;
+    for (const char* name : {"guides", "vertices_per_strand", "strands_per_guide", "divisions", "interpolation", "deviation",
+                             "lod", "width"})
+        EXPECT_NE(r.out.find(std::string("\n") + name + " "), std::string::npos) << name;
+    EXPECT_NE(r.out.find("single | multi | mixed"), std::string::npos);
+}
+
+TEST(Cli, SetChangesWhatIsDrawn)
+{
+    TempDir dir;
+    auto r = runWisp("render --width 64 --height 64 --guides 10 --set strands_per_guide=100 --set divisions=100 --out '" +
+                     (dir / "a.png").string() + "'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("10 guides x 100 strands x 100 divisions = 100000 segments"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("50 instances"), std::string::npos) << r.out;  // past the tessellation limits, not capped
+}
+
+TEST(BadInput, SetNamesTheSettingAndItsRange)
+{
+    TempDir dir;
+    std::string out = " --out '" + (dir / "a.png").string() + "'";
+    expectUserError(runWisp("render --set sparkle=3" + out), "unknown setting 'sparkle'");
+    auto r = runWisp("render --set strands_per_guide=0" + out);
+    expectUserError(r, "strands_per_guide");
+    EXPECT_NE(r.err.find("1 .. 4096"), std::string::npos) << r.err;
+    expectUserError(runWisp("render --set interpolation=bilinear" + out), "single | multi | mixed");
+    expectUserError(runWisp("render --set width=wide" + out), "not a number");
+    expectUserError(runWisp("render --set lod" + out), "NAME=VALUE");
+    expectUserError(runWisp("simulate --set width=0.001 --steps 1"), "does not use it");
+    EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
+}

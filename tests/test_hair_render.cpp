@@ -3,6 +3,7 @@
 // settings imply, across the 64 limits; rendered images: coverage of the scalp region, a
 // horizontal strand visible, determinism, more strands covering more pixels.
 #include "app/headless.h"
+#include "physics/colliders.h"
 #include "physics/gpu_solver.h"
 #include "physics/hair_scene.h"
 #include "renderer/frame.h"
@@ -85,10 +86,16 @@ TEST(StrandMath, DrawCountsSplitPastTheTessellationLimits)
     s.strandsPerGuide = 150;
     s.divisions = 130;
     HairDrawCounts c = hairDrawCounts(10, s);
-    EXPECT_EQ(c.strandChunks, 3u);   // 64 + 64 + 22
-    EXPECT_EQ(c.lengthChunks, 3u);   // 44 + 43 + 43
-    EXPECT_EQ(c.strands(), 1500u);   // nothing capped
+    EXPECT_EQ(c.lengthChunks, 3u);     // 44 + 43 + 43 divisions
+    EXPECT_EQ(c.strandsPerPatch, 2u);  // 2 lines x 45 vertices <= 128
+    EXPECT_EQ(c.strandChunks, 75u);    // 150 strands in instances of 2
+    EXPECT_EQ(c.strands(), 1500u);     // nothing capped
     EXPECT_EQ(c.segments(), 1500u * 130u);
+    s.strandsPerGuide = 100;
+    s.divisions = 1;
+    c = hairDrawCounts(10, s);
+    EXPECT_EQ(c.strandsPerPatch, 64u);  // the tessellation level bounds it first
+    EXPECT_EQ(c.strandChunks, 2u);
 }
 
 // ---- On the device ------------------------------------------------------------------------------
@@ -100,7 +107,8 @@ struct HairFrame {
     HairPass::Statistics stats;
 };
 
-HairFrame renderHairFrame(const vk::Context& ctx, const HairScene& scene, const RenderSettings& settings)
+HairFrame renderHairFrame(const vk::Context& ctx, const HairScene& scene, const RenderSettings& settings,
+                          float cameraDistanceScale = 1.0f)
 {
     Renderer renderer(ctx, settings, 1);
     renderer.setHead(scene.head);
@@ -110,6 +118,7 @@ HairFrame renderHairFrame(const vk::Context& ctx, const HairScene& scene, const 
     Frame frame(ctx, 1);
     ReadbackPass readback(ctx, renderer.target());
     OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(settings.width) / float(settings.height));
+    camera.distance *= cameraDistanceScale;
     std::vector<TrackedImage*> transient = renderer.transientImages();
     FrameContext& fc = frame.begin(transient);
     renderer.prepare(fc, camera, 0.0f);
@@ -255,4 +264,62 @@ TEST(HairRender, AHorizontalStrandKeepsItsWidth)
     EXPECT_GT(columns, s.width / 4);  // it spans the view horizontally
     EXPECT_GE(maxRows, 2u);           // and has width
     EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
+TEST(HairRender, LodDrawsFewerStrandsFarAwayAndAllNearby)
+{
+    vk::Context ctx(test::validatedOptions());
+    if (!ctx.report().pipelineStatisticsQuery)
+        GTEST_SKIP() << "the device has no pipeline statistics queries";
+    HairScene scene = smallScene(20);
+    RenderSettings s;
+    s.width = 96;
+    s.height = 64;
+    s.strands.strandsPerGuide = 40;
+    s.strands.divisions = 4;
+    uint64_t all = 20ull * 40 * 4;
+    EXPECT_EQ(renderHairFrame(ctx, scene, s, 1.0f).stats.geometryInvocations, all);    // at the framing distance
+    EXPECT_EQ(renderHairFrame(ctx, scene, s, 0.5f).stats.geometryInvocations, all);    // nearer: never more
+    uint64_t twice = renderHairFrame(ctx, scene, s, 2.0f).stats.geometryInvocations;  // (1/2)² = 25% of the strands
+    EXPECT_EQ(twice, 20ull * 10 * 4);
+    uint64_t far = renderHairFrame(ctx, scene, s, 10.0f).stats.geometryInvocations;   // floor: lodMinFraction (20%)
+    EXPECT_EQ(far, 20ull * 8 * 4);
+    s.strands.lod = false;
+    EXPECT_EQ(renderHairFrame(ctx, scene, s, 10.0f).stats.geometryInvocations, all);   // off: always all
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
+TEST(StrandMath, MultiStrandPointsNeverInsideACollider)
+{
+    // The hair pass's multi-strand placement, on the CPU: the guide and its two nearest neighbours
+    // (guideTriangles) blended with the strand's barycentric weights along their C1 curves, then
+    // pushed out of every collider in turn, exactly as hair.tese does.
+    GrowthSettings g;
+    g.guides = 400;
+    HairScene scene = buildGrownScene(defaultHeadPath(), g);
+    std::vector<glm::uvec4> tri = guideTriangles(scene.strands);
+    uint32_t V = scene.strands.verticesPerStrand;
+    auto curve = [&](uint32_t guide, float t) {
+        uint32_t seg = gpu::curveSegment(t, V);
+        auto p = [&](uint32_t i) { return scene.strands.rest[size_t(guide) * V + i]; };
+        gpu::Bezier b = gpu::catmullRomBezier(p(seg == 0 ? 0 : seg - 1), p(seg), p(seg + 1), p(std::min(seg + 2, V - 1)));
+        return gpu::bezierPoint(b, gpu::curveLocal(t, V, seg));
+    };
+    float diagonal = scene.head.mesh.bounds().diagonal();
+    float deepest = 0.0f, deepestBefore = 0.0f;
+    for (uint32_t guide = 0; guide < g.guides; ++guide) {
+        EXPECT_NE(tri[guide].y, guide);  // every guide has neighbours
+        for (uint32_t s = 1; s < 16; ++s)
+            for (float t = 0.05f; t <= 1.0f; t += 0.1f) {
+                glm::vec3 w = gpu::triangleWeights(guide, s);
+                glm::vec3 p = w.x * curve(guide, t) + w.y * curve(tri[guide].y, t) + w.z * curve(tri[guide].z, t);
+                deepestBefore = std::max(deepestBefore, penetrationDepth(scene.gpuColliders, p));
+                for (const gpu::Ellipsoid& e : scene.gpuColliders)
+                    p = gpu::pushOutOfCollider(e, glm::mat4(1.0f), p);
+                deepest = std::max(deepest, penetrationDepth(scene.gpuColliders, p));
+            }
+    }
+    std::fprintf(stderr, "deepest before %g, after %g (diagonal %g)\n", double(deepestBefore), double(deepest), double(diagonal));
+    EXPECT_GT(deepestBefore, 0.0f);            // blending does cut into the head: the correction matters
+    EXPECT_LT(deepest, 1e-4f * diagonal);      // and afterwards no point is inside any collider
 }

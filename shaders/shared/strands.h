@@ -15,6 +15,10 @@ GPU_NAMESPACE_BEGIN
 // Tessellation limits of every device here (and Vulkan's guaranteed minimum is 64 too): more
 // strands or divisions than this come from more patches, never from a silently capped level.
 GPU_CONST uint kMaxTessLevel = 64u;
+// A patch emits at most this many vertices (its lines x (divisions + 1)): lavapipe silently drops
+// rasterized output from patches much larger (measured: strands vanished at 32 x 25 = 800 and
+// partly at 224, never at 96), and small patches spread across a GPU better anyway.
+GPU_CONST uint kMaxPatchVertices = 128u;
 
 // Bindings of the hair pass (one push-descriptor set).
 GPU_CONST uint kHairBindingFrame = 0;      // uniform FrameParams
@@ -33,6 +37,7 @@ struct HairPush {
     uint  strandsPerGuide;    // S as asked (instances cover it in chunks of up to 64)
     uint  divisions;          // D segments per strand as asked (patches along the strand cover it)
     uint  lengthChunks;       // patches along each strand: ceil(D / 64)
+    uint  strandsPerPatch;    // lines a patch holds (<= 64, and <= kMaxPatchVertices / (divisions + 1))
     uint  interpolation;      // kInterpolation*
     float clumpRadius;        // single-strand disc radius, asset units
     float deviation;          // strength of random deviations, asset units
@@ -40,6 +45,9 @@ struct HairPush {
     float lodStrands;         // strands per guide drawn after LOD (continuous, <= S)
     float lodWidthScale;      // width multiplier from LOD (keeps coverage as strands thin out)
     float minPixelWidth;      // ribbons narrower than this are widened, alpha scaled by coverage
+    float pad0;
+    float pad1;
+    float pad2;
     vec3  rootColor;          // linear RGB albedo at the root
     float specularShift;      // Scheuermann's primary-lobe shift along the normal (secondary: opposite)
     vec3  tipColor;           // linear RGB albedo at the tip
@@ -127,6 +135,14 @@ GPU_FN vec3 triangleWeights(uint guide, uint s)
     float r1 = sqrt(hashToUnit(h));
     float r2 = hashToUnit(h ^ 0xB5297A4Du);
     return vec3(1.0f - r1, r1 * (1.0f - r2), r1 * r2);
+}
+
+// One collider's part in keeping a generated strand point outside the head: moved radially onto
+// the ellipsoid's surface when inside (the hair pass applies every collider in turn).
+GPU_FN vec3 pushOutOfCollider(Ellipsoid e, mat4 head, vec3 p)
+{
+    Contact k = headColliderContact(e, head, p, 0.0f);
+    return k.depth > 0.0f ? p + k.depth * k.normal : p;
 }
 
 // Whether strand s uses multi-strand interpolation under the chosen mode.
