@@ -7,6 +7,7 @@
 #include "app/settings_registry.h"
 #include "app/simulate.h"
 #include "app/window.h"
+#include "renderer/hair_pass.h"
 #include "core/error.h"
 #include "physics/hair_scene.h"
 #include "physics/head.h"
@@ -331,10 +332,40 @@ struct RenderOptions {
     bool noHair = false;
     uint32_t frames = 0;
     float fps = 30.0f;
+    uint32_t profileFrames = 0;  // > 0: time this many frames (after profileWarmup) instead of writing a picture
+    uint32_t profileWarmup = 60;
 };
+
+int runRenderProfile(const GlobalOptions& g, RenderOptions& o)
+{
+    o.hair.apply();
+    HairScene scene = o.hair.buildScene(headPathOrDefault(o.headFile));
+    vk::Context ctx(contextOptions(g));
+    HairRun run{.scene = &scene, .sim = o.hair.sim, .frames = 0, .framesPerSecond = o.fps, .sphere = o.hair.sphereOrNone()};
+    std::vector<PassTiming> timings = profileFrames(ctx, scene.head, o.settings, run, o.profileWarmup, o.profileFrames);
+    HairDrawCounts c = hairDrawCounts(uint32_t(scene.strands.strandCount()), o.settings.strands);
+    nlohmann::json out = {{"device", ctx.report().name},
+                          {"width", o.settings.width},
+                          {"height", o.settings.height},
+                          {"guides", c.guides},
+                          {"vertices_per_strand", scene.strands.verticesPerStrand},
+                          {"strands_per_guide", c.strandsPerGuide},
+                          {"divisions", c.divisions},
+                          {"strands", c.strands()},
+                          {"segments", c.segments()},
+                          {"samples", o.settings.samples},
+                          {"warmup_frames", o.profileWarmup},
+                          {"timed_frames", o.profileFrames}};
+    for (const PassTiming& t : timings)
+        out["ms"][t.name] = {{"median", t.medianMs}, {"p95", t.p95Ms}};
+    std::cout << out.dump() << "\n";
+    return validationStatus(ctx);
+}
 
 int runRender(const GlobalOptions& g, RenderOptions& o)
 {
+    if (o.profileFrames > 0)
+        return runRenderProfile(g, o);
     checkPngOutput(o.out);  // fail before any GPU work
     o.hair.apply();
     std::filesystem::path headPath = headPathOrDefault(o.headFile);
@@ -370,7 +401,12 @@ int runCli(int argc, char** argv)
 
     RenderOptions ro;
     CLI::App* render = app.add_subcommand("render", "render one frame offscreen into a PNG (the head and its simulated guide strands)");
-    render->add_option("--out", ro.out, "output PNG file (its folder must exist)")->required();
+    CLI::Option* outOption = render->add_option("--out", ro.out, "output PNG file (its folder must exist)");
+    render->add_option("--profile", ro.profileFrames,
+                       "time this many frames (physics and every pass, after --warmup frames) and print per-pass GPU ms as JSON, "
+                       "instead of writing a picture")
+        ->check(CLI::Range(1u, 100000u));
+    render->add_option("--warmup", ro.profileWarmup, "frames before timing with --profile")->check(CLI::Range(0u, 100000u))->capture_default_str();
     render->add_option("--head", ro.headFile, "head: a description (.json) or a mesh (.obj, .fbx, .gltf, .ply, ...); default models/head.json");
     render->add_option("--frames", ro.frames, "simulated frames before the picture (each 1/fps seconds of fixed steps)")
         ->check(CLI::Range(0u, 100000u))
@@ -469,6 +505,8 @@ int runCli(int argc, char** argv)
             return 0;
         }
         if (*render) {
+            if (ro.profileFrames == 0 && !*outOption)
+                throw UserError("render: --out FILE.png is required (or --profile N to time frames)");
             for (const std::string& a : renderSets)
                 applySetting({&ro.hair.growth, &ro.hair.sim, &ro.settings}, a);
             return runRender(g, ro);

@@ -6,7 +6,9 @@
 #include "renderer/frame.h"
 #include "renderer/renderer.h"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <memory>
 
 namespace wisp {
@@ -67,6 +69,56 @@ Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSett
                  " divisions (" + std::to_string(c.strandChunks) + " instances)";
     }
     return {settings.width, settings.height, readback.pixels(), counts};
+}
+
+std::vector<PassTiming> profileFrames(const vk::Context& ctx, const Head& head, const RenderSettings& settings,
+                                      const HairRun& hair, uint32_t warmup, uint32_t frames)
+{
+    Renderer renderer(ctx, settings, 1);
+    renderer.setHead(head);
+    Frame frame(ctx, 1);
+    SimSetup setup = makeSimSetup(hair.sim, hair.scene->strands, hair.scene->gpuColliders, hair.scene->unitsPerMetre);
+    GpuSolver solver(ctx, hair.scene->strands, setup, glm::mat4(1.0f));
+    renderer.attachHair(solver, hair.scene->strands, hair.scene->unitsPerMetre);
+    uint32_t stepsPerFrame = std::max(1u, uint32_t(std::lround(hair.sim.stepHz / hair.framesPerSecond)));
+    float stepSeconds = 1.0f / hair.sim.stepHz;
+    OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(settings.width) / float(settings.height));
+    std::map<std::string, std::vector<double>> samples;
+    std::vector<std::string> order;
+    std::vector<double> totals;
+    uint64_t step = 0;
+    for (uint32_t n = 0; n < warmup + frames; ++n) {
+        std::vector<gpu::SimStep> steps;
+        for (uint32_t k = 0; k < stepsPerFrame; ++k, ++step)
+            steps.push_back(makeStep(setup, glm::mat4(1.0f), hair.sphere, float(step) * stepSeconds));
+        renderer.setSteps(std::move(steps));
+        std::vector<TrackedImage*> transient = renderer.transientImages();
+        FrameContext& fc = frame.begin(transient);
+        renderer.prepare(fc, camera, float(step) * stepSeconds);
+        std::vector<Pass*> passes = renderer.passes();
+        frame.run(fc, passes);
+        frame.submit(fc);
+        frame.waitIdle();
+        if (n < warmup)
+            continue;
+        double total = 0.0;
+        for (const vk::ScopeTime& t : frame.timings()) {
+            if (!samples.count(t.name))
+                order.push_back(t.name);
+            samples[t.name].push_back(t.milliseconds);
+            total += t.milliseconds;
+        }
+        totals.push_back(total);
+    }
+    auto stats = [](const std::string& name, std::vector<double> v) {
+        std::sort(v.begin(), v.end());
+        return PassTiming{name, v[v.size() / 2], v[std::min(v.size() - 1, v.size() * 95 / 100)]};
+    };
+    std::vector<PassTiming> out;
+    for (const std::string& name : order)
+        out.push_back(stats(name, samples[name]));
+    out.push_back(stats("frame", totals));
+    return out;
 }
 
 }  // namespace wisp

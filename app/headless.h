@@ -35,4 +35,15 @@ struct HairRun {
 Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSettings& settings,
                       const HairRun* hair = nullptr);
 
+// Per-pass GPU time of whole frames (physics stepping one frame's worth each frame, as the window
+// does): `warmup` frames, then `frames` timed; medians and p95 in milliseconds, per pass and for
+// the frame (the passes' sum).
+struct PassTiming {
+    std::string name;
+    double medianMs = 0.0;
+    double p95Ms = 0.0;
+};
+std::vector<PassTiming> profileFrames(const vk::Context& ctx, const Head& head, const RenderSettings& settings,
+                                      const HairRun& hair, uint32_t warmup, uint32_t frames);
+
 }  // namespace wisp
