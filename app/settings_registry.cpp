@@ -138,6 +138,13 @@ std::vector<SettingSpec> buildSpecs()
              WISP_NEED(r, render, "show_guides");
              r.render->strands.showGuides = onOff("show_guides", v);
          }});
+    add({"max_patch_vertices", "", "2 .. 4160", "vertices one tessellation patch may emit (lavapipe needs <= ~128)",
+         [](const SettingsRefs& r) { return r.render ? text(r.render->strands.maxPatchVertices) : "-"; },
+         [](const SettingsRefs& r, const std::string& v) {
+             WISP_NEED(r, render, "max_patch_vertices");
+             r.render->strands.maxPatchVertices =
+                 integer("max_patch_vertices", v, kPatchVerticesRange.min, kPatchVerticesRange.max);
+         }});
     add({"step_hz", "1/s", "30 .. 1000", "fixed simulation steps per simulated second",
          [](const SettingsRefs& r) { return r.sim ? text(r.sim->stepHz) : "-"; },
          [](const SettingsRefs& r, const std::string& v) {

@@ -32,7 +32,7 @@ HairDrawCounts hairDrawCounts(uint32_t guides, const StrandSettings& s)
     c.divisions = s.divisions;
     c.lengthChunks = (s.divisions + gpu::kMaxTessLevel - 1) / gpu::kMaxTessLevel;
     uint32_t divisionsPerPatch = (s.divisions + c.lengthChunks - 1) / c.lengthChunks;
-    c.strandsPerPatch = std::clamp(gpu::kMaxPatchVertices / (divisionsPerPatch + 1), 1u, gpu::kMaxTessLevel);
+    c.strandsPerPatch = std::clamp(s.maxPatchVertices / (divisionsPerPatch + 1), 1u, gpu::kMaxTessLevel);
     c.strandChunks = (s.strandsPerGuide + c.strandsPerPatch - 1) / c.strandsPerPatch;
     return c;
 }

@@ -26,7 +26,7 @@ struct HairDrawCounts {
     uint32_t strandsPerGuide = 0;   // as drawn (before LOD)
     uint32_t divisions = 0;         // segments per strand
     uint32_t lengthChunks = 0;      // patches along a strand: ceil(divisions / 64)
-    uint32_t strandsPerPatch = 0;   // lines a patch holds: <= 64 and <= kMaxPatchVertices / (divisions + 1)
+    uint32_t strandsPerPatch = 0;   // lines a patch holds: <= 64 and <= maxPatchVertices / (divisions + 1)
     uint32_t strandChunks = 0;      // instances: ceil(strands per guide / strandsPerPatch)
     uint64_t strands() const { return uint64_t(guides) * strandsPerGuide; }
     uint64_t segments() const { return strands() * divisions; }

@@ -35,6 +35,7 @@ inline constexpr Range kDivisionsRange{1, 1024};
 inline constexpr Range kStrandWidthRange{0.00001, 0.01};   // metres
 inline constexpr Range kClumpRadiusRange{0.0, 0.1};        // metres
 inline constexpr Range kDeviationRange{0.0, 0.1};          // metres
+inline constexpr Range kPatchVerticesRange{2, 4160};        // 64 lines x 65 vertices at most
 
 // How the simulated guides become drawn strands (renderer/hair_pass.cpp, shaders/hair.*).
 struct StrandSettings {
@@ -51,6 +52,7 @@ struct StrandSettings {
     glm::vec3 tipColor{0.2f, 0.09f, 0.035f};       // lighter toward the tip
     float specularShift = 0.12f;                   // Scheuermann lobe shift
     bool showGuides = false;                       // also draw the guides as lines
+    uint32_t maxPatchVertices = 128;               // vertices one patch may emit (see shaders/shared/strands.h)
 };
 
 struct RenderSettings {

@@ -15,9 +15,9 @@ GPU_NAMESPACE_BEGIN
 // Tessellation limits of every device here (and Vulkan's guaranteed minimum is 64 too): more
 // strands or divisions than this come from more patches, never from a silently capped level.
 GPU_CONST uint kMaxTessLevel = 64u;
-// A patch emits at most this many vertices (its lines x (divisions + 1)): lavapipe silently drops
-// rasterized output from patches much larger (measured: strands vanished at 32 x 25 = 800 and
-// partly at 224, never at 96), and small patches spread across a GPU better anyway.
+// By default a patch emits at most this many vertices (its lines x (divisions + 1); the setting
+// max_patch_vertices changes it): lavapipe silently drops rasterized output from patches much
+// larger (measured: strands vanished at 32 x 25 = 800 and partly at 224, never at 96).
 GPU_CONST uint kMaxPatchVertices = 128u;
 
 // Bindings of the hair pass (one push-descriptor set).
@@ -37,7 +37,7 @@ struct HairPush {
     uint  strandsPerGuide;    // S as asked (instances cover it in chunks of up to 64)
     uint  divisions;          // D segments per strand as asked (patches along the strand cover it)
     uint  lengthChunks;       // patches along each strand: ceil(D / 64)
-    uint  strandsPerPatch;    // lines a patch holds (<= 64, and <= kMaxPatchVertices / (divisions + 1))
+    uint  strandsPerPatch;    // lines a patch holds (<= 64, and <= max patch vertices / (divisions + 1))
     uint  interpolation;      // kInterpolation*
     float clumpRadius;        // single-strand disc radius, asset units
     float deviation;          // strength of random deviations, asset units
