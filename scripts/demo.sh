@@ -11,5 +11,5 @@ if [ -n "${DISPLAY:-}" ] || [ -n "${WAYLAND_DISPLAY:-}" ]; then
 fi
 echo "demo: no display (DISPLAY is unset), so no window: rendering offscreen instead"
 mkdir -p "$root/out"
-"$wisp" render --out "$root/out/demo.png" --width 1280 --height 720 "$@" >/dev/null
+"$wisp" render --out "$root/out/demo.png" --width 1280 --height 720 --frames 60 "$@" >/dev/null
 echo "demo: wrote $root/out/demo.png"
