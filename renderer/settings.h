@@ -3,6 +3,8 @@
 // into the GPU's FrameParams.
 #pragma once
 
+#include "shaders/shared/strands.h"
+
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -52,7 +54,7 @@ struct StrandSettings {
     glm::vec3 tipColor{0.2f, 0.09f, 0.035f};       // lighter toward the tip
     float specularShift = 0.12f;                   // Scheuermann lobe shift
     bool showGuides = false;                       // also draw the guides as lines
-    uint32_t maxPatchVertices = 128;               // vertices one patch may emit (see shaders/shared/strands.h)
+    uint32_t maxPatchVertices = gpu::kMaxPatchVertices;  // vertices one patch may emit (shaders/shared/strands.h)
 };
 
 struct RenderSettings {

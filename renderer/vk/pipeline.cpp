@@ -132,8 +132,7 @@ Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& 
                                                   .frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE,
                                                   .lineWidth = 1.0f};
     VkPipelineMultisampleStateCreateInfo multisample{.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO,
-                                                     .rasterizationSamples = desc.samples,
-                                                     .alphaToCoverageEnable = desc.alphaToCoverage};
+                                                     .rasterizationSamples = desc.samples};
     VkPipelineDepthStencilStateCreateInfo depth{.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO,
                                                 .depthTestEnable = desc.depthTest,
                                                 .depthWriteEnable = desc.depthWrite,

@@ -57,7 +57,6 @@ struct GraphicsPipelineDesc {
     VkFormat colorFormat = VK_FORMAT_UNDEFINED;
     VkFormat depthFormat = VK_FORMAT_UNDEFINED;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
-    bool alphaToCoverage = false;  // MSAA: the fragment's alpha picks how many samples it covers
     const char* name = "unnamed pipeline";
 };
 Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& desc);
