@@ -13,12 +13,26 @@
 
 namespace wisp {
 
+Picture renderFrame(const vk::Context& ctx, Renderer& renderer, Frame& frame, const OrbitCamera& camera)
+{
+    ReadbackPass readback(ctx, renderer.target());
+    std::vector<TrackedImage*> transient = renderer.transientImages();
+    FrameContext& fc = frame.begin(transient);
+    renderer.prepare(fc, camera, 0.0f);
+    std::vector<Pass*> passes = renderer.passes();
+    passes.push_back(&readback);
+    frame.run(fc, passes);
+    frame.submit(fc);
+    frame.waitIdle();
+    VkExtent2D e = renderer.target().extent();
+    return {e.width, e.height, readback.pixels(), ""};
+}
+
 Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSettings& settings, const HairRun* hair)
 {
     Renderer renderer(ctx, settings, 1);
     renderer.setHead(head);
     Frame frame(ctx, 1);
-    ReadbackPass readback(ctx, renderer.target());
 
     std::unique_ptr<GpuSolver> solver;
     SimSetup setup;
@@ -51,24 +65,16 @@ Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSett
     float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
     OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), aspect);
 
-    std::vector<TrackedImage*> transient = renderer.transientImages();
-    FrameContext& fc = frame.begin(transient);
-    renderer.prepare(fc, camera, 0.0f);
-    std::vector<Pass*> passes = renderer.passes();
-    passes.push_back(&readback);
-    frame.run(fc, passes);
-    frame.submit(fc);
-    frame.waitIdle();
-    std::string counts;
+    Picture picture = renderFrame(ctx, renderer, frame, camera);
     if (hair) {
         HairDrawCounts c = renderer.hairCounts();
-        counts = "hair: " + std::to_string(c.guides) + " guides x " + std::to_string(c.strandsPerGuide) + " strands x " +
+        picture.hairCounts = "hair: " + std::to_string(c.guides) + " guides x " + std::to_string(c.strandsPerGuide) + " strands x " +
                  std::to_string(c.divisions) + " divisions = " + std::to_string(c.segments()) + " segments, drawn as " +
                  std::to_string(uint64_t(c.guides) * c.lengthChunks * c.strandChunks) + " patches of up to " +
                  std::to_string(c.strandsPerPatch) + " strands x " + std::to_string((c.divisions + c.lengthChunks - 1) / c.lengthChunks) +
                  " divisions (" + std::to_string(c.strandChunks) + " instances)";
     }
-    return {settings.width, settings.height, readback.pixels(), counts};
+    return picture;
 }
 
 std::vector<PassTiming> profileFrames(const vk::Context& ctx, const Head& head, const RenderSettings& settings,

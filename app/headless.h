@@ -14,6 +14,9 @@
 
 namespace wisp {
 
+class Renderer;
+class Frame;
+
 struct Picture {
     uint32_t width = 0;
     uint32_t height = 0;
@@ -29,6 +32,9 @@ struct HairRun {
     float framesPerSecond = 30.0f;     // simulated time per frame = 1 / fps
     glm::vec4 sphere{0.0f};            // the user's sphere (xyz, radius; 0 = none)
 };
+
+// One full frame of `renderer` (all its passes) seen by `camera`, read back.
+Picture renderFrame(const vk::Context& ctx, Renderer& renderer, Frame& frame, const OrbitCamera& camera);
 
 // Renders one frame of `head` (with `hair` when given) as the default camera frames it.
 // Deterministic for a device.

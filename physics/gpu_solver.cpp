@@ -183,22 +183,11 @@ std::vector<uint8_t> GpuSolver::download(const vk::Buffer& buffer) const
                                        .name = "sim.readback"});
     const vk::Buffer& host = readback_;
     ctx_.submitAndWait([&](VkCommandBuffer cmd) {
-        VkMemoryBarrier2 before{.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
-                                .srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                                .srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT,
-                                .dstStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                                .dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT};
-        VkDependencyInfo dep{.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1, .pMemoryBarriers = &before};
-        vkCmdPipelineBarrier2(cmd, &dep);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
         VkBufferCopy region{.size = buffer.size()};
         vkCmdCopyBuffer(cmd, buffer, host.get(), 1, &region);
-        VkMemoryBarrier2 after{.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
-                               .srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                               .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                               .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT,
-                               .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT};
-        dep.pMemoryBarriers = &after;
-        vkCmdPipelineBarrier2(cmd, &dep);
+        vk::transferToHostBarrier(cmd);
     });
     std::vector<uint8_t> bytes(size_t(buffer.size()));
     std::memcpy(bytes.data(), host.mapped(), bytes.size());

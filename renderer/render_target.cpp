@@ -2,6 +2,7 @@
 #include "renderer/render_target.h"
 
 #include "renderer/vk/context.h"
+#include "renderer/vk/pipeline.h"
 
 #include <cstring>
 
@@ -128,14 +129,7 @@ void ReadbackPass::record(VkCommandBuffer cmd, FrameContext&)
                              .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
                              .imageExtent = {e.width, e.height, 1}};
     vkCmdCopyImageToBuffer(cmd, target_.resultImage().get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer_, 1, &region);
-    // Make the copy visible to the host once the fence signals.
-    VkMemoryBarrier2 toHost{.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
-                            .srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                            .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                            .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT,
-                            .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT};
-    VkDependencyInfo dep{.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1, .pMemoryBarriers = &toHost};
-    vkCmdPipelineBarrier2(cmd, &dep);
+    vk::transferToHostBarrier(cmd);  // the host reads it once the fence signals
 }
 
 std::vector<uint8_t> ReadbackPass::pixels() const

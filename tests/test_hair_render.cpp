@@ -116,18 +116,10 @@ HairFrame renderHairFrame(const vk::Context& ctx, const HairScene& scene, const 
     GpuSolver solver(ctx, scene.strands, setup, glm::mat4(1.0f));
     renderer.attachHair(solver, scene.strands, scene.unitsPerMetre);
     Frame frame(ctx, 1);
-    ReadbackPass readback(ctx, renderer.target());
     OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(settings.width) / float(settings.height));
     camera.distance *= cameraDistanceScale;
-    std::vector<TrackedImage*> transient = renderer.transientImages();
-    FrameContext& fc = frame.begin(transient);
-    renderer.prepare(fc, camera, 0.0f);
-    std::vector<Pass*> passes = renderer.passes();
-    passes.push_back(&readback);
-    frame.run(fc, passes);
-    frame.submit(fc);
-    frame.waitIdle();
-    return {{settings.width, settings.height, readback.pixels()}, renderer.hair()->statistics()};
+    Picture picture = renderFrame(ctx, renderer, frame, camera);
+    return {picture, renderer.hair()->statistics()};
 }
 
 HairScene smallScene(uint32_t guides)

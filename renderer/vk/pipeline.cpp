@@ -199,15 +199,28 @@ Pipeline createComputePipeline(const Context& ctx, VkPipelineLayout layout, cons
     return Pipeline(ctx.device(), pipeline);
 }
 
-void computeToComputeBarrier(VkCommandBuffer cmd)
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess)
 {
     VkMemoryBarrier2 barrier{.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
-                             .srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                             .srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                             .dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                             .dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
+                             .srcStageMask = srcStage,
+                             .srcAccessMask = srcAccess,
+                             .dstStageMask = dstStage,
+                             .dstAccessMask = dstAccess};
     VkDependencyInfo dep{.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1, .pMemoryBarriers = &barrier};
     vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+void computeToComputeBarrier(VkCommandBuffer cmd)
+{
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+}
+
+void transferToHostBarrier(VkCommandBuffer cmd)
+{
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                  VK_ACCESS_2_HOST_READ_BIT);
 }
 
 uint32_t groupCount(uint32_t items, uint32_t groupSize)

@@ -64,8 +64,13 @@ Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& 
 Pipeline createComputePipeline(const Context& ctx, VkPipelineLayout layout, const std::string& shader, const char* name,
                                std::optional<bool> boolConstant0 = std::nullopt);
 
+// A global memory dependency (no image layouts, no particular buffer).
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 // A compute -> compute dependency on all shader storage (between dispatches of one pass).
 void computeToComputeBarrier(VkCommandBuffer cmd);
+// Copies (transfer writes) made visible to the host once the submission's fence signals.
+void transferToHostBarrier(VkCommandBuffer cmd);
 uint32_t groupCount(uint32_t items, uint32_t groupSize);  // ceil(items / groupSize)
 
 }  // namespace wisp::vk
