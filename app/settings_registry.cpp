@@ -132,6 +132,12 @@ std::vector<SettingSpec> buildSpecs()
              WISP_NEED(r, render, "lod");
              r.render->strands.lod = onOff("lod", v);
          }});
+    add({"lod_min", "", "0.01 .. 1", "the smallest share of strands LOD keeps, however far the camera",
+         [](const SettingsRefs& r) { return r.render ? text(r.render->strands.lodMinFraction) : "-"; },
+         [](const SettingsRefs& r, const std::string& v) {
+             WISP_NEED(r, render, "lod_min");
+             r.render->strands.lodMinFraction = float(number("lod_min", v, 0.01, 1.0, ""));
+         }});
     add({"show_guides", "", "on | off", "also draw the simulated guides as lines",
          [](const SettingsRefs& r) { return r.render ? std::string(r.render->strands.showGuides ? "on" : "off") : "-"; },
          [](const SettingsRefs& r, const std::string& v) {

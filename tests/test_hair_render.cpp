@@ -276,6 +276,8 @@ TEST(HairRender, LodDrawsFewerStrandsFarAwayAndAllNearby)
     EXPECT_EQ(twice, 20ull * 10 * 4);
     uint64_t far = renderHairFrame(ctx, scene, s, 10.0f).stats.geometryInvocations;   // floor: lodMinFraction (20%)
     EXPECT_EQ(far, 20ull * 8 * 4);
+    s.strands.lodMinFraction = 0.5f;
+    EXPECT_EQ(renderHairFrame(ctx, scene, s, 10.0f).stats.geometryInvocations, 20ull * 20 * 4);  // a higher floor
     s.strands.lod = false;
     EXPECT_EQ(renderHairFrame(ctx, scene, s, 10.0f).stats.geometryInvocations, all);   // off: always all
     EXPECT_EQ(ctx.validationMessages(), 0u);
