@@ -4,6 +4,7 @@
 
 #include "app/headless.h"
 #include "app/image_io.h"
+#include "app/record.h"
 #include "app/settings_registry.h"
 #include "app/simulate.h"
 #include "app/window.h"
@@ -453,6 +454,27 @@ int runCli(int argc, char** argv)
     std::vector<std::string> simulateSets;
     simulate->add_option("--set", simulateSets, "NAME=VALUE for any setting in 'wisp settings' (repeatable)");
 
+    RecordOptions rec;
+    HairOptions recHair;
+    std::string recHead, recOut, recVideo;
+    bool recNoHair = false;
+    CLI::App* record = app.add_subcommand(
+        "record", "render a run frame by frame into a folder of PNGs (+ a video through ffmpeg, + a contact sheet); reproducible");
+    record->add_option("--out", recOut, "output folder for frame_00000.png ... and contact_sheet.png (created; its parent must exist)")
+        ->required();
+    record->add_option("--video", recVideo, "also encode the frames into this video file (H.264 through ffmpeg)");
+    record->add_option("--frames", rec.frames, "frames to record")->check(CLI::Range(1u, 1000000u))->capture_default_str();
+    record->add_option("--fps", rec.fps, "frames per simulated second (each frame is round(step_hz / fps) fixed steps)")
+        ->check(CLI::Range(1.0f, 1000.0f))
+        ->capture_default_str();
+    record->add_option("--head", recHead, "head description (.json) or mesh file; default models/head.json");
+    record->add_flag("--no-hair", recNoHair, "record the head alone");
+    addImageSize(record, rec.settings);
+    addLookOptions(record, rec.settings);
+    addHairOptions(record, recHair);
+    std::vector<std::string> recordSets;
+    record->add_option("--set", recordSets, "NAME=VALUE for any setting in 'wisp settings' (repeatable)");
+
     CLI::App* settingsCmd = app.add_subcommand("settings", "list every setting --set takes: names, units, ranges and defaults");
 
     bool infoJson = false;
@@ -500,6 +522,23 @@ int runCli(int argc, char** argv)
     }
 
     try {
+        if (*record) {
+            for (const std::string& a : recordSets)
+                applySetting({&recHair.growth, &recHair.sim, &rec.settings}, a);
+            recHair.apply();
+            rec.outDir = recOut;
+            rec.video = recVideo;
+            rec.sim = recHair.sim;
+            rec.sphere = recHair.sphereOrNone();
+            checkRecordOutputs(rec);  // before any loading
+            HairScene scene;
+            if (recNoHair)
+                scene.head = loadHead(headPathOrDefault(recHead));
+            else
+                scene = recHair.buildScene(headPathOrDefault(recHead));
+            vk::Context ctx(contextOptions(g));
+            return runRecord(ctx, scene, rec);
+        }
         if (*settingsCmd) {
             std::cout << settingsTable();
             return 0;

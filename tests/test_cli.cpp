@@ -362,3 +362,42 @@ TEST(BadInput, SetNamesTheSettingAndItsRange)
     expectUserError(runWisp("simulate --set width=0.001 --steps 1"), "does not use it");
     EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
 }
+
+TEST(Record, SameCommandGivesTheSameFramesAndAVideo)
+{
+    TempDir dir;
+    std::string common = "record --frames 4 --width 96 --height 64 --guides 60 --set strands_per_guide=4 --wind 4,0,0 --out ";
+    bool ffmpeg = std::system("command -v ffmpeg >/dev/null 2>&1") == 0;
+    auto first = runWisp("--validation " + common + "'" + (dir / "a").string() + "'" +
+                         (ffmpeg ? " --video '" + (dir / "a.mp4").string() + "'" : std::string()));
+    ASSERT_EQ(first.status, 0) << first.err;
+    auto second = runWisp(common + "'" + (dir / "b").string() + "'");
+    ASSERT_EQ(second.status, 0) << second.err;
+    auto slurp = [](const std::filesystem::path& p) {
+        std::ifstream in(p, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    };
+    for (const char* name : {"frame_00000.png", "frame_00003.png", "contact_sheet.png"}) {
+        ASSERT_TRUE(std::filesystem::exists(dir / "a" / name)) << name;
+        EXPECT_EQ(slurp(dir / "a" / name), slurp(dir / "b" / name)) << name;
+    }
+    EXPECT_NE(slurp(dir / "a" / "frame_00000.png"), slurp(dir / "a" / "frame_00003.png"));  // the hair moved
+    EXPECT_FALSE(std::filesystem::exists(dir / "a" / "frame_00004.png"));
+    if (!ffmpeg)
+        GTEST_SKIP() << "ffmpeg is not installed (Debian package ffmpeg): the video was not tested";
+    std::string video = slurp(dir / "a.mp4");
+    ASSERT_GT(video.size(), 100u);
+    EXPECT_EQ(video.substr(4, 4), "ftyp");  // an MP4 file
+}
+
+TEST(BadInput, RecordOutputsAreCheckedFirst)
+{
+    TempDir dir;
+    writeFile(dir / "file", "not a folder");
+    expectUserError(runWisp("record --frames 1 --out '" + (dir / "file").string() + "'"), "not a folder");
+    expectUserError(runWisp("record --frames 1 --out /nonexistent/deep/frames"), "/nonexistent/deep");
+    expectUserError(runWisp("record --frames 1 --out '" + (dir / "f").string() + "' --video /nonexistent/v.mp4"),
+                    "/nonexistent");
+    EXPECT_FALSE(std::filesystem::exists(dir / "f"));  // nothing created
+    expectUserError(runWisp("record --frames 0 --out '" + (dir / "g").string() + "'"), "--frames");
+}

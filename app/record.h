@@ -1,0 +1,31 @@
+// app/record.h: `wisp record`: a run rendered frame by frame offscreen into a folder of PNGs, with
+// a video through an ffmpeg subprocess and a contact sheet. Fixed steps only (exactly
+// round(step_hz / fps) per frame) and the fixed-point hair grid: the same command gives the same
+// frames, byte for byte, on the same device.
+#pragma once
+
+#include "physics/hair_scene.h"
+#include "physics/simulation.h"
+#include "renderer/settings.h"
+#include "renderer/vk/context.h"
+
+#include <filesystem>
+#include <string>
+
+namespace wisp {
+
+struct RecordOptions {
+    std::filesystem::path outDir;    // frame_00000.png ... and contact_sheet.png
+    std::filesystem::path video;     // empty: no video
+    uint32_t frames = 120;
+    float fps = 30.0f;
+    RenderSettings settings;
+    SimSettings sim;
+    glm::vec4 sphere{0.0f};
+};
+
+// Fails (UserError) before any work when the folder or the video cannot be written.
+void checkRecordOutputs(const RecordOptions& options);
+int runRecord(const vk::Context& ctx, const HairScene& scene, const RecordOptions& options);
+
+}  // namespace wisp
