@@ -4,8 +4,10 @@
 
 #include "app/headless.h"
 #include "app/image_io.h"
+#include "app/hair_options.h"
 #include "app/record.h"
 #include "app/settings_registry.h"
+#include "app/sweep.h"
 #include "app/simulate.h"
 #include "app/window.h"
 #include "renderer/hair_pass.h"
@@ -78,120 +80,6 @@ void addLookOptions(CLI::App* cmd, RenderSettings& s)
         ->check(CLI::Range(static_cast<float>(kLightIntensityRange.min), static_cast<float>(kLightIntensityRange.max)))
         ->capture_default_str();
 }
-
-// Hair options shared by render and simulate.
-struct HairOptions {
-    GrowthSettings growth;
-    SimSettings sim;
-    std::vector<float> sphere;  // x, y, z, r
-    std::vector<float> wind;    // x, y, z
-    std::vector<std::string> hairFiles;
-    float hairScale = 0.0f;          // 0: automatic placement
-    std::vector<float> hairOffset;   // x, y, z
-    std::optional<float> globalStiffness, localStiffness, damping, drag;
-    std::optional<bool> zUp, mirrorZ;            // placement overrides for loaded hair
-    std::vector<std::string> partOverrides;      // "PART:key=value,key=value" (PART: index or name)
-
-    // The head with grown guides, or with the hair files as parts.
-    HairScene buildScene(const std::filesystem::path& headPath) const
-    {
-        if (hairFiles.empty()) {
-            HairScene scene = buildGrownScene(headPath, growth);
-            overrideParts(scene.strands);
-            return scene;
-        }
-        std::vector<HairPartSource> parts;
-        for (const std::string& file : hairFiles) {
-            HairPartSource part{.file = file, .placement = std::nullopt, .settings = styledPartDefaults()};
-            part.settings.name = std::filesystem::path(file).stem().string();
-            if (hairScale > 0.0f || !hairOffset.empty() || zUp || mirrorZ) {
-                HairAsset probe = loadHairAsset(file);
-                HairPlacement placement = autoPlacement(probe, loadHead(headPath).mesh.bounds());
-                if (hairScale > 0.0f)
-                    placement.scale = hairScale;
-                if (!hairOffset.empty())
-                    placement.offset = glm::vec3(hairOffset[0], hairOffset[1], hairOffset[2]);
-                placement.zUpToYUp = zUp.value_or(placement.zUpToYUp);
-                placement.mirrorZ = mirrorZ.value_or(placement.mirrorZ);
-                part.placement = placement;
-            }
-            parts.push_back(part);
-        }
-        HairScene scene = buildLoadedScene(headPath, parts, growth.verticesPerStrand);
-        overrideParts(scene.strands);
-        return scene;
-    }
-    void overrideParts(StrandSet& strands) const
-    {
-        for (PartSettings& p : strands.parts) {
-            p.globalStiffness = globalStiffness.value_or(p.globalStiffness);
-            p.localStiffness = localStiffness.value_or(p.localStiffness);
-            p.ftlDamping = damping.value_or(p.ftlDamping);
-            p.drag = drag.value_or(p.drag);
-        }
-        for (const std::string& spec : partOverrides)
-            applyPartOverride(strands.parts, spec);
-    }
-    // "PART:key=value,...", PART a part's index or name; keys global, local, damping, drag.
-    static void applyPartOverride(std::vector<PartSettings>& parts, const std::string& spec)
-    {
-        auto bad = [&](const std::string& why) { throw UserError("--part " + spec + ": " + why); };
-        size_t colon = spec.find(':');
-        if (colon == std::string::npos)
-            bad("expected PART:key=value[,key=value...] (PART: a part's index or name)");
-        std::string which = spec.substr(0, colon);
-        PartSettings* part = nullptr;
-        std::string names;
-        for (size_t i = 0; i < parts.size(); ++i) {
-            names += (i ? ", " : "") + std::to_string(i) + " " + parts[i].name;
-            if (which == std::to_string(i) || which == parts[i].name)
-                part = &parts[i];
-        }
-        if (!part)
-            bad("no part '" + which + "' (parts: " + names + ")");
-        std::stringstream list(spec.substr(colon + 1));
-        for (std::string item; std::getline(list, item, ',');) {
-            size_t eq = item.find('=');
-            if (eq == std::string::npos)
-                bad("'" + item + "' is not key=value");
-            std::string key = item.substr(0, eq);
-            float value = 0.0f;
-            try {
-                size_t used = 0;
-                value = std::stof(item.substr(eq + 1), &used);
-                if (used != item.size() - eq - 1)
-                    throw std::invalid_argument(item);
-            } catch (const std::exception&) {
-                bad("'" + item.substr(eq + 1) + "' is not a number");
-            }
-            float limit = key == "drag" ? 100.0f : 1.0f;
-            if (!(value >= 0.0f && value <= limit))
-                bad(key + " must be in [0, " + (key == "drag" ? std::string("100") : std::string("1")) + "]");
-            if (key == "global")
-                part->globalStiffness = value;
-            else if (key == "local")
-                part->localStiffness = value;
-            else if (key == "damping")
-                part->ftlDamping = value;
-            else if (key == "drag")
-                part->drag = value;
-            else
-                bad("unknown key '" + key + "' (global, local, damping, drag)");
-        }
-    }
-
-    glm::vec4 sphereOrNone() const
-    {
-        return sphere.empty() ? glm::vec4(0.0f) : glm::vec4(sphere[0], sphere[1], sphere[2], sphere[3]);
-    }
-    void apply()  // values CLI11 cannot check on its own
-    {
-        if (!sphere.empty() && !(sphere[3] > 0.0f))
-            throw UserError("--sphere: the radius (4th value) must be > 0, got " + std::to_string(sphere[3]));
-        if (!wind.empty())
-            sim.wind = glm::vec3(wind[0], wind[1], wind[2]);
-    }
-};
 
 void addHairOptions(CLI::App* cmd, HairOptions& h)
 {
@@ -475,6 +363,24 @@ int runCli(int argc, char** argv)
     std::vector<std::string> recordSets;
     record->add_option("--set", recordSets, "NAME=VALUE for any setting in 'wisp settings' (repeatable)");
 
+    SweepOptions sweepOptions;
+    HairOptions sweepHair;
+    RenderSettings sweepRender;
+    std::string sweepOut, sweepHead;
+    std::vector<std::string> sweepVaries, sweepSets;
+    CLI::App* sweep = app.add_subcommand(
+        "sweep", "per-pass GPU timings over a grid of settings: results.csv, fps.png and passes.png (python3-matplotlib)");
+    sweep->add_option("--out", sweepOut, "output folder (created)")->required();
+    sweep->add_option("--vary", sweepVaries, "NAME=V1,V2,... for a setting from 'wisp settings'; several make a grid")->required();
+    sweep->add_option("--warmup", sweepOptions.warmup, "frames before timing each point")->check(CLI::Range(0u, 100000u))->capture_default_str();
+    sweep->add_option("--frames", sweepOptions.frames, "frames timed at each point (median and p95)")
+        ->check(CLI::Range(1u, 100000u))
+        ->capture_default_str();
+    sweep->add_option("--head", sweepHead, "head description (.json) or mesh file; default models/head.json");
+    addImageSize(sweep, sweepRender);
+    addHairOptions(sweep, sweepHair);
+    sweep->add_option("--set", sweepSets, "NAME=VALUE every point starts from (repeatable)");
+
     CLI::App* settingsCmd = app.add_subcommand("settings", "list every setting --set takes: names, units, ranges and defaults");
 
     bool infoJson = false;
@@ -538,6 +444,19 @@ int runCli(int argc, char** argv)
                 scene = recHair.buildScene(headPathOrDefault(recHead));
             vk::Context ctx(contextOptions(g));
             return runRecord(ctx, scene, rec);
+        }
+        if (*sweep) {
+            for (const std::string& a : sweepSets)
+                applySetting({&sweepHair.growth, &sweepHair.sim, &sweepRender}, a);
+            sweepHair.apply();
+            HairOptions probeHair = sweepHair;
+            RenderSettings probeRender = sweepRender;
+            for (const std::string& v : sweepVaries)
+                sweepOptions.axes.push_back(parseSweepAxis(v, {&probeHair.growth, &probeHair.sim, &probeRender}));
+            sweepOptions.outDir = sweepOut;
+            sweepOptions.headFile = headPathOrDefault(sweepHead).string();
+            vk::Context ctx(contextOptions(g));
+            return runSweep(ctx, sweepOptions, sweepHair, sweepRender);
         }
         if (*settingsCmd) {
             std::cout << settingsTable();

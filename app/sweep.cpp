@@ -1,0 +1,125 @@
+// app/sweep.cpp: the grid of settings, one profiled run per point (app/headless.cpp's
+// profileFrames), results.csv, and the charts (scripts/plot_sweep.py through python3).
+#include "app/sweep.h"
+
+#include "app/headless.h"
+#include "core/error.h"
+#include "renderer/hair_pass.h"
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#ifndef WISP_SOURCE_DIR
+#error "WISP_SOURCE_DIR must name the source tree (for scripts/plot_sweep.py)"
+#endif
+
+namespace wisp {
+
+SweepAxis parseSweepAxis(const std::string& spec, const SettingsRefs& probe)
+{
+    size_t eq = spec.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == spec.size())
+        throw UserError("--vary " + spec + ": expected NAME=V1,V2,... (names from 'wisp settings')");
+    SweepAxis axis{spec.substr(0, eq), {}};
+    std::stringstream list(spec.substr(eq + 1));
+    for (std::string value; std::getline(list, value, ',');) {
+        if (value.empty())
+            throw UserError("--vary " + spec + ": an empty value");
+        try {
+            applySetting(probe, axis.name + "=" + value);  // checks the name and the range now
+        } catch (const UserError& e) {
+            std::string why = e.what();
+            throw UserError("--vary " + spec + ": " + why.substr(why.find(':') + 2));
+        }
+        axis.values.push_back(value);
+    }
+    return axis;
+}
+
+int runSweep(const vk::Context& ctx, const SweepOptions& o, const HairOptions& baseHair, const RenderSettings& baseRender)
+{
+    std::error_code ec;
+    std::filesystem::create_directories(o.outDir, ec);
+    if (ec || !std::filesystem::is_directory(o.outDir))
+        throw UserError("--out " + o.outDir.string() + ": cannot create the folder");
+    size_t points = 1;
+    for (const SweepAxis& a : o.axes)
+        points *= a.values.size();
+
+    std::ostringstream csv;
+    std::vector<std::string> passColumns = {"physics", "meshes", "hair", "frame"};
+    for (const SweepAxis& a : o.axes)
+        csv << a.name << ",";
+    for (const std::string& p : passColumns)
+        csv << p << "_ms_median," << p << "_ms_p95,";
+    csv << "fps,strands,segments,width,height,device,driver\n";
+
+    for (size_t index = 0; index < points; ++index) {
+        HairOptions hair = baseHair;
+        RenderSettings render = baseRender;
+        SettingsRefs refs{&hair.growth, &hair.sim, &render};
+        std::vector<std::string> values;
+        size_t rest = index;
+        for (const SweepAxis& a : o.axes) {
+            values.push_back(a.values[rest % a.values.size()]);
+            rest /= a.values.size();
+            applySetting(refs, a.name + "=" + values.back());
+        }
+        std::fprintf(stderr, "sweep: point %zu/%zu:", index + 1, points);
+        for (size_t i = 0; i < o.axes.size(); ++i)
+            std::fprintf(stderr, " %s=%s", o.axes[i].name.c_str(), values[i].c_str());
+        std::fprintf(stderr, "\n");
+
+        HairScene scene = hair.buildScene(o.headFile);
+        HairRun run{.scene = &scene, .sim = hair.sim, .frames = 0, .framesPerSecond = 30.0f, .sphere = hair.sphereOrNone()};
+        std::vector<PassTiming> timings = profileFrames(ctx, scene.head, render, run, o.warmup, o.frames);
+        HairDrawCounts counts = hairDrawCounts(uint32_t(scene.strands.strandCount()), render.strands);
+        for (const std::string& v : values)
+            csv << v << ",";
+        double frameMs = 0.0;
+        for (const std::string& p : passColumns) {
+            const PassTiming* t = nullptr;
+            for (const PassTiming& x : timings)
+                if (x.name == p)
+                    t = &x;
+            csv << (t ? t->medianMs : 0.0) << "," << (t ? t->p95Ms : 0.0) << ",";
+            if (p == "frame" && t)
+                frameMs = t->medianMs;
+        }
+        csv << (frameMs > 0.0 ? 1000.0 / frameMs : 0.0) << "," << counts.strands() << "," << counts.segments() << ","
+            << render.width << "," << render.height << ",\"" << ctx.report().name << "\",\"" << ctx.report().driverInfo
+            << "\"\n";
+    }
+
+    // results.csv appears whole or not at all.
+    std::filesystem::path csvPath = o.outDir / "results.csv";
+    std::filesystem::path temp = csvPath;
+    temp += ".partial";
+    {
+        std::ofstream out(temp);
+        out << csv.str();
+        if (!out)
+            throw UserError("cannot write " + csvPath.string());
+    }
+    std::filesystem::rename(temp, csvPath);
+    std::printf("%s\n", csvPath.string().c_str());
+
+    // The chart script: beside the executable (a bundle), else in the source tree.
+    std::filesystem::path plot = std::filesystem::path(WISP_SOURCE_DIR) / "scripts" / "plot_sweep.py";
+    std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (!ec && std::filesystem::exists(exe.parent_path() / "plot_sweep.py"))
+        plot = exe.parent_path() / "plot_sweep.py";
+    // Debian's python3 (where python3-matplotlib installs), not whichever python3 is first on PATH.
+    std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+    std::string command = python + " '" + plot.string() + "' '" + csvPath.string() + "' '" + o.outDir.string() + "'";
+    int status = std::system(command.c_str());
+    if (status != 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+        throw UserError("sweep: the results are in " + csvPath.string() +
+                        " but the charts failed (python3 with python3-matplotlib runs scripts/plot_sweep.py)");
+    return ctx.validationMessages() > 0 ? kExitInternalError : 0;
+}
+
+}  // namespace wisp

@@ -1,0 +1,34 @@
+// app/sweep.h: `wisp sweep`: per-pass GPU timings over a grid of settings (any name from
+// `wisp settings`), written as results.csv and drawn as charts by scripts/plot_sweep.py.
+#pragma once
+
+#include "app/hair_options.h"
+#include "app/settings_registry.h"
+#include "renderer/vk/context.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace wisp {
+
+struct SweepAxis {
+    std::string name;
+    std::vector<std::string> values;
+};
+
+// Parses "NAME=V1,V2,..."; every value is checked against the setting's range up front.
+SweepAxis parseSweepAxis(const std::string& spec, const SettingsRefs& probe);
+
+struct SweepOptions {
+    std::filesystem::path outDir;
+    std::vector<SweepAxis> axes;
+    uint32_t warmup = 60;
+    uint32_t frames = 300;
+    std::string headFile;
+};
+
+// Runs every point of the grid; `base` holds the settings every point starts from.
+int runSweep(const vk::Context& ctx, const SweepOptions& options, const HairOptions& baseHair, const RenderSettings& baseRender);
+
+}  // namespace wisp
