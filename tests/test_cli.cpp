@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <fstream>
 
+using wisp::test::readFile;
 using wisp::test::runWisp;
 using wisp::test::TempDir;
 using wisp::test::writeFile;
@@ -320,12 +321,8 @@ TEST(Window, ScriptedRunsWithHairAreReproducible)
     ASSERT_EQ(runWisp(common + "'" + (dir / "b.png").string() + "'", xvfb).status, 0);
     ASSERT_EQ(runWisp("view --width 200 --height 150 --frames 12 --no-hair --screenshot '" + (dir / "bald.png").string() + "'",
                       xvfb).status, 0);
-    auto slurp = [](const std::filesystem::path& p) {
-        std::ifstream in(p, std::ios::binary);
-        return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    };
-    EXPECT_EQ(slurp(dir / "a.png"), slurp(dir / "b.png"));
-    EXPECT_NE(slurp(dir / "a.png"), slurp(dir / "bald.png"));
+    EXPECT_EQ(readFile(dir / "a.png"), readFile(dir / "b.png"));
+    EXPECT_NE(readFile(dir / "a.png"), readFile(dir / "bald.png"));
 }
 
 TEST(Cli, SettingsListsEveryNameWithRangeAndDefault)
@@ -373,19 +370,15 @@ TEST(Record, SameCommandGivesTheSameFramesAndAVideo)
     ASSERT_EQ(first.status, 0) << first.err;
     auto second = runWisp(common + "'" + (dir / "b").string() + "'");
     ASSERT_EQ(second.status, 0) << second.err;
-    auto slurp = [](const std::filesystem::path& p) {
-        std::ifstream in(p, std::ios::binary);
-        return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    };
     for (const char* name : {"frame_00000.png", "frame_00003.png", "contact_sheet.png"}) {
         ASSERT_TRUE(std::filesystem::exists(dir / "a" / name)) << name;
-        EXPECT_EQ(slurp(dir / "a" / name), slurp(dir / "b" / name)) << name;
+        EXPECT_EQ(readFile(dir / "a" / name), readFile(dir / "b" / name)) << name;
     }
-    EXPECT_NE(slurp(dir / "a" / "frame_00000.png"), slurp(dir / "a" / "frame_00003.png"));  // the hair moved
+    EXPECT_NE(readFile(dir / "a" / "frame_00000.png"), readFile(dir / "a" / "frame_00003.png"));  // the hair moved
     EXPECT_FALSE(std::filesystem::exists(dir / "a" / "frame_00004.png"));
     if (!ffmpeg)
         GTEST_SKIP() << "ffmpeg is not installed (Debian package ffmpeg): the video was not tested";
-    std::string video = slurp(dir / "a.mp4");
+    std::string video = readFile(dir / "a.mp4");
     ASSERT_GT(video.size(), 100u);
     EXPECT_EQ(video.substr(4, 4), "ftyp");  // an MP4 file
 }

@@ -26,12 +26,6 @@ std::string errorOf(const std::filesystem::path& path)
     return "";
 }
 
-std::string slurp(const std::filesystem::path& p)
-{
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 }  // namespace
 
 TEST(DefaultHead, LoadsAsAMannequinBust)
@@ -113,8 +107,8 @@ TEST(DefaultHead, GeneratorRebuildsTheCommittedFiles)
     std::string command = "'" + generator.string() + "' --out-dir '" + dir.path().string() + "' >/dev/null 2>&1";
     ASSERT_EQ(std::system(command.c_str()), 0);
     std::filesystem::path models = std::filesystem::path(WISP_SOURCE_DIR) / "models";
-    EXPECT_TRUE(slurp(dir / "head.obj") == slurp(models / "head.obj")) << "models/head.obj is stale: run scripts/make_head.sh";
-    EXPECT_TRUE(slurp(dir / "head.json") == slurp(models / "head.json")) << "models/head.json is stale: run scripts/make_head.sh";
+    EXPECT_TRUE(test::readFile(dir / "head.obj") == test::readFile(models / "head.obj")) << "models/head.obj is stale: run scripts/make_head.sh";
+    EXPECT_TRUE(test::readFile(dir / "head.json") == test::readFile(models / "head.json")) << "models/head.json is stale: run scripts/make_head.sh";
 }
 
 TEST(HeadErrors, MalformedJsonNamesTheByte)

@@ -14,16 +14,6 @@ vk::ContextOptions validatedOptions()
     return {.validation = true};
 }
 
-namespace {
-
-std::string slurp(const std::filesystem::path& path)
-{
-    std::ifstream in(path);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-}  // namespace
-
 RunResult runWisp(const std::string& args, const std::string& envPrefix)
 {
     TempDir dir;
@@ -32,8 +22,8 @@ RunResult runWisp(const std::string& args, const std::string& envPrefix)
     int raw = std::system(command.c_str());
     RunResult r;
     r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + (WIFSIGNALED(raw) ? WTERMSIG(raw) : 0);
-    r.out = slurp(dir / "out");
-    r.err = slurp(dir / "err");
+    r.out = readFile(dir / "out");
+    r.err = readFile(dir / "err");
     return r;
 }
 
@@ -54,6 +44,12 @@ void writeFile(const std::filesystem::path& path, const std::string& text)
 {
     std::ofstream out(path, std::ios::binary);
     out << text;
+}
+
+std::string readFile(const std::filesystem::path& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 std::filesystem::path sharedData(const std::string& relative)

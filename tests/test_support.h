@@ -33,6 +33,8 @@ private:
 };
 
 void writeFile(const std::filesystem::path& path, const std::string& text);
+// The whole file as bytes ("" when it cannot be read).
+std::string readFile(const std::filesystem::path& path);
 // ../shared/data/<relative>, or an empty path when the shared data is not beside the checkout.
 std::filesystem::path sharedData(const std::string& relative);
 

@@ -1,0 +1,110 @@
+// app/hair_options.cpp: building the scene the shared head-and-hair options describe, and the
+// per-part parameter overrides.
+#include "app/hair_options.h"
+
+#include "core/error.h"
+#include "physics/hair_asset.h"
+
+#include <sstream>
+
+namespace wisp {
+
+HairScene HairOptions::buildScene(const std::filesystem::path& headPath) const
+{
+    if (hairFiles.empty()) {
+        HairScene scene = buildGrownScene(headPath, growth);
+        overrideParts(scene.strands);
+        return scene;
+    }
+    std::vector<HairPartSource> parts;
+    for (const std::string& file : hairFiles) {
+        HairPartSource part{.file = file, .placement = std::nullopt, .settings = styledPartDefaults()};
+        part.settings.name = std::filesystem::path(file).stem().string();
+        if (hairScale > 0.0f || !hairOffset.empty() || zUp || mirrorZ) {
+            HairAsset probe = loadHairAsset(file);
+            HairPlacement placement = autoPlacement(probe, loadHead(headPath).mesh.bounds());
+            if (hairScale > 0.0f)
+                placement.scale = hairScale;
+            if (!hairOffset.empty())
+                placement.offset = glm::vec3(hairOffset[0], hairOffset[1], hairOffset[2]);
+            placement.zUpToYUp = zUp.value_or(placement.zUpToYUp);
+            placement.mirrorZ = mirrorZ.value_or(placement.mirrorZ);
+            part.placement = placement;
+        }
+        parts.push_back(part);
+    }
+    HairScene scene = buildLoadedScene(headPath, parts, growth.verticesPerStrand);
+    overrideParts(scene.strands);
+    return scene;
+}
+void HairOptions::overrideParts(StrandSet& strands) const
+{
+    for (PartSettings& p : strands.parts) {
+        p.globalStiffness = globalStiffness.value_or(p.globalStiffness);
+        p.localStiffness = localStiffness.value_or(p.localStiffness);
+        p.ftlDamping = damping.value_or(p.ftlDamping);
+        p.drag = drag.value_or(p.drag);
+    }
+    for (const std::string& spec : partOverrides)
+        applyPartOverride(strands.parts, spec);
+}
+void HairOptions::applyPartOverride(std::vector<PartSettings>& parts, const std::string& spec)
+{
+    auto bad = [&](const std::string& why) { throw UserError("--part " + spec + ": " + why); };
+    size_t colon = spec.find(':');
+    if (colon == std::string::npos)
+        bad("expected PART:key=value[,key=value...] (PART: a part's index or name)");
+    std::string which = spec.substr(0, colon);
+    PartSettings* part = nullptr;
+    std::string names;
+    for (size_t i = 0; i < parts.size(); ++i) {
+        names += (i ? ", " : "") + std::to_string(i) + " " + parts[i].name;
+        if (which == std::to_string(i) || which == parts[i].name)
+            part = &parts[i];
+    }
+    if (!part)
+        bad("no part '" + which + "' (parts: " + names + ")");
+    std::stringstream list(spec.substr(colon + 1));
+    for (std::string item; std::getline(list, item, ',');) {
+        size_t eq = item.find('=');
+        if (eq == std::string::npos)
+            bad("'" + item + "' is not key=value");
+        std::string key = item.substr(0, eq);
+        float value = 0.0f;
+        try {
+            size_t used = 0;
+            value = std::stof(item.substr(eq + 1), &used);
+            if (used != item.size() - eq - 1)
+                throw std::invalid_argument(item);
+        } catch (const std::exception&) {
+            bad("'" + item.substr(eq + 1) + "' is not a number");
+        }
+        float limit = key == "drag" ? 100.0f : 1.0f;
+        if (!(value >= 0.0f && value <= limit))
+            bad(key + " must be in [0, " + (key == "drag" ? std::string("100") : std::string("1")) + "]");
+        if (key == "global")
+            part->globalStiffness = value;
+        else if (key == "local")
+            part->localStiffness = value;
+        else if (key == "damping")
+            part->ftlDamping = value;
+        else if (key == "drag")
+            part->drag = value;
+        else
+            bad("unknown key '" + key + "' (global, local, damping, drag)");
+    }
+}
+
+glm::vec4 HairOptions::sphereOrNone() const
+{
+    return sphere.empty() ? glm::vec4(0.0f) : glm::vec4(sphere[0], sphere[1], sphere[2], sphere[3]);
+}
+void HairOptions::apply()
+{
+    if (!sphere.empty() && !(sphere[3] > 0.0f))
+        throw UserError("--sphere: the radius (4th value) must be > 0, got " + std::to_string(sphere[3]));
+    if (!wind.empty())
+        sim.wind = glm::vec3(wind[0], wind[1], wind[2]);
+}
+
+}  // namespace wisp
