@@ -273,6 +273,13 @@ int runRender(const GlobalOptions& g, RenderOptions& o)
     std::cout << o.out << "\n";
     if (!picture.hairCounts.empty())
         std::cout << picture.hairCounts << "\n";
+    if (picture.oit.capacity > 0) {
+        std::cout << "oit: " << picture.oit.fragments << " hair fragments, pool of " << picture.oit.capacity << "\n";
+        if (picture.oit.overflow > 0)
+            std::cerr << "wisp: warning: the OIT pool was full: " << picture.oit.overflow << " of "
+                      << picture.oit.fragments
+                      << " hair fragments were dropped; raise oit_nodes_per_pixel (--set oit_nodes_per_pixel=N)\n";
+    }
     return 0;
 }
 

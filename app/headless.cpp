@@ -25,7 +25,7 @@ Picture renderFrame(const vk::Context& ctx, Renderer& renderer, Frame& frame, co
     frame.submit(fc);
     frame.waitIdle();
     VkExtent2D e = renderer.target().extent();
-    return {e.width, e.height, readback.pixels(), ""};
+    return {e.width, e.height, readback.pixels(), "", renderer.oitStats(fc.slot)};
 }
 
 Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSettings& settings, const HairRun* hair)

@@ -5,6 +5,7 @@
 #include "physics/hair_scene.h"
 #include "physics/simulation.h"
 #include "renderer/camera.h"
+#include "renderer/oit.h"
 #include "renderer/settings.h"
 #include "renderer/vk/context.h"
 
@@ -22,6 +23,7 @@ struct Picture {
     uint32_t height = 0;
     std::vector<uint8_t> rgba;  // tightly packed, top row first, sRGB
     std::string hairCounts;     // what the hair draw was split into (empty without hair)
+    OitStats oit;               // the OIT lists of this frame (zeros in MSAA mode or without hair)
 };
 
 // Hair to simulate and draw with the head.

@@ -7,6 +7,7 @@
 #include <charconv>
 #include <cmath>
 #include <sstream>
+#include <type_traits>
 
 namespace wisp {
 
@@ -59,6 +60,30 @@ std::string text(T v)
 #define WISP_NEED(refs, member, name)                                                 \
     if (!(refs).member)                                                                \
     throw UserError("--set " + std::string(name) + ": this command does not use it")
+
+std::string rangeText(const Range& r)
+{
+    return text(r.min) + " .. " + text(r.max);
+}
+
+// A render setting held in one member: a number within a Range, or on/off.
+#define WISP_RENDER_NUMBER(NAME, UNIT, RANGE, DESCRIPTION, MEMBER, TYPE)                                   \
+    add({NAME, UNIT, rangeText(RANGE), DESCRIPTION,                                                      \
+         [](const SettingsRefs& r) { return r.render ? text(r.render->MEMBER) : "-"; },                   \
+         [](const SettingsRefs& r, const std::string& v) {                                              \
+             WISP_NEED(r, render, NAME);                                                                  \
+             if constexpr (std::is_integral_v<TYPE>)                                                      \
+                 r.render->MEMBER = TYPE(integer(NAME, v, RANGE.min, RANGE.max));                         \
+             else                                                                                         \
+                 r.render->MEMBER = TYPE(number(NAME, v, RANGE.min, RANGE.max, UNIT));                    \
+         }})
+#define WISP_RENDER_ON_OFF(NAME, DESCRIPTION, MEMBER)                                                     \
+    add({NAME, "", "on | off", DESCRIPTION,                                                              \
+         [](const SettingsRefs& r) { return r.render ? std::string(r.render->MEMBER ? "on" : "off") : "-"; }, \
+         [](const SettingsRefs& r, const std::string& v) {                                              \
+             WISP_NEED(r, render, NAME);                                                                  \
+             r.render->MEMBER = onOff(NAME, v);                                                           \
+         }})
 
 std::vector<SettingSpec> buildSpecs()
 {
@@ -184,8 +209,46 @@ std::vector<SettingSpec> buildSpecs()
                  bad("samples", v, "allowed: 1 | 2 | 4 | 8");
              r.render->samples = n;
          }});
+    WISP_RENDER_ON_OFF("shadows", "the key light's shadows (head and hair cast on each other)", shadows.enabled);
+    WISP_RENDER_NUMBER("shadow_size", "texels", kShadowMapSizeRange, "shadow and deep opacity map size per side",
+                       shadows.mapSize, uint32_t);
+    WISP_RENDER_NUMBER("pcf_samples", "", kPcfSamplesRange, "percentage-closer filtering taps per shadow lookup",
+                       shadows.pcfSamples, uint32_t);
+    WISP_RENDER_NUMBER("pcf_radius", "texels", kPcfRadiusRange, "radius of the PCF disk", shadows.pcfRadiusTexels, float);
+    WISP_RENDER_NUMBER("dom_layers", "", kDomLayersRange,
+                       "deep opacity map layers for hair self-shadowing (0: PCF on the hair's depth instead)",
+                       shadows.domLayers, uint32_t);
+    WISP_RENDER_NUMBER("dom_spacing", "m", kDomSpacingRange, "depth of one deep opacity layer", shadows.domSpacingMetres,
+                       float);
+    WISP_RENDER_NUMBER("dom_density", "", kDomKappaRange,
+                       "kappa of the hair's transmittance exp(-kappa * opacity) toward the light", shadows.domKappa, float);
+    add({"transparency", "", "oit | msaa", "hair blending: sorted per-pixel lists, or opaque coverage with MSAA",
+         [](const SettingsRefs& r) {
+             return r.render ? std::string(r.render->transparency.mode == Transparency::Oit ? "oit" : "msaa") : "-";
+         },
+         [](const SettingsRefs& r, const std::string& v) {
+             WISP_NEED(r, render, "transparency");
+             if (v == "oit")
+                 r.render->transparency.mode = Transparency::Oit;
+             else if (v == "msaa")
+                 r.render->transparency.mode = Transparency::Msaa;
+             else
+                 bad("transparency", v, "allowed: oit | msaa");
+         }});
+    WISP_RENDER_NUMBER("oit_k", "", kOitKRange, "nearest hair fragments sorted per pixel (the rest blended unsorted)",
+                       transparency.oitK, uint32_t);
+    WISP_RENDER_NUMBER("oit_nodes_per_pixel", "", kOitNodesPerPixelRange,
+                       "OIT fragment pool per pixel, 0 = automatic (up to 24 as memory allows; fragments past it are dropped and counted)",
+                       transparency.oitNodesPerPixel, uint32_t);
+    WISP_RENDER_NUMBER("hair_opacity", "", kOpacityRange, "opacity of one strand that covers its pixel",
+                       transparency.hairOpacity, float);
+    WISP_RENDER_ON_OFF("reverse_order", "draw the strands last to first (to check order independence)",
+                       strands.reverseOrder);
     return specs;
 }
+
+#undef WISP_RENDER_NUMBER
+#undef WISP_RENDER_ON_OFF
 
 }  // namespace
 

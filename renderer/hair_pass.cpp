@@ -5,6 +5,8 @@
 #include "physics/gpu_solver.h"
 #include "renderer/frame.h"
 #include "renderer/frame_uniforms.h"
+#include "renderer/light_maps.h"
+#include "renderer/oit.h"
 #include "renderer/render_target.h"
 #include "renderer/vk/check.h"
 #include "renderer/vk/context.h"
@@ -12,6 +14,7 @@
 
 #include <algorithm>
 #include <array>
+#include <vector>
 
 namespace wisp {
 
@@ -57,32 +60,77 @@ HairPass::HairPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
                                           triangles.data(), triangles.size() * sizeof(glm::uvec4));
     constexpr VkShaderStageFlags kTessellation =
         VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT | VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT;
-    constexpr VkShaderStageFlags kAll = kTessellation | VK_SHADER_STAGE_GEOMETRY_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    constexpr VkShaderStageFlags kFragment = VK_SHADER_STAGE_FRAGMENT_BIT;
+    constexpr VkShaderStageFlags kAll =
+        VK_SHADER_STAGE_VERTEX_BIT | kTessellation | VK_SHADER_STAGE_GEOMETRY_BIT | kFragment;
+    constexpr VkDescriptorType kSampler = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     vk::PipelineLayoutBundle layout = vk::createPipelineLayout(
         ctx, {.bindings = {{gpu::kHairBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kAll},
                            {gpu::kHairBindingSim, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kTessellation},
-                           {gpu::kHairBindingPositions, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kTessellation},
-                           {gpu::kHairBindingTriangles, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kTessellation}},
+                           {gpu::kHairBindingPositions, kStorage, kTessellation},
+                           {gpu::kHairBindingTriangles, kStorage, kTessellation},
+                           {gpu::kBindingShadowHead, kSampler, kFragment},
+                           {gpu::kBindingShadowHair, kSampler, kFragment},
+                           {gpu::kBindingHairDepth, kSampler, kFragment},
+                           {gpu::kBindingOpacity, kSampler, kFragment},
+                           {gpu::kHairBindingOitHeads, kStorage, kFragment},
+                           {gpu::kHairBindingOitNodes, kStorage, kFragment},
+                           {gpu::kHairBindingOitCounters, kStorage, kFragment}},
               .pushConstantBytes = sizeof(gpu::HairPush),
               .pushConstantStages = kAll,
               .name = "hair.layout"});
     setLayout_ = std::move(layout.setLayout);
     layout_ = std::move(layout.layout);
-    pipeline_ = vk::createGraphicsPipeline(
-        ctx, {.layout = layout_,
-              .shaders = {"hair.vert", "hair.tesc", "hair.tese", "hair.geom", "hair.frag"},
-              .topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST,
-              .patchControlPoints = 1,
-              .cullMode = VK_CULL_MODE_NONE,
-              .colorFormat = RenderTarget::kColorFormat,
-              .depthFormat = RenderTarget::kDepthFormat,
-              .samples = target.samples(),  // coverage is the fragment's sample mask (hair.frag)
-              .name = "hair.pipeline"});
+    vk::GraphicsPipelineDesc camera{.layout = layout_,
+                                    .shaders = {"hair.vert", "hair.tesc", "hair.tese", "hair.geom", "hair.frag"},
+                                    .topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST,
+                                    .patchControlPoints = 1,
+                                    .cullMode = VK_CULL_MODE_NONE,
+                                    .colorFormat = RenderTarget::kColorFormat,
+                                    .depthFormat = RenderTarget::kDepthFormat,
+                                    .samples = target.samples(),  // coverage is the fragment's sample mask (hair.frag)
+                                    .name = "hair.pipeline"};
+    pipeline_ = vk::createGraphicsPipeline(ctx, camera);
+    vk::GraphicsPipelineDesc oit = camera;
+    oit.shaders.back() = "hair_oit.frag";
+    oit.depthWrite = false;  // tested against the head, never hiding other hair
+    oit.colorWrite = false;
+    oit.name = "hair.oit.pipeline";
+    oitPipeline_ = vk::createGraphicsPipeline(ctx, oit);
+    vk::GraphicsPipelineDesc depth{.layout = layout_,
+                                   .shaders = {"hair.vert", "hair.tesc", "hair_light.tese", "hair_light.geom"},
+                                   .topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST,
+                                   .patchControlPoints = 1,
+                                   .cullMode = VK_CULL_MODE_NONE,
+                                   .depthFormat = LightMaps::kDepthFormat,
+                                   .name = "hair.light_depth.pipeline"};
+    depthPipeline_ = vk::createGraphicsPipeline(ctx, depth);
+    vk::GraphicsPipelineDesc opacity = depth;
+    opacity.shaders.push_back("hair_opacity.frag");
+    opacity.depthTest = false;
+    opacity.depthWrite = false;
+    opacity.depthFormat = VK_FORMAT_UNDEFINED;
+    opacity.colorFormat = LightMaps::kOpacityFormat;
+    opacity.blend = vk::Blend::Additive;
+    opacity.name = "hair.light_opacity.pipeline";
+    opacityPipeline_ = vk::createGraphicsPipeline(ctx, opacity);
+}
+
+void HairPass::declareGuides(PassIo& io)
+{
+    io.use(solver_.positionsTrack(), Access::VertexShaderRead);  // tessellation reads the guides
 }
 
 void HairPass::declare(PassIo& io)
 {
-    io.use(solver_.positionsTrack(), Access::VertexShaderRead);  // tessellation reads the guides
+    declareGuides(io);
+    lightMaps_->declareRead(io);
+    if (oit_) {
+        io.use(oit_->heads(), Access::FragmentStorageWrite);
+        io.use(oit_->nodes(), Access::FragmentStorageWrite);
+        io.use(oit_->counters(), Access::FragmentStorageWrite);
+    }
     target_.declareDraw(io);
 }
 
@@ -100,39 +148,71 @@ HairPass::Statistics HairPass::statistics() const
     return out;
 }
 
+void HairPass::draw(VkCommandBuffer cmd, FrameContext& frame, VkPipeline pipeline,
+                    const std::vector<VkWriteDescriptorSet>& extra)
+{
+    if (counts_.guides == 0 || counts_.strandsPerGuide == 0 || counts_.divisions == 0)
+        return;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+    VkDescriptorBufferInfo frameInfo = uniforms_.descriptor(frame.slot);
+    VkDescriptorBufferInfo simInfo{solver_.params(), 0, VK_WHOLE_SIZE};
+    VkDescriptorBufferInfo positionsInfo{solver_.positions(), 0, VK_WHOLE_SIZE};
+    VkDescriptorBufferInfo trianglesInfo{triangles_, 0, VK_WHOLE_SIZE};
+    auto write = [](uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* info) {
+        return VkWriteDescriptorSet{.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                    .dstBinding = binding,
+                                    .descriptorCount = 1,
+                                    .descriptorType = type,
+                                    .pBufferInfo = info};
+    };
+    std::vector<VkWriteDescriptorSet> writes = {
+        write(gpu::kHairBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frameInfo),
+        write(gpu::kHairBindingSim, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &simInfo),
+        write(gpu::kHairBindingPositions, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &positionsInfo),
+        write(gpu::kHairBindingTriangles, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &trianglesInfo)};
+    writes.insert(writes.end(), extra.begin(), extra.end());
+    ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, uint32_t(writes.size()), writes.data());
+    push_.samples = uint32_t(target_.samples());
+    vkCmdPushConstants(cmd, layout_,
+                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT |
+                           VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT | VK_SHADER_STAGE_GEOMETRY_BIT |
+                           VK_SHADER_STAGE_FRAGMENT_BIT,
+                       0, sizeof(push_), &push_);
+    vkCmdDraw(cmd, counts_.guides * counts_.lengthChunks, counts_.strandChunks, 0, 0);
+}
+
+void HairPass::recordFromLight(VkCommandBuffer cmd, FrameContext& frame, LightDraw which)
+{
+    if (which == LightDraw::Depth)
+        draw(cmd, frame, depthPipeline_, {});
+    else
+        draw(cmd, frame, opacityPipeline_, {lightMaps_->hairDepthWrite()});  // z0: where the layers start
+}
+
 void HairPass::record(VkCommandBuffer cmd, FrameContext& frame)
 {
+    std::vector<VkWriteDescriptorSet> extra;
+    for (const VkWriteDescriptorSet& w : lightMaps_->descriptorWrites())
+        extra.push_back(w);
+    std::array<VkDescriptorBufferInfo, 3> oitInfos{};
+    if (oit_) {
+        oitInfos = {VkDescriptorBufferInfo{oit_->headsBuffer(), 0, VK_WHOLE_SIZE},
+                    VkDescriptorBufferInfo{oit_->nodesBuffer(), 0, VK_WHOLE_SIZE},
+                    VkDescriptorBufferInfo{oit_->countersBuffer(), 0, VK_WHOLE_SIZE}};
+        const uint32_t bindings[3] = {gpu::kHairBindingOitHeads, gpu::kHairBindingOitNodes, gpu::kHairBindingOitCounters};
+        for (uint32_t i = 0; i < 3; ++i)
+            extra.push_back({.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                             .dstBinding = bindings[i],
+                             .descriptorCount = 1,
+                             .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                             .pBufferInfo = &oitInfos[i]});
+    }
     if (statistics_)
         vkCmdResetQueryPool(cmd, statistics_, 0, 1);
     target_.beginRendering(cmd, glm::vec3(0.0f));
     if (statistics_)
         vkCmdBeginQuery(cmd, statistics_, 0, 0);
-    if (counts_.guides > 0 && counts_.strandsPerGuide > 0 && counts_.divisions > 0) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
-        VkDescriptorBufferInfo frameInfo = uniforms_.descriptor(frame.slot);
-        VkDescriptorBufferInfo simInfo{solver_.params(), 0, VK_WHOLE_SIZE};
-        VkDescriptorBufferInfo positionsInfo{solver_.positions(), 0, VK_WHOLE_SIZE};
-        VkDescriptorBufferInfo trianglesInfo{triangles_, 0, VK_WHOLE_SIZE};
-        auto write = [](uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* info) {
-            return VkWriteDescriptorSet{.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-                                        .dstBinding = binding,
-                                        .descriptorCount = 1,
-                                        .descriptorType = type,
-                                        .pBufferInfo = info};
-        };
-        std::array<VkWriteDescriptorSet, 4> writes = {
-            write(gpu::kHairBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frameInfo),
-            write(gpu::kHairBindingSim, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &simInfo),
-            write(gpu::kHairBindingPositions, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &positionsInfo),
-            write(gpu::kHairBindingTriangles, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &trianglesInfo)};
-        ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, uint32_t(writes.size()), writes.data());
-        push_.samples = uint32_t(target_.samples());
-        vkCmdPushConstants(cmd, layout_,
-                           VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT | VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT |
-                               VK_SHADER_STAGE_GEOMETRY_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-                           0, sizeof(push_), &push_);
-        vkCmdDraw(cmd, counts_.guides * counts_.lengthChunks, counts_.strandChunks, 0, 0);
-    }
+    draw(cmd, frame, oit_ ? oitPipeline_.get() : pipeline_.get(), extra);
     if (statistics_)
         vkCmdEndQuery(cmd, statistics_, 0);
     target_.endRendering(cmd);

@@ -10,6 +10,8 @@
 #include "renderer/vk/resources.h"
 #include "shaders/shared/strands.h"
 
+#include <vector>
+
 namespace wisp {
 
 namespace vk {
@@ -18,6 +20,8 @@ class Context;
 class RenderTarget;
 class FrameUniforms;
 class GpuSolver;
+class LightMaps;
+class Oit;
 
 // What a draw produces for given settings: the Vulkan limits split it into patches and instances,
 // never cap it (the CLI and UI report these).
@@ -41,6 +45,16 @@ public:
     void declare(PassIo& io) override;
     void record(VkCommandBuffer cmd, FrameContext& frame) override;
 
+    // What the camera's draw reads and writes besides the target: the light's maps (always), and
+    // in OIT mode the linked lists (null: MSAA coverage). Set before the first frame.
+    void setLightMaps(LightMaps* maps) { lightMaps_ = maps; }
+    void setOit(Oit* oit) { oit_ = oit; }
+    // The guides the tessellation reads, for the passes that draw the hair from the light.
+    void declareGuides(PassIo& io);
+    enum class LightDraw { Depth, Opacity };
+    // Draws the same hair from the light into the rendering the caller has begun.
+    void recordFromLight(VkCommandBuffer cmd, FrameContext& frame, LightDraw draw);
+
     // This frame's parameters (settings, LOD, the head's pose).
     void setPush(const gpu::HairPush& push) { push_ = push; }
     const HairDrawCounts& counts() const { return counts_; }
@@ -61,10 +75,17 @@ private:
     GpuSolver& solver_;
     vk::DescriptorSetLayout setLayout_;
     vk::PipelineLayout layout_;
-    vk::Pipeline pipeline_;
+    vk::Pipeline pipeline_;       // camera, MSAA coverage
+    vk::Pipeline oitPipeline_;    // camera, fragments into the linked lists
+    vk::Pipeline depthPipeline_;  // light, depth only
+    vk::Pipeline opacityPipeline_;  // light, deep opacity layers
+    LightMaps* lightMaps_ = nullptr;
+    Oit* oit_ = nullptr;
     vk::Buffer triangles_;
     vk::QueryPool statistics_;  // empty where the device has no pipeline statistics
     gpu::HairPush push_{};
+    // Binds `pipeline`, pushes the guide bindings plus `extra`, and draws every patch and instance.
+    void draw(VkCommandBuffer cmd, FrameContext& frame, VkPipeline pipeline, const std::vector<VkWriteDescriptorSet>& extra);
     HairDrawCounts counts_;
 };
 

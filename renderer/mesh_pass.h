@@ -1,5 +1,6 @@
 // renderer/mesh_pass.h: draws opaque triangle meshes (the head, later the collision sphere) into
-// the render target with the plain surface shading of shaders/shared/lighting.h.
+// the render target with the plain surface shading of shaders/shared/lighting.h, shadowed by
+// the light's maps; and the same meshes' depth from the light for the shadow pass.
 #pragma once
 
 #include "physics/mesh.h"
@@ -16,6 +17,7 @@ class Context;
 }
 class RenderTarget;
 class FrameUniforms;
+class LightMaps;
 
 class MeshPass : public Pass {
 public:
@@ -23,6 +25,11 @@ public:
     const char* name() const override { return "meshes"; }
     void declare(PassIo& io) override;
     void record(VkCommandBuffer cmd, FrameContext& frame) override;
+
+    // The light's maps the shading reads (shadows); must be set before the first frame.
+    void setLightMaps(LightMaps* maps) { lightMaps_ = maps; }
+    // Draws the meshes' depth from the light into the rendering the caller has begun.
+    void recordFromLight(VkCommandBuffer cmd, FrameContext& frame);
 
     void setMesh(const Mesh& mesh);  // uploads; call while the device is idle (load time)
     void setSurface(const glm::mat4& model, const glm::vec3& albedo, float roughness);
@@ -35,6 +42,8 @@ private:
     vk::DescriptorSetLayout setLayout_;
     vk::PipelineLayout layout_;
     vk::Pipeline pipeline_;
+    vk::Pipeline lightPipeline_;  // depth only, from the light
+    LightMaps* lightMaps_ = nullptr;
     vk::Buffer vertices_;
     vk::Buffer indices_;
     uint32_t indexCount_ = 0;
@@ -42,6 +51,7 @@ private:
     glm::vec3 albedo_{0.6f};
     float roughness_ = 0.5f;
     glm::vec3 clearColor_{0.0f};
+    void drawMesh(VkCommandBuffer cmd);
 };
 
 }  // namespace wisp

@@ -22,6 +22,8 @@ enum class Access {
     ComputeRead,       // storage read in compute shaders
     ComputeWrite,      // storage write (or read-modify-write) in compute shaders
     VertexShaderRead,  // storage read in vertex, tessellation or geometry shaders
+    FragmentStorageRead,   // storage read in fragment shaders
+    FragmentStorageWrite,  // storage write (atomics included) in fragment shaders
     VertexInput,       // read as a vertex buffer
     Present,           // handed to the presentation engine
 };

@@ -4,12 +4,16 @@
 #include "renderer/frame.h"
 #include "renderer/vk/context.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <algorithm>
 #include <cmath>
 
 namespace wisp {
 
-static_assert(sizeof(gpu::FrameParams) == 3 * 64 + 6 * 16 + 64, "FrameParams must match its std140 layout");
+static_assert(sizeof(gpu::FrameParams) == 3 * 64 + 6 * 16 + 64 + 64 + 48, "FrameParams must match its std140 layout");
+static_assert(offsetof(gpu::FrameParams, lightViewProjection) == 352);
+static_assert(offsetof(gpu::FrameParams, shadowsEnabled) == 460);
 static_assert(offsetof(gpu::FrameParams, headTransform) == 288);
 static_assert(offsetof(gpu::FrameParams, cameraPosition) == 192);
 static_assert(offsetof(gpu::FrameParams, lightDirection) == 208);
@@ -22,7 +26,8 @@ glm::vec3 LightSettings::direction() const
     return glm::normalize(glm::vec3(std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el)));
 }
 
-gpu::FrameParams pack(const RenderSettings& s, const OrbitCamera& camera, VkExtent2D extent, float timeSeconds)
+gpu::FrameParams pack(const RenderSettings& s, const OrbitCamera& camera, VkExtent2D extent, float timeSeconds,
+                      const LightFit& light)
 {
     float aspect = static_cast<float>(extent.width) / static_cast<float>(extent.height);
     gpu::FrameParams p{};
@@ -42,14 +47,42 @@ gpu::FrameParams pack(const RenderSettings& s, const OrbitCamera& camera, VkExte
     p.backgroundColor = s.background;
     p.viewportHeight = static_cast<float>(extent.height);
     p.headTransform = glm::mat4(1.0f);  // the head does not move in the renderer yet
+
+    // The light's view: orthographic along its direction, around the sphere holding the scene.
+    glm::vec3 centre = light.scene.center();
+    float radius = std::max(0.5f * light.scene.diagonal(), 1e-6f);
+    glm::vec3 toLight = p.lightDirection;
+    glm::vec3 up = std::abs(toLight.y) > 0.99f ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+    glm::mat4 lightView = glm::lookAt(centre + 2.0f * radius * toLight, centre, up);
+    glm::mat4 lightProjection = glm::orthoRH_ZO(-radius, radius, -radius, radius, radius, 3.0f * radius);
+    const ShadowSettings& sh = s.shadows;
+    p.lightViewProjection = lightProjection * lightView;
+    p.shadowMapSize = float(sh.mapSize);
+    p.lightTexelsPerUnit = float(sh.mapSize) / (2.0f * radius);
+    p.lightDepthRange = 2.0f * radius;
+    p.pcfSamples = sh.pcfSamples;
+    p.pcfRadius = sh.pcfRadiusTexels;
+    // About a texel and a half of depth: enough for surfaces at a slant to the light not to
+    // shadow themselves, little enough that contact shadows stay attached.
+    p.shadowBias = 1.5f / p.lightTexelsPerUnit / p.lightDepthRange;
+    p.domLayers = sh.domLayers;
+    p.domSpacing = sh.domSpacingMetres * light.unitsPerMetre / p.lightDepthRange;
+    p.domKappa = sh.domKappa;
+    p.hairOpacity = s.transparency.hairOpacity;
+    p.shadingModel = 0u;
+    p.shadowsEnabled = sh.enabled ? 1u : 0u;
     return p;
 }
 
 Renderer::Renderer(const vk::Context& ctx, const RenderSettings& settings, uint32_t framesInFlight)
-    : ctx_(ctx), settings_(settings), uniforms_(ctx, framesInFlight)
+    : ctx_(ctx), settings_(settings), uniforms_(ctx, framesInFlight), framesInFlight_(framesInFlight)
 {
     target_ = std::make_unique<RenderTarget>(ctx, VkExtent2D{settings.width, settings.height}, settings.samples);
+    lightMaps_ = std::make_unique<LightMaps>(ctx, settings.shadows.mapSize);
     meshPass_ = std::make_unique<MeshPass>(ctx_, *target_, uniforms_);
+    meshPass_->setLightMaps(lightMaps_.get());
+    shadowPass_ = std::make_unique<ShadowPass>(*lightMaps_, *meshPass_, nullptr);
+    opacityPass_ = std::make_unique<OpacityPass>(*lightMaps_, nullptr);
     meshPass_->setClearColor(settings_.background);
     meshPass_->setSurface(glm::mat4(1.0f), settings_.headAlbedo, settings_.headRoughness);
 }
@@ -57,6 +90,7 @@ Renderer::Renderer(const vk::Context& ctx, const RenderSettings& settings, uint3
 void Renderer::setHead(const Head& head)
 {
     bounds_ = head.mesh.bounds();
+    lightFit_.scene = bounds_;
     lodReferenceDistance_ = OrbitCamera::framing(bounds_, float(settings_.width) / float(settings_.height)).distance;
     meshPass_->setMesh(head.mesh);
 }
@@ -66,12 +100,31 @@ void Renderer::resize(VkExtent2D extent)
     settings_.width = extent.width;
     settings_.height = extent.height;
     target_->resize(extent);
+    if (oit_)
+        oit_->resize(extent, settings_.transparency.oitNodesPerPixel);
+}
+
+std::vector<TrackedImage*> Renderer::transientImages()
+{
+    std::vector<TrackedImage*> list = target_->transientImages();
+    for (TrackedImage* image : lightMaps_->transientImages())
+        list.push_back(image);
+    return list;
+}
+
+OitStats Renderer::oitStats(uint32_t slot) const
+{
+    return oit_ ? oit_->stats(slot) : OitStats{};
 }
 
 void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float timeSeconds)
 {
     target_->beginFrame();
-    uniforms_.write(frame.slot, pack(settings_, camera, target_->extent(), timeSeconds));
+    uniforms_.write(frame.slot, pack(settings_, camera, target_->extent(), timeSeconds, lightFit_));
+    shadowPass_->setEnabled(settings_.shadows.enabled);
+    opacityPass_->setEnabled(settings_.shadows.enabled && settings_.shadows.domLayers > 0);
+    if (oitResolve_)
+        oitResolve_->setK(settings_.transparency.oitK);
     if (!hairPass_)
         return;
     const StrandSettings& s = settings_.strands;
@@ -104,6 +157,7 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
     push.rootColor = s.rootColor;
     push.specularShift = s.specularShift;
     push.tipColor = s.tipColor;
+    push.reverseOrder = s.reverseOrder ? 1u : 0u;
     hairPass_->setPush(push);
 }
 
@@ -113,6 +167,25 @@ void Renderer::attachHair(GpuSolver& solver, const StrandSet& strands, float uni
     guidePass_ = std::make_unique<GuidePass>(ctx_, *target_, uniforms_, solver, uint32_t(strands.strandCount()),
                                              strands.verticesPerStrand);
     hairPass_ = std::make_unique<HairPass>(ctx_, *target_, uniforms_, solver, strands);
+    hairPass_->setLightMaps(lightMaps_.get());
+    shadowPass_ = std::make_unique<ShadowPass>(*lightMaps_, *meshPass_, hairPass_.get());
+    opacityPass_ = std::make_unique<OpacityPass>(*lightMaps_, hairPass_.get());
+    if (settings_.transparency.mode == Transparency::Oit) {
+        oit_ = std::make_unique<Oit>(ctx_, target_->extent(), settings_.transparency.oitNodesPerPixel, framesInFlight_);
+        oitClear_ = std::make_unique<OitClearPass>(*oit_);
+        oitResolve_ = std::make_unique<OitResolvePass>(ctx_, *oit_, *target_);
+        oitStats_ = std::make_unique<OitStatsPass>(*oit_);
+        hairPass_->setOit(oit_.get());
+    }
+    // The light's view holds the head and the hair at rest, with room for the hair to swing.
+    glm::vec3 lo = lightFit_.scene.min, hi = lightFit_.scene.max;
+    for (const glm::vec3& p : strands.rest) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    glm::vec3 margin = 0.1f * (hi - lo);
+    lightFit_.scene = {lo - margin, hi + margin};
+    lightFit_.unitsPerMetre = unitsPerMetre;
     guideCount_ = uint32_t(strands.strandCount());
     verticesPerStrand_ = strands.verticesPerStrand;
     unitsPerMetre_ = unitsPerMetre;
@@ -134,9 +207,17 @@ std::vector<Pass*> Renderer::passes()
     std::vector<Pass*> list;
     if (physicsPass_)
         list.push_back(physicsPass_.get());
+    list.push_back(shadowPass_.get());
+    list.push_back(opacityPass_.get());
+    if (oitClear_)
+        list.push_back(oitClear_.get());
     list.push_back(meshPass_.get());
     if (hairPass_)
         list.push_back(hairPass_.get());
+    if (oitResolve_) {
+        list.push_back(oitResolve_.get());
+        list.push_back(oitStats_.get());
+    }
     if (guidePass_ && settings_.strands.showGuides)
         list.push_back(guidePass_.get());
     return list;

@@ -1,7 +1,9 @@
 // renderer/renderer.h: the scene renderer shared by the window and the headless front ends. It
 // owns the render target, the per-frame uniforms and the passes, in the order they run:
-//   physics (when hair is attached) | meshes (head) | hair (tessellated strands) | guides (lines, optional)
-//   [later: shadow, deep opacity, OIT resolve]
+//   physics (when hair is attached) | shadow (head and hair depth from the light) | opacity (deep
+//   opacity layers) | [oit.clear] | meshes (head) | hair (tessellated strands) | [oit.resolve |
+//   oit.stats] | guides (lines, optional)
+// The bracketed passes run in OIT mode (transparency=oit); in MSAA mode the hair writes coverage.
 // A front end begins a Frame, calls prepare(), runs passes() plus its own tail (readback or
 // present), and submits.
 #pragma once
@@ -11,7 +13,9 @@
 #include "renderer/frame_uniforms.h"
 #include "renderer/guide_pass.h"
 #include "renderer/hair_pass.h"
+#include "renderer/light_maps.h"
 #include "renderer/mesh_pass.h"
+#include "renderer/oit.h"
 #include "renderer/physics_pass.h"
 #include "renderer/render_target.h"
 #include "renderer/settings.h"
@@ -26,8 +30,16 @@ class Context;
 }
 struct FrameContext;
 
+// What the light's view is fitted to: the scene's bounds (head and hair at rest, with room for
+// the hair to move) and the scene's units.
+struct LightFit {
+    Bounds scene;
+    float unitsPerMetre = 1.0f;
+};
+
 // Turns the human-facing settings and the camera into the GPU's per-frame block.
-gpu::FrameParams pack(const RenderSettings& settings, const OrbitCamera& camera, VkExtent2D extent, float timeSeconds);
+gpu::FrameParams pack(const RenderSettings& settings, const OrbitCamera& camera, VkExtent2D extent, float timeSeconds,
+                      const LightFit& light);
 
 class Renderer {
 public:
@@ -50,9 +62,12 @@ public:
     // Writes this frame's uniforms and resets per-frame target state.
     void prepare(FrameContext& frame, const OrbitCamera& camera, float timeSeconds);
     std::vector<Pass*> passes();
-    std::vector<TrackedImage*> transientImages() { return target_->transientImages(); }
+    std::vector<TrackedImage*> transientImages();
+    // Fragments the OIT lists held and dropped in the last completed frame of `slot` (zeros in MSAA mode).
+    OitStats oitStats(uint32_t slot) const;
 
     RenderTarget& target() { return *target_; }
+    LightMaps& lightMaps() { return *lightMaps_; }
     RenderSettings& settings() { return settings_; }
     const Bounds& sceneBounds() const { return bounds_; }
 
@@ -65,11 +80,20 @@ private:
     std::unique_ptr<PhysicsPass> physicsPass_;
     std::unique_ptr<GuidePass> guidePass_;
     std::unique_ptr<HairPass> hairPass_;
+    uint32_t framesInFlight_ = 1;
+    std::unique_ptr<LightMaps> lightMaps_;
+    std::unique_ptr<ShadowPass> shadowPass_;
+    std::unique_ptr<OpacityPass> opacityPass_;
+    std::unique_ptr<Oit> oit_;
+    std::unique_ptr<OitClearPass> oitClear_;
+    std::unique_ptr<OitResolvePass> oitResolve_;
+    std::unique_ptr<OitStatsPass> oitStats_;
     uint32_t guideCount_ = 0;
     uint32_t verticesPerStrand_ = 0;
     float unitsPerMetre_ = 1.0f;
     float lodReferenceDistance_ = 1.0f;  // the default framing's distance: full detail at or nearer
     Bounds bounds_;
+    LightFit lightFit_;
 };
 
 }  // namespace wisp

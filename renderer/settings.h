@@ -54,7 +54,39 @@ struct StrandSettings {
     glm::vec3 tipColor{0.2f, 0.09f, 0.035f};       // lighter toward the tip
     float specularShift = 0.12f;                   // Scheuermann lobe shift
     bool showGuides = false;                       // also draw the guides as lines
+    bool reverseOrder = false;                     // draw the strands last to first (OIT order tests)
     uint32_t maxPatchVertices = gpu::kMaxPatchVertices;  // vertices one patch may emit (shaders/shared/strands.h)
+};
+
+inline constexpr Range kShadowMapSizeRange{64, 8192};     // texels per side
+inline constexpr Range kPcfSamplesRange{1, 64};           // shared/shadows.h kMaxPcfSamples
+inline constexpr Range kPcfRadiusRange{0.0, 16.0};        // texels
+inline constexpr Range kDomLayersRange{0, 4};             // 0 = off; shared/shadows.h kMaxDomLayers
+inline constexpr Range kDomSpacingRange{0.0005, 0.2};     // metres
+inline constexpr Range kDomKappaRange{0.0, 20.0};
+inline constexpr Range kOpacityRange{0.01, 1.0};
+inline constexpr Range kOitKRange{1, 16};                 // shared/shadows.h kMaxOitK
+inline constexpr Range kOitNodesPerPixelRange{0, 256};   // 0 = automatic
+
+// The key light's shadows (renderer/light_maps.cpp, shaders/light_visibility.glsl).
+struct ShadowSettings {
+    bool enabled = true;
+    uint32_t mapSize = 2048;          // shadow and deep opacity maps, texels per side
+    uint32_t pcfSamples = 16;         // PCF taps
+    float pcfRadiusTexels = 2.0f;     // PCF disk radius
+    uint32_t domLayers = 4;           // deep opacity layers; 0: hair self-shadows by PCF instead
+    float domSpacingMetres = 0.006f;  // depth of one deep opacity layer
+    float domKappa = 0.9f;            // transmittance = exp(-kappa * opacity)
+};
+
+enum class Transparency { Oit, Msaa };
+
+// How hair fragments become pixels (renderer/oit.cpp, shaders/oit_resolve.frag).
+struct TransparencySettings {
+    Transparency mode = Transparency::Oit;
+    uint32_t oitK = 8;                // nearest fragments sorted per pixel; the rest blended unsorted
+    uint32_t oitNodesPerPixel = 0;    // fragment pool size per pixel of the target; 0: as the device allows, up to 24
+    float hairOpacity = 0.85f;        // opacity of a strand that covers its pixel (oit, deep opacity)
 };
 
 struct RenderSettings {
@@ -70,6 +102,8 @@ struct RenderSettings {
     glm::vec3 headAlbedo{0.62f, 0.6f, 0.57f};        // mannequin grey-beige
     float headRoughness = 0.55f;
     StrandSettings strands;
+    ShadowSettings shadows;
+    TransparencySettings transparency;
 };
 
 }  // namespace wisp

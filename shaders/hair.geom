@@ -3,6 +3,7 @@
 // segment's projected tangent in screen space (so a horizontal strand keeps its width), its width
 // tapering toward the tip. A ribbon narrower than push.minPixelWidth is drawn that wide with its
 // alpha scaled by the true coverage (TressFX), so thin hair fades instead of breaking up.
+// With HAIR_FROM_LIGHT (hair_light.geom) the same ribbons face the light for its maps.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/frame_params.h"
 #include "shared/strands.h"
@@ -26,7 +27,14 @@ layout(location = 4) out float outAlpha;
 
 void main()
 {
+#ifdef HAIR_FROM_LIGHT
+    // Drawn from the light (orthographic): ribbons face it, at least a texel wide.
+    vec2 halfViewport = vec2(0.5 * frame.shadowMapSize);
+    float pixelsPerUnit = frame.lightTexelsPerUnit;
+#else
     vec2 halfViewport = 0.5 * vec2(frame.viewportWidth, frame.viewportHeight);
+    float pixelsPerUnit = abs(frame.projection[1][1]) * halfViewport.y;  // at w = 1 (y is flipped for Vulkan)
+#endif
     vec4 c0 = gl_in[0].gl_Position;
     vec4 c1 = gl_in[1].gl_Position;
     if (c0.w <= 0.0 || c1.w <= 0.0)
@@ -36,7 +44,6 @@ void main()
     vec2 along = s1 - s0;
     vec2 dir = dot(along, along) > 1e-12 ? normalize(along) : vec2(1.0, 0.0);
     vec2 perp = vec2(-dir.y, dir.x);
-    float pixelsPerUnit = abs(frame.projection[1][1]) * halfViewport.y;  // at w = 1 (y is flipped for Vulkan)
 
     for (int i = 0; i < 2; ++i) {
         vec4 c = i == 0 ? c0 : c1;

@@ -85,5 +85,9 @@ void main()
     outT = t;
     outStrand = guide * push.strandsPerGuide + s;
     outLodAlpha = lodAlpha(s, push.lodStrands);
+#ifdef HAIR_FROM_LIGHT
+    gl_Position = frame.lightViewProjection * vec4(p, 1.0);  // shadow and deep opacity passes
+#else
     gl_Position = frame.viewProjection * vec4(p, 1.0);
+#endif
 }

@@ -1,6 +1,6 @@
 #version 460
 // mesh.frag: shades the head with one directional key light plus a hemisphere ambient
-// (shared/lighting.h), tone-mapped; the target is sRGB so the hardware encodes the output.
+// (shared/lighting.h), shadowed by the head and the hair (light_visibility.glsl), tone-mapped; the target is sRGB so the hardware encodes the output.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/frame_params.h"
 #include "shared/mesh_params.h"
@@ -8,6 +8,8 @@
 
 layout(set = 0, binding = kFrameParamsBinding) uniform FrameBlock { FrameParams frame; };
 layout(push_constant) uniform PushBlock { MeshPush push; };
+#include "light_visibility.glsl"
+
 
 layout(location = 0) in vec3 inWorldPosition;
 layout(location = 1) in vec3 inWorldNormal;
@@ -19,8 +21,9 @@ void main()
     vec3 v = normalize(frame.cameraPosition - inWorldPosition);
     if (dot(n, v) < 0.0)
         n = -n;  // back faces seen through open meshes shade like their front
+    float visibility = lightVisibility(inWorldPosition, gl_FragCoord.xy, frame.shadowBias);
     vec3 radiance = surfaceRadiance(n, frame.lightDirection, v, push.albedo, push.roughness,
-                                    frame.lightColor * frame.lightIntensity);
+                                    frame.lightColor * frame.lightIntensity * visibility);
     radiance += push.albedo * frame.ambientIntensity *
                 hemisphereAmbient(n, frame.skyColor, frame.groundColor);
     outColor = vec4(toneMapAces(radiance * frame.exposure), 1.0);

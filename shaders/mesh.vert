@@ -1,6 +1,6 @@
 #version 460
 // mesh.vert: transforms head/body mesh vertices to clip space and passes the world-space
-// position and normal to mesh.frag.
+// position and normal to mesh.frag (mesh_light.vert, MESH_FROM_LIGHT: into the light's view).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/frame_params.h"
 #include "shared/mesh_params.h"
@@ -20,5 +20,9 @@ void main()
     outWorldPosition = world.xyz;
     // Normal matrix: inverse transpose of the model's upper 3x3 (handles non-uniform scale).
     outWorldNormal = transpose(inverse(mat3(push.model))) * inNormal;
+#ifdef MESH_FROM_LIGHT
+    gl_Position = frame.lightViewProjection * world;  // the shadow pass (depth only)
+#else
     gl_Position = frame.viewProjection * world;
+#endif
 }

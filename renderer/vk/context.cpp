@@ -111,6 +111,7 @@ std::vector<DeviceReport> queryDevices(VkInstance instance)
         r.maxTessellationGenerationLevel = limits.maxTessellationGenerationLevel;
         r.maxTessellationPatchSize = limits.maxTessellationPatchSize;
         r.maxGeometryOutputVertices = limits.maxGeometryOutputVertices;
+        r.maxStorageBufferRange = limits.maxStorageBufferRange;
         r.colorDepthSampleCounts = limits.framebufferColorSampleCounts & limits.framebufferDepthSampleCounts;
 
         std::vector<VkExtensionProperties> extensions = deviceExtensions(pd);

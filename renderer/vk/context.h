@@ -54,6 +54,7 @@ struct DeviceReport {
     uint32_t maxGeometryOutputVertices = 0;
     VkSampleCountFlags colorDepthSampleCounts = 0;
     uint64_t deviceLocalBytes = 0;
+    uint32_t maxStorageBufferRange = 0;
 
     // Names of required features this device lacks; empty when Wisp can run on it.
     std::vector<std::string> missing(bool needSwapchain) const;

@@ -130,23 +130,29 @@ Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& 
                                                   .polygonMode = VK_POLYGON_MODE_FILL,
                                                   .cullMode = desc.cullMode,
                                                   .frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE,
+                                                  .depthBiasEnable = desc.depthBiasConstant != 0.0f || desc.depthBiasSlope != 0.0f,
+                                                  .depthBiasConstantFactor = desc.depthBiasConstant,
+                                                  .depthBiasSlopeFactor = desc.depthBiasSlope,
                                                   .lineWidth = 1.0f};
     VkPipelineMultisampleStateCreateInfo multisample{.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO,
                                                      .rasterizationSamples = desc.samples};
     VkPipelineDepthStencilStateCreateInfo depth{.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO,
                                                 .depthTestEnable = desc.depthTest,
                                                 .depthWriteEnable = desc.depthWrite,
-                                                .depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL};
+                                                .depthCompareOp = desc.depthCompare};
+    VkBlendFactor srcColor = desc.blend == Blend::Alpha ? VK_BLEND_FACTOR_SRC_ALPHA : VK_BLEND_FACTOR_ONE;
+    VkBlendFactor dst = desc.blend == Blend::Additive ? VK_BLEND_FACTOR_ONE : VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
     VkPipelineColorBlendAttachmentState blendAttachment{
-        .blendEnable = desc.alphaBlend,
-        .srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA,
-        .dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA,
+        .blendEnable = desc.blend != Blend::None,
+        .srcColorBlendFactor = srcColor,
+        .dstColorBlendFactor = dst,
         .colorBlendOp = VK_BLEND_OP_ADD,
         .srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE,
-        .dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA,
+        .dstAlphaBlendFactor = dst,
         .alphaBlendOp = VK_BLEND_OP_ADD,
-        .colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
-                          VK_COLOR_COMPONENT_A_BIT};
+        .colorWriteMask = desc.colorWrite ? VkColorComponentFlags(VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
+                                                                  VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT)
+                                          : VkColorComponentFlags(0)};
     VkPipelineColorBlendStateCreateInfo blend{.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO,
                                               .attachmentCount = desc.colorFormat ? 1u : 0u,
                                               .pAttachments = &blendAttachment};

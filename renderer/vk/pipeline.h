@@ -43,6 +43,13 @@ struct VertexAttribute {
     uint32_t offset = 0;
 };
 
+enum class Blend {
+    None,            // the fragment replaces the attachment
+    Alpha,           // src * a + dst * (1 - a)
+    Premultiplied,   // src + dst * (1 - a): colours already multiplied by their alpha
+    Additive,        // src + dst (accumulation, e.g. deep opacity layers)
+};
+
 struct GraphicsPipelineDesc {
     VkPipelineLayout layout = VK_NULL_HANDLE;
     std::vector<std::string> shaders;  // file names in shaderDirectory(), stage from the extension
@@ -53,7 +60,12 @@ struct GraphicsPipelineDesc {
     VkCullModeFlags cullMode = VK_CULL_MODE_BACK_BIT;
     bool depthTest = true;
     bool depthWrite = true;
-    bool alphaBlend = false;
+    VkCompareOp depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL;
+    // Slope-scaled depth bias (shadow maps): constant in depth units of the format, slope per texel.
+    float depthBiasConstant = 0.0f;
+    float depthBiasSlope = 0.0f;
+    Blend blend = Blend::None;
+    bool colorWrite = true;  // false: the attachment is bound but never written (fragments only store)
     VkFormat colorFormat = VK_FORMAT_UNDEFINED;
     VkFormat depthFormat = VK_FORMAT_UNDEFINED;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;

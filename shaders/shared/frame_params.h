@@ -25,6 +25,20 @@ struct FrameParams {
     vec3  backgroundColor;   // linear RGB clear colour
     float viewportHeight;    // pixels
     mat4  headTransform;     // head space -> world this frame (rigid); the colliders move with it
+    // The light's view (shared/shadows.h): orthographic along lightDirection, depth 0..1 linear.
+    mat4  lightViewProjection;  // world -> light clip
+    float shadowMapSize;        // texels per side of the light's maps
+    float lightTexelsPerUnit;   // shadow-map texels per world unit
+    float lightDepthRange;      // world units the light's depth 0..1 spans
+    uint  pcfSamples;           // PCF taps; 0 = no shadows at all
+    float pcfRadius;            // PCF disk radius, texels
+    float shadowBias;           // depth bias of the shadow test, light depth units
+    uint  domLayers;            // deep opacity layers, 0 = off (hair self-shadows with PCF instead)
+    float domSpacing;           // depth of one layer, light depth units
+    float domKappa;             // transmittance = exp(-domKappa * opacity)
+    float hairOpacity;          // opacity of one strand of full coverage (OIT blending, deep opacity)
+    uint  shadingModel;         // kShading* (shared/hair_shading.h)
+    uint  shadowsEnabled;       // 0 or 1
 };
 
 GPU_NAMESPACE_END

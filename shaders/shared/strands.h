@@ -25,6 +25,10 @@ GPU_CONST uint kHairBindingFrame = 0;      // uniform FrameParams
 GPU_CONST uint kHairBindingSim = 1;        // uniform SimParams (colliders for multi-strand correction)
 GPU_CONST uint kHairBindingPositions = 2;  // the solver's positions (interleaved slots, sim.h)
 GPU_CONST uint kHairBindingTriangles = 3;  // uvec4 per guide: the guide and its two neighbours
+// 4..7: the light's maps (shared/shadows.h kBinding*)
+GPU_CONST uint kHairBindingOitHeads = 8;     // uint per pixel: the first node of its list
+GPU_CONST uint kHairBindingOitNodes = 9;     // OitNode pool
+GPU_CONST uint kHairBindingOitCounters = 10; // OitCounters
 
 GPU_CONST uint kInterpolationSingle = 0u;
 GPU_CONST uint kInterpolationMulti = 1u;
@@ -45,7 +49,7 @@ struct HairPush {
     float lodStrands;         // strands per guide drawn after LOD (continuous, <= S)
     float lodWidthScale;      // width multiplier from LOD (keeps coverage as strands thin out)
     float minPixelWidth;      // ribbons narrower than this are widened, alpha scaled by coverage
-    float pad0;
+    uint  reverseOrder;       // 1: draw guides and strand chunks last to first (order-independence tests)
     float pad1;
     float pad2;
     vec3  rootColor;          // linear RGB albedo at the root

@@ -1,0 +1,177 @@
+// renderer/light_maps.cpp: the light's maps, their samplers, and the shadow and opacity passes.
+#include "renderer/light_maps.h"
+
+#include "renderer/frame.h"
+#include "renderer/hair_pass.h"
+#include "renderer/mesh_pass.h"
+#include "renderer/vk/check.h"
+#include "renderer/vk/context.h"
+#include "shaders/shared/shadows.h"
+
+namespace wisp {
+
+namespace {
+
+vk::Sampler createSampler(const vk::Context& ctx, VkFilter filter, bool compare, const char* name)
+{
+    VkSamplerCreateInfo info{.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
+                             .magFilter = filter,
+                             .minFilter = filter,
+                             .mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST,
+                             .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                             .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                             .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                             .compareEnable = compare ? VK_TRUE : VK_FALSE,
+                             .compareOp = VK_COMPARE_OP_LESS_OR_EQUAL,
+                             .maxLod = 0.0f,
+                             .borderColor = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE};
+    VkSampler sampler = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateSampler(ctx.device(), &info, nullptr, &sampler));
+    ctx.setName(sampler, VK_OBJECT_TYPE_SAMPLER, name);
+    return vk::Sampler(ctx.device(), sampler);
+}
+
+VkWriteDescriptorSet imageWrite(uint32_t binding, const VkDescriptorImageInfo* info)
+{
+    return {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+            .dstBinding = binding,
+            .descriptorCount = 1,
+            .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+            .pImageInfo = info};
+}
+
+}  // namespace
+
+LightMaps::LightMaps(const vk::Context& ctx, uint32_t size) : ctx_(ctx)
+{
+    compare_ = createSampler(ctx, VK_FILTER_LINEAR, true, "light.sampler.compare");
+    nearest_ = createSampler(ctx, VK_FILTER_NEAREST, false, "light.sampler.nearest");
+    linear_ = createSampler(ctx, VK_FILTER_LINEAR, false, "light.sampler.linear");
+    resize(size);
+}
+
+void LightMaps::resize(uint32_t size)
+{
+    size_ = size;
+    VkExtent2D extent{size, size};
+    // Transfer source too: the tests read the maps back.
+    constexpr VkImageUsageFlags kDepthUsage =
+        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    headDepth_ = ctx_.createImage({.format = kDepthFormat, .extent = extent, .usage = kDepthUsage, .name = "light.head_depth"});
+    hairDepth_ = ctx_.createImage({.format = kDepthFormat, .extent = extent, .usage = kDepthUsage, .name = "light.hair_depth"});
+    opacity_ = ctx_.createImage({.format = kOpacityFormat,
+                                 .extent = extent,
+                                 .usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                 .name = "light.opacity"});
+    headTrack_ = {.image = headDepth_.get(), .aspect = VK_IMAGE_ASPECT_DEPTH_BIT};
+    hairTrack_ = {.image = hairDepth_.get(), .aspect = VK_IMAGE_ASPECT_DEPTH_BIT};
+    opacityTrack_ = {.image = opacity_.get()};
+    updateInfos();
+}
+
+void LightMaps::updateInfos()
+{
+    constexpr VkImageLayout kRead = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    infos_[0] = {compare_, headDepth_.view(), kRead};
+    infos_[1] = {compare_, hairDepth_.view(), kRead};
+    infos_[2] = {nearest_, hairDepth_.view(), kRead};
+    infos_[3] = {linear_, opacity_.view(), kRead};
+}
+
+void LightMaps::declareRead(PassIo& io)
+{
+    io.use(headTrack_, Access::FragmentSampled);
+    io.use(hairTrack_, Access::FragmentSampled);
+    io.use(opacityTrack_, Access::FragmentSampled);
+}
+
+std::array<VkWriteDescriptorSet, 4> LightMaps::descriptorWrites() const
+{
+    return {imageWrite(gpu::kBindingShadowHead, &infos_[0]), imageWrite(gpu::kBindingShadowHair, &infos_[1]),
+            imageWrite(gpu::kBindingHairDepth, &infos_[2]), imageWrite(gpu::kBindingOpacity, &infos_[3])};
+}
+
+VkWriteDescriptorSet LightMaps::hairDepthWrite() const
+{
+    return imageWrite(gpu::kBindingHairDepth, &infos_[2]);
+}
+
+namespace {
+
+void beginRendering(VkCommandBuffer cmd, uint32_t size, const VkRenderingAttachmentInfo* color,
+                    const VkRenderingAttachmentInfo* depth)
+{
+    VkRenderingInfo info{.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
+                         .renderArea = {{0, 0}, {size, size}},
+                         .layerCount = 1,
+                         .colorAttachmentCount = color ? 1u : 0u,
+                         .pColorAttachments = color,
+                         .pDepthAttachment = depth};
+    vkCmdBeginRendering(cmd, &info);
+    VkViewport viewport{0.0f, 0.0f, float(size), float(size), 0.0f, 1.0f};
+    VkRect2D scissor{{0, 0}, {size, size}};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
+}  // namespace
+
+void LightMaps::beginDepth(VkCommandBuffer cmd, const vk::Image& image) const
+{
+    VkRenderingAttachmentInfo depth{.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
+                                    .imageView = image.view(),
+                                    .imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                                    .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR,
+                                    .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
+                                    .clearValue = {.depthStencil = {1.0f, 0}}};
+    beginRendering(cmd, size_, nullptr, &depth);
+}
+
+void LightMaps::beginOpacity(VkCommandBuffer cmd) const
+{
+    VkRenderingAttachmentInfo color{.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
+                                    .imageView = opacity_.view(),
+                                    .imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                                    .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR,
+                                    .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
+                                    .clearValue = {.color = {{0.0f, 0.0f, 0.0f, 0.0f}}}};
+    beginRendering(cmd, size_, &color, nullptr);
+}
+
+void ShadowPass::declare(PassIo& io)
+{
+    io.use(maps_.headDepth(), Access::DepthAttachment);
+    io.use(maps_.hairDepth(), Access::DepthAttachment);
+    if (hair_)
+        hair_->declareGuides(io);
+}
+
+void ShadowPass::record(VkCommandBuffer cmd, FrameContext& frame)
+{
+    maps_.beginDepth(cmd, maps_.headDepthImage());
+    if (enabled_)
+        meshes_.recordFromLight(cmd, frame);
+    vkCmdEndRendering(cmd);
+    maps_.beginDepth(cmd, maps_.hairDepthImage());
+    if (enabled_ && hair_)
+        hair_->recordFromLight(cmd, frame, HairPass::LightDraw::Depth);
+    vkCmdEndRendering(cmd);
+}
+
+void OpacityPass::declare(PassIo& io)
+{
+    io.use(maps_.hairDepth(), Access::FragmentSampled);
+    io.use(maps_.opacity(), Access::ColorAttachment);
+    if (hair_)
+        hair_->declareGuides(io);
+}
+
+void OpacityPass::record(VkCommandBuffer cmd, FrameContext& frame)
+{
+    maps_.beginOpacity(cmd);
+    if (enabled_ && hair_)
+        hair_->recordFromLight(cmd, frame, HairPass::LightDraw::Opacity);
+    vkCmdEndRendering(cmd);
+}
+
+}  // namespace wisp

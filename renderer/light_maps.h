@@ -1,0 +1,97 @@
+// renderer/light_maps.h: what the key light sees, remade every frame: the head's and the hair's
+// depth maps (the shadow pass) and the hair's deep opacity layers (the opacity pass), and the
+// samplers the mesh and hair shaders read them through (shaders/light_visibility.glsl).
+//   shadow:  head depth  <- meshes from the light (depth only, slope-scaled bias)
+//            hair depth  <- hair from the light (the same tessellated ribbons, facing the light)
+//   opacity: layers      <- hair from the light again, additive, each fragment into the layer its
+//                           depth falls in behind the texel's first hair depth (Yuksel & Keyser 2008)
+#pragma once
+
+#include "renderer/pass.h"
+#include "renderer/vk/handle.h"
+#include "renderer/vk/resources.h"
+
+#include <array>
+#include <vector>
+
+namespace wisp {
+
+namespace vk {
+class Context;
+}
+class MeshPass;
+class HairPass;
+
+class LightMaps {
+public:
+    static constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+    static constexpr VkFormat kOpacityFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+
+    LightMaps(const vk::Context& ctx, uint32_t size);
+    // Recreates the maps at a new size; the device must be idle.
+    void resize(uint32_t size);
+    uint32_t size() const { return size_; }
+
+    TrackedImage& headDepth() { return headTrack_; }
+    TrackedImage& hairDepth() { return hairTrack_; }
+    TrackedImage& opacity() { return opacityTrack_; }
+    const vk::Image& headDepthImage() const { return headDepth_; }
+    const vk::Image& hairDepthImage() const { return hairDepth_; }
+    const vk::Image& opacityImage() const { return opacity_; }
+    std::vector<TrackedImage*> transientImages() { return {&headTrack_, &hairTrack_, &opacityTrack_}; }
+
+    // For a pass whose fragments read the maps: the accesses to declare, and the descriptor
+    // writes for bindings kBindingShadowHead..kBindingOpacity (valid while this object lives).
+    void declareRead(PassIo& io);
+    std::array<VkWriteDescriptorSet, 4> descriptorWrites() const;
+    // The hair depth alone, for the opacity pass (binding kBindingHairDepth).
+    VkWriteDescriptorSet hairDepthWrite() const;
+
+    // Begins rendering into one map, cleared (depth 1, opacity 0), with its viewport.
+    void beginDepth(VkCommandBuffer cmd, const vk::Image& image) const;
+    void beginOpacity(VkCommandBuffer cmd) const;
+
+private:
+    const vk::Context& ctx_;
+    uint32_t size_ = 0;
+    vk::Image headDepth_, hairDepth_, opacity_;
+    TrackedImage headTrack_, hairTrack_, opacityTrack_;
+    vk::Sampler compare_;  // depth compare, bilinear (each PCF tap is itself a 2x2 filter)
+    vk::Sampler nearest_;  // the hair's first depth as a value
+    vk::Sampler linear_;   // the opacity layers
+    std::array<VkDescriptorImageInfo, 4> infos_{};
+    void updateInfos();
+};
+
+// The light's depth maps: the head, then the hair.
+class ShadowPass : public Pass {
+public:
+    ShadowPass(LightMaps& maps, MeshPass& meshes, HairPass* hair) : maps_(maps), meshes_(meshes), hair_(hair) {}
+    const char* name() const override { return "shadow"; }
+    void declare(PassIo& io) override;
+    void record(VkCommandBuffer cmd, FrameContext& frame) override;
+    void setEnabled(bool enabled) { enabled_ = enabled; }  // off: the maps are only cleared
+
+private:
+    LightMaps& maps_;
+    MeshPass& meshes_;
+    HairPass* hair_;
+    bool enabled_ = true;
+};
+
+// The hair's deep opacity layers.
+class OpacityPass : public Pass {
+public:
+    OpacityPass(LightMaps& maps, HairPass* hair) : maps_(maps), hair_(hair) {}
+    const char* name() const override { return "opacity"; }
+    void declare(PassIo& io) override;
+    void record(VkCommandBuffer cmd, FrameContext& frame) override;
+    void setEnabled(bool enabled) { enabled_ = enabled; }
+
+private:
+    LightMaps& maps_;
+    HairPass* hair_;
+    bool enabled_ = true;
+};
+
+}  // namespace wisp

@@ -1,0 +1,179 @@
+// renderer/oit.cpp: the linked lists' buffers, their sizing and limits, and the clear, resolve
+// and statistics passes.
+#include "renderer/oit.h"
+
+#include "core/error.h"
+#include "renderer/frame.h"
+#include "renderer/render_target.h"
+#include "renderer/vk/context.h"
+#include "renderer/vk/pipeline.h"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <string>
+
+namespace wisp {
+
+static_assert(sizeof(gpu::OitNode) == 12 && sizeof(gpu::OitCounters) == 16);
+
+namespace {
+
+struct ResolvePush {
+    uint32_t width;
+    uint32_t k;
+    uint32_t maxWalk;
+    uint32_t pad;
+};
+
+std::string mib(uint64_t bytes)
+{
+    return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB";
+}
+
+}  // namespace
+
+Oit::Oit(const vk::Context& ctx, VkExtent2D extent, uint32_t nodesPerPixel, uint32_t framesInFlight) : ctx_(ctx)
+{
+    for (uint32_t i = 0; i < framesInFlight; ++i)
+        readback_.push_back(ctx.createBuffer({.size = sizeof(gpu::OitCounters),
+                                              .usage = vk::kTransferDst,
+                                              .memory = vk::Memory::Readback,
+                                              .name = "oit.counters.readback"}));
+    for (vk::Buffer& b : readback_)
+        std::memset(b.mapped(), 0, sizeof(gpu::OitCounters));
+    resize(extent, nodesPerPixel);
+}
+
+void Oit::resize(VkExtent2D extent, uint32_t requestedNodesPerPixel)
+{
+    uint64_t pixels = uint64_t(extent.width) * extent.height;
+    const vk::DeviceReport& device = ctx_.report();
+    // What one buffer may hold on this device, and at most half of its memory.
+    uint64_t limit = device.maxStorageBufferRange;
+    if (device.deviceLocalBytes > 0)
+        limit = std::min<uint64_t>(limit, device.deviceLocalBytes / 2);
+    uint32_t nodesPerPixel = requestedNodesPerPixel;
+    uint64_t nodes = pixels * nodesPerPixel;
+    if (nodesPerPixel == 0) {
+        // Automatic: kAutoNodesPerPixel per pixel but never fewer than kAutoMinNodes (small
+        // pictures of a full head hold many fragments per pixel), within what the device allows.
+        uint64_t wanted = std::max<uint64_t>(pixels * kAutoNodesPerPixel, kAutoMinNodes);
+        nodes = std::max<uint64_t>(std::min<uint64_t>(wanted, limit / sizeof(gpu::OitNode)), pixels);
+        nodesPerPixel = uint32_t((nodes + pixels - 1) / pixels);
+    }
+    uint64_t bytes = nodes * sizeof(gpu::OitNode);
+    if (nodes >= gpu::kOitNil || bytes > limit)
+        throw UserError("the OIT fragment pool (" + std::to_string(extent.width) + " x " + std::to_string(extent.height) +
+                        " pixels x " + std::to_string(std::max(nodesPerPixel, 1u)) + " nodes of " +
+                        std::to_string(sizeof(gpu::OitNode)) + " bytes = " + mib(bytes) + ") is larger than '" +
+                        device.name + "' allows (" + mib(limit) +
+                        ": one storage buffer, at most half the device memory); lower oit_nodes_per_pixel or the "
+                        "resolution, or use transparency=msaa");
+    nodesPerPixel_ = nodesPerPixel;
+    extent_ = extent;
+    capacity_ = uint32_t(nodes);
+    heads_ = ctx_.createBuffer({.size = pixels * sizeof(uint32_t),
+                                .usage = vk::kStorage | vk::kTransferDst,
+                                .name = "oit.heads"});
+    nodes_ = ctx_.createBuffer({.size = bytes, .usage = vk::kStorage, .name = "oit.nodes"});
+    counters_ = ctx_.createBuffer({.size = sizeof(gpu::OitCounters),
+                                   .usage = vk::kStorage | vk::kTransferDst | vk::kTransferSrc,
+                                   .name = "oit.counters"});
+    headsTrack_ = {.buffer = heads_};
+    nodesTrack_ = {.buffer = nodes_};
+    countersTrack_ = {.buffer = counters_};
+}
+
+OitStats Oit::stats(uint32_t slot) const
+{
+    gpu::OitCounters c{};
+    std::memcpy(&c, readback_.at(slot).mapped(), sizeof(c));
+    return {.fragments = c.allocated, .overflow = c.overflow, .capacity = capacity_};
+}
+
+void Oit::recordClear(VkCommandBuffer cmd) const
+{
+    vkCmdFillBuffer(cmd, heads_, 0, VK_WHOLE_SIZE, gpu::kOitNil);
+    gpu::OitCounters c{.allocated = 0, .overflow = 0, .capacity = capacity_, .pad = 0};
+    vkCmdUpdateBuffer(cmd, counters_, 0, sizeof(c), &c);
+}
+
+void Oit::recordStatsCopy(VkCommandBuffer cmd, uint32_t slot) const
+{
+    VkBufferCopy region{0, 0, sizeof(gpu::OitCounters)};
+    vkCmdCopyBuffer(cmd, counters_, readback_.at(slot), 1, &region);
+    vk::transferToHostBarrier(cmd);
+}
+
+void OitClearPass::declare(PassIo& io)
+{
+    io.use(oit_.heads(), Access::TransferDst);
+    io.use(oit_.counters(), Access::TransferDst);
+}
+
+void OitClearPass::record(VkCommandBuffer cmd, FrameContext&)
+{
+    oit_.recordClear(cmd);
+}
+
+void OitStatsPass::record(VkCommandBuffer cmd, FrameContext& frame)
+{
+    oit_.recordStatsCopy(cmd, frame.slot);
+}
+
+OitResolvePass::OitResolvePass(const vk::Context& ctx, Oit& oit, RenderTarget& target)
+    : ctx_(ctx), oit_(oit), target_(target)
+{
+    vk::PipelineLayoutBundle layout = vk::createPipelineLayout(
+        ctx, {.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT},
+                           {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT},
+                           {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT}},
+              .pushConstantBytes = sizeof(ResolvePush),
+              .pushConstantStages = VK_SHADER_STAGE_FRAGMENT_BIT,
+              .name = "oit.resolve.layout"});
+    setLayout_ = std::move(layout.setLayout);
+    layout_ = std::move(layout.layout);
+    pipeline_ = vk::createGraphicsPipeline(ctx, {.layout = layout_,
+                                                 .shaders = {"oit_resolve.vert", "oit_resolve.frag"},
+                                                 .cullMode = VK_CULL_MODE_NONE,
+                                                 .depthTest = false,
+                                                 .depthWrite = false,
+                                                 .blend = vk::Blend::Premultiplied,
+                                                 .colorFormat = RenderTarget::kColorFormat,
+                                                 .depthFormat = RenderTarget::kDepthFormat,
+                                                 .samples = target.samples(),
+                                                 .name = "oit.resolve.pipeline"});
+}
+
+void OitResolvePass::declare(PassIo& io)
+{
+    io.use(oit_.heads(), Access::FragmentStorageRead);
+    io.use(oit_.nodes(), Access::FragmentStorageRead);
+    io.use(oit_.counters(), Access::FragmentStorageRead);
+    target_.declareDraw(io);
+}
+
+void OitResolvePass::record(VkCommandBuffer cmd, FrameContext&)
+{
+    target_.beginRendering(cmd, glm::vec3(0.0f));
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
+    std::array<VkDescriptorBufferInfo, 3> infos = {VkDescriptorBufferInfo{oit_.headsBuffer(), 0, VK_WHOLE_SIZE},
+                                                   VkDescriptorBufferInfo{oit_.nodesBuffer(), 0, VK_WHOLE_SIZE},
+                                                   VkDescriptorBufferInfo{oit_.countersBuffer(), 0, VK_WHOLE_SIZE}};
+    std::array<VkWriteDescriptorSet, 3> writes{};
+    for (uint32_t i = 0; i < 3; ++i)
+        writes[i] = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                     .dstBinding = i,
+                     .descriptorCount = 1,
+                     .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                     .pBufferInfo = &infos[i]};
+    ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, uint32_t(writes.size()), writes.data());
+    // A list can never hold more nodes than the pool; the bound also keeps a corrupted list finite.
+    ResolvePush push{.width = oit_.extent().width, .k = k_, .maxWalk = oit_.capacity(), .pad = 0};
+    vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push), &push);
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+    target_.endRendering(cmd);
+}
+
+}  // namespace wisp

@@ -1,0 +1,109 @@
+// renderer/oit.h: order-independent transparency for the hair with per-pixel linked lists
+// (TressFX's PPLL). Per frame:
+//   oit.clear    every pixel's head pointer to nil, the pool counter to zero
+//   hair         (hair_oit.frag) each fragment takes a node from the pool and links it in
+//   oit.resolve  a full-screen pass sorts each pixel's nearest k and blends the list over the target
+//   oit.stats    copies the counters to the host: fragments stored and those the full pool dropped
+// The pool holds nodesPerPixel x the target's pixels (automatic: 24 per pixel, at least 8M nodes); it is sized up front and checked against
+// the device's limits, so a too-large request is a clear error, and an overflowing frame loses
+// fragments (counted) but never writes out of bounds or loops.
+#pragma once
+
+#include "renderer/pass.h"
+#include "renderer/vk/handle.h"
+#include "renderer/vk/resources.h"
+#include "shaders/shared/shadows.h"
+
+#include <vector>
+
+namespace wisp {
+
+namespace vk {
+class Context;
+}
+class RenderTarget;
+
+struct OitStats {
+    uint64_t fragments = 0;  // fragments the hair produced last frame (stored + dropped)
+    uint64_t overflow = 0;   // of those, dropped because the pool was full
+    uint64_t capacity = 0;   // nodes in the pool
+};
+
+class Oit {
+public:
+    // Nodes per pixel when the setting is 0 (automatic) and the device has room.
+    static constexpr uint32_t kAutoNodesPerPixel = 24;
+    static constexpr uint64_t kAutoMinNodes = 8u << 20;
+
+    // nodesPerPixel 0: automatic (kAutoNodesPerPixel, at least kAutoMinNodes, as the device allows).
+    Oit(const vk::Context& ctx, VkExtent2D extent, uint32_t nodesPerPixel, uint32_t framesInFlight);
+    // Re-sizes the lists and the pool; the device must be idle. Throws UserError when the pool
+    // would pass the device's storage-buffer range or half its memory.
+    void resize(VkExtent2D extent, uint32_t nodesPerPixel);
+    uint32_t nodesPerPixel() const { return nodesPerPixel_; }
+
+    TrackedBuffer& heads() { return headsTrack_; }
+    TrackedBuffer& nodes() { return nodesTrack_; }
+    TrackedBuffer& counters() { return countersTrack_; }
+    VkBuffer headsBuffer() const { return heads_; }
+    VkBuffer nodesBuffer() const { return nodes_; }
+    VkBuffer countersBuffer() const { return counters_; }
+    uint32_t capacity() const { return capacity_; }
+    VkExtent2D extent() const { return extent_; }
+
+    // The counters copied back by the last completed frame that used `slot`.
+    OitStats stats(uint32_t slot) const;
+    void recordClear(VkCommandBuffer cmd) const;
+    void recordStatsCopy(VkCommandBuffer cmd, uint32_t slot) const;
+
+private:
+    const vk::Context& ctx_;
+    VkExtent2D extent_{};
+    uint32_t capacity_ = 0;
+    uint32_t nodesPerPixel_ = 0;
+    vk::Buffer heads_, nodes_, counters_;
+    std::vector<vk::Buffer> readback_;  // one per frame in flight
+    TrackedBuffer headsTrack_, nodesTrack_, countersTrack_;
+};
+
+class OitClearPass : public Pass {
+public:
+    explicit OitClearPass(Oit& oit) : oit_(oit) {}
+    const char* name() const override { return "oit.clear"; }
+    void declare(PassIo& io) override;
+    void record(VkCommandBuffer cmd, FrameContext& frame) override;
+
+private:
+    Oit& oit_;
+};
+
+class OitResolvePass : public Pass {
+public:
+    OitResolvePass(const vk::Context& ctx, Oit& oit, RenderTarget& target);
+    const char* name() const override { return "oit.resolve"; }
+    void declare(PassIo& io) override;
+    void record(VkCommandBuffer cmd, FrameContext& frame) override;
+    void setK(uint32_t k) { k_ = k; }
+
+private:
+    const vk::Context& ctx_;
+    Oit& oit_;
+    RenderTarget& target_;
+    vk::DescriptorSetLayout setLayout_;
+    vk::PipelineLayout layout_;
+    vk::Pipeline pipeline_;
+    uint32_t k_ = 8;
+};
+
+class OitStatsPass : public Pass {
+public:
+    explicit OitStatsPass(Oit& oit) : oit_(oit) {}
+    const char* name() const override { return "oit.stats"; }
+    void declare(PassIo& io) override { io.use(oit_.counters(), Access::TransferSrc); }
+    void record(VkCommandBuffer cmd, FrameContext& frame) override;
+
+private:
+    Oit& oit_;
+};
+
+}  // namespace wisp

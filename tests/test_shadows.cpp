@@ -1,0 +1,283 @@
+// tests/test_shadows.cpp: the light's side of the picture. The shared math of PCF taps and deep
+// opacity layers; on the device: shadows darken the head and never brighten anything, the side
+// away from the light is darker, the deep opacity layers hold the hair and their transmittance
+// falls with depth, the OIT result does not depend on draw order, and a full pool is counted.
+#include "app/headless.h"
+#include "physics/gpu_solver.h"
+#include "physics/hair_scene.h"
+#include "renderer/frame.h"
+#include "renderer/renderer.h"
+#include "renderer/vk/context.h"
+#include "renderer/vk/pipeline.h"
+#include "shaders/shared/shadows.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+
+using namespace wisp;
+
+// ---- Shared math ------------------------------------------------------------------------------
+
+TEST(ShadowMath, VogelTapsFillTheUnitDiskEvenly)
+{
+    for (uint32_t n : {1u, 4u, 16u, 64u}) {
+        glm::vec2 mean(0.0f);
+        uint32_t inner = 0;
+        for (uint32_t i = 0; i < n; ++i) {
+            glm::vec2 t = gpu::vogelDiskTap(i, n, 0.7f);
+            EXPECT_LE(glm::length(t), 1.0f + 1e-6f);
+            mean += t / float(n);
+            inner += glm::length(t) < std::sqrt(0.5f) ? 1u : 0u;
+        }
+        if (n >= 16) {
+            EXPECT_LT(glm::length(mean), 0.1f);  // centred
+            EXPECT_NEAR(float(inner) / float(n), 0.5f, 0.07f);  // equal area: half the taps inside r^2 = 1/2
+        }
+    }
+}
+
+TEST(ShadowMath, DeepOpacityGrowsWithDepthAndSumsTheLayers)
+{
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(0.0f, 3.0f);
+    for (int trial = 0; trial < 200; ++trial) {
+        glm::vec4 layers(u(rng), u(rng), u(rng), u(rng));
+        uint32_t count = 1u + uint32_t(trial) % 4u;
+        float z0 = 0.3f, spacing = 0.01f;
+        float previous = 0.0f;
+        for (float z = 0.25f; z < 0.4f; z += 0.0005f) {
+            float o = gpu::domOpacity(layers, z, z0, spacing, count);
+            EXPECT_GE(o, previous - 1e-6f) << "opacity must never fall with depth";
+            previous = o;
+            EXPECT_GE(gpu::domTransmittance(o, 0.9f), 0.0f);
+        }
+        EXPECT_EQ(gpu::domOpacity(layers, z0, z0, spacing, count), 0.0f);  // nothing in front of the first hair
+        float all = 0.0f;
+        for (uint32_t k = 0; k < count; ++k)
+            all += layers[int(k)];
+        EXPECT_NEAR(gpu::domOpacity(layers, z0 + float(count) * spacing, z0, spacing, count), all, 1e-4f);
+    }
+    // A fragment adds to the layer its depth falls in; past the last, to the last.
+    EXPECT_EQ(gpu::domLayerMask(0.305f, 0.3f, 0.01f, 4), glm::vec4(1, 0, 0, 0));
+    EXPECT_EQ(gpu::domLayerMask(0.325f, 0.3f, 0.01f, 4), glm::vec4(0, 0, 1, 0));
+    EXPECT_EQ(gpu::domLayerMask(0.9f, 0.3f, 0.01f, 3), glm::vec4(0, 0, 1, 0));
+}
+
+// ---- On the device ------------------------------------------------------------------------------
+
+namespace {
+
+HairScene smallScene(uint32_t guides)
+{
+    GrowthSettings g;
+    g.guides = guides;
+    return buildGrownScene(defaultHeadPath(), g);
+}
+
+RenderSettings smallSettings()
+{
+    RenderSettings s;
+    s.width = 200;
+    s.height = 150;
+    s.shadows.mapSize = 512;
+    s.strands.strandsPerGuide = 8;
+    s.strands.divisions = 12;
+    return s;
+}
+
+double luminance(const Picture& p, size_t pixel)
+{
+    return 0.2126 * p.rgba[pixel * 4] + 0.7152 * p.rgba[pixel * 4 + 1] + 0.0722 * p.rgba[pixel * 4 + 2];
+}
+
+Picture render(const vk::Context& ctx, const HairScene& scene, const RenderSettings& s)
+{
+    HairRun run{.scene = &scene};
+    return renderPicture(ctx, scene.head, s, &run);
+}
+
+// Copies the light's hair depth and opacity layers to the host within the frame that made them.
+class LightMapsReadback : public Pass {
+public:
+    LightMapsReadback(const vk::Context& ctx, LightMaps& maps) : maps_(maps)
+    {
+        size_t texels = size_t(maps.size()) * maps.size();
+        depth_ = ctx.createBuffer({.size = texels * 4, .usage = vk::kTransferDst, .memory = vk::Memory::Readback,
+                                   .name = "test.hair_depth"});
+        opacity_ = ctx.createBuffer({.size = texels * 8, .usage = vk::kTransferDst, .memory = vk::Memory::Readback,
+                                     .name = "test.opacity"});
+    }
+    const char* name() const override { return "test.readback"; }
+    void declare(PassIo& io) override
+    {
+        io.use(maps_.hairDepth(), Access::TransferSrc);
+        io.use(maps_.opacity(), Access::TransferSrc);
+    }
+    void record(VkCommandBuffer cmd, FrameContext&) override
+    {
+        uint32_t n = maps_.size();
+        VkBufferImageCopy depth{.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1}, .imageExtent = {n, n, 1}};
+        vkCmdCopyImageToBuffer(cmd, maps_.hairDepthImage().get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, depth_, 1, &depth);
+        VkBufferImageCopy color{.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageExtent = {n, n, 1}};
+        vkCmdCopyImageToBuffer(cmd, maps_.opacityImage().get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, opacity_, 1, &color);
+        vk::transferToHostBarrier(cmd);
+    }
+    float depth(size_t texel) const
+    {
+        float v;
+        std::memcpy(&v, static_cast<const char*>(depth_.mapped()) + texel * 4, 4);
+        return v;
+    }
+    glm::vec4 opacity(size_t texel) const
+    {
+        uint16_t h[4];
+        std::memcpy(h, static_cast<const char*>(opacity_.mapped()) + texel * 8, 8);
+        glm::vec4 v;
+        for (int c = 0; c < 4; ++c)
+            v[c] = halfToFloat(h[c]);
+        return v;
+    }
+
+private:
+    static float halfToFloat(uint16_t h)
+    {
+        int e = (h >> 10) & 31, m = h & 1023;
+        float v = e == 0 ? std::ldexp(float(m), -24) : std::ldexp(float(m | 1024), e - 25);
+        return (h & 0x8000) ? -v : v;
+    }
+    LightMaps& maps_;
+    vk::Buffer depth_, opacity_;
+};
+
+}  // namespace
+
+TEST(Shadows, DarkenTheHeadAndNeverBrightenAnything)
+{
+    vk::Context ctx(test::validatedOptions());
+    HairScene scene = smallScene(150);
+    RenderSettings s = smallSettings();
+    s.transparency.mode = Transparency::Msaa;
+    Picture lit = [&] { RenderSettings o = s; o.shadows.enabled = false; return render(ctx, scene, o); }();
+    Picture shadowed = render(ctx, scene, s);
+    size_t darker = 0, brighter = 0;
+    for (size_t i = 0; i < size_t(s.width) * s.height; ++i) {
+        double d = luminance(shadowed, i) - luminance(lit, i);
+        darker += d < -10.0 ? 1u : 0u;
+        brighter += d > 3.0 ? 1u : 0u;
+    }
+    EXPECT_GT(darker, size_t(s.width) * s.height / 100) << "the chin shades the neck, the hair the head and itself";
+    EXPECT_EQ(brighter, 0u);
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
+TEST(Shadows, TheSideAwayFromTheLightIsDarker)
+{
+    vk::Context ctx(test::validatedOptions());
+    HairScene scene = smallScene(150);
+    RenderSettings s = smallSettings();
+    s.light.elevationDeg = 10.0f;
+    double side[2] = {0.0, 0.0};
+    for (int k = 0; k < 2; ++k) {
+        s.light.azimuthDeg = k == 0 ? 90.0f : -90.0f;  // from the image's right (+x), then its left
+        Picture p = render(ctx, scene, s);
+        double right = 0.0, left = 0.0;
+        for (uint32_t y = 0; y < s.height; ++y)
+            for (uint32_t x = 0; x < s.width; ++x)
+                (x >= s.width / 2 ? right : left) += luminance(p, size_t(y) * s.width + x);
+        side[k] = right - left;
+    }
+    EXPECT_GT(side[0], 0.0) << "lit from the right, the right half is brighter";
+    EXPECT_LT(side[1], 0.0) << "lit from the left, the left half is brighter";
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
+TEST(DeepOpacity, LayersHoldTheHairAndTransmittanceFallsWithDepth)
+{
+    vk::Context ctx(test::validatedOptions());
+    HairScene scene = smallScene(200);
+    RenderSettings s = smallSettings();
+    s.shadows.mapSize = 256;
+    s.light.elevationDeg = 80.0f;  // from above: light crosses the whole thickness of the hair
+    Renderer renderer(ctx, s, 1);
+    renderer.setHead(scene.head);
+    SimSetup setup = makeSimSetup(SimSettings{}, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
+    GpuSolver solver(ctx, scene.strands, setup, glm::mat4(1.0f));
+    renderer.attachHair(solver, scene.strands, scene.unitsPerMetre);
+    Frame frame(ctx, 1);
+    OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(s.width) / float(s.height));
+    LightMapsReadback readback(ctx, renderer.lightMaps());
+    FrameContext& fc = frame.begin(renderer.transientImages());
+    renderer.prepare(fc, camera, 0.0f);
+    std::vector<Pass*> passes = renderer.passes();
+    passes.push_back(&readback);
+    frame.run(fc, passes);
+    frame.submit(fc);
+    frame.waitIdle();
+
+    // The same spacing pack() gives the shaders, in light depth units.
+    gpu::FrameParams params = pack(s, camera, {s.width, s.height}, 0.0f,
+                                   LightFit{renderer.sceneBounds(), scene.unitsPerMetre});
+    size_t hairTexels = 0, dense = 0;
+    size_t texels = size_t(s.shadows.mapSize) * s.shadows.mapSize;
+    for (size_t t = 0; t < texels; ++t) {
+        float z0 = readback.depth(t);
+        glm::vec4 layers = readback.opacity(t);
+        for (int c = 0; c < 4; ++c)
+            ASSERT_TRUE(std::isfinite(layers[c]) && layers[c] >= 0.0f);
+        if (z0 >= 1.0f) {
+            EXPECT_EQ(layers, glm::vec4(0.0f)) << "texel " << t << ": opacity where no hair is";
+            continue;
+        }
+        ++hairTexels;
+        EXPECT_GT(layers.x, 0.0f) << "texel " << t << ": the first hair adds to the first layer";
+        float previous = 1.0f;
+        float spacing = params.domSpacing;
+        for (int k = 0; k <= 40; ++k) {
+            float z = z0 + float(k) * spacing * 0.25f;
+            float transmittance = gpu::domTransmittance(gpu::domOpacity(layers, z, z0, spacing, 4), s.shadows.domKappa);
+            EXPECT_LE(transmittance, previous + 1e-6f);
+            previous = transmittance;
+        }
+        dense += previous < 0.5f ? 1u : 0u;
+    }
+    EXPECT_GT(hairTexels, texels / 50) << "the hair seen from above covers part of the map";
+    EXPECT_GT(dense, 0u) << "somewhere the hair is thick enough to let less than half the light through";
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
+TEST(Oit, TheResultDoesNotDependOnDrawOrder)
+{
+    vk::Context ctx(test::validatedOptions());
+    HairScene scene = smallScene(120);
+    RenderSettings s = smallSettings();
+    s.transparency.mode = Transparency::Oit;
+    s.transparency.oitNodesPerPixel = 64;
+    Picture forward = render(ctx, scene, s);
+    s.strands.reverseOrder = true;
+    Picture reverse = render(ctx, scene, s);
+    EXPECT_GT(forward.oit.fragments, 1000u);
+    EXPECT_EQ(forward.oit.overflow, 0u);
+    EXPECT_EQ(reverse.oit.fragments, forward.oit.fragments) << "the same strands, in the other order";
+    int maxDiff = 0;
+    for (size_t i = 0; i < forward.rgba.size(); ++i)
+        maxDiff = std::max(maxDiff, std::abs(int(forward.rgba[i]) - int(reverse.rgba[i])));
+    EXPECT_LE(maxDiff, 2) << "only the rounding of the unsorted tail's sums may differ";
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
+TEST(Oit, AFullPoolIsCountedAndTheFrameStillCompletes)
+{
+    vk::Context ctx(test::validatedOptions());
+    HairScene scene = smallScene(150);
+    RenderSettings s = smallSettings();
+    s.transparency.oitNodesPerPixel = 1;
+    Picture p = render(ctx, scene, s);
+    EXPECT_EQ(p.oit.capacity, uint64_t(s.width) * s.height);
+    EXPECT_GT(p.oit.fragments, p.oit.capacity);
+    EXPECT_EQ(p.oit.overflow, p.oit.fragments - p.oit.capacity);
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
