@@ -12,8 +12,8 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
-#include <utility>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace wisp {
@@ -162,32 +162,46 @@ std::function<int()> addBsdfCommand(CLI::App& app)
     cmd->add_option("--h", p.h, "offset across the fibre of the reference (the models average over it)")
         ->check(range(shading::kHRange))
         ->capture_default_str();
-    cmd->add_option("--eta", p.eta, "index of refraction of the fibre")->check(range(shading::kEtaRange))->capture_default_str();
-    cmd->add_option("--beta-m", p.betaM, "longitudinal roughness")->check(range(shading::kBetaRange))->capture_default_str();
-    cmd->add_option("--beta-n", p.betaN, "azimuthal roughness")->check(range(shading::kBetaRange))->capture_default_str();
+    cmd->add_option("--eta", p.eta, "index of refraction of the fibre")
+        ->check(range(shading::kEtaRange))
+        ->capture_default_str();
+    cmd->add_option("--beta-m", p.betaM, "longitudinal roughness")
+        ->check(range(shading::kBetaRange))
+        ->capture_default_str();
+    cmd->add_option("--beta-n", p.betaN, "azimuthal roughness")
+        ->check(range(shading::kBetaRange))
+        ->capture_default_str();
     cmd->add_option("--alpha", p.alphaDeg, "cuticle scale tilt, degrees")
         ->check(range(shading::kAlphaDegRange))
         ->capture_default_str();
-    CLI::Option* sigma = cmd->add_option("--sigma-a", o->sigmaA, "absorption R,G,B per unit fibre radius (default: melanin 1.3)")
-                             ->delimiter(',')
-                             ->expected(3)
-                             ->check(range(shading::kSigmaARange));
-    CLI::Option* melanin = cmd->add_option("--melanin", o->melanin, "EU[,PHEO]: eumelanin and pheomelanin concentrations (Chiang 2016)")
-                               ->delimiter(',')
-                               ->expected(1, 2)
-                               ->check(range(shading::kMelaninRange));
-    CLI::Option* color = cmd->add_option("--color", o->color, "R,G,B: the colour the hair should render as (Chiang 2016 eq. 9, with --beta-n)")
-                             ->delimiter(',')
-                             ->expected(3)
-                             ->check(range(shading::kColorRange));
+    CLI::Option* sigma =
+        cmd->add_option("--sigma-a", o->sigmaA, "absorption R,G,B per unit fibre radius (default: melanin 1.3)")
+            ->delimiter(',')
+            ->expected(3)
+            ->check(range(shading::kSigmaARange));
+    CLI::Option* melanin =
+        cmd->add_option("--melanin", o->melanin, "EU[,PHEO]: eumelanin and pheomelanin concentrations (Chiang 2016)")
+            ->delimiter(',')
+            ->expected(1, 2)
+            ->check(range(shading::kMelaninRange));
+    CLI::Option* color =
+        cmd->add_option("--color", o->color,
+                        "R,G,B: the colour the hair should render as (Chiang 2016 eq. 9, with --beta-n)")
+            ->delimiter(',')
+            ->expected(3)
+            ->check(range(shading::kColorRange));
     sigma->excludes(melanin)->excludes(color);
     melanin->excludes(color);
-    CLI::Option* wo = cmd->add_option("--wo", o->wo, "X,Y,Z direction to the viewer (normalised)")->delimiter(',')->expected(3);
-    CLI::Option* wi = cmd->add_option("--wi", o->wi, "X,Y,Z direction to the light (normalised)")->delimiter(',')->expected(3);
-    CLI::Option* model = cmd->add_option("--model", o->model, "print a real-time model's S / |wi.z| instead: karis, kajiya or lut")
-                             ->check(CLI::IsMember({"karis", "kajiya", "lut"}));
-    CLI::Option* compare = cmd->add_flag("--compare", o->compare,
-                                         "print each real-time model's relative RMS error against the reference over the sphere");
+    CLI::Option* wo =
+        cmd->add_option("--wo", o->wo, "X,Y,Z direction to the viewer (normalised)")->delimiter(',')->expected(3);
+    CLI::Option* wi =
+        cmd->add_option("--wi", o->wi, "X,Y,Z direction to the light (normalised)")->delimiter(',')->expected(3);
+    CLI::Option* model =
+        cmd->add_option("--model", o->model, "print a real-time model's S / |wi.z| instead: karis, kajiya or lut")
+            ->check(CLI::IsMember({"karis", "kajiya", "lut"}));
+    CLI::Option* compare =
+        cmd->add_flag("--compare", o->compare,
+                      "print each real-time model's relative RMS error against the reference over the sphere");
     cmd->add_flag("--json", o->json, "with --compare: one JSON object")->needs(compare);
     compare->excludes(wo)->excludes(wi)->excludes(model);
     return [o]() { return o->command->parsed() ? run(*o) : -1; };

@@ -48,12 +48,12 @@ glm::vec3 sigmaAFromColor(glm::vec3 color, float betaN);
 glm::vec3 colorFromSigmaA(glm::vec3 sigmaA, float betaN);
 
 struct HairParams {
-    float h = 0.0f;                               // offset across the fibre, [-1, 1]
-    float eta = 1.55f;                            // index of refraction of the fibre
-    glm::vec3 sigmaA = sigmaAFromMelanin(1.3f);   // absorption per unit radius (brown by default)
-    float betaM = 0.3f;                           // longitudinal roughness, [0.01, 1]
-    float betaN = 0.3f;                           // azimuthal roughness, [0.01, 1]
-    float alphaDeg = 2.0f;                        // cuticle scale tilt, degrees
+    float h = 0.0f;                              // offset across the fibre, [-1, 1]
+    float eta = 1.55f;                           // index of refraction of the fibre
+    glm::vec3 sigmaA = sigmaAFromMelanin(1.3f);  // absorption per unit radius (brown by default)
+    float betaM = 0.3f;                          // longitudinal roughness, [0.01, 1]
+    float betaN = 0.3f;                          // azimuthal roughness, [0.01, 1]
+    float alphaDeg = 2.0f;                       // cuticle scale tilt, degrees
 };
 
 // Throws wisp::UserError naming the first parameter outside its range.

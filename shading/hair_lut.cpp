@@ -89,10 +89,10 @@ glm::vec3 evaluateHairLut(const HairLut& lut, glm::vec3 t, glm::vec3 wi, glm::ve
     gpu::HairAngles a = gpu::hairAngles(t, wi, wo);
     glm::vec2 uvM = gpu::hairLutUvM(a);
     glm::vec2 uvN = gpu::hairLutUvN(a);
-    return gpu::hairLutCombine(sampleHairLut(lut, gpu::kHairLutLayerM, uvM), sampleHairLut(lut, gpu::kHairLutLayerNR, uvN),
-                               sampleHairLut(lut, gpu::kHairLutLayerNTT, uvN),
-                               sampleHairLut(lut, gpu::kHairLutLayerNTRT, uvN),
-                               sampleHairLut(lut, gpu::kHairLutLayerNResidual, uvN));
+    return gpu::hairLutCombine(
+        sampleHairLut(lut, gpu::kHairLutLayerM, uvM), sampleHairLut(lut, gpu::kHairLutLayerNR, uvN),
+        sampleHairLut(lut, gpu::kHairLutLayerNTT, uvN), sampleHairLut(lut, gpu::kHairLutLayerNTRT, uvN),
+        sampleHairLut(lut, gpu::kHairLutLayerNResidual, uvN));
 }
 
 }  // namespace wisp::shading

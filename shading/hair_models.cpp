@@ -52,9 +52,9 @@ gpu::HairMaterial packHairMaterial(const HairParams& p)
     m.roughness = glm::vec4(p.betaM, p.betaN, alpha, 0.0f);
     m.baseColor = glm::vec4(color, 0.0f);
     m.kajiya = glm::vec4(alpha, -2.0f * alpha, 4.0f / lobes.v[0], 4.0f / lobes.v[2]);
-    m.kajiyaWeights = glm::vec4(luminance(normal.meanAttenuation(1) + normal.meanAttenuation(kPMax)) / lumColor,
-                                luminance(normal.meanAttenuation(0)), luminance(normal.meanAttenuation(2)) / lumColor,
-                                0.0f);
+    m.kajiyaWeights =
+        glm::vec4(luminance(normal.meanAttenuation(1) + normal.meanAttenuation(kPMax)) / lumColor,
+                  luminance(normal.meanAttenuation(0)), luminance(normal.meanAttenuation(2)) / lumColor, 0.0f);
     return m;
 }
 

@@ -31,9 +31,9 @@ glm::vec3 evaluateModel(HairModel model, const gpu::HairMaterial& m, const HairL
 std::vector<glm::vec3> fibonacciSphere(int n);
 
 struct CompareOptions {
-    int outgoing = 32;                     // directions wo (Fibonacci sphere)
-    int incoming = 1024;                   // directions wi for each wo (Fibonacci sphere)
-    int hSamples = kReferenceHSamples;     // the reference's average across the fibre
+    int outgoing = 32;                  // directions wo (Fibonacci sphere)
+    int incoming = 1024;                // directions wi for each wo (Fibonacci sphere)
+    int hSamples = kReferenceHSamples;  // the reference's average across the fibre
 };
 
 struct ModelError {

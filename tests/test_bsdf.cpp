@@ -58,9 +58,8 @@ TEST(Bsdf, WhiteFurnaceUniform)
         for (float h : {-0.6f, 0.25f}) {
             HairBsdf bsdf(whiteHair(beta, h));
             for (glm::vec3 wo : kOutgoing) {
-                double e = integrateSphere(96, rng, [&](glm::vec3 wi) {
-                    return double(bsdf.f(wo, wi).y * std::abs(wi.z));
-                });
+                double e =
+                    integrateSphere(96, rng, [&](glm::vec3 wi) { return double(bsdf.f(wo, wi).y * std::abs(wi.z)); });
                 EXPECT_GE(e, 0.95) << "beta " << beta << " h " << h;
                 EXPECT_LE(e, 1.05) << "beta " << beta << " h " << h;
             }

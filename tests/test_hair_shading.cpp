@@ -121,7 +121,8 @@ TEST(HairShading, HighlightShiftMatchesTheReference)
     for (float thetaI = -1.2f; thetaI < 0.6f; thetaI += 0.002f) {
         glm::vec3 wi(std::sin(thetaI), std::cos(thetaI), 0.0f);  // phi = 0
         float v[4] = {fiberAveragedFsum(p, wo, wi).x, evaluateModel(HairModel::Karis, m, lut, wo, wi).x,
-                      evaluateModel(HairModel::KajiyaKay, m, lut, wo, wi).x, evaluateModel(HairModel::Lut, m, lut, wo, wi).x};
+                      evaluateModel(HairModel::KajiyaKay, m, lut, wo, wi).x,
+                      evaluateModel(HairModel::Lut, m, lut, wo, wi).x};
         for (int k = 0; k < 4; ++k)
             if (v[k] > best[k]) {
                 best[k] = v[k];
@@ -203,7 +204,8 @@ TEST(Lut, LayoutAndContents)
     // Layer 0, texel (x, y): M_p at sin(theta_i) = 2 (x + 0.5) / size - 1, sin(theta_o) likewise.
     HairLobes lobes(p);
     uint32_t x = 40, y = 17;
-    float si = 2.0f * (float(x) + 0.5f) / float(lut.size) - 1.0f, so = 2.0f * (float(y) + 0.5f) / float(lut.size) - 1.0f;
+    float si = 2.0f * (float(x) + 0.5f) / float(lut.size) - 1.0f,
+          so = 2.0f * (float(y) + 0.5f) / float(lut.size) - 1.0f;
     auto mp = lobes.longitudinal(si, so);
     glm::vec4 t = lut.texel(gpu::kHairLutLayerM, x, y);
     EXPECT_NEAR(t.x, mp[0], 1e-6f * mp[0]);
@@ -265,9 +267,10 @@ void main()
     outColor = vec4(s, 1.0);
 }
 )");
-    std::string command = std::string("'") + WISP_GLSLANG + "' --target-env vulkan1.3 -I'" WISP_SOURCE_DIR
-                          "/shaders' -o '" + (dir / "check.spv").string() + "' '" + (dir / "check.frag").string() +
-                          "' >'" + (dir / "log").string() + "' 2>&1";
+    std::string command = std::string("'") + WISP_GLSLANG +
+                          "' --target-env vulkan1.3 -I'" WISP_SOURCE_DIR "/shaders' -o '" +
+                          (dir / "check.spv").string() + "' '" + (dir / "check.frag").string() + "' >'" +
+                          (dir / "log").string() + "' 2>&1";
     int status = std::system(command.c_str());
     EXPECT_EQ(status, 0) << wisp::test::readFile(dir / "log");
     EXPECT_TRUE(std::filesystem::exists(dir / "check.spv"));
