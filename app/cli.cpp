@@ -2,6 +2,7 @@
 // error-to-exit-status policy.
 #include "app/cli.h"
 
+#include "app/bsdf_command.h"
 #include "app/headless.h"
 #include "app/image_io.h"
 #include "app/hair_options.h"
@@ -388,6 +389,8 @@ int runCli(int argc, char** argv)
     addHairOptions(sweep, sweepHair);
     sweep->add_option("--set", sweepSets, "NAME=VALUE every point starts from (repeatable)");
 
+    std::function<int()> runBsdf = addBsdfCommand(app);
+
     CLI::App* settingsCmd = app.add_subcommand("settings", "list every setting --set takes: names, units, ranges and defaults");
 
     bool infoJson = false;
@@ -435,6 +438,8 @@ int runCli(int argc, char** argv)
     }
 
     try {
+        if (int status = runBsdf(); status >= 0)
+            return status;
         if (*record) {
             for (const std::string& a : recordSets)
                 applySetting({&recHair.growth, &recHair.sim, &rec.settings}, a);
