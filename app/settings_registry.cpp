@@ -3,6 +3,7 @@
 #include "app/settings_registry.h"
 
 #include "core/error.h"
+#include "renderer/settings.h"
 
 #include <charconv>
 #include <cmath>
@@ -242,6 +243,65 @@ std::vector<SettingSpec> buildSpecs()
                        transparency.oitNodesPerPixel, uint32_t);
     WISP_RENDER_NUMBER("hair_opacity", "", kOpacityRange, "opacity of one strand that covers its pixel",
                        transparency.hairOpacity, float);
+    add({"shading", "", "karis | kajiya | lut", "hair shading model (lut: tables from the reference BSDF)",
+         [](const SettingsRefs& r) {
+             if (!r.render)
+                 return std::string("-");
+             ShadingModel m = r.render->hair.model;
+             return std::string(m == ShadingModel::Karis ? "karis" : m == ShadingModel::Kajiya ? "kajiya" : "lut");
+         },
+         [](const SettingsRefs& r, const std::string& v) {
+             WISP_NEED(r, render, "shading");
+             if (v == "karis")
+                 r.render->hair.model = ShadingModel::Karis;
+             else if (v == "kajiya")
+                 r.render->hair.model = ShadingModel::Kajiya;
+             else if (v == "lut")
+                 r.render->hair.model = ShadingModel::Lut;
+             else
+                 bad("shading", v, "allowed: karis | kajiya | lut");
+         }});
+    add({"hair_preset", "", kHairPresets, "a hair colour by name (sets melanin and pheomelanin)",
+         [](const SettingsRefs& r) { return std::string(r.render ? "-" : "-"); },
+         [](const SettingsRefs& r, const std::string& v) {
+             WISP_NEED(r, render, "hair_preset");
+             if (!applyHairPreset(r.render->hair, v))
+                 bad("hair_preset", v, std::string("allowed: ") + kHairPresets);
+         }});
+    WISP_RENDER_NUMBER("melanin", "", kMelaninRange, "eumelanin concentration (black ~8, brown ~1.3, blonde ~0.2)",
+                       hair.eumelanin, float);
+    WISP_RENDER_NUMBER("pheomelanin", "", kMelaninRange, "pheomelanin concentration (red)", hair.pheomelanin, float);
+    add({"hair_color", "", "R,G,B in 0.0001 .. 1", "the colour the hair should look, instead of melanin (linear RGB)",
+         [](const SettingsRefs& r) {
+             if (!r.render || !r.render->hair.useColor)
+                 return std::string("-");
+             glm::vec3 c = r.render->hair.color;
+             return text(c.r) + "," + text(c.g) + "," + text(c.b);
+         },
+         [](const SettingsRefs& r, const std::string& v) {
+             WISP_NEED(r, render, "hair_color");
+             glm::vec3 c;
+             size_t start = 0;
+             for (int i = 0; i < 3; ++i) {
+                 size_t comma = v.find(',', start);
+                 if ((i < 2) != (comma != std::string::npos))
+                     bad("hair_color", v, "expected three numbers R,G,B");
+                 std::string part = v.substr(start, i < 2 ? comma - start : std::string::npos);
+                 c[i] = float(number("hair_color", part, 1e-4, 1.0, ""));
+                 start = comma + 1;
+             }
+             r.render->hair.color = c;
+             r.render->hair.useColor = true;
+         }});
+    WISP_RENDER_NUMBER("beta_m", "", kRoughnessRange, "longitudinal roughness of the fibre (highlight width)",
+                       hair.betaM, float);
+    WISP_RENDER_NUMBER("beta_n", "", kRoughnessRange, "azimuthal roughness of the fibre", hair.betaN, float);
+    WISP_RENDER_NUMBER("cuticle_tilt", "deg", kCuticleTiltRange, "cuticle scale tilt (shifts the highlights)",
+                       hair.cuticleTiltDeg, float);
+    WISP_RENDER_NUMBER("ior", "", kEtaRange, "index of refraction of the fibre", hair.eta, float);
+    WISP_RENDER_NUMBER("color_variation", "", kVariationRange, "per-strand spread of the hair colour",
+                       hair.variation, float);
+    WISP_RENDER_NUMBER("streaks", "", kVariationRange, "lighter and darker streaks along strands", hair.streaks, float);
     WISP_RENDER_ON_OFF("reverse_order", "draw the strands last to first (to check order independence)",
                        strands.reverseOrder);
     return specs;

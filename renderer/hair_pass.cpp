@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
 #include <vector>
 
 namespace wisp {
@@ -76,12 +77,26 @@ HairPass::HairPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
                            {gpu::kBindingOpacity, kSampler, kFragment},
                            {gpu::kHairBindingOitHeads, kStorage, kFragment},
                            {gpu::kHairBindingOitNodes, kStorage, kFragment},
-                           {gpu::kHairBindingOitCounters, kStorage, kFragment}},
+                           {gpu::kHairBindingOitCounters, kStorage, kFragment},
+                           {gpu::kHairBindingLut, kSampler, kFragment}},
               .pushConstantBytes = sizeof(gpu::HairPush),
               .pushConstantStages = kAll,
               .name = "hair.layout"});
     setLayout_ = std::move(layout.setLayout);
     layout_ = std::move(layout.layout);
+    VkSamplerCreateInfo samplerInfo{.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
+                                    .magFilter = VK_FILTER_LINEAR,
+                                    .minFilter = VK_FILTER_LINEAR,
+                                    .mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST,
+                                    .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                                    .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                                    .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                                    .maxLod = 0.0f};
+    VkSampler sampler = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateSampler(ctx.device(), &samplerInfo, nullptr, &sampler));
+    ctx.setName(sampler, VK_OBJECT_TYPE_SAMPLER, "hair.lut.sampler");
+    lutSampler_ = vk::Sampler(ctx.device(), sampler);
+
     vk::GraphicsPipelineDesc camera{.layout = layout_,
                                     .shaders = {"hair.vert", "hair.tesc", "hair.tese", "hair.geom", "hair.frag"},
                                     .topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST,
@@ -115,6 +130,51 @@ HairPass::HairPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
     opacity.blend = vk::Blend::Additive;
     opacity.name = "hair.light_opacity.pipeline";
     opacityPipeline_ = vk::createGraphicsPipeline(ctx, opacity);
+}
+
+void HairPass::setLut(const shading::HairLut& lut, FrameContext* frame)
+{
+    uint32_t n = lut.size;
+    vk::Image image = ctx_.createImage({.format = VK_FORMAT_R32G32B32A32_SFLOAT,
+                                        .extent = {n, n},
+                                        .usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                                        .layers = gpu::kHairLutLayers,
+                                        .name = "hair.lut"});
+    vk::Buffer staging = ctx_.createBuffer({.size = lut.bytes(), .usage = vk::kTransferSrc, .memory = vk::Memory::Upload,
+                                            .name = "hair.lut.staging"});
+    std::memcpy(staging.mapped(), lut.texels.data(), lut.bytes());
+    ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+        VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, gpu::kHairLutLayers};
+        VkImageMemoryBarrier2 toCopy{.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
+                                     .srcStageMask = VK_PIPELINE_STAGE_2_NONE,
+                                     .dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
+                                     .dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                     .oldLayout = VK_IMAGE_LAYOUT_UNDEFINED,
+                                     .newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                     .image = image.get(),
+                                     .subresourceRange = range};
+        VkDependencyInfo dep{.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .imageMemoryBarrierCount = 1,
+                             .pImageMemoryBarriers = &toCopy};
+        vkCmdPipelineBarrier2(cmd, &dep);
+        VkBufferImageCopy region{.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, gpu::kHairLutLayers},
+                                 .imageExtent = {n, n, 1}};
+        vkCmdCopyBufferToImage(cmd, staging, image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+        VkImageMemoryBarrier2 toRead{.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
+                                     .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
+                                     .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                     .dstStageMask = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                                     .dstAccessMask = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
+                                     .oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                     .newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                                     .image = image.get(),
+                                     .subresourceRange = range};
+        dep.pImageMemoryBarriers = &toRead;
+        vkCmdPipelineBarrier2(cmd, &dep);
+    });
+    if (frame && lut_)
+        frame->retire(std::move(lut_));
+    lut_ = std::move(image);
+    lutInfo_ = {lutSampler_, lut_.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
 }
 
 void HairPass::declareGuides(PassIo& io)
@@ -194,6 +254,11 @@ void HairPass::record(VkCommandBuffer cmd, FrameContext& frame)
     std::vector<VkWriteDescriptorSet> extra;
     for (const VkWriteDescriptorSet& w : lightMaps_->descriptorWrites())
         extra.push_back(w);
+    extra.push_back({.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                     .dstBinding = gpu::kHairBindingLut,
+                     .descriptorCount = 1,
+                     .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                     .pImageInfo = &lutInfo_});
     std::array<VkDescriptorBufferInfo, 3> oitInfos{};
     if (oit_) {
         oitInfos = {VkDescriptorBufferInfo{oit_->headsBuffer(), 0, VK_WHOLE_SIZE},

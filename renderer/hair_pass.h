@@ -9,6 +9,7 @@
 #include "renderer/vk/handle.h"
 #include "renderer/vk/resources.h"
 #include "shaders/shared/strands.h"
+#include "shading/hair_lut.h"
 
 #include <vector>
 
@@ -49,6 +50,9 @@ public:
     // in OIT mode the linked lists (null: MSAA coverage). Set before the first frame.
     void setLightMaps(LightMaps* maps) { lightMaps_ = maps; }
     void setOit(Oit* oit) { oit_ = oit; }
+    // Uploads the lookup mode's tables (waits for the upload); the image they replace goes to
+    // `frame`'s deletion list when given (it may still be in use), else is freed at once.
+    void setLut(const shading::HairLut& lut, FrameContext* frame);
     // The guides the tessellation reads, for the passes that draw the hair from the light.
     void declareGuides(PassIo& io);
     enum class LightDraw { Depth, Opacity };
@@ -80,6 +84,9 @@ private:
     vk::Pipeline depthPipeline_;  // light, depth only
     vk::Pipeline opacityPipeline_;  // light, deep opacity layers
     LightMaps* lightMaps_ = nullptr;
+    vk::Image lut_;
+    vk::Sampler lutSampler_;
+    VkDescriptorImageInfo lutInfo_{};
     Oit* oit_ = nullptr;
     vk::Buffer triangles_;
     vk::QueryPool statistics_;  // empty where the device has no pipeline statistics

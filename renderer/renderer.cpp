@@ -2,16 +2,21 @@
 #include "renderer/renderer.h"
 
 #include "renderer/frame.h"
+#include "renderer/hair_look.h"
+#include "shading/hair_models.h"
 #include "renderer/vk/context.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace wisp {
 
-static_assert(sizeof(gpu::FrameParams) == 3 * 64 + 6 * 16 + 64 + 64 + 48, "FrameParams must match its std140 layout");
+static_assert(sizeof(gpu::FrameParams) == 3 * 64 + 6 * 16 + 64 + 64 + 48 + 16 + 80,
+              "FrameParams must match its std140 layout");
+static_assert(offsetof(gpu::FrameParams, hair) == 480);
 static_assert(offsetof(gpu::FrameParams, lightViewProjection) == 352);
 static_assert(offsetof(gpu::FrameParams, shadowsEnabled) == 460);
 static_assert(offsetof(gpu::FrameParams, headTransform) == 288);
@@ -69,8 +74,16 @@ gpu::FrameParams pack(const RenderSettings& s, const OrbitCamera& camera, VkExte
     p.domSpacing = sh.domSpacingMetres * light.unitsPerMetre / p.lightDepthRange;
     p.domKappa = sh.domKappa;
     p.hairOpacity = s.transparency.hairOpacity;
-    p.shadingModel = 0u;
     p.shadowsEnabled = sh.enabled ? 1u : 0u;
+
+    const HairLook& look = s.hair;
+    p.shadingModel = look.model == ShadingModel::Karis    ? gpu::kShadingKaris
+                     : look.model == ShadingModel::Kajiya ? gpu::kShadingKajiya
+                                                          : gpu::kShadingLut;
+    p.hairVariation = look.variation;
+    p.hairStreaks = look.streaks;
+    p.hairAmbientOcclusion = 0.6f;
+    p.hair = shading::packHairMaterial(hairParams(look));
     return p;
 }
 
@@ -122,6 +135,14 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
     target_->beginFrame();
     uniforms_.write(frame.slot, pack(settings_, camera, target_->extent(), timeSeconds, lightFit_));
     shadowPass_->setEnabled(settings_.shadows.enabled);
+    if (hairPass_ && settings_.hair.model == ShadingModel::Lut) {
+        // The lookup tables follow the look: rebuilt (about 9 ms) when its parameters change.
+        shading::HairParams params = hairParams(settings_.hair);
+        if (std::memcmp(&params, &lutParams_, sizeof(params)) != 0) {
+            hairPass_->setLut(shading::buildHairLut(params), &frame);
+            lutParams_ = params;
+        }
+    }
     opacityPass_->setEnabled(settings_.shadows.enabled && settings_.shadows.domLayers > 0);
     if (oitResolve_)
         oitResolve_->setK(settings_.transparency.oitK);
@@ -154,9 +175,6 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
     push.lodStrands = std::max(1.0f, float(counts.strandsPerGuide) * fraction);
     push.lodWidthScale = std::sqrt(float(counts.strandsPerGuide) / push.lodStrands);
     push.minPixelWidth = s.minPixelWidth;
-    push.rootColor = s.rootColor;
-    push.specularShift = s.specularShift;
-    push.tipColor = s.tipColor;
     push.reverseOrder = s.reverseOrder ? 1u : 0u;
     hairPass_->setPush(push);
 }
@@ -168,6 +186,8 @@ void Renderer::attachHair(GpuSolver& solver, const StrandSet& strands, float uni
                                              strands.verticesPerStrand);
     hairPass_ = std::make_unique<HairPass>(ctx_, *target_, uniforms_, solver, strands);
     hairPass_->setLightMaps(lightMaps_.get());
+    lutParams_ = hairParams(settings_.hair);
+    hairPass_->setLut(shading::buildHairLut(lutParams_), nullptr);
     shadowPass_ = std::make_unique<ShadowPass>(*lightMaps_, *meshPass_, hairPass_.get());
     opacityPass_ = std::make_unique<OpacityPass>(*lightMaps_, hairPass_.get());
     if (settings_.transparency.mode == Transparency::Oit) {

@@ -19,6 +19,7 @@
 #include "renderer/physics_pass.h"
 #include "renderer/render_target.h"
 #include "renderer/settings.h"
+#include "shading/hair_bsdf.h"
 
 #include <memory>
 #include <vector>
@@ -94,6 +95,7 @@ private:
     float lodReferenceDistance_ = 1.0f;  // the default framing's distance: full detail at or nearer
     Bounds bounds_;
     LightFit lightFit_;
+    shading::HairParams lutParams_;  // what the hair pass's lookup tables were built for
 };
 
 }  // namespace wisp

@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <string>
 
 namespace wisp {
 
@@ -50,9 +51,6 @@ struct StrandSettings {
     bool lod = true;                               // fewer, wider strands with distance
     float lodMinFraction = 0.2f;                   // LOD never draws fewer than this share of strands
     float minPixelWidth = 1.0f;                    // narrower ribbons are widened, alpha = coverage
-    glm::vec3 rootColor{0.03f, 0.014f, 0.006f};    // dark brown at the root (linear RGB)
-    glm::vec3 tipColor{0.2f, 0.09f, 0.035f};       // lighter toward the tip
-    float specularShift = 0.12f;                   // Scheuermann lobe shift
     bool showGuides = false;                       // also draw the guides as lines
     bool reverseOrder = false;                     // draw the strands last to first (OIT order tests)
     uint32_t maxPatchVertices = gpu::kMaxPatchVertices;  // vertices one patch may emit (shaders/shared/strands.h)
@@ -89,6 +87,35 @@ struct TransparencySettings {
     float hairOpacity = 0.85f;        // opacity of a strand that covers its pixel (oit, deep opacity)
 };
 
+enum class ShadingModel { Karis, Kajiya, Lut };
+
+inline constexpr Range kMelaninRange{0.0, 20.0};        // concentration (Chiang 2016: ~8 black, ~1.3 brown, ~0.3 blonde)
+inline constexpr Range kRoughnessRange{0.01, 1.0};      // beta_m, beta_n
+inline constexpr Range kCuticleTiltRange{-10.0, 10.0};  // degrees
+inline constexpr Range kEtaRange{1.0, 4.0};
+inline constexpr Range kVariationRange{0.0, 1.0};
+
+// What the hair is made of and how it is shaded (shading/, shaders/shared/hair_shading.h). Its
+// colour is absorption: from melanin concentrations (Chiang et al. 2016) or from an RGB colour
+// the hair should look (sigmaAFromColor); strands vary around it, with streaks along them.
+struct HairLook {
+    ShadingModel model = ShadingModel::Karis;
+    float eumelanin = 1.3f;          // brown
+    float pheomelanin = 0.2f;
+    bool useColor = false;           // colour below instead of melanin
+    glm::vec3 color{0.3f, 0.2f, 0.12f};
+    float betaM = 0.3f;              // longitudinal roughness
+    float betaN = 0.3f;              // azimuthal roughness
+    float cuticleTiltDeg = 2.0f;
+    float eta = 1.55f;
+    float variation = 0.3f;          // per-strand spread of absorption (0: every strand alike)
+    float streaks = 0.35f;           // strength of lighter and darker streaks along strands
+};
+
+// Named looks: black, brown, auburn, blonde (melanin pairs). Returns false for an unknown name.
+bool applyHairPreset(HairLook& look, const std::string& name);
+inline constexpr const char* kHairPresets = "black | brown | auburn | blonde";
+
 struct RenderSettings {
     uint32_t width = 1280;
     uint32_t height = 720;
@@ -104,6 +131,7 @@ struct RenderSettings {
     StrandSettings strands;
     ShadowSettings shadows;
     TransparencySettings transparency;
+    HairLook hair;
 };
 
 }  // namespace wisp

@@ -1,8 +1,12 @@
 #version 460
-// hair.frag: shades a hair fragment and hands it on. Shading: Kajiya-Kay with two shifted
-// specular lobes (shared/strands.h), a colour running from root to tip with a per-strand
-// brightness variation, the hemisphere ambient, and the light's visibility (head shadow by PCF,
-// hair self-shadowing by the deep opacity map: light_visibility.glsl).
+// hair.frag: shades a hair fragment and hands it on.
+// Shading (shared/hair_shading.h, frame.shadingModel): Karis 2016 with his multiple scattering
+// (default), Kajiya-Kay with Scheuermann's two lobes, or the lookup tables built from the reference
+// BSDF (single scattering) plus Karis's multiple scattering. Each strand's absorption varies around the material's (a per-strand factor, lighter toward
+// the tip, and streaks along the strand from value noise, as Meshuggah's hair varies its colour
+// along strands with a noise texture). The light reaches the fragment through the head's shadow
+// (PCF) and the hair in front of it (deep opacity map: light_visibility.glsl); the hemisphere
+// ambient is darkened by the same opacity.
 // Then, by transparency mode:
 // - msaa (hair.frag): the ribbon's coverage becomes the fragment's sample mask
 //   (shared/strands.h coverageMask): with MSAA the resolve averages it, with one sample it dithers.
@@ -12,11 +16,13 @@
 //   counts it.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/frame_params.h"
+#include "shared/hair_shading.h"
 #include "shared/lighting.h"
 #include "shared/strands.h"
 
 layout(push_constant) uniform PushBlock { HairPush push; };
 layout(set = 0, binding = kHairBindingFrame) uniform FrameBlock { FrameParams frame; };
+layout(set = 0, binding = kHairBindingLut) uniform sampler2DArray hairLut;
 #include "light_visibility.glsl"
 
 #ifdef HAIR_OIT
@@ -33,19 +39,53 @@ layout(location = 3) flat in uint inStrand;
 layout(location = 4) in float inAlpha;
 layout(location = 0) out vec4 outColor;
 
+// Smooth 1D value noise in [-1, 1] along a strand, a different row per strand.
+float streakNoise(uint strand, float x)
+{
+    float i = floor(x);
+    float f = x - i;
+    uint h = hashUint(strand * 747796405u + 2891336453u);
+    float a = hashToUnit(h ^ hashUint(uint(i)));
+    float b = hashToUnit(h ^ hashUint(uint(i) + 1u));
+    return 2.0 * mix(a, b, f * f * (3.0 - 2.0 * f)) - 1.0;
+}
+
 vec3 shade()
 {
     vec3 t = normalize(inTangent);
-    vec3 v = normalize(frame.cameraPosition - inWorld);
-    vec3 n = v - t * dot(t, v);  // the ribbon faces the camera: its normal is the view, made perpendicular to t
+    vec3 wo = normalize(frame.cameraPosition - inWorld);
+    vec3 wi = frame.lightDirection;
+
+    // This strand's absorption: a per-strand factor, lighter toward the tip, streaks along it.
+    float perStrand = 2.0 * hashToUnit(inStrand * 2654435761u) - 1.0;
+    float streak = streakNoise(inStrand, inT * 7.0) + 0.5 * streakNoise(inStrand + 7919u, inT * 19.0);
+    float factor = exp2(frame.hairVariation * perStrand + 0.6 * frame.hairStreaks * streak) * (1.25 - 0.5 * inT);
+    HairMaterial m = frame.hair;
+    vec3 baseColor = m.baseColor.rgb;
+    m.sigmaA.xyz *= factor;
+    m.baseColor.rgb = pow(max(baseColor, vec3(1e-4)), vec3(sqrt(factor)));  // c = exp(-sqrt(sigma_a) ...), Chiang 2016
+
+    // Hair receiving the hair's own depth map (deep opacity off) needs about a strand's depth of bias.
+    vec2 visibility = lightVisibilityParts(inWorld, gl_FragCoord.xy, 4.0 * frame.shadowBias);
+    float transmittance = visibility.y;
+    vec3 s;
+    if (frame.shadingModel == kShadingKaris) {
+        s = hairKarisLit(t, wi, wo, m, 1.0 - transmittance);
+    } else if (frame.shadingModel == kShadingKajiya) {
+        s = transmittance * hairKajiyaKay(t, wi, wo, m);
+    } else {
+        // The tables hold the material's single scattering (absorption baked in; the strand's own
+        // tints it); the light scattered between fibres comes from Karis's approximation, as in
+        // the karis mode.
+        vec3 single = hairShadeLut(hairLut, t, wi, wo) * (m.baseColor.rgb / max(baseColor, vec3(1e-4)));
+        s = transmittance * (single + hairKarisMultiple(t, wi, wo, m, 1.0 - transmittance));
+    }
+    vec3 radiance = s * frame.lightColor * frame.lightIntensity * visibility.x;
+
+    vec3 n = wo - t * dot(t, wo);  // the ribbon faces the camera
     n = dot(n, n) > 1e-8 ? normalize(n) : vec3(0.0, 1.0, 0.0);
-    float variation = 0.8 + 0.4 * hashToUnit(inStrand * 2654435761u);
-    vec3 albedo = mix(push.rootColor, push.tipColor, inT) * variation;
-    // Hair receiving the hair's own depth map needs a bias of about a strand's depth extent.
-    float visibility = lightVisibility(inWorld, gl_FragCoord.xy, 4.0 * frame.shadowBias);
-    vec3 radiance = kajiyaKay(t, n, frame.lightDirection, v, albedo, push.specularShift,
-                              frame.lightColor * frame.lightIntensity * visibility);
-    radiance += albedo * frame.ambientIntensity * hemisphereAmbient(n, frame.skyColor, frame.groundColor);
+    float occlusion = mix(1.0, transmittance, frame.hairAmbientOcclusion);
+    radiance += m.baseColor.rgb * frame.ambientIntensity * occlusion * hemisphereAmbient(n, frame.skyColor, frame.groundColor);
     return toneMapAces(radiance * frame.exposure);
 }
 

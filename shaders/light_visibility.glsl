@@ -38,18 +38,24 @@ float hairTransmittance(vec3 coords)
     return domTransmittance(opacity, frame.domKappa);
 }
 
-// Visibility of the light from a point: the head's shadow (PCF) times the hair's, the latter from
-// the deep opacity map when it is on, else PCF over the hair's depth map. `hairBias` is larger
-// for hair receiving its own shadow, where the map holds the receiver itself.
-float lightVisibility(vec3 world, vec2 pixel, float hairBias)
+// The light's visibility at a point, in two parts: x the head's shadow (PCF), y the hair's
+// transmittance, from the deep opacity map when it is on, else PCF over the hair's depth map.
+// `hairBias` is larger for hair receiving its own shadow, where the map holds the receiver itself.
+vec2 lightVisibilityParts(vec3 world, vec2 pixel, float hairBias)
 {
     if (frame.shadowsEnabled == 0u || frame.pcfSamples == 0u)
-        return 1.0;
+        return vec2(1.0);
     vec3 coords = lightCoords(world);
     if (any(lessThan(coords, vec3(0.0))) || any(greaterThan(coords, vec3(1.0))))
-        return 1.0;  // outside the light's view: nothing there casts
+        return vec2(1.0);  // outside the light's view: nothing there casts
     float angle = 6.2831853 * interleavedGradientNoise(pixel);
     float head = pcf(shadowHead, coords, frame.shadowBias, angle);
     float hair = frame.domLayers > 0u ? hairTransmittance(coords) : pcf(shadowHair, coords, hairBias, angle);
-    return head * hair;
+    return vec2(head, hair);
+}
+
+float lightVisibility(vec3 world, vec2 pixel, float hairBias)
+{
+    vec2 v = lightVisibilityParts(world, pixel, hairBias);
+    return v.x * v.y;
 }

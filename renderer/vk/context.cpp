@@ -486,7 +486,7 @@ Image Context::createImage(const ImageDesc& desc) const
                            .format = desc.format,
                            .extent = {desc.extent.width, desc.extent.height, 1},
                            .mipLevels = 1,
-                           .arrayLayers = 1,
+                           .arrayLayers = desc.layers,
                            .samples = desc.samples,
                            .tiling = VK_IMAGE_TILING_OPTIMAL,
                            .usage = desc.usage,
@@ -507,11 +507,11 @@ Image Context::createImage(const ImageDesc& desc) const
     VkImageViewCreateInfo viewInfo{
         .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
         .image = image,
-        .viewType = VK_IMAGE_VIEW_TYPE_2D,
+        .viewType = desc.layers > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D,
         .format = desc.format,
         .subresourceRange = {isDepthFormat(desc.format) ? VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT)
                                                         : VkImageAspectFlags(VK_IMAGE_ASPECT_COLOR_BIT),
-                             0, 1, 0, 1}};
+                             0, 1, 0, desc.layers}};
     VkImageView view = VK_NULL_HANDLE;
     VK_CHECK(vkCreateImageView(device_, &viewInfo, nullptr, &view));
     setName(image, VK_OBJECT_TYPE_IMAGE, desc.name);

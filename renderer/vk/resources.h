@@ -58,6 +58,7 @@ struct ImageDesc {
     VkExtent2D extent = {0, 0};
     VkImageUsageFlags usage = 0;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+    uint32_t layers = 1;  // more than one: a 2D array (and its view)
     const char* name = "unnamed image";
 };
 

@@ -3,10 +3,16 @@
 #ifndef WISP_SHARED_FRAME_PARAMS_H
 #define WISP_SHARED_FRAME_PARAMS_H
 #include "prelude.h"
+#include "hair_shading.h"
 
 GPU_NAMESPACE_BEGIN
 
 GPU_CONST uint kFrameParamsBinding = 0;
+
+// FrameParams.shadingModel: which model of hair_shading.h the hair fragments use.
+GPU_CONST uint kShadingKaris = 0u;
+GPU_CONST uint kShadingKajiya = 1u;
+GPU_CONST uint kShadingLut = 2u;
 
 struct FrameParams {
     mat4  view;              // world -> camera
@@ -37,8 +43,14 @@ struct FrameParams {
     float domSpacing;           // depth of one layer, light depth units
     float domKappa;             // transmittance = exp(-domKappa * opacity)
     float hairOpacity;          // opacity of one strand of full coverage (OIT blending, deep opacity)
-    uint  shadingModel;         // kShading* (shared/hair_shading.h)
+    uint  shadingModel;         // kShading*
     uint  shadowsEnabled;       // 0 or 1
+    // The hair's look (hair.frag): its material, and how strands vary around it.
+    float hairVariation;        // per-strand spread of absorption, 0..1
+    float hairStreaks;          // strength of streaks along strands (Meshuggah's noise), 0..1
+    float hairAmbientOcclusion; // how much the deep opacity map darkens the ambient, 0..1
+    float pad0;
+    HairMaterial hair;
 };
 
 GPU_NAMESPACE_END

@@ -3,7 +3,7 @@
 // C1 cubic Bezier segments from the guide polyline (uniform Catmull-Rom tangents), strands around
 // a guide (single-strand interpolation: a tapered disc, i.e. clumps) or between three guides
 // (multi-strand interpolation, barycentric, Nalu), random deviations (Rapp 2014's five profiles),
-// continuous level of detail, and Kajiya-Kay shading with two shifted lobes (Scheuermann 2004).
+// and continuous level of detail. (The shading models are in hair_shading.h.)
 // Conventions: world space in the head's units; t in [0, 1] runs root to tip.
 #ifndef WISP_SHARED_STRANDS_H
 #define WISP_SHARED_STRANDS_H
@@ -29,6 +29,7 @@ GPU_CONST uint kHairBindingTriangles = 3;  // uvec4 per guide: the guide and its
 GPU_CONST uint kHairBindingOitHeads = 8;     // uint per pixel: the first node of its list
 GPU_CONST uint kHairBindingOitNodes = 9;     // OitNode pool
 GPU_CONST uint kHairBindingOitCounters = 10; // OitCounters
+GPU_CONST uint kHairBindingLut = 11;         // sampler2DArray: the lookup mode's M and N tables (hair_shading.h)
 
 GPU_CONST uint kInterpolationSingle = 0u;
 GPU_CONST uint kInterpolationMulti = 1u;
@@ -52,9 +53,8 @@ struct HairPush {
     uint  reverseOrder;       // 1: draw guides and strand chunks last to first (order-independence tests)
     float pad1;
     float pad2;
-    vec3  rootColor;          // linear RGB albedo at the root
-    float specularShift;      // Scheuermann's primary-lobe shift along the normal (secondary: opposite)
-    vec3  tipColor;           // linear RGB albedo at the tip
+    vec4  reserved0;          // (free: the hair's look lives in FrameParams.hair)
+    vec3  reserved1;
     uint  samples;            // MSAA samples of the target (for the coverage mask)
 };
 
@@ -214,32 +214,6 @@ GPU_FN uint coverageMask(float coverage, uint samples, uint strand, uint pixelHa
     uint rot = hashUint(strand * 3266489917u + 7u) % samples;
     uint mask = rot == 0u ? run : ((run << rot) | (run >> (samples - rot)));
     return mask & all;
-}
-
-// ---- Shading (Kajiya & Kay 1989, with Scheuermann 2004's two shifted specular lobes) ------------
-
-// sin of the angle between the tangent and a direction: the strand's "cosine" for a cylinder.
-GPU_FN float strandSin(vec3 t, vec3 d)
-{
-    float c = dot(t, d);
-    return sqrt(max(0.0f, 1.0f - c * c));
-}
-
-// Radiance of a hair strand: Kajiya-Kay diffuse sin(T, L) and two specular lobes around the half
-// vector, their tangents shifted along the normal in opposite directions (primary: white, sharp;
-// secondary: tinted by the hair colour, broader), as Scheuermann's real-time model does. All
-// directions point away from the shading point.
-GPU_FN vec3 kajiyaKay(vec3 t, vec3 n, vec3 l, vec3 v, vec3 albedo, float shift, vec3 lightRadiance)
-{
-    vec3 h = normalize(l + v);
-    vec3 t1 = normalize(t + shift * n);
-    vec3 t2 = normalize(t - 0.5f * shift * n);
-    float diffuse = mix(0.25f, 1.0f, strandSin(t, l));
-    float spec1 = pow(strandSin(t1, h), 120.0f);
-    float spec2 = pow(strandSin(t2, h), 24.0f);
-    float facing = clamp(dot(n, l) * 0.5f + 0.5f, 0.0f, 1.0f);  // soften the unlit side
-    vec3 color = albedo * diffuse / 3.14159265f + vec3(0.02f * spec1) + 0.15f * albedo * spec2;
-    return color * lightRadiance * facing;
 }
 
 GPU_NAMESPACE_END

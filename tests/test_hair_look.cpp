@@ -1,0 +1,162 @@
+// tests/test_hair_look.cpp: the hair's look in the renderer: presets in order of darkness, every
+// shading model renders (and differently), blonde renders lighter than black, backlit hair glows
+// (light transmitted through the fibres, TT), bad look settings are refused.
+#include "app/headless.h"
+#include "app/settings_registry.h"
+#include "core/error.h"
+#include "physics/hair_scene.h"
+#include "renderer/hair_look.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+using namespace wisp;
+
+namespace {
+
+float luminance(glm::vec3 c)
+{
+    return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
+}
+
+glm::vec3 presetSigmaA(const std::string& name)
+{
+    HairLook look;
+    EXPECT_TRUE(applyHairPreset(look, name));
+    return hairParams(look).sigmaA;
+}
+
+HairScene scene150()
+{
+    GrowthSettings g;
+    g.guides = 150;
+    return buildGrownScene(defaultHeadPath(), g);
+}
+
+RenderSettings small()
+{
+    RenderSettings s;
+    s.width = 200;
+    s.height = 150;
+    s.shadows.mapSize = 512;
+    s.strands.strandsPerGuide = 8;
+    s.strands.divisions = 12;
+    return s;
+}
+
+// Mean luminance (0..255) over the pixels where the hair changed the bald picture.
+double hairBrightness(const Picture& hair, const Picture& bald, size_t* count = nullptr)
+{
+    double sum = 0.0;
+    size_t n = 0;
+    for (size_t i = 0; i < hair.rgba.size(); i += 4) {
+        int d = std::abs(hair.rgba[i] - bald.rgba[i]) + std::abs(hair.rgba[i + 1] - bald.rgba[i + 1]) +
+                std::abs(hair.rgba[i + 2] - bald.rgba[i + 2]);
+        if (d < 12)
+            continue;
+        sum += 0.2126 * hair.rgba[i] + 0.7152 * hair.rgba[i + 1] + 0.0722 * hair.rgba[i + 2];
+        ++n;
+    }
+    if (count)
+        *count = n;
+    return n ? sum / double(n) : 0.0;
+}
+
+Picture render(const vk::Context& ctx, const HairScene& scene, const RenderSettings& s)
+{
+    HairRun run{.scene = &scene};
+    return renderPicture(ctx, scene.head, s, &run);
+}
+
+}  // namespace
+
+TEST(HairLook, PresetsGoFromDarkToLightAndAuburnIsRed)
+{
+    float black = luminance(presetSigmaA("black")), brown = luminance(presetSigmaA("brown"));
+    float auburn = luminance(presetSigmaA("auburn")), blonde = luminance(presetSigmaA("blonde"));
+    EXPECT_GT(black, brown);
+    EXPECT_GT(brown, blonde);
+    EXPECT_GT(auburn, blonde);
+    glm::vec3 a = presetSigmaA("auburn");
+    EXPECT_LT(a.r, 0.5f * a.b) << "auburn absorbs blue far more than red";
+    HairLook look;
+    EXPECT_FALSE(applyHairPreset(look, "green"));
+}
+
+TEST(HairLook, BadLookSettingsAreRefusedNamingTheSetting)
+{
+    RenderSettings s;
+    SettingsRefs refs{.render = &s};
+    auto message = [&](const std::string& assignment) {
+        try {
+            applySetting(refs, assignment);
+        } catch (const UserError& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    EXPECT_NE(message("shading=phong").find("karis | kajiya | lut"), std::string::npos);
+    EXPECT_NE(message("hair_preset=green").find("black | brown | auburn | blonde"), std::string::npos);
+    EXPECT_NE(message("hair_color=0.5,0.2").find("hair_color"), std::string::npos);
+    EXPECT_NE(message("hair_color=0.5,0.2,2").find("out of range"), std::string::npos);
+    EXPECT_NE(message("beta_m=0").find("beta_m"), std::string::npos);
+    EXPECT_EQ(message("hair_color=0.5,0.3,0.1"), "accepted");
+    EXPECT_TRUE(s.hair.useColor);
+    EXPECT_EQ(s.hair.color, glm::vec3(0.5f, 0.3f, 0.1f));
+    EXPECT_EQ(message("hair_preset=blonde"), "accepted");
+    EXPECT_FALSE(s.hair.useColor);
+}
+
+TEST(HairLook, EveryShadingModelRendersItsOwnPicture)
+{
+    vk::Context ctx(test::validatedOptions());
+    HairScene scene = scene150();
+    RenderSettings s = small();
+    Picture bald = renderPicture(ctx, scene.head, s);
+    std::vector<Picture> pictures;
+    for (ShadingModel m : {ShadingModel::Karis, ShadingModel::Kajiya, ShadingModel::Lut}) {
+        s.hair.model = m;
+        pictures.push_back(render(ctx, scene, s));
+        size_t n = 0;
+        double brightness = hairBrightness(pictures.back(), bald, &n);
+        EXPECT_GT(n, 1000u);
+        EXPECT_GT(brightness, 15.0) << "model " << int(m) << " draws visible hair";
+    }
+    EXPECT_NE(pictures[0].rgba, pictures[1].rgba);
+    EXPECT_NE(pictures[0].rgba, pictures[2].rgba);
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
+TEST(HairLook, BlondeRendersLighterThanBrownAndBrownThanBlack)
+{
+    vk::Context ctx(test::validatedOptions());
+    HairScene scene = scene150();
+    RenderSettings s = small();
+    Picture bald = renderPicture(ctx, scene.head, s);
+    double previous = -1.0;
+    for (const char* preset : {"black", "brown", "blonde"}) {
+        ASSERT_TRUE(applyHairPreset(s.hair, preset));
+        double b = hairBrightness(render(ctx, scene, s), bald);
+        EXPECT_GT(b, previous + 5.0) << preset;
+        previous = b;
+    }
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
+TEST(HairLook, BacklitHairGlows)
+{
+    // With the light behind the head, what reaches the camera has passed through fibres (TT) or
+    // scattered among them: lighter hair glows, compared with the same hair with the light off.
+    vk::Context ctx(test::validatedOptions());
+    HairScene scene = scene150();
+    RenderSettings s = small();
+    applyHairPreset(s.hair, "blonde");
+    s.light.azimuthDeg = 180.0f;
+    s.light.elevationDeg = 20.0f;
+    Picture bald = renderPicture(ctx, scene.head, s);
+    Picture backlit = render(ctx, scene, s);
+    s.light.intensity = 0.0f;
+    Picture dark = render(ctx, scene, s);
+    EXPECT_GT(hairBrightness(backlit, bald), hairBrightness(dark, bald) + 10.0);
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
