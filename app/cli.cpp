@@ -232,7 +232,9 @@ int runRenderProfile(const GlobalOptions& g, RenderOptions& o)
     HairScene scene = o.hair.buildScene(headPathOrDefault(o.headFile));
     vk::Context ctx(contextOptions(g));
     HairRun run{.scene = &scene, .sim = o.hair.sim, .frames = 0, .framesPerSecond = o.fps, .sphere = o.hair.sphereOrNone()};
-    std::vector<PassTiming> timings = profileFrames(ctx, scene.head, o.settings, run, o.profileWarmup, o.profileFrames);
+    OitStats oit;
+    std::vector<PassTiming> timings =
+        profileFrames(ctx, scene.head, o.settings, run, o.profileWarmup, o.profileFrames, &oit);
     HairDrawCounts c = hairDrawCounts(uint32_t(scene.strands.strandCount()), o.settings.strands);
     nlohmann::json out = {{"device", ctx.report().name},
                           {"width", o.settings.width},
@@ -245,7 +247,12 @@ int runRenderProfile(const GlobalOptions& g, RenderOptions& o)
                           {"segments", c.segments()},
                           {"samples", o.settings.samples},
                           {"warmup_frames", o.profileWarmup},
-                          {"timed_frames", o.profileFrames}};
+                          {"timed_frames", o.profileFrames},
+                          {"transparency", o.settings.transparency.mode == Transparency::Oit ? "oit" : "msaa"},
+                          {"oit_fragments", oit.fragments},
+                          {"oit_overflow", oit.overflow},
+                          {"oit_capacity", oit.capacity},
+                          {"shadow_size", o.settings.shadows.mapSize}};
     for (const PassTiming& t : timings)
         out["ms"][t.name] = {{"median", t.medianMs}, {"p95", t.p95Ms}};
     std::cout << out.dump() << "\n";

@@ -78,7 +78,7 @@ Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSett
 }
 
 std::vector<PassTiming> profileFrames(const vk::Context& ctx, const Head& head, const RenderSettings& settings,
-                                      const HairRun& hair, uint32_t warmup, uint32_t frames)
+                                      const HairRun& hair, uint32_t warmup, uint32_t frames, OitStats* oit)
 {
     Renderer renderer(ctx, settings, 1);
     renderer.setHead(head);
@@ -105,6 +105,8 @@ std::vector<PassTiming> profileFrames(const vk::Context& ctx, const Head& head, 
         frame.run(fc, passes);
         frame.submit(fc);
         frame.waitIdle();
+        if (oit)
+            *oit = renderer.oitStats(fc.slot);
         if (n < warmup)
             continue;
         double total = 0.0;

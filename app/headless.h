@@ -51,7 +51,8 @@ struct PassTiming {
     double medianMs = 0.0;
     double p95Ms = 0.0;
 };
+// `oit`, when given, receives the last frame's OIT counts.
 std::vector<PassTiming> profileFrames(const vk::Context& ctx, const Head& head, const RenderSettings& settings,
-                                      const HairRun& hair, uint32_t warmup, uint32_t frames);
+                                      const HairRun& hair, uint32_t warmup, uint32_t frames, OitStats* oit = nullptr);
 
 }  // namespace wisp

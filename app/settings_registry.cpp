@@ -223,6 +223,9 @@ std::vector<SettingSpec> buildSpecs()
                        float);
     WISP_RENDER_NUMBER("dom_density", "", kDomKappaRange,
                        "kappa of the hair's transmittance exp(-kappa * opacity) toward the light", shadows.domKappa, float);
+    WISP_RENDER_NUMBER("shadow_strands", "", kShadowStrandsRange,
+                       "share of the strands drawn into the light's maps (fewer, wider: the same coverage)",
+                       shadows.strandFraction, float);
     add({"transparency", "", "oit | msaa", "hair blending: sorted per-pixel lists, or opaque coverage with MSAA",
          [](const SettingsRefs& r) {
              return r.render ? std::string(r.render->transparency.mode == Transparency::Oit ? "oit" : "msaa") : "-";

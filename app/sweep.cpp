@@ -50,12 +50,14 @@ int runSweep(const vk::Context& ctx, const SweepOptions& o, const HairOptions& b
         points *= a.values.size();
 
     std::ostringstream csv;
-    std::vector<std::string> passColumns = {"physics", "meshes", "hair", "frame"};
+    // Every pass a frame may run (zero where a mode skips it), then the frame.
+    std::vector<std::string> passColumns = {"physics", "shadow",      "opacity",       "oit.clear", "meshes",
+                                            "hair",    "oit.resolve", "oit.composite", "oit.stats", "frame"};
     for (const SweepAxis& a : o.axes)
         csv << a.name << ",";
     for (const std::string& p : passColumns)
         csv << p << "_ms_median," << p << "_ms_p95,";
-    csv << "fps,strands,segments,width,height,device,driver\n";
+    csv << "fps,strands,segments,oit_fragments,oit_overflow,width,height,device,driver\n";
 
     for (size_t index = 0; index < points; ++index) {
         HairOptions hair = baseHair;
@@ -75,7 +77,8 @@ int runSweep(const vk::Context& ctx, const SweepOptions& o, const HairOptions& b
 
         HairScene scene = hair.buildScene(o.headFile);
         HairRun run{.scene = &scene, .sim = hair.sim, .frames = 0, .framesPerSecond = 30.0f, .sphere = hair.sphereOrNone()};
-        std::vector<PassTiming> timings = profileFrames(ctx, scene.head, render, run, o.warmup, o.frames);
+        OitStats oit;
+        std::vector<PassTiming> timings = profileFrames(ctx, scene.head, render, run, o.warmup, o.frames, &oit);
         HairDrawCounts counts = hairDrawCounts(uint32_t(scene.strands.strandCount()), render.strands);
         for (const std::string& v : values)
             csv << v << ",";
@@ -90,7 +93,7 @@ int runSweep(const vk::Context& ctx, const SweepOptions& o, const HairOptions& b
                 frameMs = t->medianMs;
         }
         csv << (frameMs > 0.0 ? 1000.0 / frameMs : 0.0) << "," << counts.strands() << "," << counts.segments() << ","
-            << render.width << "," << render.height << ",\"" << ctx.report().name << "\",\"" << ctx.report().driverInfo
+            << oit.fragments << "," << oit.overflow << "," << render.width << "," << render.height << ",\"" << ctx.report().name << "\",\"" << ctx.report().driverInfo
             << "\"\n";
     }
 

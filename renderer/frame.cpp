@@ -29,6 +29,11 @@ AccessInfo describe(Access access)
     case Access::TransferDst:
         return {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, true};
+    case Access::GraphicsSampled:
+        return {VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_TESSELLATION_CONTROL_SHADER_BIT |
+                    VK_PIPELINE_STAGE_2_TESSELLATION_EVALUATION_SHADER_BIT | VK_PIPELINE_STAGE_2_GEOMETRY_SHADER_BIT |
+                    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, false};
     case Access::FragmentSampled:
         return {VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, false};
@@ -122,9 +127,12 @@ void Frame::barrier(VkCommandBuffer cmd, const PassIo& io)
         AccessInfo next = describe(use.access);
         bool layoutChange = t.layout != next.layout;
         bool hazard = t.written || (next.writes && t.stages != VK_PIPELINE_STAGE_2_NONE);
-        if (layoutChange || hazard) {
+        // A read in a stage the last write (or transition) was not made visible to.
+        bool unseen = t.dirty && (next.stage & ~t.visible) != 0;
+        if (layoutChange || hazard || unseen) {
+            bool chained = !layoutChange && !hazard;  // only visibility for new stages
             imageBarriers.push_back({.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
-                                     .srcStageMask = t.stages,
+                                     .srcStageMask = chained ? t.visible : t.stages,
                                      .srcAccessMask = t.written ? t.accesses : VK_ACCESS_2_NONE,
                                      .dstStageMask = next.stage,
                                      .dstAccessMask = next.access,
@@ -134,10 +142,18 @@ void Frame::barrier(VkCommandBuffer cmd, const PassIo& io)
                                      .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
                                      .image = t.image,
                                      .subresourceRange = {t.aspect, 0, 1, 0, 1}});
-            t.stages = next.stage;
-            t.accesses = next.access;
-            t.written = next.writes;
-            t.layout = next.layout;
+            if (chained) {
+                t.stages |= next.stage;
+                t.accesses |= next.access;
+                t.visible |= next.stage;
+            } else {
+                t.dirty = t.dirty || layoutChange || t.written || next.writes;
+                t.stages = next.stage;
+                t.accesses = next.access;
+                t.written = next.writes;
+                t.layout = next.layout;
+                t.visible = next.stage;
+            }
         } else {  // read after read in the same layout: later writers must wait for both
             t.stages |= next.stage;
             t.accesses |= next.access;
@@ -147,9 +163,10 @@ void Frame::barrier(VkCommandBuffer cmd, const PassIo& io)
         TrackedBuffer& t = *use.buffer;
         AccessInfo next = describe(use.access);
         bool hazard = t.written || (next.writes && t.stages != VK_PIPELINE_STAGE_2_NONE);
-        if (hazard) {
+        bool unseen = t.dirty && (next.stage & ~t.visible) != 0;
+        if (hazard || unseen) {
             bufferBarriers.push_back({.sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
-                                      .srcStageMask = t.stages,
+                                      .srcStageMask = hazard ? t.stages : t.visible,
                                       .srcAccessMask = t.written ? t.accesses : VK_ACCESS_2_NONE,
                                       .dstStageMask = next.stage,
                                       .dstAccessMask = next.access,
@@ -158,13 +175,24 @@ void Frame::barrier(VkCommandBuffer cmd, const PassIo& io)
                                       .buffer = t.buffer,
                                       .offset = 0,
                                       .size = VK_WHOLE_SIZE});
-            t.stages = next.stage;
-            t.accesses = next.access;
-            t.written = next.writes;
+            if (hazard) {
+                t.dirty = t.dirty || t.written || next.writes;
+                t.stages = next.stage;
+                t.accesses = next.access;
+                t.written = next.writes;
+                t.visible = next.stage;
+            } else {
+                t.stages |= next.stage;
+                t.accesses |= next.access;
+                t.visible |= next.stage;
+            }
         } else {
             t.stages |= next.stage;
             t.accesses |= next.access;
             t.written = t.written || next.writes;
+            t.dirty = t.dirty || next.writes;
+            if (next.writes)
+                t.visible = VK_PIPELINE_STAGE_2_NONE;
         }
     }
     if (imageBarriers.empty() && bufferBarriers.empty())

@@ -62,6 +62,7 @@ HairPass::HairPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
     constexpr VkShaderStageFlags kTessellation =
         VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT | VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT;
     constexpr VkShaderStageFlags kFragment = VK_SHADER_STAGE_FRAGMENT_BIT;
+    constexpr VkShaderStageFlags kEvaluation = VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT;
     constexpr VkShaderStageFlags kAll =
         VK_SHADER_STAGE_VERTEX_BIT | kTessellation | VK_SHADER_STAGE_GEOMETRY_BIT | kFragment;
     constexpr VkDescriptorType kSampler = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
@@ -71,10 +72,12 @@ HairPass::HairPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
                            {gpu::kHairBindingSim, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kTessellation},
                            {gpu::kHairBindingPositions, kStorage, kTessellation},
                            {gpu::kHairBindingTriangles, kStorage, kTessellation},
-                           {gpu::kBindingShadowHead, kSampler, kFragment},
-                           {gpu::kBindingShadowHair, kSampler, kFragment},
-                           {gpu::kBindingHairDepth, kSampler, kFragment},
-                           {gpu::kBindingOpacity, kSampler, kFragment},
+                           // The camera's hair reads the light's maps per vertex (hair.tese); the
+                           // opacity pass reads the hair's first depth per fragment.
+                           {gpu::kBindingShadowHead, kSampler, kEvaluation},
+                           {gpu::kBindingShadowHair, kSampler, kEvaluation},
+                           {gpu::kBindingHairDepth, kSampler, kEvaluation | kFragment},
+                           {gpu::kBindingOpacity, kSampler, kEvaluation},
                            {gpu::kHairBindingOitHeads, kStorage, kFragment},
                            {gpu::kHairBindingOitNodes, kStorage, kFragment},
                            {gpu::kHairBindingOitCounters, kStorage, kFragment},
@@ -209,7 +212,7 @@ HairPass::Statistics HairPass::statistics() const
 }
 
 void HairPass::draw(VkCommandBuffer cmd, FrameContext& frame, VkPipeline pipeline,
-                    const std::vector<VkWriteDescriptorSet>& extra)
+                    const std::vector<VkWriteDescriptorSet>& extra, gpu::HairPush push)
 {
     if (counts_.guides == 0 || counts_.strandsPerGuide == 0 || counts_.divisions == 0)
         return;
@@ -232,21 +235,21 @@ void HairPass::draw(VkCommandBuffer cmd, FrameContext& frame, VkPipeline pipelin
         write(gpu::kHairBindingTriangles, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &trianglesInfo)};
     writes.insert(writes.end(), extra.begin(), extra.end());
     ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, uint32_t(writes.size()), writes.data());
-    push_.samples = uint32_t(target_.samples());
+    push.samples = uint32_t(target_.samples());
     vkCmdPushConstants(cmd, layout_,
                        VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT |
                            VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT | VK_SHADER_STAGE_GEOMETRY_BIT |
                            VK_SHADER_STAGE_FRAGMENT_BIT,
-                       0, sizeof(push_), &push_);
+                       0, sizeof(push), &push);
     vkCmdDraw(cmd, counts_.guides * counts_.lengthChunks, counts_.strandChunks, 0, 0);
 }
 
 void HairPass::recordFromLight(VkCommandBuffer cmd, FrameContext& frame, LightDraw which)
 {
     if (which == LightDraw::Depth)
-        draw(cmd, frame, depthPipeline_, {});
+        draw(cmd, frame, depthPipeline_, {}, lightPush_);
     else
-        draw(cmd, frame, opacityPipeline_, {lightMaps_->hairDepthWrite()});  // z0: where the layers start
+        draw(cmd, frame, opacityPipeline_, {lightMaps_->hairDepthWrite()}, lightPush_);  // z0: where the layers start
 }
 
 void HairPass::record(VkCommandBuffer cmd, FrameContext& frame)
@@ -277,7 +280,7 @@ void HairPass::record(VkCommandBuffer cmd, FrameContext& frame)
     target_.beginRendering(cmd, glm::vec3(0.0f));
     if (statistics_)
         vkCmdBeginQuery(cmd, statistics_, 0, 0);
-    draw(cmd, frame, oit_ ? oitPipeline_.get() : pipeline_.get(), extra);
+    draw(cmd, frame, oit_ ? oitPipeline_.get() : pipeline_.get(), extra, push_);
     if (statistics_)
         vkCmdEndQuery(cmd, statistics_, 0);
     target_.endRendering(cmd);

@@ -61,6 +61,8 @@ public:
 
     // This frame's parameters (settings, LOD, the head's pose).
     void setPush(const gpu::HairPush& push) { push_ = push; }
+    // The parameters of the draws from the light (fewer, wider strands: see shadow_strands).
+    void setLightPush(const gpu::HairPush& push) { lightPush_ = push; }
     const HairDrawCounts& counts() const { return counts_; }
     // Pipeline statistics of the last recorded draw (after its frame completed): how many
     // tessellation evaluations, geometry-shader invocations and primitives the draw produced.
@@ -91,8 +93,10 @@ private:
     vk::Buffer triangles_;
     vk::QueryPool statistics_;  // empty where the device has no pipeline statistics
     gpu::HairPush push_{};
+    gpu::HairPush lightPush_{};
     // Binds `pipeline`, pushes the guide bindings plus `extra`, and draws every patch and instance.
-    void draw(VkCommandBuffer cmd, FrameContext& frame, VkPipeline pipeline, const std::vector<VkWriteDescriptorSet>& extra);
+    void draw(VkCommandBuffer cmd, FrameContext& frame, VkPipeline pipeline, const std::vector<VkWriteDescriptorSet>& extra,
+              gpu::HairPush push);
     HairDrawCounts counts_;
 };
 

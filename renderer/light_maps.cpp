@@ -80,9 +80,9 @@ void LightMaps::updateInfos()
 
 void LightMaps::declareRead(PassIo& io)
 {
-    io.use(headTrack_, Access::FragmentSampled);
-    io.use(hairTrack_, Access::FragmentSampled);
-    io.use(opacityTrack_, Access::FragmentSampled);
+    io.use(headTrack_, Access::GraphicsSampled);
+    io.use(hairTrack_, Access::GraphicsSampled);
+    io.use(opacityTrack_, Access::GraphicsSampled);
 }
 
 std::array<VkWriteDescriptorSet, 4> LightMaps::descriptorWrites() const

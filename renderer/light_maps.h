@@ -40,7 +40,7 @@ public:
     const vk::Image& opacityImage() const { return opacity_; }
     std::vector<TrackedImage*> transientImages() { return {&headTrack_, &hairTrack_, &opacityTrack_}; }
 
-    // For a pass whose fragments read the maps: the accesses to declare, and the descriptor
+    // For a pass whose shaders read the maps: the accesses to declare, and the descriptor
     // writes for bindings kBindingShadowHead..kBindingOpacity (valid while this object lives).
     void declareRead(PassIo& io);
     std::array<VkWriteDescriptorSet, 4> descriptorWrites() const;

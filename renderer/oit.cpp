@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "renderer/frame.h"
 #include "renderer/render_target.h"
+#include "renderer/vk/check.h"
 #include "renderer/vk/context.h"
 #include "renderer/vk/pipeline.h"
 
@@ -21,9 +22,9 @@ namespace {
 
 struct ResolvePush {
     uint32_t width;
+    uint32_t height;
     uint32_t k;
     uint32_t maxWalk;
-    uint32_t pad;
 };
 
 std::string mib(uint64_t bytes)
@@ -80,6 +81,11 @@ void Oit::resize(VkExtent2D extent, uint32_t requestedNodesPerPixel)
     counters_ = ctx_.createBuffer({.size = sizeof(gpu::OitCounters),
                                    .usage = vk::kStorage | vk::kTransferDst | vk::kTransferSrc,
                                    .name = "oit.counters"});
+    color_ = ctx_.createImage({.format = VK_FORMAT_R16G16B16A16_SFLOAT,
+                               .extent = extent,
+                               .usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                               .name = "oit.color"});
+    colorTrack_ = {.image = color_.get()};
     headsTrack_ = {.buffer = heads_};
     nodesTrack_ = {.buffer = nodes_};
     countersTrack_ = {.buffer = counters_};
@@ -122,20 +128,76 @@ void OitStatsPass::record(VkCommandBuffer cmd, FrameContext& frame)
     oit_.recordStatsCopy(cmd, frame.slot);
 }
 
-OitResolvePass::OitResolvePass(const vk::Context& ctx, Oit& oit, RenderTarget& target)
-    : ctx_(ctx), oit_(oit), target_(target)
+OitResolvePass::OitResolvePass(const vk::Context& ctx, Oit& oit) : ctx_(ctx), oit_(oit)
 {
     vk::PipelineLayoutBundle layout = vk::createPipelineLayout(
-        ctx, {.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT},
-                           {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT},
-                           {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT}},
+        ctx, {.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+                           {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+                           {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+                           {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}},
               .pushConstantBytes = sizeof(ResolvePush),
-              .pushConstantStages = VK_SHADER_STAGE_FRAGMENT_BIT,
+              .pushConstantStages = VK_SHADER_STAGE_COMPUTE_BIT,
               .name = "oit.resolve.layout"});
     setLayout_ = std::move(layout.setLayout);
     layout_ = std::move(layout.layout);
+    pipeline_ = vk::createComputePipeline(ctx, layout_, "oit_resolve.comp", "oit.resolve.pipeline");
+}
+
+void OitResolvePass::declare(PassIo& io)
+{
+    io.use(oit_.heads(), Access::ComputeRead);
+    io.use(oit_.nodes(), Access::ComputeRead);
+    io.use(oit_.counters(), Access::ComputeRead);
+    io.use(oit_.color(), Access::ComputeWrite);
+}
+
+void OitResolvePass::record(VkCommandBuffer cmd, FrameContext&)
+{
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+    std::array<VkDescriptorBufferInfo, 3> infos = {VkDescriptorBufferInfo{oit_.headsBuffer(), 0, VK_WHOLE_SIZE},
+                                                   VkDescriptorBufferInfo{oit_.nodesBuffer(), 0, VK_WHOLE_SIZE},
+                                                   VkDescriptorBufferInfo{oit_.countersBuffer(), 0, VK_WHOLE_SIZE}};
+    VkDescriptorImageInfo image{VK_NULL_HANDLE, oit_.colorImage().view(), VK_IMAGE_LAYOUT_GENERAL};
+    std::array<VkWriteDescriptorSet, 4> writes{};
+    for (uint32_t i = 0; i < 3; ++i)
+        writes[i] = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                     .dstBinding = i,
+                     .descriptorCount = 1,
+                     .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                     .pBufferInfo = &infos[i]};
+    writes[3] = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                 .dstBinding = 3,
+                 .descriptorCount = 1,
+                 .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                 .pImageInfo = &image};
+    ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, uint32_t(writes.size()), writes.data());
+    // A list can never hold more nodes than the pool; the bound also keeps a corrupted list finite.
+    VkExtent2D e = oit_.extent();
+    ResolvePush push{.width = e.width, .height = e.height, .k = k_, .maxWalk = oit_.capacity()};
+    vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdDispatch(cmd, vk::groupCount(e.width, 8), vk::groupCount(e.height, 8), 1);
+}
+
+OitCompositePass::OitCompositePass(const vk::Context& ctx, Oit& oit, RenderTarget& target)
+    : ctx_(ctx), oit_(oit), target_(target)
+{
+    VkSamplerCreateInfo samplerInfo{.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
+                                    .magFilter = VK_FILTER_NEAREST,
+                                    .minFilter = VK_FILTER_NEAREST,
+                                    .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                                    .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                                    .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE};
+    VkSampler sampler = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateSampler(ctx.device(), &samplerInfo, nullptr, &sampler));
+    ctx.setName(sampler, VK_OBJECT_TYPE_SAMPLER, "oit.composite.sampler");
+    sampler_ = vk::Sampler(ctx.device(), sampler);
+    vk::PipelineLayoutBundle layout = vk::createPipelineLayout(
+        ctx, {.bindings = {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}},
+              .name = "oit.composite.layout"});
+    setLayout_ = std::move(layout.setLayout);
+    layout_ = std::move(layout.layout);
     pipeline_ = vk::createGraphicsPipeline(ctx, {.layout = layout_,
-                                                 .shaders = {"oit_resolve.vert", "oit_resolve.frag"},
+                                                 .shaders = {"fullscreen.vert", "oit_composite.frag"},
                                                  .cullMode = VK_CULL_MODE_NONE,
                                                  .depthTest = false,
                                                  .depthWrite = false,
@@ -143,35 +205,26 @@ OitResolvePass::OitResolvePass(const vk::Context& ctx, Oit& oit, RenderTarget& t
                                                  .colorFormat = RenderTarget::kColorFormat,
                                                  .depthFormat = RenderTarget::kDepthFormat,
                                                  .samples = target.samples(),
-                                                 .name = "oit.resolve.pipeline"});
+                                                 .name = "oit.composite.pipeline"});
 }
 
-void OitResolvePass::declare(PassIo& io)
+void OitCompositePass::declare(PassIo& io)
 {
-    io.use(oit_.heads(), Access::FragmentStorageRead);
-    io.use(oit_.nodes(), Access::FragmentStorageRead);
-    io.use(oit_.counters(), Access::FragmentStorageRead);
+    io.use(oit_.color(), Access::FragmentSampled);
     target_.declareDraw(io);
 }
 
-void OitResolvePass::record(VkCommandBuffer cmd, FrameContext&)
+void OitCompositePass::record(VkCommandBuffer cmd, FrameContext&)
 {
     target_.beginRendering(cmd, glm::vec3(0.0f));
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
-    std::array<VkDescriptorBufferInfo, 3> infos = {VkDescriptorBufferInfo{oit_.headsBuffer(), 0, VK_WHOLE_SIZE},
-                                                   VkDescriptorBufferInfo{oit_.nodesBuffer(), 0, VK_WHOLE_SIZE},
-                                                   VkDescriptorBufferInfo{oit_.countersBuffer(), 0, VK_WHOLE_SIZE}};
-    std::array<VkWriteDescriptorSet, 3> writes{};
-    for (uint32_t i = 0; i < 3; ++i)
-        writes[i] = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-                     .dstBinding = i,
-                     .descriptorCount = 1,
-                     .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                     .pBufferInfo = &infos[i]};
-    ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, uint32_t(writes.size()), writes.data());
-    // A list can never hold more nodes than the pool; the bound also keeps a corrupted list finite.
-    ResolvePush push{.width = oit_.extent().width, .k = k_, .maxWalk = oit_.capacity(), .pad = 0};
-    vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push), &push);
+    VkDescriptorImageInfo image{sampler_, oit_.colorImage().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet write{.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                               .dstBinding = 0,
+                               .descriptorCount = 1,
+                               .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                               .pImageInfo = &image};
+    ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &write);
     vkCmdDraw(cmd, 3, 1, 0, 0);
     target_.endRendering(cmd);
 }

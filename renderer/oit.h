@@ -2,8 +2,10 @@
 // (TressFX's PPLL). Per frame:
 //   oit.clear    every pixel's head pointer to nil, the pool counter to zero
 //   hair         (hair_oit.frag) each fragment takes a node from the pool and links it in
-//   oit.resolve  a full-screen pass sorts each pixel's nearest k and blends the list over the target
-//   oit.stats    copies the counters to the host: fragments stored and those the full pool dropped
+//   oit.resolve    a compute pass sorts each pixel's nearest k and blends its list into one colour
+//                  (compute runs on every unit of the GPU; an H100 runs graphics on few of them)
+//   oit.composite  a full-screen pass lays that colour over the target
+//   oit.stats      copies the counters to the host: fragments stored and those the full pool dropped
 // The pool holds nodesPerPixel x the target's pixels (automatic: 24 per pixel, at least 8M nodes); it is sized up front and checked against
 // the device's limits, so a too-large request is a clear error, and an overflowing frame loses
 // fragments (counted) but never writes out of bounds or loops.
@@ -45,6 +47,8 @@ public:
     TrackedBuffer& heads() { return headsTrack_; }
     TrackedBuffer& nodes() { return nodesTrack_; }
     TrackedBuffer& counters() { return countersTrack_; }
+    TrackedImage& color() { return colorTrack_; }  // the resolved hair, premultiplied RGBA16F
+    const vk::Image& colorImage() const { return color_; }
     VkBuffer headsBuffer() const { return heads_; }
     VkBuffer nodesBuffer() const { return nodes_; }
     VkBuffer countersBuffer() const { return counters_; }
@@ -62,6 +66,8 @@ private:
     uint32_t capacity_ = 0;
     uint32_t nodesPerPixel_ = 0;
     vk::Buffer heads_, nodes_, counters_;
+    vk::Image color_;
+    TrackedImage colorTrack_;
     std::vector<vk::Buffer> readback_;  // one per frame in flight
     TrackedBuffer headsTrack_, nodesTrack_, countersTrack_;
 };
@@ -79,7 +85,7 @@ private:
 
 class OitResolvePass : public Pass {
 public:
-    OitResolvePass(const vk::Context& ctx, Oit& oit, RenderTarget& target);
+    OitResolvePass(const vk::Context& ctx, Oit& oit);
     const char* name() const override { return "oit.resolve"; }
     void declare(PassIo& io) override;
     void record(VkCommandBuffer cmd, FrameContext& frame) override;
@@ -88,11 +94,27 @@ public:
 private:
     const vk::Context& ctx_;
     Oit& oit_;
-    RenderTarget& target_;
     vk::DescriptorSetLayout setLayout_;
     vk::PipelineLayout layout_;
     vk::Pipeline pipeline_;
     uint32_t k_ = 8;
+};
+
+class OitCompositePass : public Pass {
+public:
+    OitCompositePass(const vk::Context& ctx, Oit& oit, RenderTarget& target);
+    const char* name() const override { return "oit.composite"; }
+    void declare(PassIo& io) override;
+    void record(VkCommandBuffer cmd, FrameContext& frame) override;
+
+private:
+    const vk::Context& ctx_;
+    Oit& oit_;
+    RenderTarget& target_;
+    vk::DescriptorSetLayout setLayout_;
+    vk::PipelineLayout layout_;
+    vk::Pipeline pipeline_;
+    vk::Sampler sampler_;
 };
 
 class OitStatsPass : public Pass {

@@ -19,6 +19,7 @@ enum class Access {
     TransferSrc,       // copied or blitted from
     TransferDst,       // copied or blitted to
     FragmentSampled,   // sampled in fragment shaders
+    GraphicsSampled,   // sampled in any graphics stage (vertex, tessellation, geometry, fragment)
     ComputeRead,       // storage read in compute shaders
     ComputeWrite,      // storage write (or read-modify-write) in compute shaders
     VertexShaderRead,  // storage read in vertex, tessellation or geometry shaders
@@ -45,6 +46,10 @@ struct TrackedImage {
     VkPipelineStageFlags2 stages = VK_PIPELINE_STAGE_2_NONE;
     VkAccessFlags2 accesses = VK_ACCESS_2_NONE;
     bool written = false;  // the last access set includes a write
+    // Since the last write or layout transition: the stages a barrier has made it visible to.
+    // A later read in another stage needs a barrier of its own, chained from these.
+    VkPipelineStageFlags2 visible = VK_PIPELINE_STAGE_2_NONE;
+    bool dirty = false;    // a write or layout transition has happened (its visibility matters)
 };
 
 struct TrackedBuffer {
@@ -52,6 +57,8 @@ struct TrackedBuffer {
     VkPipelineStageFlags2 stages = VK_PIPELINE_STAGE_2_NONE;
     VkAccessFlags2 accesses = VK_ACCESS_2_NONE;
     bool written = false;
+    VkPipelineStageFlags2 visible = VK_PIPELINE_STAGE_2_NONE;  // as for images
+    bool dirty = false;
 };
 
 struct PassIo {

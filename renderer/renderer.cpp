@@ -120,6 +120,8 @@ void Renderer::resize(VkExtent2D extent)
 std::vector<TrackedImage*> Renderer::transientImages()
 {
     std::vector<TrackedImage*> list = target_->transientImages();
+    if (oit_)
+        list.push_back(&oit_->color());
     for (TrackedImage* image : lightMaps_->transientImages())
         list.push_back(image);
     return list;
@@ -177,6 +179,12 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
     push.minPixelWidth = s.minPixelWidth;
     push.reverseOrder = s.reverseOrder ? 1u : 0u;
     hairPass_->setPush(push);
+    // The light's maps need the hair's depth and opacity, not every strand: LOD's fewer, wider
+    // strands (the same coverage) cost a fraction of the tessellation.
+    gpu::HairPush light = push;
+    light.lodStrands = std::max(1.0f, push.lodStrands * settings_.shadows.strandFraction);
+    light.lodWidthScale = push.lodWidthScale * std::sqrt(push.lodStrands / light.lodStrands);
+    hairPass_->setLightPush(light);
 }
 
 void Renderer::attachHair(GpuSolver& solver, const StrandSet& strands, float unitsPerMetre)
@@ -193,7 +201,8 @@ void Renderer::attachHair(GpuSolver& solver, const StrandSet& strands, float uni
     if (settings_.transparency.mode == Transparency::Oit) {
         oit_ = std::make_unique<Oit>(ctx_, target_->extent(), settings_.transparency.oitNodesPerPixel, framesInFlight_);
         oitClear_ = std::make_unique<OitClearPass>(*oit_);
-        oitResolve_ = std::make_unique<OitResolvePass>(ctx_, *oit_, *target_);
+        oitResolve_ = std::make_unique<OitResolvePass>(ctx_, *oit_);
+        oitComposite_ = std::make_unique<OitCompositePass>(ctx_, *oit_, *target_);
         oitStats_ = std::make_unique<OitStatsPass>(*oit_);
         hairPass_->setOit(oit_.get());
     }
@@ -236,6 +245,7 @@ std::vector<Pass*> Renderer::passes()
         list.push_back(hairPass_.get());
     if (oitResolve_) {
         list.push_back(oitResolve_.get());
+        list.push_back(oitComposite_.get());
         list.push_back(oitStats_.get());
     }
     if (guidePass_ && settings_.strands.showGuides)

@@ -1,8 +1,8 @@
 // renderer/renderer.h: the scene renderer shared by the window and the headless front ends. It
 // owns the render target, the per-frame uniforms and the passes, in the order they run:
 //   physics (when hair is attached) | shadow (head and hair depth from the light) | opacity (deep
-//   opacity layers) | [oit.clear] | meshes (head) | hair (tessellated strands) | [oit.resolve |
-//   oit.stats] | guides (lines, optional)
+//   opacity layers) | [oit.clear] | meshes (head) | hair (tessellated strands) | [oit.resolve
+//   (compute) | oit.composite | oit.stats] | guides (lines, optional)
 // The bracketed passes run in OIT mode (transparency=oit); in MSAA mode the hair writes coverage.
 // A front end begins a Frame, calls prepare(), runs passes() plus its own tail (readback or
 // present), and submits.
@@ -88,6 +88,7 @@ private:
     std::unique_ptr<Oit> oit_;
     std::unique_ptr<OitClearPass> oitClear_;
     std::unique_ptr<OitResolvePass> oitResolve_;
+    std::unique_ptr<OitCompositePass> oitComposite_;
     std::unique_ptr<OitStatsPass> oitStats_;
     uint32_t guideCount_ = 0;
     uint32_t verticesPerStrand_ = 0;

@@ -63,6 +63,7 @@ inline constexpr Range kDomLayersRange{0, 4};             // 0 = off; shared/sha
 inline constexpr Range kDomSpacingRange{0.0005, 0.2};     // metres
 inline constexpr Range kDomKappaRange{0.0, 20.0};
 inline constexpr Range kOpacityRange{0.01, 1.0};
+inline constexpr Range kShadowStrandsRange{0.01, 1.0};
 inline constexpr Range kOitKRange{1, 16};                 // shared/shadows.h kMaxOitK
 inline constexpr Range kOitNodesPerPixelRange{0, 256};   // 0 = automatic
 
@@ -75,6 +76,7 @@ struct ShadowSettings {
     uint32_t domLayers = 4;           // deep opacity layers; 0: hair self-shadows by PCF instead
     float domSpacingMetres = 0.006f;  // depth of one deep opacity layer
     float domKappa = 0.9f;            // transmittance = exp(-kappa * opacity)
+    float strandFraction = 0.25f;     // share of the strands drawn into the light's maps (wider, same coverage)
 };
 
 enum class Transparency { Oit, Msaa };

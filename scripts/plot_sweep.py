@@ -10,7 +10,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-PASSES = ["physics", "meshes", "hair"]
+PASSES = ["physics", "shadow", "opacity", "oit.clear", "meshes", "hair", "oit.resolve", "oit.composite", "oit.stats"]
 
 
 def number(text):

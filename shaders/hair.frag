@@ -5,8 +5,8 @@
 // BSDF (single scattering) plus Karis's multiple scattering. Each strand's absorption varies around the material's (a per-strand factor, lighter toward
 // the tip, and streaks along the strand from value noise, as Meshuggah's hair varies its colour
 // along strands with a noise texture). The light reaches the fragment through the head's shadow
-// (PCF) and the hair in front of it (deep opacity map: light_visibility.glsl); the hemisphere
-// ambient is darkened by the same opacity.
+// (PCF) and the hair in front of it (deep opacity map), both evaluated per vertex in hair.tese
+// (light_visibility.glsl) and interpolated; the hemisphere ambient is darkened by the same opacity.
 // Then, by transparency mode:
 // - msaa (hair.frag): the ribbon's coverage becomes the fragment's sample mask
 //   (shared/strands.h coverageMask): with MSAA the resolve averages it, with one sample it dithers.
@@ -23,7 +23,7 @@
 layout(push_constant) uniform PushBlock { HairPush push; };
 layout(set = 0, binding = kHairBindingFrame) uniform FrameBlock { FrameParams frame; };
 layout(set = 0, binding = kHairBindingLut) uniform sampler2DArray hairLut;
-#include "light_visibility.glsl"
+#include "shared/shadows.h"
 
 #ifdef HAIR_OIT
 layout(early_fragment_tests) in;  // hidden fragments (behind the head) never reach the lists
@@ -37,6 +37,7 @@ layout(location = 1) in vec3 inTangent;
 layout(location = 2) in float inT;
 layout(location = 3) flat in uint inStrand;
 layout(location = 4) in float inAlpha;
+layout(location = 5) in vec2 inVisibility;  // x head shadow, y hair transmittance (from hair.tese)
 layout(location = 0) out vec4 outColor;
 
 // Smooth 1D value noise in [-1, 1] along a strand, a different row per strand.
@@ -65,8 +66,7 @@ vec3 shade()
     m.sigmaA.xyz *= factor;
     m.baseColor.rgb = pow(max(baseColor, vec3(1e-4)), vec3(sqrt(factor)));  // c = exp(-sqrt(sigma_a) ...), Chiang 2016
 
-    // Hair receiving the hair's own depth map (deep opacity off) needs about a strand's depth of bias.
-    vec2 visibility = lightVisibilityParts(inWorld, gl_FragCoord.xy, 4.0 * frame.shadowBias);
+    vec2 visibility = inVisibility;
     float transmittance = visibility.y;
     vec3 s;
     if (frame.shadingModel == kShadingKaris) {

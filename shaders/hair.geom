@@ -18,12 +18,14 @@ layout(location = 1) in vec3 inTangent[];
 layout(location = 2) in float inT[];
 layout(location = 3) flat in uint inStrand[];
 layout(location = 4) in float inLodAlpha[];
+layout(location = 5) in vec2 inVisibility[];
 
 layout(location = 0) out vec3 outWorld;
 layout(location = 1) out vec3 outTangent;
 layout(location = 2) out float outT;
 layout(location = 3) flat out uint outStrand;
 layout(location = 4) out float outAlpha;
+layout(location = 5) out vec2 outVisibility;
 
 void main()
 {
@@ -59,6 +61,7 @@ void main()
             outT = inT[i];
             outStrand = inStrand[i];
             outAlpha = coverage * inLodAlpha[i];
+            outVisibility = inVisibility[i];
             EmitVertex();
         }
     }

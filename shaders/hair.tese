@@ -25,6 +25,13 @@ layout(location = 1) out vec3 outTangent;
 layout(location = 2) out float outT;
 layout(location = 3) flat out uint outStrand;  // guide * strandsPerGuide + s
 layout(location = 4) out float outLodAlpha;
+layout(location = 5) out vec2 outVisibility;  // the light's visibility here (light_visibility.glsl)
+
+#ifndef HAIR_FROM_LIGHT
+// The light's visibility is evaluated per tessellated vertex and interpolated along the ribbon:
+// shadows vary slowly along a strand, and there are about ten times fewer vertices than fragments.
+#include "light_visibility.glsl"
+#endif
 
 vec3 guidePoint(uint guide, uint i)
 {
@@ -87,7 +94,12 @@ void main()
     outLodAlpha = lodAlpha(s, push.lodStrands);
 #ifdef HAIR_FROM_LIGHT
     gl_Position = frame.lightViewProjection * vec4(p, 1.0);  // shadow and deep opacity passes
+    outVisibility = vec2(1.0);
 #else
     gl_Position = frame.viewProjection * vec4(p, 1.0);
+    // Hair receiving the hair's own depth map (deep opacity off) needs about a strand's depth of
+    // bias; the PCF disk turns per strand instead of per pixel.
+    vec2 noise = vec2(float(outStrand % 251u), float(outStrand / 251u % 241u)) + 17.0 * t;
+    outVisibility = lightVisibilityParts(p, noise, 4.0 * frame.shadowBias);
 #endif
 }

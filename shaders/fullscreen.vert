@@ -1,5 +1,5 @@
 #version 460
-// oit_resolve.vert: one triangle covering the screen.
+// fullscreen.vert: one triangle covering the screen (for full-screen fragment passes).
 void main()
 {
     vec2 p = vec2(float((gl_VertexIndex << 1) & 2), float(gl_VertexIndex & 2));

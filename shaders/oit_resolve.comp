@@ -1,19 +1,21 @@
 #version 460
-// oit_resolve.frag: blends a pixel's list of hair fragments over what is already drawn. The
+// oit_resolve.comp: blends each pixel's list of hair fragments into one premultiplied colour and
+// alpha (oit_composite.frag lays it over the target). A compute pass, so it runs on every unit of
+// the GPU, not only those that run graphics (an H100 has few of those). The
 // nearest `k` are kept sorted (insertion into a small array) and composited front to back; the
 // ones behind them are blended as one layer whose colour is their alpha-weighted mean and whose
 // alpha is 1 - prod(1 - alpha): both sums commute, so the result never depends on the order the
 // fragments were stored in (TressFX sorts the nearest k and blends the rest unsorted; this tail
-// is its order-independent variant). Output is premultiplied: src + dst * (1 - alpha).
+// is its order-independent variant). Output is premultiplied: composited as src + dst * (1 - alpha).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/shadows.h"
 
-layout(push_constant) uniform PushBlock { uint width; uint k; uint maxWalk; uint pad; } push;
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(push_constant) uniform PushBlock { uint width; uint height; uint k; uint maxWalk; } push;
 layout(set = 0, binding = 0, std430) readonly buffer Heads { uint heads[]; };
 layout(set = 0, binding = 1, std430) readonly buffer Nodes { OitNode nodes[]; };
 layout(set = 0, binding = 2, std430) readonly buffer Counters { OitCounters counters; };
-
-layout(location = 0) out vec4 outColor;
+layout(set = 0, binding = 3, rgba16f) uniform writeonly image2D hairColor;
 
 // Fragments order by depth, ties by their colour bits, so equal depths sort the same whatever
 // order they were stored in.
@@ -30,10 +32,14 @@ vec4 unpackColor(uint c)
 
 void main()
 {
-    uint pixel = uint(gl_FragCoord.y) * push.width + uint(gl_FragCoord.x);
-    uint node = heads[pixel];
-    if (node == kOitNil)
-        discard;
+    uvec2 xy = gl_GlobalInvocationID.xy;
+    if (xy.x >= push.width || xy.y >= push.height)
+        return;
+    uint node = heads[xy.y * push.width + xy.x];
+    if (node == kOitNil) {
+        imageStore(hairColor, ivec2(xy), vec4(0.0));
+        return;
+    }
 
     float nearDepth[kMaxOitK];
     uint nearColor[kMaxOitK];
@@ -93,5 +99,5 @@ void main()
         color += transmittance * (1.0 - tailClear) * (tailColor / tailWeight);
         transmittance *= tailClear;
     }
-    outColor = vec4(color, 1.0 - transmittance);
+    imageStore(hairColor, ivec2(xy), vec4(color, 1.0 - transmittance));
 }
