@@ -28,7 +28,7 @@ bool applyHairPreset(HairLook& look, const std::string& name)
     };
     constexpr std::array<Preset, 4> kPresets = {{{"black", 8.0f, 0.0f},
                                                  {"brown", 1.3f, 0.2f},
-                                                 {"auburn", 0.45f, 1.3f},
+                                                 {"auburn", 0.35f, 2.2f},
                                                  {"blonde", 0.15f, 0.12f}}};
     for (const Preset& p : kPresets) {
         if (name == p.name) {
