@@ -10,6 +10,7 @@
 #include "app/settings_registry.h"
 #include "app/sweep.h"
 #include "app/simulate.h"
+#include "app/viewer.h"
 #include "app/window.h"
 #include "renderer/hair_pass.h"
 #include "core/error.h"
@@ -328,7 +329,8 @@ int runCli(int argc, char** argv)
     std::string viewHead;
     bool viewNoHair = false;
     CLI::App* view = app.add_subcommand(
-        "view", "the interactive window with the hair simulated live (drag: orbit, wheel: zoom, middle drag: pan, Space: pause, Esc: quit)");
+        "view", "the interactive window with the hair simulated live; the keys are listed in the title bar (H hides them):\n  " +
+                    viewerHelp());
     view->add_option("--head", viewHead, "head description (.json) or mesh file; default models/head.json");
     view->add_flag("--no-hair", viewNoHair, "show the head alone");
     addHairOptions(view, viewHair);
@@ -339,6 +341,11 @@ int runCli(int argc, char** argv)
     view->add_option("--frames", windowOptions.maxFrames, "close after this many frames (0 = run until closed)")
         ->check(CLI::NonNegativeNumber);
     view->add_option("--screenshot", windowOptions.screenshot, "write the last frame to this PNG when closing");
+    view->add_option("--script", windowOptions.script,
+                     "replay timed input events from this file: lines 'FRAME press|release|tap KEY' or "
+                     "'FRAME drag-sphere|drag-light|orbit DX DY' (KEY: left right up down pageup pagedown j l i k a d w "
+                     "plus minus space n r p f5 o h escape)")
+        ->check(CLI::ExistingFile);
 
     SimulateOptions sim;
     HairOptions simHair;

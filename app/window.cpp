@@ -3,6 +3,7 @@
 #include "app/window.h"
 
 #include "app/image_io.h"
+#include "app/viewer.h"
 #include "core/error.h"
 #include "physics/gpu_solver.h"
 #include "physics/head.h"
@@ -141,11 +142,51 @@ void createSwapchain(const vk::Context& ctx, VkSurfaceKHR surface, VkExtent2D wa
 }
 
 struct Input {
-    OrbitCamera* camera = nullptr;
+    Viewer* viewer = nullptr;
     double lastX = 0.0, lastY = 0.0;
-    bool orbiting = false, panning = false;
-    bool pauseToggled = false;
+    bool orbiting = false, panning = false, dragging = false;
 };
+
+// GLFW keys to the viewer's (the one table of what each key does is app/viewer.cpp).
+bool viewerKeyOf(int glfwKey, ViewerKey& key)
+{
+    switch (glfwKey) {
+    case GLFW_KEY_LEFT: key = ViewerKey::SphereLeft; return true;
+    case GLFW_KEY_RIGHT: key = ViewerKey::SphereRight; return true;
+    case GLFW_KEY_UP: key = ViewerKey::SphereUp; return true;
+    case GLFW_KEY_DOWN: key = ViewerKey::SphereDown; return true;
+    case GLFW_KEY_PAGE_UP: key = ViewerKey::SphereNear; return true;
+    case GLFW_KEY_PAGE_DOWN: key = ViewerKey::SphereFar; return true;
+    case GLFW_KEY_J: key = ViewerKey::LightLeft; return true;
+    case GLFW_KEY_L: key = ViewerKey::LightRight; return true;
+    case GLFW_KEY_I: key = ViewerKey::LightUp; return true;
+    case GLFW_KEY_K: key = ViewerKey::LightDown; return true;
+    case GLFW_KEY_A: key = ViewerKey::HeadLeft; return true;
+    case GLFW_KEY_D: key = ViewerKey::HeadRight; return true;
+    case GLFW_KEY_W: key = ViewerKey::Wind; return true;
+    case GLFW_KEY_EQUAL: case GLFW_KEY_KP_ADD: key = ViewerKey::WindStronger; return true;
+    case GLFW_KEY_MINUS: case GLFW_KEY_KP_SUBTRACT: key = ViewerKey::WindWeaker; return true;
+    case GLFW_KEY_SPACE: key = ViewerKey::Pause; return true;
+    case GLFW_KEY_N: key = ViewerKey::Step; return true;
+    case GLFW_KEY_R: key = ViewerKey::Reset; return true;
+    case GLFW_KEY_P: key = ViewerKey::Screenshot; return true;
+    case GLFW_KEY_F5: key = ViewerKey::Reload; return true;
+    case GLFW_KEY_O: key = ViewerKey::SphereToggle; return true;
+    case GLFW_KEY_H: key = ViewerKey::Help; return true;
+    case GLFW_KEY_ESCAPE: key = ViewerKey::Quit; return true;
+    default: return false;
+    }
+}
+
+// Rebuilds the shaders' SPIR-V in the build tree (hot reload): the build's own shader target,
+// through cmake, so an edited include rebuilds every stage that uses it. False (with the build's
+// output on stderr) when there is no build tree or the build fails.
+bool rebuildShaders()
+{
+    std::string command = "cmake --build '" WISP_BINARY_DIR "' --target wisp_shaders >&2";
+    std::fprintf(stderr, "wisp: reloading shaders: %s\n", command.c_str());
+    return std::system(command.c_str()) == 0;
+}
 
 }  // namespace
 
@@ -216,16 +257,27 @@ int runWindow(const WindowOptions& options)
     createSwapchain(ctx, surface, {settings.width, settings.height}, swapchain);
     settings.width = swapchain.extent.width;
     settings.height = swapchain.extent.height;
-    Renderer renderer(ctx, settings, kFramesInFlight);
-    renderer.setHead(head);
     std::unique_ptr<GpuSolver> solver;
     SimSetup setup;
-    const glm::mat4 headTransform(1.0f);
     if (options.scene->strands.strandCount() > 0) {
         setup = makeSimSetup(options.sim, options.scene->strands, options.scene->gpuColliders, options.scene->unitsPerMetre);
-        solver = std::make_unique<GpuSolver>(ctx, options.scene->strands, setup, headTransform);
-        renderer.attachHair(*solver, options.scene->strands, options.scene->unitsPerMetre);
+        solver = std::make_unique<GpuSolver>(ctx, options.scene->strands, setup, glm::mat4(1.0f));
     }
+    // The renderer is remade, pipelines and all, when the shaders are reloaded.
+    auto makeRenderer = [&](const RenderSettings& s) {
+        auto r = std::make_unique<Renderer>(ctx, s, kFramesInFlight);
+        r->setHead(head);
+        if (solver)
+            r->attachHair(*solver, options.scene->strands, options.scene->unitsPerMetre);
+        r->showLightMarker(true);
+        return r;
+    };
+    std::unique_ptr<Renderer> rendererOwner = makeRenderer(settings);
+    Renderer* renderer = rendererOwner.get();
+    const float unitsPerMetre = options.scene->unitsPerMetre;
+    std::vector<ScriptEvent> script;
+    if (!options.script.empty())
+        script = loadScript(options.script);
     constexpr uint32_t kMaxStepsPerFrame = 8;  // beyond this the simulation slows down instead of spiralling
     const float stepSeconds = 1.0f / options.sim.stepHz;
     const uint32_t scriptedStepsPerFrame = std::max(1u, uint32_t(std::lround(options.sim.stepHz / 60.0f)));
@@ -233,26 +285,32 @@ int runWindow(const WindowOptions& options)
     double pendingSeconds = 0.0;
     bool paused = false;
     Frame frame(ctx, kFramesInFlight);
-    PresentBlitPass present(renderer.target());
+    auto present = std::make_unique<PresentBlitPass>(renderer->target());
     std::unique_ptr<ReadbackPass> readback;
+    uint32_t screenshots = 0;
     std::vector<vk::Semaphore> acquired;
     for (uint32_t i = 0; i < kFramesInFlight; ++i)
         acquired.push_back(ctx.createSemaphore("window.acquired"));
 
-    OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(settings.width) / float(settings.height));
-    Input input{.camera = &camera};
+    Viewer viewer(OrbitCamera::framing(renderer->sceneBounds(), float(settings.width) / float(settings.height)),
+                  renderer->sceneBounds(), options.sphere, settings.light, options.sim.wind);
+    Input input{.viewer = &viewer};
     glfwSetWindowUserPointer(window, &input);
     glfwSetScrollCallback(window, [](GLFWwindow* w, double, double dy) {
-        static_cast<Input*>(glfwGetWindowUserPointer(w))->camera->zoom(std::pow(0.9f, float(dy)));
+        static_cast<Input*>(glfwGetWindowUserPointer(w))->viewer->camera().zoom(std::pow(0.9f, float(dy)));
     });
-    glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
-        if (key == GLFW_KEY_ESCAPE && action == GLFW_PRESS)
-            glfwSetWindowShouldClose(w, GLFW_TRUE);
-        if (key == GLFW_KEY_SPACE && action == GLFW_PRESS) {
-            Input* in = static_cast<Input*>(glfwGetWindowUserPointer(w));
-            in->pauseToggled = !in->pauseToggled;
-        }
+    glfwSetKeyCallback(window, [](GLFWwindow* w, int glfwKey, int, int action, int) {
+        Input* in = static_cast<Input*>(glfwGetWindowUserPointer(w));
+        ViewerKey key;
+        if (!viewerKeyOf(glfwKey, key))
+            return;
+        if (action == GLFW_PRESS)
+            in->viewer->press(key);
+        else if (action == GLFW_RELEASE)
+            in->viewer->release(key);
     });
+    glm::vec3 windApplied = options.sim.wind;
+    std::string title;
 
     bool rebuild = false;
     uint32_t framesDrawn = 0;
@@ -267,28 +325,59 @@ int runWindow(const WindowOptions& options)
         if (rebuild || uint32_t(fbWidth) != swapchain.extent.width || uint32_t(fbHeight) != swapchain.extent.height) {
             frame.waitIdle();
             createSwapchain(ctx, surface, {uint32_t(fbWidth), uint32_t(fbHeight)}, swapchain);
-            renderer.resize(swapchain.extent);
+            renderer->resize(swapchain.extent);
             rebuild = false;
         }
+        if (viewer.takeReload()) {
+            frame.waitIdle();
+            if (rebuildShaders()) {
+                RenderSettings current = renderer->settings();
+                present.reset();
+                rendererOwner.reset();
+                rendererOwner = makeRenderer(current);
+                renderer = rendererOwner.get();
+                present = std::make_unique<PresentBlitPass>(renderer->target());
+                std::fprintf(stderr, "wisp: shaders reloaded\n");
+            } else {
+                std::fprintf(stderr, "wisp: the shader build failed; the previous shaders stay\n");
+            }
+        }
+        if (viewer.takeReset() && solver) {
+            frame.waitIdle();
+            solver->reset(viewer.headTransform());
+        }
 
-        // Orbit and pan follow the mouse while a button is held.
+        // Orbit, pan and the drags follow the mouse while a button is held.
         double x = 0.0, y = 0.0;
         glfwGetCursorPos(window, &x, &y);
         bool left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
         bool middle = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+        bool rightButton = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+        bool shift = glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(window, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
         float dx = float(x - input.lastX), dy = float(y - input.lastY);
+        OrbitCamera& camera = viewer.camera();
         if (left && input.orbiting)
-            camera.orbit(-0.3f * dx, 0.3f * dy);
+            viewer.orbit(dx, dy);
         if (middle && input.panning) {
             float unitsPerPixel = 2.0f * camera.distance * std::tan(glm::radians(camera.fovYDeg) * 0.5f) / float(fbHeight);
             camera.pan(-dx * unitsPerPixel, dy * unitsPerPixel);
         }
+        if (rightButton && input.dragging) {
+            if (shift)
+                viewer.dragLight(dx, dy);
+            else
+                viewer.dragSphere(dx, dy, float(fbHeight));
+        }
         input.orbiting = left;
         input.panning = middle;
+        input.dragging = rightButton;
         input.lastX = x;
         input.lastY = y;
+        playScript(script, framesDrawn, viewer, float(fbHeight));
+        if (viewer.quit())
+            glfwSetWindowShouldClose(window, GLFW_TRUE);
 
-        std::vector<TrackedImage*> transient = renderer.transientImages();
+        std::vector<TrackedImage*> transient = renderer->transientImages();
         FrameContext& fc = frame.begin(transient);
         VkSemaphore acquire = acquired[fc.slot];
         uint32_t imageIndex = 0;
@@ -301,14 +390,19 @@ int runWindow(const WindowOptions& options)
         if (got != VK_SUBOPTIMAL_KHR)
             VK_CHECK(got);
 
-        // The simulation advances in fixed steps only: real time decides how many are due.
+        // The simulation advances in fixed steps only: real time decides how many are due (a
+        // scripted run, --frames, takes one 60 Hz frame's worth each frame, so it repeats).
         auto now = std::chrono::steady_clock::now();
         double elapsed = std::chrono::duration<double>(now - lastFrame).count();
         lastFrame = now;
-        paused = input.pauseToggled;
+        float frameSeconds = options.maxFrames > 0 ? 1.0f / 60.0f : float(std::min(elapsed, 0.1));
+        viewer.update(frameSeconds);
+        paused = viewer.paused();
         uint32_t due = 0;
-        if (!paused && solver) {
-            if (options.maxFrames > 0) {
+        if (solver) {
+            if (paused) {
+                due = viewer.takeSteps();
+            } else if (options.maxFrames > 0) {
                 due = scriptedStepsPerFrame;
             } else {
                 pendingSeconds += elapsed;
@@ -319,24 +413,45 @@ int runWindow(const WindowOptions& options)
                     pendingSeconds = 0.0;
                 }
             }
+            glm::vec3 wind = viewer.wind() * unitsPerMetre;
+            if (wind != windApplied) {
+                solver->setWind(wind);
+                windApplied = wind;
+            }
         }
+        glm::mat4 headTransform = viewer.headTransform();
+        glm::vec4 sphere = viewer.sphere();
         std::vector<gpu::SimStep> steps;
         for (uint32_t k = 0; k < due; ++k)
-            steps.push_back(makeStep(setup, headTransform, options.sphere, float(stepsDone + k) * stepSeconds));
+            steps.push_back(makeStep(setup, headTransform, sphere, float(stepsDone + k) * stepSeconds));
         stepsDone += due;
-        renderer.setSteps(std::move(steps));
-        renderer.prepare(fc, camera, float(stepsDone) * stepSeconds);
+        renderer->setSteps(std::move(steps));
+        renderer->settings().light = viewer.light();
+        renderer->setHeadTransform(headTransform);
+        renderer->setSphere(sphere);
+        renderer->prepare(fc, camera, float(stepsDone) * stepSeconds);
+        std::string newTitle = "Wisp - " + viewer.status() + (viewer.helpShown() ? "  |  " + viewerHelp() : "");
+        if (newTitle != title) {
+            title = newTitle;
+            glfwSetWindowTitle(window, title.c_str());
+        }
         TrackedImage& swapImage = swapchain.images[imageIndex];
         swapImage.layout = VK_IMAGE_LAYOUT_UNDEFINED;  // its previous contents are not needed
         swapImage.stages = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;  // wait for the acquire semaphore's stage
         swapImage.accesses = VK_ACCESS_2_NONE;
         swapImage.written = false;
-        present.setSwapchainImage(swapImage, swapchain.extent);
-        std::vector<Pass*> passes = renderer.passes();
-        passes.push_back(&present);
+        present->setSwapchainImage(swapImage, swapchain.extent);
+        std::vector<Pass*> passes = renderer->passes();
+        passes.push_back(present.get());
         bool last = options.maxFrames > 0 && framesDrawn + 1 >= options.maxFrames;
+        bool shot = viewer.takeScreenshot();
+        std::unique_ptr<ReadbackPass> shotReadback;
+        if (shot) {
+            shotReadback = std::make_unique<ReadbackPass>(ctx, renderer->target());
+            passes.push_back(shotReadback.get());
+        }
         if (last && !options.screenshot.empty()) {
-            readback = std::make_unique<ReadbackPass>(ctx, renderer.target());
+            readback = std::make_unique<ReadbackPass>(ctx, renderer->target());
             passes.push_back(readback.get());
         }
         frame.run(fc, passes);
@@ -356,15 +471,23 @@ int runWindow(const WindowOptions& options)
         else
             VK_CHECK(presented);
         ++framesDrawn;
+        if (shot) {  // P: the frame as drawn, beside the working folder's other files
+            frame.waitIdle();
+            char name[64];
+            std::snprintf(name, sizeof(name), "wisp-screenshot-%03u.png", ++screenshots);
+            VkExtent2D e = renderer->target().extent();
+            writePng(name, e.width, e.height, shotReadback->pixels());
+            std::printf("wisp: screenshot %s\n", name);
+        }
         if (last)
             glfwSetWindowShouldClose(window, GLFW_TRUE);
     }
     frame.waitIdle();
     if (readback) {
-        VkExtent2D e = renderer.target().extent();
+        VkExtent2D e = renderer->target().extent();
         writePng(options.screenshot, e.width, e.height, readback->pixels());
     }
-    std::printf("wisp: closed after %u frames\n", framesDrawn);
+    std::printf("wisp: closed after %u frames: %s\n", framesDrawn, viewer.status().c_str());
     uint32_t messages = ctx.validationMessages();
     if (messages > 0) {
         std::fprintf(stderr, "wisp: %u Vulkan validation messages (printed above)\n", messages);

@@ -1,9 +1,9 @@
 // app/window.h: the interactive front end: a GLFW window whose swapchain receives the renderer's
 // result by a blit each frame, with the hair simulated live (real time is accumulated and spent in
 // fixed steps, at most kMaxStepsPerFrame a frame; with --frames, exactly one frame's worth of
-// steps per frame, so a scripted run is reproducible). Orbit (left drag), zoom (wheel), pan
-// (middle drag), Space pauses, Esc quits; resize and minimize are handled. Without a display it
-// says so and points to `wisp render`.
+// steps per frame, so a scripted run is reproducible). The keys and drags are app/viewer.h's; the
+// title bar shows the state and the help line. Resize and minimize are handled. Without a display
+// it says so and points to `wisp render`.
 #pragma once
 
 #include "physics/hair_scene.h"
@@ -24,6 +24,7 @@ struct WindowOptions {
     glm::vec4 sphere{0.0f};            // the user's sphere (xyz, radius; 0 = none)
     uint32_t maxFrames = 0;  // 0 = until the window is closed
     std::string screenshot;  // PNG of the last frame, written on exit when set
+    std::string script;      // timed input events (app/viewer.h), replayed by frame number
 };
 
 // Throws UserError, pointing to `wisp render`, when there is no display to open a window on.

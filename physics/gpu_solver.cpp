@@ -43,7 +43,7 @@ std::vector<T> fromSlots(const std::vector<T>& slots, uint32_t strands, uint32_t
 }  // namespace
 
 GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const SimSetup& setup, const glm::mat4& headTransform)
-    : ctx_(ctx), setup_(setup), vertexCount_(uint32_t(strands.vertexCount()))
+    : ctx_(ctx), setup_(setup), model_(strands), vertexCount_(uint32_t(strands.vertexCount()))
 {
     // The grid's sums: fixed point where asked for and possible, else float atomics (and back).
     bool wantFixed = setup.params.gridFixedScale > 0.0f;
@@ -116,8 +116,48 @@ GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const Sim
     gather_ = vk::createComputePipeline(ctx, layout_, "grid_gather.comp", "grid.gather");
 }
 
+void GpuSolver::setWind(const glm::vec3& wind)
+{
+    setup_.params.wind = wind;
+    paramsChanged_ = true;
+}
+
+void GpuSolver::reset(const glm::mat4& headTransform)
+{
+    uint32_t count = uint32_t(model_.strandCount());
+    uint32_t V = model_.verticesPerStrand;
+    SimState strandMajor = initialState(model_, headTransform);
+    std::vector<glm::vec4> positions = toSlots(strandMajor.positions, count, V, glm::vec4(0.0f));
+    std::vector<glm::vec4> velocities = toSlots(strandMajor.velocities, count, V, glm::vec4(0.0f));
+    std::vector<glm::vec4> tangents = toSlots(strandMajor.tangents, count, V, glm::vec4(0.0f));
+    size_t bytes = positions.size() * sizeof(glm::vec4);
+    vk::Buffer staging = ctx_.createBuffer({.size = 3 * bytes, .usage = vk::kTransferSrc, .memory = vk::Memory::Upload,
+                                            .name = "guide.reset.staging"});
+    char* mapped = static_cast<char*>(staging.mapped());
+    std::memcpy(mapped, positions.data(), bytes);
+    std::memcpy(mapped + bytes, velocities.data(), bytes);
+    std::memcpy(mapped + 2 * bytes, tangents.data(), bytes);
+    ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+        VkBufferCopy region{0, 0, bytes};
+        vkCmdCopyBuffer(cmd, staging, positions_, 1, &region);
+        region.srcOffset = bytes;
+        vkCmdCopyBuffer(cmd, staging, velocities_, 1, &region);
+        region.srcOffset = 2 * bytes;
+        vkCmdCopyBuffer(cmd, staging, tangents_, 1, &region);
+    });
+}
+
 void GpuSolver::recordStep(VkCommandBuffer cmd, const gpu::SimStep& step, vk::GpuTimer* timer)
 {
+    if (paramsChanged_) {
+        // Every earlier reader of the block (kernels, the hair pass's tessellation) is done first.
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
+                          VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        vkCmdUpdateBuffer(cmd, params_, 0, sizeof(gpu::SimParams), &setup_.params);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_UNIFORM_READ_BIT);
+        paramsChanged_ = false;
+    }
     std::array<VkDescriptorBufferInfo, 9> infos = {
         VkDescriptorBufferInfo{params_, 0, VK_WHOLE_SIZE}, {positions_, 0, VK_WHOLE_SIZE}, {velocities_, 0, VK_WHOLE_SIZE},
         {rest_, 0, VK_WHOLE_SIZE}, {strands_, 0, VK_WHOLE_SIZE}, {tangents_, 0, VK_WHOLE_SIZE},

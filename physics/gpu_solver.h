@@ -27,6 +27,13 @@ public:
     // substeps), grid_normalize, grid_gather.
     void recordStep(VkCommandBuffer cmd, const gpu::SimStep& step, vk::GpuTimer* timer = nullptr);
 
+    // The wind (head units / s², SimParams.wind) from the next recorded step on.
+    void setWind(const glm::vec3& wind);
+    glm::vec3 wind() const { return setup_.params.wind; }
+    // Puts every strand back in its rest pose around `headTransform`, at rest. The device must be
+    // idle (the window waits for it).
+    void reset(const glm::mat4& headTransform);
+
     // Copies the state back in strand-major order (waits for the device): for metrics and tests.
     // On the GPU, vertex i of strand s is at gpu::vertexSlot(s, i, V).
     SimState readState() const;
@@ -48,6 +55,8 @@ private:
 
     const vk::Context& ctx_;
     SimSetup setup_;
+    StrandSet model_;          // the strands as given, kept for reset()
+    bool paramsChanged_ = false;  // setWind(): the next step updates the uniform block first
     uint32_t vertexCount_ = 0;
     uint32_t slotCount_ = 0;  // vertices in the interleaved buffers, padding included
     bool fixedGrid_ = false;

@@ -18,6 +18,28 @@
 
 namespace wisp {
 
+Mesh makeSphereMesh(uint32_t stacks, uint32_t slices)
+{
+    Mesh m;
+    for (uint32_t i = 0; i <= stacks; ++i) {
+        float theta = float(i) / float(stacks) * 3.14159265f;
+        for (uint32_t j = 0; j <= slices; ++j) {
+            float phi = float(j) / float(slices) * 6.2831853f;
+            glm::vec3 p(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+            m.positions.push_back(p);
+            m.normals.push_back(p);
+        }
+    }
+    for (uint32_t i = 0; i < stacks; ++i)
+        for (uint32_t j = 0; j < slices; ++j) {
+            uint32_t a = i * (slices + 1) + j, b = a + slices + 1;
+            for (uint32_t k : {a, a + 1, b, a + 1, b + 1, b})
+                m.indices.push_back(k);
+        }
+    m.sourceVertices = m.positions.size();
+    return m;
+}
+
 Bounds Mesh::bounds() const
 {
     Bounds b;

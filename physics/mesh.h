@@ -35,6 +35,10 @@ struct Mesh {
 // malformed or holds no triangles.
 Mesh loadMesh(const std::filesystem::path& path);
 
+// A unit sphere around the origin (latitude-longitude: `stacks` x `slices` quads), for the
+// collision sphere and the light's marker.
+Mesh makeSphereMesh(uint32_t stacks = 24, uint32_t slices = 48);
+
 // Area-weighted vertex normals from the triangles (used when a file has none).
 std::vector<glm::vec3> computeVertexNormals(const std::vector<glm::vec3>& positions,
                                            const std::vector<uint32_t>& indices);

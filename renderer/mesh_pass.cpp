@@ -10,6 +10,8 @@
 #include "shaders/shared/mesh_params.h"
 #include "shaders/shared/shadows.h"
 
+#include <array>
+#include <string>
 #include <vector>
 
 #include <cstring>
@@ -72,16 +74,28 @@ MeshPass::MeshPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
               .name = "mesh.light_depth.pipeline"});
 }
 
-void MeshPass::setMesh(const Mesh& mesh)
+MeshPass::GpuMesh MeshPass::upload(const Mesh& mesh, const char* name) const
 {
     std::vector<MeshVertex> vertices(mesh.positions.size());
     for (size_t i = 0; i < vertices.size(); ++i)
         vertices[i] = {mesh.positions[i], mesh.normals[i]};
-    vertices_ = ctx_.createBufferWithData({.size = vertices.size() * sizeof(MeshVertex), .usage = vk::kVertex, .name = "mesh.vertices"},
-                                          vertices.data(), vertices.size() * sizeof(MeshVertex));
-    indices_ = ctx_.createBufferWithData({.size = mesh.indices.size() * sizeof(uint32_t), .usage = vk::kIndex, .name = "mesh.indices"},
-                                         mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t));
-    indexCount_ = static_cast<uint32_t>(mesh.indices.size());
+    std::string base = name;
+    GpuMesh out;
+    out.vertices = ctx_.createBufferWithData(
+        {.size = vertices.size() * sizeof(MeshVertex), .usage = vk::kVertex, .name = (base + ".vertices").c_str()},
+        vertices.data(), vertices.size() * sizeof(MeshVertex));
+    out.indices = ctx_.createBufferWithData(
+        {.size = mesh.indices.size() * sizeof(uint32_t), .usage = vk::kIndex, .name = (base + ".indices").c_str()},
+        mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t));
+    out.indexCount = static_cast<uint32_t>(mesh.indices.size());
+    return out;
+}
+
+void MeshPass::setMesh(const Mesh& mesh)
+{
+    head_ = upload(mesh, "mesh.head");
+    if (sphereMesh_.indexCount == 0)
+        sphereMesh_ = upload(makeSphereMesh(), "mesh.sphere");
 }
 
 void MeshPass::setSurface(const glm::mat4& model, const glm::vec3& albedo, float roughness)
@@ -97,36 +111,55 @@ void MeshPass::declare(PassIo& io)
     target_.declareDraw(io);
 }
 
-void MeshPass::drawMesh(VkCommandBuffer cmd)
+void MeshPass::draw(VkCommandBuffer cmd, const GpuMesh& mesh, const glm::mat4& model, const glm::vec3& albedo,
+                    float roughness)
 {
-    gpu::MeshPush push{.model = model_, .albedo = albedo_, .roughness = roughness_};
+    if (mesh.indexCount == 0)
+        return;
+    gpu::MeshPush push{.model = model, .albedo = albedo, .roughness = roughness};
     vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push), &push);
     VkDeviceSize offset = 0;
-    VkBuffer vb = vertices_;
+    VkBuffer vb = mesh.vertices;
     vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
-    vkCmdBindIndexBuffer(cmd, indices_, 0, VK_INDEX_TYPE_UINT32);
-    vkCmdDrawIndexed(cmd, indexCount_, 1, 0, 0, 0);
+    vkCmdBindIndexBuffer(cmd, mesh.indices, 0, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(cmd, mesh.indexCount, 1, 0, 0, 0);
 }
+
+namespace {
+
+glm::mat4 placeSphere(const glm::vec4& sphere)
+{
+    glm::mat4 m(sphere.w);
+    m[3] = glm::vec4(glm::vec3(sphere), 1.0f);
+    return m;
+}
+
+constexpr glm::vec3 kSphereAlbedo{0.35f, 0.45f, 0.6f};  // a blue-grey ball, apart from skin and hair
+constexpr glm::vec3 kMarkerAlbedo{1.0f, 0.85f, 0.3f};
+
+}  // namespace
 
 void MeshPass::recordFromLight(VkCommandBuffer cmd, FrameContext& frame)
 {
-    if (indexCount_ == 0)
-        return;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, lightPipeline_);
     uniforms_.push(ctx_, cmd, layout_, frame.slot);
-    drawMesh(cmd);
+    draw(cmd, head_, headTransform_ * model_, albedo_, roughness_);
+    if (sphere_.w > 0.0f)
+        draw(cmd, sphereMesh_, placeSphere(sphere_), kSphereAlbedo, 0.4f);
 }
 
 void MeshPass::record(VkCommandBuffer cmd, FrameContext& frame)
 {
     target_.beginRendering(cmd, clearColor_);
-    if (indexCount_ > 0) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
-        uniforms_.push(ctx_, cmd, layout_, frame.slot);
-        std::array<VkWriteDescriptorSet, 4> maps = lightMaps_->descriptorWrites();
-        ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, uint32_t(maps.size()), maps.data());
-        drawMesh(cmd);
-    }
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
+    uniforms_.push(ctx_, cmd, layout_, frame.slot);
+    std::array<VkWriteDescriptorSet, 4> maps = lightMaps_->descriptorWrites();
+    ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, uint32_t(maps.size()), maps.data());
+    draw(cmd, head_, headTransform_ * model_, albedo_, roughness_);
+    if (sphere_.w > 0.0f)
+        draw(cmd, sphereMesh_, placeSphere(sphere_), kSphereAlbedo, 0.4f);
+    if (marker_.w > 0.0f)
+        draw(cmd, sphereMesh_, placeSphere(marker_), kMarkerAlbedo, 0.2f);
     target_.endRendering(cmd);
 }
 

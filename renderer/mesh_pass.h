@@ -31,9 +31,15 @@ public:
     // Draws the meshes' depth from the light into the rendering the caller has begun.
     void recordFromLight(VkCommandBuffer cmd, FrameContext& frame);
 
-    void setMesh(const Mesh& mesh);  // uploads; call while the device is idle (load time)
+    void setMesh(const Mesh& mesh);  // the head; uploads, call while the device is idle (load time)
     void setSurface(const glm::mat4& model, const glm::vec3& albedo, float roughness);
     void setClearColor(const glm::vec3& color) { clearColor_ = color; }
+    // Where the head is this frame (rigid; its surface's model matrix applies first).
+    void setHeadTransform(const glm::mat4& transform) { headTransform_ = transform; }
+    // The user's collision sphere (xyz centre, w radius; 0 hides it): drawn, and casts shadows.
+    void setSphere(const glm::vec4& sphere) { sphere_ = sphere; }
+    // A small bright ball where the light comes from (radius 0 hides it); casts no shadow.
+    void setLightMarker(const glm::vec3& position, float radius) { marker_ = glm::vec4(position, radius); }
 
 private:
     const vk::Context& ctx_;
@@ -44,14 +50,22 @@ private:
     vk::Pipeline pipeline_;
     vk::Pipeline lightPipeline_;  // depth only, from the light
     LightMaps* lightMaps_ = nullptr;
-    vk::Buffer vertices_;
-    vk::Buffer indices_;
-    uint32_t indexCount_ = 0;
+    struct GpuMesh {
+        vk::Buffer vertices;
+        vk::Buffer indices;
+        uint32_t indexCount = 0;
+    };
+    GpuMesh upload(const Mesh& mesh, const char* name) const;
+    GpuMesh head_;
+    GpuMesh sphereMesh_;  // a unit sphere, scaled and placed for the sphere and the marker
+    glm::mat4 headTransform_{1.0f};
+    glm::vec4 sphere_{0.0f};
+    glm::vec4 marker_{0.0f};
     glm::mat4 model_{1.0f};
     glm::vec3 albedo_{0.6f};
     float roughness_ = 0.5f;
     glm::vec3 clearColor_{0.0f};
-    void drawMesh(VkCommandBuffer cmd);
+    void draw(VkCommandBuffer cmd, const GpuMesh& mesh, const glm::mat4& model, const glm::vec3& albedo, float roughness);
 };
 
 }  // namespace wisp

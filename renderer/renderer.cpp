@@ -135,7 +135,12 @@ OitStats Renderer::oitStats(uint32_t slot) const
 void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float timeSeconds)
 {
     target_->beginFrame();
-    uniforms_.write(frame.slot, pack(settings_, camera, target_->extent(), timeSeconds, lightFit_));
+    gpu::FrameParams frameParams = pack(settings_, camera, target_->extent(), timeSeconds, lightFit_);
+    frameParams.headTransform = headTransform_;
+    uniforms_.write(frame.slot, frameParams);
+    float sceneRadius = 0.5f * lightFit_.scene.diagonal();
+    meshPass_->setLightMarker(lightFit_.scene.center() + 0.75f * sceneRadius * settings_.light.direction(),
+                              showLightMarker_ ? 0.025f * sceneRadius : 0.0f);
     shadowPass_->setEnabled(settings_.shadows.enabled);
     if (hairPass_ && settings_.hair.model == ShadingModel::Lut) {
         // The lookup tables follow the look: rebuilt (about 9 ms) when its parameters change.
@@ -218,6 +223,12 @@ void Renderer::attachHair(GpuSolver& solver, const StrandSet& strands, float uni
     guideCount_ = uint32_t(strands.strandCount());
     verticesPerStrand_ = strands.verticesPerStrand;
     unitsPerMetre_ = unitsPerMetre;
+}
+
+void Renderer::setHeadTransform(const glm::mat4& transform)
+{
+    headTransform_ = transform;
+    meshPass_->setHeadTransform(transform);
 }
 
 HairDrawCounts Renderer::hairCounts() const

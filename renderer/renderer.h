@@ -53,6 +53,11 @@ public:
     void attachHair(GpuSolver& solver, const StrandSet& strands, float unitsPerMetre);
     // The draw the current settings make (for the CLI and UI to report).
     HairDrawCounts hairCounts() const;
+    // Where the head is (rigid; the hair's colliders follow it), the user's sphere (xyz, radius; 0:
+    // none) to draw, and whether to draw a marker where the light comes from (the window does).
+    void setHeadTransform(const glm::mat4& transform);
+    void setSphere(const glm::vec4& sphere) { meshPass_->setSphere(sphere); }
+    void showLightMarker(bool show) { showLightMarker_ = show; }
     // The simulation steps to record in the next frame (none: the hair holds still).
     void setSteps(std::vector<gpu::SimStep> steps);
     PhysicsPass* physics() { return physicsPass_.get(); }
@@ -96,6 +101,8 @@ private:
     float lodReferenceDistance_ = 1.0f;  // the default framing's distance: full detail at or nearer
     Bounds bounds_;
     LightFit lightFit_;
+    glm::mat4 headTransform_{1.0f};
+    bool showLightMarker_ = false;
     shading::HairParams lutParams_;  // what the hair pass's lookup tables were built for
 };
 

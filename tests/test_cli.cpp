@@ -201,7 +201,8 @@ TEST(Window, OpensUnderXvfbDrawsAndClosesCleanly)
     if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
         GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb): cannot test the window here";
     TempDir dir;
-    auto r = runWisp("--validation view --width 320 --height 240 --frames 4 --screenshot '" + (dir / "shot.png").string() + "'",
+    auto r = runWisp("--validation view --width 320 --height 240 --frames 4 --guides 200 --set shadow_size=512 --screenshot '" +
+                         (dir / "shot.png").string() + "'",
                      "xvfb-run -a -s '-screen 0 640x480x24'");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.out.find("closed after 4 frames"), std::string::npos) << r.out;
@@ -329,7 +330,8 @@ TEST(Window, ScriptedRunsWithHairAreReproducible)
     if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
         GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb): cannot test the window here";
     TempDir dir;
-    std::string common = "view --width 200 --height 150 --frames 12 --guides 200 --wind 3,0,0 --screenshot ";
+    std::string common =
+        "view --width 200 --height 150 --frames 12 --guides 200 --set strands_per_guide=8 --set shadow_size=256 --wind 3,0,0 --screenshot ";
     auto xvfb = "xvfb-run -a -s '-screen 0 640x480x24'";
     ASSERT_EQ(runWisp(common + "'" + (dir / "a.png").string() + "'", xvfb).status, 0);
     ASSERT_EQ(runWisp(common + "'" + (dir / "b.png").string() + "'", xvfb).status, 0);
@@ -337,6 +339,84 @@ TEST(Window, ScriptedRunsWithHairAreReproducible)
                       xvfb).status, 0);
     EXPECT_EQ(readFile(dir / "a.png"), readFile(dir / "b.png"));
     EXPECT_NE(readFile(dir / "a.png"), readFile(dir / "bald.png"));
+}
+
+namespace {
+
+// The numbers in the window's closing line "sphere on at (x, y, z) r R, light azimuth A elevation E, head yaw Y, ...".
+struct ViewerStatus {
+    bool sphereOn = false;
+    float x = 0, y = 0, z = 0, r = 0, azimuth = 0, elevation = 0, yaw = 0;
+};
+
+ViewerStatus parseStatus(const std::string& out)
+{
+    ViewerStatus s;
+    size_t at = out.find("sphere ");
+    EXPECT_NE(at, std::string::npos) << out;
+    if (at == std::string::npos)
+        return s;
+    char on[8] = {};
+    int n = std::sscanf(out.c_str() + at, "sphere %3s at (%f, %f, %f) r %f, light azimuth %f elevation %f, head yaw %f", on,
+                        &s.x, &s.y, &s.z, &s.r, &s.azimuth, &s.elevation, &s.yaw);
+    EXPECT_EQ(n, 8) << out;
+    s.sphereOn = std::string(on) == "on";
+    return s;
+}
+
+}  // namespace
+
+TEST(Window, AScriptMovesTheSphereAndTheLightAndTurnsTheHead)
+{
+    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb): cannot test the window here";
+    TempDir dir;
+    writeFile(dir / "moves.txt",
+              "# sphere: held right for 18 frames, then dragged up; light: held L for 20 frames; head: one turn\n"
+              "2 press right\n20 release right\n22 drag-sphere 0 -40\n10 press l\n30 release l\n12 tap a\n");
+    writeFile(dir / "still.txt", "# nothing happens\n");
+    auto xvfb = "xvfb-run -a -s '-screen 0 640x480x24'";
+    std::string common =
+        "--validation view --width 160 --height 120 --frames 32 --guides 60 --set strands_per_guide=4 --set shadow_size=256 ";
+    auto moved = runWisp(common + "--script '" + (dir / "moves.txt").string() + "' --screenshot '" +
+                             (dir / "moved.png").string() + "'",
+                         xvfb);
+    ASSERT_EQ(moved.status, 0) << moved.err;
+    auto still = runWisp(common + "--script '" + (dir / "still.txt").string() + "' --screenshot '" +
+                             (dir / "still.png").string() + "'",
+                         xvfb);
+    ASSERT_EQ(still.status, 0) << still.err;
+    ViewerStatus a = parseStatus(moved.out), b = parseStatus(still.out);
+    EXPECT_TRUE(a.sphereOn);   // moving it switched it on
+    EXPECT_FALSE(b.sphereOn);  // parked and off until used
+    // 18 frames of 1/60 s at 0.35 scene sizes a second to the camera's right, then 40 pixels up.
+    EXPECT_GT(std::abs(a.x - b.x) + std::abs(a.z - b.z), 0.01f);
+    EXPECT_GT(a.y, b.y);
+    EXPECT_NEAR(a.azimuth - b.azimuth, 20.0f, 0.5f);  // 20 frames at 60 degrees a second
+    EXPECT_EQ(a.elevation, b.elevation);
+    EXPECT_LT(a.yaw, -5.0f);  // turning toward -30 degrees
+    EXPECT_EQ(b.yaw, 0.0f);
+    EXPECT_NE(readFile(dir / "moved.png"), readFile(dir / "still.png")) << "the screenshot shows the moves";
+}
+
+TEST(BadInput, ViewScriptErrorsNameTheFileAndLine)
+{
+    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb): cannot test the window here";
+    TempDir dir;
+    auto xvfb = "xvfb-run -a -s '-screen 0 640x480x24'";
+    auto check = [&](const std::string& text, const std::string& expected) {
+        writeFile(dir / "bad.txt", text);
+        auto r = runWisp("view --frames 1 --no-hair --script '" + (dir / "bad.txt").string() + "'", xvfb);
+        EXPECT_EQ(r.status, 2) << text;
+        EXPECT_NE(r.err.find("bad.txt:"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
+    };
+    check("1 press q\n", "unknown key 'q'");
+    check("# ok\nx tap a\n", ":2: 'x' is not a frame number");
+    check("3 jump\n", "unknown action 'jump'");
+    check("3 drag-sphere 1\n", "two finite pixel distances");
+    check("3 tap a b\n", "unexpected 'b'");
 }
 
 TEST(Cli, SettingsListsEveryNameWithRangeAndDefault)
