@@ -341,10 +341,11 @@ int runCli(int argc, char** argv)
     view->add_option("--frames", windowOptions.maxFrames, "close after this many frames (0 = run until closed)")
         ->check(CLI::NonNegativeNumber);
     view->add_option("--screenshot", windowOptions.screenshot, "write the last frame to this PNG when closing");
+    view->add_flag("--screenshot-panel", windowOptions.screenshotPanel, "the --screenshot includes the ImGui panel");
     view->add_option("--script", windowOptions.script,
                      "replay timed input events from this file: lines 'FRAME press|release|tap KEY' or "
-                     "'FRAME drag-sphere|drag-light|orbit DX DY' (KEY: left right up down pageup pagedown j l i k a d w "
-                     "plus minus space n r p f5 o h escape)")
+                     "'FRAME drag-sphere|drag-light|orbit DX DY' or 'FRAME set NAME=VALUE' (a setting, as typed into the "
+                     "panel) (KEY: left right up down pageup pagedown j l i k a d w plus minus space n r p f5 o h escape)")
         ->check(CLI::ExistingFile);
 
     SimulateOptions sim;

@@ -242,9 +242,13 @@ std::vector<ScriptEvent> loadScript(const std::filesystem::path& path)
             if (!(words >> e.dx >> e.dy) || !std::isfinite(e.dx) || !std::isfinite(e.dy) || std::abs(e.dx) > 1e5f ||
                 std::abs(e.dy) > 1e5f)
                 throw UserError(where + action + " needs two finite pixel distances DX DY");
+        } else if (action == "set") {
+            e.kind = ScriptEvent::Kind::Set;
+            if (!(words >> e.assignment) || e.assignment.find('=') == std::string::npos)
+                throw UserError(where + "set needs NAME=VALUE (a setting from 'wisp settings')");
         } else {
             throw UserError(where + "unknown action '" + action +
-                            "' (actions: press, release, tap, drag-sphere, drag-light, orbit)");
+                            "' (actions: press, release, tap, drag-sphere, drag-light, orbit, set)");
         }
         std::string extra;
         if (words >> extra)
@@ -255,8 +259,10 @@ std::vector<ScriptEvent> loadScript(const std::filesystem::path& path)
     return events;
 }
 
-void playScript(const std::vector<ScriptEvent>& events, uint32_t frame, Viewer& viewer, float viewportHeight)
+std::vector<std::string> playScript(const std::vector<ScriptEvent>& events, uint32_t frame, Viewer& viewer,
+                                    float viewportHeight)
 {
+    std::vector<std::string> assignments;
     for (const ScriptEvent& e : events) {
         if (e.frame != frame)
             continue;
@@ -270,8 +276,10 @@ void playScript(const std::vector<ScriptEvent>& events, uint32_t frame, Viewer& 
         case ScriptEvent::Kind::DragSphere: viewer.dragSphere(e.dx, e.dy, viewportHeight); break;
         case ScriptEvent::Kind::DragLight: viewer.dragLight(e.dx, e.dy); break;
         case ScriptEvent::Kind::Orbit: viewer.orbit(e.dx, e.dy); break;
+        case ScriptEvent::Kind::Set: assignments.push_back(e.assignment); break;
         }
     }
+    return assignments;
 }
 
 }  // namespace wisp

@@ -89,16 +89,19 @@ private:
 
 // A script of timed input events for `wisp view --script FILE` (frames counted from 0):
 //   FRAME press KEY | release KEY | tap KEY | drag-sphere DX DY | drag-light DX DY | orbit DX DY
+//   FRAME set NAME=VALUE   (a setting changed as in the panel)
 // KEY is a name from viewerKeys(); '#' starts a comment. Errors name the file and line.
 struct ScriptEvent {
-    enum class Kind { Press, Release, Tap, DragSphere, DragLight, Orbit };
+    enum class Kind { Press, Release, Tap, DragSphere, DragLight, Orbit, Set };
     uint32_t frame = 0;
     Kind kind = Kind::Tap;
     ViewerKey key = ViewerKey::Help;
     float dx = 0.0f, dy = 0.0f;
+    std::string assignment;  // Set: NAME=VALUE
 };
 std::vector<ScriptEvent> loadScript(const std::filesystem::path& path);
-// Applies the events of `frame` to the viewer.
-void playScript(const std::vector<ScriptEvent>& events, uint32_t frame, Viewer& viewer, float viewportHeight);
+// Applies the events of `frame` to the viewer; returns that frame's setting assignments.
+std::vector<std::string> playScript(const std::vector<ScriptEvent>& events, uint32_t frame, Viewer& viewer,
+                                    float viewportHeight);
 
 }  // namespace wisp

@@ -3,6 +3,8 @@
 #include "app/window.h"
 
 #include "app/image_io.h"
+#include "app/settings_registry.h"
+#include "app/ui.h"
 #include "app/viewer.h"
 #include "core/error.h"
 #include "physics/gpu_solver.h"
@@ -18,6 +20,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <set>
 #include <cstdio>
 #include <cstdlib>
 
@@ -143,6 +146,7 @@ void createSwapchain(const vk::Context& ctx, VkSurfaceKHR surface, VkExtent2D wa
 
 struct Input {
     Viewer* viewer = nullptr;
+    UiOverlay* ui = nullptr;
     double lastX = 0.0, lastY = 0.0;
     bool orbiting = false, panning = false, dragging = false;
 };
@@ -297,13 +301,17 @@ int runWindow(const WindowOptions& options)
     Input input{.viewer = &viewer};
     glfwSetWindowUserPointer(window, &input);
     glfwSetScrollCallback(window, [](GLFWwindow* w, double, double dy) {
-        static_cast<Input*>(glfwGetWindowUserPointer(w))->viewer->camera().zoom(std::pow(0.9f, float(dy)));
+        Input* in = static_cast<Input*>(glfwGetWindowUserPointer(w));
+        if (!in->ui || !in->ui->wantsMouse())
+            in->viewer->camera().zoom(std::pow(0.9f, float(dy)));
     });
     glfwSetKeyCallback(window, [](GLFWwindow* w, int glfwKey, int, int action, int) {
         Input* in = static_cast<Input*>(glfwGetWindowUserPointer(w));
         ViewerKey key;
         if (!viewerKeyOf(glfwKey, key))
             return;
+        if (in->ui && in->ui->wantsKeyboard() && action == GLFW_PRESS)
+            return;  // typing into the panel
         if (action == GLFW_PRESS)
             in->viewer->press(key);
         else if (action == GLFW_RELEASE)
@@ -311,6 +319,24 @@ int runWindow(const WindowOptions& options)
     });
     glm::vec3 windApplied = options.sim.wind;
     std::string title;
+    // After the window's callbacks: ImGui's GLFW backend chains them.
+    UiOverlay ui(ctx, window, kFramesInFlight);
+    ui.setTarget(renderer->target());
+    input.ui = &ui;
+    SimSettings sim = options.sim;
+    // Settings edited in the panel: most apply in the next frame; a few rebuild what they size.
+    RenderSettings pendingRender;
+    SimSettings pendingSim;
+    enum class Change { None, Live, Renderer, Solver } change = Change::None;
+    auto rebuildRenderer = [&](const RenderSettings& s) {
+        frame.waitIdle();
+        present.reset();
+        rendererOwner.reset();
+        rendererOwner = makeRenderer(s);
+        renderer = rendererOwner.get();
+        present = std::make_unique<PresentBlitPass>(renderer->target());
+        ui.setTarget(renderer->target());
+    };
 
     bool rebuild = false;
     uint32_t framesDrawn = 0;
@@ -326,17 +352,13 @@ int runWindow(const WindowOptions& options)
             frame.waitIdle();
             createSwapchain(ctx, surface, {uint32_t(fbWidth), uint32_t(fbHeight)}, swapchain);
             renderer->resize(swapchain.extent);
+            ui.setTarget(renderer->target());
             rebuild = false;
         }
         if (viewer.takeReload()) {
             frame.waitIdle();
             if (rebuildShaders()) {
-                RenderSettings current = renderer->settings();
-                present.reset();
-                rendererOwner.reset();
-                rendererOwner = makeRenderer(current);
-                renderer = rendererOwner.get();
-                present = std::make_unique<PresentBlitPass>(renderer->target());
+                rebuildRenderer(renderer->settings());
                 std::fprintf(stderr, "wisp: shaders reloaded\n");
             } else {
                 std::fprintf(stderr, "wisp: the shader build failed; the previous shaders stay\n");
@@ -355,6 +377,8 @@ int runWindow(const WindowOptions& options)
         bool rightButton = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
         bool shift = glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(window, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
         float dx = float(x - input.lastX), dy = float(y - input.lastY);
+        if (ui.wantsMouse())
+            left = middle = rightButton = false;  // the panel has the mouse
         OrbitCamera& camera = viewer.camera();
         if (left && input.orbiting)
             viewer.orbit(dx, dy);
@@ -373,9 +397,71 @@ int runWindow(const WindowOptions& options)
         input.dragging = rightButton;
         input.lastX = x;
         input.lastY = y;
-        playScript(script, framesDrawn, viewer, float(fbHeight));
+        std::vector<std::string> scriptedSets = playScript(script, framesDrawn, viewer, float(fbHeight));
         if (viewer.quit())
             glfwSetWindowShouldClose(window, GLFW_TRUE);
+
+        // The panel, built before the frame begins so that what it changes applies to this frame.
+        PanelData panel{.status = viewer.status(), .help = viewerHelp(), .counts = {}, .passes = {}};
+        if (solver) {
+            HairDrawCounts c = renderer->hairCounts();
+            OitStats oit = renderer->oitStats(framesDrawn % kFramesInFlight);
+            panel.counts.push_back("guides " + std::to_string(c.guides) + " x " + std::to_string(options.scene->strands.verticesPerStrand) +
+                                   " vertices, simulated");
+            panel.counts.push_back("strands drawn " + std::to_string(c.strands()) + " (" + std::to_string(c.strandsPerGuide) +
+                                   " per guide, before LOD), segments " + std::to_string(c.segments()));
+            if (oit.capacity > 0)
+                panel.counts.push_back("OIT fragments " + std::to_string(oit.fragments) + " of a pool of " +
+                                       std::to_string(oit.capacity) + ", dropped " + std::to_string(oit.overflow));
+        }
+        for (const vk::ScopeTime& t : frame.timings())
+            panel.passes.emplace_back(t.name, t.milliseconds);
+        pendingRender = renderer->settings();
+        pendingSim = sim;
+        change = Change::None;
+        auto applyFromPanel = [&](const std::string& name, const std::string& text) -> std::string {
+            static const std::set<std::string> solverSettings = {"step_hz", "substeps", "friction", "grid"};
+            static const std::set<std::string> sizingSettings = {"shadow_size", "transparency", "oit_nodes_per_pixel", "samples"};
+            try {
+                applySetting({nullptr, &pendingSim, &pendingRender}, name + "=" + text);
+            } catch (const UserError& e) {
+                std::string why = e.what();
+                if (why.find("does not use it") != std::string::npos)
+                    return "the hair is grown at start: restart 'wisp view' with --set " + name + "=" + text;
+                return why;
+            }
+            Change c = solverSettings.count(name) ? Change::Solver : sizingSettings.count(name) ? Change::Renderer : Change::Live;
+            change = std::max(change, c);
+            return "";
+        };
+        auto valueForPanel = [&](const std::string& name) -> std::string {
+            RenderSettings r = renderer->settings();
+            SimSettings m = sim;
+            for (const SettingSpec& spec : settingSpecs())
+                if (spec.name == name)
+                    return spec.get({nullptr, &m, &r});
+            return "";
+        };
+        ui.build(panel, applyFromPanel, valueForPanel, viewer.helpShown());
+        for (const std::string& assignment : scriptedSets) {  // as if typed into the panel
+            size_t eq = assignment.find('=');
+            std::string error = applyFromPanel(assignment.substr(0, eq), assignment.substr(eq + 1));
+            if (!error.empty())
+                throw UserError("--script: " + assignment + ": " + error);
+        }
+        if (change == Change::Live) {
+            renderer->settings() = pendingRender;
+        } else if (change == Change::Renderer) {
+            rebuildRenderer(pendingRender);
+        } else if (change == Change::Solver && solver) {
+            frame.waitIdle();
+            sim = pendingSim;
+            setup = makeSimSetup(sim, options.scene->strands, options.scene->gpuColliders, options.scene->unitsPerMetre);
+            rendererOwner.reset();  // it holds the old solver
+            solver = std::make_unique<GpuSolver>(ctx, options.scene->strands, setup, viewer.headTransform());
+            windApplied = sim.wind;
+            rebuildRenderer(pendingRender);
+        }
 
         std::vector<TrackedImage*> transient = renderer->transientImages();
         FrameContext& fc = frame.begin(transient);
@@ -442,18 +528,24 @@ int runWindow(const WindowOptions& options)
         swapImage.written = false;
         present->setSwapchainImage(swapImage, swapchain.extent);
         std::vector<Pass*> passes = renderer->passes();
-        passes.push_back(present.get());
         bool last = options.maxFrames > 0 && framesDrawn + 1 >= options.maxFrames;
         bool shot = viewer.takeScreenshot();
         std::unique_ptr<ReadbackPass> shotReadback;
+        // Screenshots are the scene, taken before the panel is drawn over it.
         if (shot) {
             shotReadback = std::make_unique<ReadbackPass>(ctx, renderer->target());
             passes.push_back(shotReadback.get());
         }
-        if (last && !options.screenshot.empty()) {
+        if (last && !options.screenshot.empty() && !options.screenshotPanel) {
             readback = std::make_unique<ReadbackPass>(ctx, renderer->target());
             passes.push_back(readback.get());
         }
+        passes.push_back(&ui);
+        if (last && !options.screenshot.empty() && options.screenshotPanel) {
+            readback = std::make_unique<ReadbackPass>(ctx, renderer->target());
+            passes.push_back(readback.get());
+        }
+        passes.push_back(present.get());
         frame.run(fc, passes);
         frame.transition(fc, swapImage, Access::Present);
         VkSemaphore done = swapchain.renderDone[imageIndex];

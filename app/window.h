@@ -25,6 +25,7 @@ struct WindowOptions {
     uint32_t maxFrames = 0;  // 0 = until the window is closed
     std::string screenshot;  // PNG of the last frame, written on exit when set
     std::string script;      // timed input events (app/viewer.h), replayed by frame number
+    bool screenshotPanel = false;  // the screenshot includes the panel (else the scene alone)
 };
 
 // Throws UserError, pointing to `wisp render`, when there is no display to open a window on.

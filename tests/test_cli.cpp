@@ -399,6 +399,40 @@ TEST(Window, AScriptMovesTheSphereAndTheLightAndTurnsTheHead)
     EXPECT_NE(readFile(dir / "moved.png"), readFile(dir / "still.png")) << "the screenshot shows the moves";
 }
 
+TEST(Window, ThePanelAppliesSettingsLiveAndDrawsOverTheScene)
+{
+    // Settings set as the panel sets them: one applied in place (shading), one that rebuilds the
+    // renderer (shadow_size), one that rebuilds the solver (step_hz); the panel drawn over the
+    // scene only when asked into the screenshot.
+    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb): cannot test the window here";
+    TempDir dir;
+    writeFile(dir / "sets.txt", "2 set shading=kajiya\n3 set shadow_size=128\n4 set step_hz=120\n5 set hair_preset=blonde\n");
+    writeFile(dir / "none.txt", "");
+    auto xvfb = "xvfb-run -a -s '-screen 0 640x480x24'";
+    std::string common = "--validation view --width 200 --height 150 --frames 8 --guides 60 --set strands_per_guide=4 "
+                         "--set shadow_size=256 --script '";
+    auto changed = runWisp(common + (dir / "sets.txt").string() + "' --screenshot '" + (dir / "changed.png").string() + "'", xvfb);
+    ASSERT_EQ(changed.status, 0) << changed.err;
+    auto plain = runWisp(common + (dir / "none.txt").string() + "' --screenshot '" + (dir / "plain.png").string() + "'", xvfb);
+    ASSERT_EQ(plain.status, 0) << plain.err;
+    auto panel = runWisp(common + (dir / "none.txt").string() + "' --screenshot-panel --screenshot '" +
+                             (dir / "panel.png").string() + "'",
+                         xvfb);
+    ASSERT_EQ(panel.status, 0) << panel.err;
+    EXPECT_NE(readFile(dir / "changed.png"), readFile(dir / "plain.png")) << "blonde Kajiya-Kay hair looks different";
+    EXPECT_NE(readFile(dir / "panel.png"), readFile(dir / "plain.png")) << "the panel is drawn over the scene";
+
+    writeFile(dir / "bad.txt", "1 set guides=10\n");
+    auto bad = runWisp(common + (dir / "bad.txt").string() + "'", xvfb);
+    EXPECT_EQ(bad.status, 2);
+    EXPECT_NE(bad.err.find("the hair is grown at start"), std::string::npos) << bad.err;
+    writeFile(dir / "bad.txt", "1 set shading=phong\n");
+    bad = runWisp(common + (dir / "bad.txt").string() + "'", xvfb);
+    EXPECT_EQ(bad.status, 2);
+    EXPECT_NE(bad.err.find("karis | kajiya | lut"), std::string::npos) << bad.err;
+}
+
 TEST(BadInput, ViewScriptErrorsNameTheFileAndLine)
 {
     if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)

@@ -53,5 +53,8 @@ using Fence = DeviceHandle<VkFence, vkDestroyFence>;
 using Semaphore = DeviceHandle<VkSemaphore, vkDestroySemaphore>;
 using CommandPool = DeviceHandle<VkCommandPool, vkDestroyCommandPool>;
 using QueryPool = DeviceHandle<VkQueryPool, vkDestroyQueryPool>;
+using RenderPass = DeviceHandle<VkRenderPass, vkDestroyRenderPass>;
+using Framebuffer = DeviceHandle<VkFramebuffer, vkDestroyFramebuffer>;
+using DescriptorPool = DeviceHandle<VkDescriptorPool, vkDestroyDescriptorPool>;
 
 }  // namespace wisp::vk
