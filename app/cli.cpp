@@ -305,7 +305,7 @@ int runCli(int argc, char** argv)
     app.add_option("--gpu", g.gpu, "Vulkan device: an index or part of a name from 'wisp info' (default: best)");
 
     RenderOptions ro;
-    CLI::App* render = app.add_subcommand("render", "render one frame offscreen into a PNG (the head and its simulated guide strands)");
+    CLI::App* render = app.add_subcommand("render", "render one frame offscreen into a PNG: the head and its simulated hair, shaded and shadowed");
     CLI::Option* outOption = render->add_option("--out", ro.out, "output PNG file (its folder must exist)");
     render->add_option("--profile", ro.profileFrames,
                        "time this many frames (physics and every pass, after --warmup frames) and print per-pass GPU ms as JSON, "
@@ -329,8 +329,9 @@ int runCli(int argc, char** argv)
     std::string viewHead;
     bool viewNoHair = false;
     CLI::App* view = app.add_subcommand(
-        "view", "the interactive window with the hair simulated live; the keys are listed in the title bar (H hides them):\n  " +
-                    viewerHelp());
+        "view", "the interactive window: the hair simulated live, a panel of settings, counts and GPU times, keys for the sphere, "
+                "the light, the head and the wind (listed by 'wisp view --help')");
+    view->footer("Keys and mouse: " + viewerHelp());
     view->add_option("--head", viewHead, "head description (.json) or mesh file; default models/head.json");
     view->add_flag("--no-hair", viewNoHair, "show the head alone");
     addHairOptions(view, viewHair);
