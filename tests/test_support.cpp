@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <random>
 #include <sys/wait.h>
@@ -11,7 +12,10 @@ namespace wisp::test {
 
 vk::ContextOptions validatedOptions()
 {
-    return {.validation = true};
+    // WISP_TEST_SYNC_VALIDATION=1 (scripts/test.sh --ci runs the GPU suites once so) adds the
+    // layer's synchronization checks: any hazard is a validation message and fails the test.
+    const char* sync = std::getenv("WISP_TEST_SYNC_VALIDATION");
+    return {.validation = true, .synchronizationValidation = sync != nullptr && std::string(sync) == "1"};
 }
 
 RunResult runWisp(const std::string& args, const std::string& envPrefix)

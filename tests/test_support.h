@@ -9,7 +9,8 @@
 
 namespace wisp::test {
 
-// A context on the default device with validation on (the suites assert zero messages).
+// A context on the default device with validation on (the suites assert zero messages), and the
+// synchronization checks too when the environment has WISP_TEST_SYNC_VALIDATION=1.
 vk::ContextOptions validatedOptions();
 
 struct RunResult {
