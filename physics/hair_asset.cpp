@@ -568,7 +568,11 @@ Bounds HairAsset::bounds() const
 
 HairAsset loadHairAsset(const std::filesystem::path& path)
 {
-    std::string data = readWholeFile(path);
+    return parseHairAsset(readWholeFile(path), path);
+}
+
+HairAsset parseHairAsset(const std::string& data, const std::filesystem::path& path)
+{
     BinaryFile binary(path, data);
     if (data.empty())
         binary.fail(0, "the file is empty");

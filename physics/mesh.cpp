@@ -127,6 +127,46 @@ Mesh loadObj(const std::filesystem::path& path)
     std::ifstream file(path, std::ios::binary);
     if (!file)
         throw UserError(path.string() + ": cannot open mesh file");
+    return parseObj(file, path);
+}
+
+Mesh loadWithAssimp(const std::filesystem::path& path)
+{
+    Assimp::Importer importer;
+    const aiScene* scene = importer.ReadFile(path.string(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                                                aiProcess_GenSmoothNormals | aiProcess_PreTransformVertices |
+                                                                aiProcess_SortByPType);
+    if (!scene || !scene->mRootNode)
+        throw UserError(path.string() + ": cannot read mesh: " + importer.GetErrorString());
+    Mesh mesh;
+    for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+        const aiMesh* src = scene->mMeshes[m];
+        if (!(src->mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
+            continue;
+        uint32_t base = static_cast<uint32_t>(mesh.positions.size());
+        for (unsigned v = 0; v < src->mNumVertices; ++v) {
+            mesh.positions.emplace_back(src->mVertices[v].x, src->mVertices[v].y, src->mVertices[v].z);
+            glm::vec3 n = src->mNormals ? glm::vec3(src->mNormals[v].x, src->mNormals[v].y, src->mNormals[v].z)
+                                        : glm::vec3(0.0f);
+            float len = glm::length(n);
+            mesh.normals.push_back(len > 0.0f ? n / len : glm::vec3(0.0f, 1.0f, 0.0f));
+        }
+        for (unsigned f = 0; f < src->mNumFaces; ++f) {
+            const aiFace& face = src->mFaces[f];
+            if (face.mNumIndices != 3)
+                continue;
+            for (unsigned k = 0; k < 3; ++k)
+                mesh.indices.push_back(base + face.mIndices[k]);
+        }
+    }
+    mesh.sourceVertices = mesh.positions.size();
+    return mesh;
+}
+
+}  // namespace
+
+Mesh parseObj(std::istream& file, const std::filesystem::path& path)
+{
     checkObj(path, file);
     file.clear();
     file.seekg(0);
@@ -173,41 +213,6 @@ Mesh loadObj(const std::filesystem::path& path)
     }
     return mesh;
 }
-
-Mesh loadWithAssimp(const std::filesystem::path& path)
-{
-    Assimp::Importer importer;
-    const aiScene* scene = importer.ReadFile(path.string(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                                                aiProcess_GenSmoothNormals | aiProcess_PreTransformVertices |
-                                                                aiProcess_SortByPType);
-    if (!scene || !scene->mRootNode)
-        throw UserError(path.string() + ": cannot read mesh: " + importer.GetErrorString());
-    Mesh mesh;
-    for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
-        const aiMesh* src = scene->mMeshes[m];
-        if (!(src->mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
-            continue;
-        uint32_t base = static_cast<uint32_t>(mesh.positions.size());
-        for (unsigned v = 0; v < src->mNumVertices; ++v) {
-            mesh.positions.emplace_back(src->mVertices[v].x, src->mVertices[v].y, src->mVertices[v].z);
-            glm::vec3 n = src->mNormals ? glm::vec3(src->mNormals[v].x, src->mNormals[v].y, src->mNormals[v].z)
-                                        : glm::vec3(0.0f);
-            float len = glm::length(n);
-            mesh.normals.push_back(len > 0.0f ? n / len : glm::vec3(0.0f, 1.0f, 0.0f));
-        }
-        for (unsigned f = 0; f < src->mNumFaces; ++f) {
-            const aiFace& face = src->mFaces[f];
-            if (face.mNumIndices != 3)
-                continue;
-            for (unsigned k = 0; k < 3; ++k)
-                mesh.indices.push_back(base + face.mIndices[k]);
-        }
-    }
-    mesh.sourceVertices = mesh.positions.size();
-    return mesh;
-}
-
-}  // namespace
 
 Mesh loadMesh(const std::filesystem::path& path)
 {
