@@ -212,17 +212,18 @@ HairAsset loadCyHair(const BinaryFile& file)
         file.fail(8, "point_count " + str(pointCount) + " is too few for " + str(hairCount) +
                          " strands of at least 2 points");
 
+    // Nothing is allocated until every array is known to be in the file: the counts in a header
+    // of a few bytes must not cost memory the file does not back.
     uint64_t at = kCyHairHeaderBytes;
     uint64_t segmentsAt = at;
-    std::vector<uint32_t> strandPoints(hairCount, defaultSegments + 1);
-    if (arrays & kCySegments) {
+    bool segmentsArray = (arrays & kCySegments) != 0;
+    if (segmentsArray) {
         file.need(at, 2 * uint64_t(hairCount), "the segments array", str(hairCount) + "*2");
         uint64_t sum = 0;
         for (uint32_t i = 0; i < hairCount; ++i) {
             uint16_t segments = file.u16(segmentsAt + 2 * uint64_t(i));
             if (segments == 0)
                 file.fail(segmentsAt + 2 * uint64_t(i), "strand " + str(i) + " has 0 segments: a strand needs at least 2 points");
-            strandPoints[i] = segments + 1u;
             sum += segments + 1u;
         }
         if (sum != pointCount)
@@ -260,8 +261,9 @@ HairAsset loadCyHair(const BinaryFile& file)
     at = pointsAt;
     for (uint32_t s = 0; s < hairCount; ++s) {
         HairStrand& strand = asset.strands[s];
-        strand.points.reserve(strandPoints[s]);
-        for (uint32_t v = 0; v < strandPoints[s]; ++v, at += 12)
+        uint32_t points = segmentsArray ? file.u16(segmentsAt + 2 * uint64_t(s)) + 1u : defaultSegments + 1u;
+        strand.points.reserve(points);
+        for (uint32_t v = 0; v < points; ++v, at += 12)
             strand.points.push_back(file.point(at, s, v));
     }
     return asset;

@@ -683,3 +683,23 @@ TEST(HairDescribe, InspectJsonKeys)
     EXPECT_EQ(j["bbox"][1], nlohmann::json({1.0f, 2.5f, 0.0f}));
     EXPECT_EQ(j.size(), 6u);
 }
+
+// ---- Found by fuzzing (fuzz/fuzz_cyhair.cpp, fuzz_tfx.cpp, fuzz_tfx2.cpp) -----------------------
+
+TEST(HairErrors, CyHairHeaderCountsCostNoMemoryTheFileDoesNotBack)
+{
+    // A 128-byte header claiming 50,000,000 strands (100,000,000 points, within what Wisp reads):
+    // the reader allocated 200 MB of per-strand counts before finding the arrays missing, which
+    // made the fuzzer crawl. Now every array is checked against the file before any allocation.
+    TempDir dir;
+    for (uint32_t arrays : {2u, 3u}) {  // points only (d_segments 1), and with a segments array
+        Bytes b;
+        b.text("HAIR").u32(50'000'000).u32(100'000'000).u32(arrays).u32(1).zeros(128 - 20);
+        writeFile(dir / "big.hair", b.data);
+        test::resetLargestAllocation();
+        std::string e = errorOf(dir / "big.hair");
+        EXPECT_NE(e.find(arrays == 2u ? "the points array needs" : "the segments array needs"), std::string::npos) << e;
+        EXPECT_LT(test::largestAllocation(), size_t(1) << 20) << "arrays " << arrays;
+    }
+}
+

@@ -39,6 +39,12 @@ std::string readFile(const std::filesystem::path& path);
 // ../shared/data/<relative>, or an empty path when the shared data is not beside the checkout.
 std::filesystem::path sharedData(const std::string& relative);
 
+// The largest single allocation through operator new since the last reset (the test binaries
+// replace the global operator new to record it): a loader must not allocate what its input
+// does not back.
+void resetLargestAllocation();
+size_t largestAllocation();
+
 }  // namespace wisp::test
 
 // Skips the test, saying which file is missing, when shared data is absent.
