@@ -251,6 +251,7 @@ TEST(GpuSolver, WorkloadLargerThanMemoryIsRefusedWithSizes)
     } catch (const UserError& e) {
         std::string what = e.what();
         EXPECT_NE(what.find("needs"), std::string::npos) << what;
-        EXPECT_NE(what.find("bytes"), std::string::npos) << what;
+        EXPECT_NE(what.find("MiB of GPU memory"), std::string::npos) << what;
+        EXPECT_NE(what.find("' has "), std::string::npos) << what;
     }
 }
