@@ -96,7 +96,7 @@ SEEDS = {
 DICTIONARIES = {
     "fuzz_tfx2": ["version", "scale", "rotation", "translation", "bothEndsImmovable", "maxNumVerticesInStrand",
                   "numFollowHairsPerGuideHair", "maxRadiusAroundGuideHair", "numStrands", "is sorted", "strand",
-                  "numVerts", "texcoord", "#", "\r\n", "1e38", "-0", "nan", "inf"],
+                  "numVerts", "texcoord", "#", "\r\n", "1e38", "1e30", "-0", "nan", "inf"],
     "fuzz_obj": ["v ", "vn ", "vt ", "vp ", "f ", "l ", "p ", "o ", "g ", "s ", "usemtl ", "mtllib ", "/", "//", "-1",
                  "#", "\r\n", "\\\n", "1e38", "nan", "inf"],
 }

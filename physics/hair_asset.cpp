@@ -402,6 +402,11 @@ HairAsset loadTfx2(const std::filesystem::path& path, const std::string& data)
                                       " lines (a strand line and 2 points each) but only " + str(following) +
                                       " follow the header");
 
+    // The header's scale, rotation and translation, applied to each point as it is read.
+    bool rotate = rotationDeg != glm::vec3(0.0f);
+    bool transform = scale != glm::vec3(1.0f) || rotate || translation != glm::vec3(0.0f);
+    glm::mat3 r = rotate ? rotationXyzDegrees(rotationDeg) : glm::mat3(1.0f);
+
     HairAsset asset;
     asset.format = HairFormat::Tfx2;
     asset.strands.resize(numStrands);
@@ -444,20 +449,18 @@ HairAsset loadTfx2(const std::filesystem::path& path, const std::string& data)
             if (w.size() != 3)
                 file.fail(pointLine, "expected 'x y z' for point " + str(v) + " of strand " + str(s) + ", found '" +
                                          file.text(i) + "'");
-            strand.points.emplace_back(file.number(pointLine, w[0]), file.number(pointLine, w[1]),
-                                       file.number(pointLine, w[2]));
+            glm::vec3 p(file.number(pointLine, w[0]), file.number(pointLine, w[1]), file.number(pointLine, w[2]));
+            if (transform) {
+                p = r * (scale * p) + translation;
+                if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+                    file.fail(pointLine, "point " + str(v) + " of strand " + str(s) +
+                                             " is not finite once scaled, rotated and translated by the header");
+            }
+            strand.points.push_back(p);
         }
     }
     if (nextWords(w))
         file.fail(i + 1, "more strands than numStrands " + str(numStrands) + " (line " + str(numStrandsLine) + ")");
-
-    bool rotate = rotationDeg != glm::vec3(0.0f);
-    if (scale != glm::vec3(1.0f) || rotate || translation != glm::vec3(0.0f)) {
-        glm::mat3 r = rotate ? rotationXyzDegrees(rotationDeg) : glm::mat3(1.0f);
-        for (HairStrand& strand : asset.strands)
-            for (glm::vec3& p : strand.points)
-                p = r * (scale * p) + translation;
-    }
     return asset;
 }
 

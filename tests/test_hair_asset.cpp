@@ -703,3 +703,14 @@ TEST(HairErrors, CyHairHeaderCountsCostNoMemoryTheFileDoesNotBack)
     }
 }
 
+TEST(HairErrors, Tfx2HeaderTransformToNonFinitePointsNamesTheLine)
+{
+    // Finite numbers made infinite by the header's scale (1e30 x 1e30): the points were returned
+    // non-finite. The fuzz targets' contract check reports it (fuzz/fuzz_support.h); found while
+    // reviewing the reader, not by the fuzzer's own search.
+    TempDir dir;
+    writeFile(dir / "inf.tfx", "scale 1e30\nnumStrands 1\nstrand 0 numVerts 2 texcoord 0 0\n1e30 0 0\n0 0 0\n");
+    std::string e = errorOf(dir / "inf.tfx");
+    EXPECT_NE(e.find("inf.tfx:4:"), std::string::npos) << e;
+    EXPECT_NE(e.find("not finite once scaled"), std::string::npos) << e;
+}
