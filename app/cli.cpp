@@ -9,6 +9,7 @@
 #include "app/record.h"
 #include "app/settings_registry.h"
 #include "app/sweep.h"
+#include "app/workload.h"
 #include "app/simulate.h"
 #include "app/viewer.h"
 #include "app/window.h"
@@ -21,6 +22,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -55,9 +57,77 @@ int validationStatus(const vk::Context& ctx)
     return kExitInternalError;
 }
 
+// A closed range for a floating-point option. CLI::Range lets "nan" through (every comparison with
+// NaN is false); this one asks for lo <= value <= hi, which NaN and the infinities fail.
+CLI::Validator within(double lo, double hi)
+{
+    std::ostringstream text;
+    text << "in [" << lo << " - " << hi << "]";
+    return CLI::Validator(
+        [lo, hi](std::string& input) {
+            double value = 0.0;
+            if (!CLI::detail::lexical_cast(input, value) || !(value >= lo && value <= hi)) {
+                std::ostringstream why;
+                why << "Value " << input << " not in range " << lo << " to " << hi;
+                return why.str();
+            }
+            return std::string();
+        },
+        text.str());
+}
+
 std::filesystem::path headPathOrDefault(const std::string& head)
 {
     return head.empty() ? defaultHeadPath() : std::filesystem::path(head);
+}
+
+// The head and the hair the options describe (none with `noHair`), built once the workload is
+// checked (counts that must fit 32 bits, GPU memory against the device it will run on): before
+// guides are grown, and for hair files once they are loaded (only then is their strand count
+// known). Nothing is allocated on the device yet.
+HairScene buildCheckedScene(const GlobalOptions& g, const HairOptions& h, const std::filesystem::path& head,
+                            const RenderSettings* render, bool noHair, bool window = false)
+{
+    auto check = [&](uint64_t guides) {
+        Workload w{.guides = guides, .verticesPerStrand = h.growth.verticesPerStrand, .sim = h.sim, .render = render};
+        checkCounts(w);
+        std::vector<vk::DeviceReport> devices = vk::enumerateDevices();
+        checkWorkload(w, vk::selectDevice(devices, g.gpu, window));
+    };
+    if (noHair || h.hairFiles.empty())
+        check(noHair ? 0 : h.growth.guides);
+    if (noHair) {
+        HairScene scene;
+        scene.head = loadHead(head);
+        return scene;
+    }
+    HairScene scene = h.buildScene(head);
+    if (!h.hairFiles.empty())
+        check(scene.strands.strandCount());
+    return scene;
+}
+
+// Every point of a sweep's grid of grown hair, checked before the first one runs.
+void checkSweepGrid(const vk::DeviceReport& device, const std::vector<SweepAxis>& axes, const HairOptions& hair,
+                    const RenderSettings& render)
+{
+    if (!hair.hairFiles.empty())
+        return;  // loaded per point; the solver checks its own memory
+    std::vector<size_t> at(axes.size(), 0);
+    for (size_t axis = 0; axis < axes.size();) {
+        HairOptions h = hair;
+        RenderSettings r = render;
+        for (size_t a = 0; a < axes.size(); ++a)
+            applySetting({&h.growth, &h.sim, &r}, axes[a].name + "=" + axes[a].values[at[a]]);
+        checkWorkload({.guides = h.growth.guides, .verticesPerStrand = h.growth.verticesPerStrand, .sim = h.sim, .render = &r},
+                      device);
+        for (axis = 0; axis < axes.size() && ++at[axis] == axes[axis].values.size(); ++axis)
+            at[axis] = 0;  // the next point, odometer-wise
+    }
+    if (axes.empty())
+        checkWorkload({.guides = hair.growth.guides, .verticesPerStrand = hair.growth.verticesPerStrand, .sim = hair.sim,
+                       .render = &render},
+                      device);
 }
 
 void addImageSize(CLI::App* cmd, RenderSettings& s)
@@ -73,42 +143,42 @@ void addLookOptions(CLI::App* cmd, RenderSettings& s)
         ->check(CLI::IsMember({1u, 2u, 4u, 8u}))
         ->capture_default_str();
     cmd->add_option("--light-azimuth", s.light.azimuthDeg, "key light angle around the up axis, degrees (0 = front)")
-        ->check(CLI::Range(-360.0f, 360.0f))
+        ->check(within(-360.0, 360.0))
         ->capture_default_str();
     cmd->add_option("--light-elevation", s.light.elevationDeg, "key light angle above the horizon, degrees")
-        ->check(CLI::Range(static_cast<float>(kLightElevationRange.min), static_cast<float>(kLightElevationRange.max)))
+        ->check(within(kLightElevationRange.min, kLightElevationRange.max))
         ->capture_default_str();
     cmd->add_option("--light-intensity", s.light.intensity, "key light strength")
-        ->check(CLI::Range(static_cast<float>(kLightIntensityRange.min), static_cast<float>(kLightIntensityRange.max)))
+        ->check(within(kLightIntensityRange.min, kLightIntensityRange.max))
         ->capture_default_str();
 }
 
 void addHairOptions(CLI::App* cmd, HairOptions& h)
 {
     cmd->add_option("--guides", h.growth.guides, "guide strands to grow on the scalp")
-        ->check(CLI::Range(1u, 2000000u))
+        ->check(CLI::Range(1u, kMaxGuides))
         ->capture_default_str();
     cmd->add_option("--vertices", h.growth.verticesPerStrand, "vertices per guide strand")
         ->check(CLI::Range(kMinVerticesPerStrand, kMaxVerticesPerStrand))
         ->capture_default_str();
     cmd->add_option("--hair-length", h.growth.lengthMetres, "mean grown strand length, metres (scaled to the head's units)")
-        ->check(CLI::Range(0.01f, 2.0f))
+        ->check(within(0.01, 2.0))
         ->capture_default_str();
     cmd->add_option("--length-variation", h.growth.lengthVariation, "relative spread of grown strand lengths")
-        ->check(CLI::Range(0.0f, 0.9f))
+        ->check(within(0.0, 0.9))
         ->capture_default_str();
     cmd->add_option("--curl", h.growth.curlRadiusMetres, "curl radius of grown strands, metres (0 = straight)")
-        ->check(CLI::Range(0.0f, 0.1f))
+        ->check(within(0.0, 0.1))
         ->capture_default_str();
     cmd->add_flag("--poisson", h.growth.poissonDisk, "blue-noise (Poisson-disk) roots instead of area-weighted random");
     cmd->add_option("--seed", h.growth.seed, "seed for root sampling and strand variation")->capture_default_str();
     cmd->add_option("--substeps", h.sim.substeps, "integrate/FTL substeps per step")->check(CLI::Range(1u, 16u))->capture_default_str();
     cmd->add_option("--step-hz", h.sim.stepHz, "fixed simulation steps per simulated second")
-        ->check(CLI::Range(30.0f, 1000.0f))
+        ->check(within(30.0, 1000.0))
         ->capture_default_str();
     cmd->add_option("--grid", h.sim.gridResolution, "hair-hair grid nodes per axis")->check(CLI::Range(8u, 256u))->capture_default_str();
     cmd->add_option("--friction", h.sim.gridFriction, "hair-hair friction (blend toward the grid velocity)")
-        ->check(CLI::Range(0.0f, 1.0f))
+        ->check(within(0.0, 1.0))
         ->capture_default_str();
     cmd->add_option("--grid-atomics", h.sim.gridAtomics,
                     "hair grid sums: fixed (64-bit fixed point, deterministic) or float (float atomics)")
@@ -116,24 +186,24 @@ void addHairOptions(CLI::App* cmd, HairOptions& h)
             {"fixed", SimSettings::GridAtomics::Fixed}, {"float", SimSettings::GridAtomics::Float}}))
         ->capture_default_str();
     cmd->add_option("--repulsion", h.sim.gridRepulsion, "hair-hair repulsion along the density gradient (keeps volume; 0 = off)")
-        ->check(CLI::Range(0.0f, 1.0f))
+        ->check(within(0.0, 1.0))
         ->capture_default_str();
     cmd->add_option("--hair", h.hairFiles,
                     "hair file to load instead of growing guides (TressFX .tfx 2/3/4, cyHair .hair); repeat for a groom in parts")
         ->check(CLI::ExistingFile);
     cmd->add_option("--hair-scale", h.hairScale, "scale loaded hair by this (default: automatic when units clearly differ)")
-        ->check(CLI::Range(1e-6f, 1e6f));
+        ->check(within(1e-6, 1e6));
     cmd->add_option("--hair-offset", h.hairOffset, "move loaded hair by x,y,z (head units) after scaling")->delimiter(',')->expected(3);
     cmd->add_option("--hair-z-up", h.zUp, "loaded hair is z-up: turn it y-up (default: automatic, true for cyHair)");
     cmd->add_option("--hair-mirror-z", h.mirrorZ, "mirror loaded hair's z (default: automatic, true for TressFX 3)");
     cmd->add_option("--part", h.partOverrides,
                     "one part's parameters: PART:key=value,... with PART its index or file name, keys global, local, damping, drag");
     cmd->add_option("--global-stiffness", h.globalStiffness, "pull toward the rest pose per step at the root, every part")
-        ->check(CLI::Range(0.0f, 1.0f));
+        ->check(within(0.0, 1.0));
     cmd->add_option("--local-stiffness", h.localStiffness, "pull of each segment toward its rest direction per step, every part")
-        ->check(CLI::Range(0.0f, 1.0f));
-    cmd->add_option("--damping", h.damping, "FTL velocity correction s_damp (Muller 2012), every part")->check(CLI::Range(0.0f, 1.0f));
-    cmd->add_option("--drag", h.drag, "air drag, 1/s, every part")->check(CLI::Range(0.0f, 100.0f));
+        ->check(within(0.0, 1.0));
+    cmd->add_option("--damping", h.damping, "FTL velocity correction s_damp (Muller 2012), every part")->check(within(0.0, 1.0));
+    cmd->add_option("--drag", h.drag, "air drag, 1/s, every part")->check(within(0.0, 100.0));
     cmd->add_option("--sphere", h.sphere, "collision sphere x,y,z,r in the head's units")->delimiter(',')->expected(4);
     cmd->add_option("--wind", h.wind, "wind x,y,z in m/s^2 (scaled to the head's units)")->delimiter(',')->expected(3);
 }
@@ -230,7 +300,7 @@ struct RenderOptions {
 int runRenderProfile(const GlobalOptions& g, RenderOptions& o)
 {
     o.hair.apply();
-    HairScene scene = o.hair.buildScene(headPathOrDefault(o.headFile));
+    HairScene scene = buildCheckedScene(g, o.hair, headPathOrDefault(o.headFile), &o.settings, /*noHair=*/false);
     vk::Context ctx(contextOptions(g));
     HairRun run{.scene = &scene, .sim = o.hair.sim, .frames = 0, .framesPerSecond = o.fps, .sphere = o.hair.sphereOrNone()};
     OitStats oit;
@@ -267,11 +337,7 @@ int runRender(const GlobalOptions& g, RenderOptions& o)
     checkPngOutput(o.out);  // fail before any GPU work
     o.hair.apply();
     std::filesystem::path headPath = headPathOrDefault(o.headFile);
-    HairScene scene;
-    if (o.noHair)
-        scene.head = loadHead(headPath);
-    else
-        scene = o.hair.buildScene(headPath);
+    HairScene scene = buildCheckedScene(g, o.hair, headPath, &o.settings, o.noHair);
     vk::Context ctx(contextOptions(g));
     HairRun run{.scene = &scene, .sim = o.hair.sim, .frames = o.frames, .framesPerSecond = o.fps, .sphere = o.hair.sphereOrNone()};
     Picture picture = renderPicture(ctx, scene.head, o.settings, o.noHair ? nullptr : &run);
@@ -302,7 +368,13 @@ int runCli(int argc, char** argv)
     GlobalOptions g;
     app.add_flag("--validation", g.validation, "enable the Vulkan validation layer; any message fails the run");
     app.add_flag("--sync-validation", g.syncValidation, "also the validation layer's synchronization checks");
-    app.add_option("--gpu", g.gpu, "Vulkan device: an index or part of a name from 'wisp info' (default: best)");
+    app.add_option("--gpu", g.gpu, "Vulkan device: an index or part of a name from 'wisp info' (default: best)")
+        ->check(CLI::Validator(
+            [](std::string& v) {  // an index past what std::stoul reads would be an internal error later
+                bool digits = !v.empty() && v.find_first_not_of("0123456789") == std::string::npos;
+                return digits && v.size() > 6 ? "device index " + v + " is out of range (see 'wisp info')" : std::string();
+            },
+            "INDEX|NAME"));
 
     RenderOptions ro;
     CLI::App* render = app.add_subcommand("render", "render one frame offscreen into a PNG: the head and its simulated hair, shaded and shadowed");
@@ -316,7 +388,7 @@ int runCli(int argc, char** argv)
     render->add_option("--frames", ro.frames, "simulated frames before the picture (each 1/fps seconds of fixed steps)")
         ->check(CLI::Range(0u, 100000u))
         ->capture_default_str();
-    render->add_option("--fps", ro.fps, "simulated frames per second")->check(CLI::Range(1.0f, 1000.0f))->capture_default_str();
+    render->add_option("--fps", ro.fps, "simulated frames per second")->check(within(1.0, 1000.0))->capture_default_str();
     render->add_flag("--no-hair", ro.noHair, "draw the head alone");
     addImageSize(render, ro.settings);
     addLookOptions(render, ro.settings);
@@ -377,7 +449,7 @@ int runCli(int argc, char** argv)
     record->add_option("--video", recVideo, "also encode the frames into this video file (H.264 through ffmpeg)");
     record->add_option("--frames", rec.frames, "frames to record")->check(CLI::Range(1u, 1000000u))->capture_default_str();
     record->add_option("--fps", rec.fps, "frames per simulated second (each frame is round(step_hz / fps) fixed steps)")
-        ->check(CLI::Range(1.0f, 1000.0f))
+        ->check(within(1.0, 1000.0))
         ->capture_default_str();
     record->add_option("--head", recHead, "head description (.json) or mesh file; default models/head.json");
     record->add_flag("--no-hair", recNoHair, "record the head alone");
@@ -465,11 +537,7 @@ int runCli(int argc, char** argv)
             rec.sim = recHair.sim;
             rec.sphere = recHair.sphereOrNone();
             checkRecordOutputs(rec);  // before any loading
-            HairScene scene;
-            if (recNoHair)
-                scene.head = loadHead(headPathOrDefault(recHead));
-            else
-                scene = recHair.buildScene(headPathOrDefault(recHead));
+            HairScene scene = buildCheckedScene(g, recHair, headPathOrDefault(recHead), &rec.settings, recNoHair);
             vk::Context ctx(contextOptions(g));
             return runRecord(ctx, scene, rec);
         }
@@ -484,6 +552,7 @@ int runCli(int argc, char** argv)
             sweepOptions.outDir = sweepOut;
             sweepOptions.headFile = headPathOrDefault(sweepHead).string();
             vk::Context ctx(contextOptions(g));
+            checkSweepGrid(ctx.report(), sweepOptions.axes, sweepHair, sweepRender);
             return runSweep(ctx, sweepOptions, sweepHair, sweepRender);
         }
         if (*settingsCmd) {
@@ -503,11 +572,8 @@ int runCli(int argc, char** argv)
             for (const std::string& a : viewSets)
                 applySetting({&viewHair.growth, &viewHair.sim, &windowOptions.settings}, a);
             viewHair.apply();
-            HairScene scene;
-            if (viewNoHair)
-                scene.head = loadHead(headPathOrDefault(viewHead));
-            else
-                scene = viewHair.buildScene(headPathOrDefault(viewHead));
+            HairScene scene = buildCheckedScene(g, viewHair, headPathOrDefault(viewHead), &windowOptions.settings, viewNoHair,
+                                                /*window=*/true);
             windowOptions.scene = &scene;
             windowOptions.sim = viewHair.sim;
             windowOptions.sphere = viewHair.sphereOrNone();
@@ -521,7 +587,7 @@ int runCli(int argc, char** argv)
             sim.sim = simHair.sim;
             if (!simHair.sphere.empty())
                 sim.sphere = simHair.sphereOrNone();
-            HairScene scene = simHair.buildScene(headPathOrDefault(simHead));
+            HairScene scene = buildCheckedScene(g, simHair, headPathOrDefault(simHead), nullptr, /*noHair=*/false);
             return runSimulate(sim, scene);
         }
         if (*info)

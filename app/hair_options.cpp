@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "physics/hair_asset.h"
 
+#include <cmath>
 #include <sstream>
 
 namespace wisp {
@@ -101,8 +102,25 @@ glm::vec4 HairOptions::sphereOrNone() const
 }
 void HairOptions::apply()
 {
+    // CLI11 reads "nan" and "inf" as numbers: every value of these lists must be finite.
+    auto requireFinite = [](const char* option, const std::vector<float>& values, const char* form) {
+        for (size_t i = 0; i < values.size(); ++i)
+            if (!std::isfinite(values[i]))
+                throw UserError(std::string(option) + ": value " + std::to_string(i + 1) + " is not a finite number (" +
+                                form + ")");
+    };
+    requireFinite("--sphere", sphere, "x,y,z,r in the head's units");
+    requireFinite("--wind", wind, "x,y,z in m/s^2");
+    requireFinite("--hair-offset", hairOffset, "x,y,z in the head's units");
     if (!sphere.empty() && !(sphere[3] > 0.0f))
         throw UserError("--sphere: the radius (4th value) must be > 0, got " + std::to_string(sphere[3]));
+    for (float w : wind)
+        if (std::abs(w) > kMaxWind) {
+            std::ostringstream why;
+            why << "--wind: " << w << " is out of range: each component within " << -kMaxWind << " .. " << kMaxWind
+                << " m/s^2";
+            throw UserError(why.str());
+        }
     if (!wind.empty())
         sim.wind = glm::vec3(wind[0], wind[1], wind[2]);
 }

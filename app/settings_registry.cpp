@@ -91,11 +91,11 @@ std::vector<SettingSpec> buildSpecs()
     std::vector<SettingSpec> specs;
     auto add = [&](SettingSpec spec) { specs.push_back(std::move(spec)); };
 
-    add({"guides", "", "1 .. 2000000", "guide strands grown on the scalp",
+    add({"guides", "", "1 .. " + text(kMaxGuides), "guide strands grown on the scalp",
          [](const SettingsRefs& r) { return r.growth ? text(r.growth->guides) : "-"; },
          [](const SettingsRefs& r, const std::string& v) {
              WISP_NEED(r, growth, "guides");
-             r.growth->guides = integer("guides", v, 1, 2000000);
+             r.growth->guides = integer("guides", v, 1, kMaxGuides);
          }});
     add({"vertices_per_strand", "", "4 .. 64", "vertices per simulated guide",
          [](const SettingsRefs& r) { return r.growth ? text(r.growth->verticesPerStrand) : "-"; },

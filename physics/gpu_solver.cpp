@@ -19,6 +19,11 @@ static_assert(offsetof(gpu::SimParams, parts) == 96 && offsetof(gpu::SimParams, 
 
 namespace {
 
+uint64_t mebibytes(uint64_t bytes)
+{
+    return (bytes + (uint64_t(1) << 20) - 1) >> 20;
+}
+
 // Strand-major (the CPU's order) to the GPU's interleaved slots (gpu::vertexSlot), and back.
 template <typename T>
 std::vector<T> toSlots(const std::vector<T>& strandMajor, uint32_t strands, uint32_t V, T padding)
@@ -55,6 +60,13 @@ GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const Sim
         setup_.params.gridFixedScale = gridFixedScale(strands.vertexCount(), setup_.params.gridMaxSplatSpeed);
     if (!fixedGrid_)
         setup_.params.gridFixedScale = 0.0f;
+    // Refused before anything is allocated, here or on the device.
+    deviceBytes_ = solverDeviceBytes(strands.strandCount(), strands.verticesPerStrand, setup.params.gridNodeCount, fixedGrid_);
+    if (deviceBytes_ > ctx.report().deviceLocalBytes)
+        throw UserError("the simulation needs " + std::to_string(mebibytes(deviceBytes_)) + " MiB of GPU memory (" +
+                        std::to_string(strands.strandCount()) + " strands x " + std::to_string(strands.verticesPerStrand) +
+                        " vertices, " + std::to_string(setup.params.gridNodeCount) + " grid nodes), but '" +
+                        ctx.report().name + "' has " + std::to_string(mebibytes(ctx.report().deviceLocalBytes)) + " MiB");
     uint32_t count = uint32_t(strands.strandCount());
     uint32_t V = strands.verticesPerStrand;
     SimState strandMajor = initialState(strands, headTransform);
@@ -67,11 +79,6 @@ GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const Sim
     size_t vec4Bytes = size_t(slotCount_) * sizeof(glm::vec4);
     size_t gridBytes = size_t(setup.params.gridNodeCount) *
                        (fixedGrid_ ? gpu::kGridFixedWordsPerNode * sizeof(int64_t) : sizeof(gpu::GridNode));
-    deviceBytes_ = 4 * vec4Bytes + rest.size() * sizeof(gpu::RestVertex) + strands.strands.size() * sizeof(gpu::StrandInfo) +
-                   2 * gridBytes;
-    if (deviceBytes_ > ctx.report().deviceLocalBytes)
-        throw UserError("the simulation needs " + std::to_string(deviceBytes_) + " bytes of GPU memory but '" +
-                        ctx.report().name + "' has " + std::to_string(ctx.report().deviceLocalBytes));
 
     constexpr VkBufferUsageFlags kStorageCopy = vk::kStorage | vk::kTransferSrc | vk::kTransferDst;
     params_ = ctx.createBufferWithData({.size = sizeof(gpu::SimParams), .usage = vk::kUniform, .name = "sim.params"},

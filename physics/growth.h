@@ -11,8 +11,11 @@
 
 namespace wisp {
 
+// The most guide strands Wisp simulates, grown or loaded (2e6 x 64 vertices is 10 GB of solver state).
+inline constexpr uint32_t kMaxGuides = 2'000'000;
+
 struct GrowthSettings {
-    uint32_t guides = 1000;             // number of guide strands, 1 .. 2,000,000
+    uint32_t guides = 1000;             // number of guide strands, 1 .. kMaxGuides
     uint32_t verticesPerStrand = 16;    // V, 4 .. 64
     float lengthMetres = 0.24f;         // mean strand length (scaled by the head's units)
     float lengthVariation = 0.15f;      // relative spread of lengths, 0 .. 0.9

@@ -212,17 +212,18 @@ HairAsset loadCyHair(const BinaryFile& file)
         file.fail(8, "point_count " + str(pointCount) + " is too few for " + str(hairCount) +
                          " strands of at least 2 points");
 
+    // Nothing is allocated until every array is known to be in the file: the counts in a header
+    // of a few bytes must not cost memory the file does not back.
     uint64_t at = kCyHairHeaderBytes;
     uint64_t segmentsAt = at;
-    std::vector<uint32_t> strandPoints(hairCount, defaultSegments + 1);
-    if (arrays & kCySegments) {
+    bool segmentsArray = (arrays & kCySegments) != 0;
+    if (segmentsArray) {
         file.need(at, 2 * uint64_t(hairCount), "the segments array", str(hairCount) + "*2");
         uint64_t sum = 0;
         for (uint32_t i = 0; i < hairCount; ++i) {
             uint16_t segments = file.u16(segmentsAt + 2 * uint64_t(i));
             if (segments == 0)
                 file.fail(segmentsAt + 2 * uint64_t(i), "strand " + str(i) + " has 0 segments: a strand needs at least 2 points");
-            strandPoints[i] = segments + 1u;
             sum += segments + 1u;
         }
         if (sum != pointCount)
@@ -260,8 +261,9 @@ HairAsset loadCyHair(const BinaryFile& file)
     at = pointsAt;
     for (uint32_t s = 0; s < hairCount; ++s) {
         HairStrand& strand = asset.strands[s];
-        strand.points.reserve(strandPoints[s]);
-        for (uint32_t v = 0; v < strandPoints[s]; ++v, at += 12)
+        uint32_t points = segmentsArray ? file.u16(segmentsAt + 2 * uint64_t(s)) + 1u : defaultSegments + 1u;
+        strand.points.reserve(points);
+        for (uint32_t v = 0; v < points; ++v, at += 12)
             strand.points.push_back(file.point(at, s, v));
     }
     return asset;
@@ -400,6 +402,11 @@ HairAsset loadTfx2(const std::filesystem::path& path, const std::string& data)
                                       " lines (a strand line and 2 points each) but only " + str(following) +
                                       " follow the header");
 
+    // The header's scale, rotation and translation, applied to each point as it is read.
+    bool rotate = rotationDeg != glm::vec3(0.0f);
+    bool transform = scale != glm::vec3(1.0f) || rotate || translation != glm::vec3(0.0f);
+    glm::mat3 r = rotate ? rotationXyzDegrees(rotationDeg) : glm::mat3(1.0f);
+
     HairAsset asset;
     asset.format = HairFormat::Tfx2;
     asset.strands.resize(numStrands);
@@ -442,20 +449,18 @@ HairAsset loadTfx2(const std::filesystem::path& path, const std::string& data)
             if (w.size() != 3)
                 file.fail(pointLine, "expected 'x y z' for point " + str(v) + " of strand " + str(s) + ", found '" +
                                          file.text(i) + "'");
-            strand.points.emplace_back(file.number(pointLine, w[0]), file.number(pointLine, w[1]),
-                                       file.number(pointLine, w[2]));
+            glm::vec3 p(file.number(pointLine, w[0]), file.number(pointLine, w[1]), file.number(pointLine, w[2]));
+            if (transform) {
+                p = r * (scale * p) + translation;
+                if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+                    file.fail(pointLine, "point " + str(v) + " of strand " + str(s) +
+                                             " is not finite once scaled, rotated and translated by the header");
+            }
+            strand.points.push_back(p);
         }
     }
     if (nextWords(w))
         file.fail(i + 1, "more strands than numStrands " + str(numStrands) + " (line " + str(numStrandsLine) + ")");
-
-    bool rotate = rotationDeg != glm::vec3(0.0f);
-    if (scale != glm::vec3(1.0f) || rotate || translation != glm::vec3(0.0f)) {
-        glm::mat3 r = rotate ? rotationXyzDegrees(rotationDeg) : glm::mat3(1.0f);
-        for (HairStrand& strand : asset.strands)
-            for (glm::vec3& p : strand.points)
-                p = r * (scale * p) + translation;
-    }
     return asset;
 }
 
@@ -568,7 +573,11 @@ Bounds HairAsset::bounds() const
 
 HairAsset loadHairAsset(const std::filesystem::path& path)
 {
-    std::string data = readWholeFile(path);
+    return parseHairAsset(readWholeFile(path), path);
+}
+
+HairAsset parseHairAsset(const std::string& data, const std::filesystem::path& path)
+{
     BinaryFile binary(path, data);
     if (data.empty())
         binary.fail(0, "the file is empty");

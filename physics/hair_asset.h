@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace wisp {
@@ -47,6 +48,9 @@ struct HairAsset {
 // tfx2 scale / rotation (degrees, R = Rz * Ry * Rx) / translation headers are applied as
 // p' = R * (scale * p) + translation.
 HairAsset loadHairAsset(const std::filesystem::path& path);
+// The same from a file's bytes already in memory (the fuzz targets use it); `source` names the
+// data in errors and becomes HairAsset::source.
+HairAsset parseHairAsset(const std::string& data, const std::filesystem::path& source);
 
 // `count` points (>= 2, else std::invalid_argument) evenly spaced by arc length along the polyline,
 // the first and last points preserved exactly. A polyline of zero length gives `count` copies of

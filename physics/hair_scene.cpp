@@ -4,6 +4,7 @@
 #include "core/error.h"
 #include "physics/colliders.h"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace wisp {
@@ -64,11 +65,23 @@ HairScene buildLoadedScene(const std::filesystem::path& headFile, const std::vec
         if (settings.name.empty() || settings.name == PartSettings{}.name)
             settings.name = source.file.stem().string();
         scene.strands.parts.push_back(settings);
-        for (const HairStrand& strand : asset.strands) {
+        uint64_t strandCount = scene.strands.strandCount() + asset.strands.size();
+        if (strandCount > kMaxGuides)
+            throw UserError(source.file.string() + ": " + std::to_string(asset.strands.size()) + " strands" +
+                            (index > 0 ? " (" + std::to_string(strandCount) + " with the parts before it)" : std::string()) +
+                            ", more than the " + std::to_string(kMaxGuides) + " guides Wisp simulates");
+        for (size_t s = 0; s < asset.strands.size(); ++s) {
+            const HairStrand& strand = asset.strands[s];
             std::vector<glm::vec3> placed;
             placed.reserve(strand.points.size());
-            for (const glm::vec3& p : strand.points)
+            for (const glm::vec3& p : strand.points) {
                 placed.push_back(applyPlacement(placement, p));
+                glm::vec3 q = placed.back();
+                if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
+                    throw UserError(source.file.string() + ": strand " + std::to_string(s) +
+                                    " is not finite once placed (scale " + std::to_string(placement.scale) +
+                                    "): its coordinates are too large");
+            }
             scene.strands.add(resampleStrand(placed, verticesPerStrand), index, strand.pinnedRoot, strand.pinnedTip);
         }
     }

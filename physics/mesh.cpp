@@ -10,11 +10,12 @@
 #include <assimp/scene.h>
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
 #include <map>
-#include <sstream>
+#include <string_view>
 
 namespace wisp {
 
@@ -53,22 +54,34 @@ Bounds Mesh::bounds() const
     return b;
 }
 
+namespace {
+
+// A unit vector along `v`, or +y for a zero vector. In double: a float's square overflows past
+// about 1.8e19, and a normal of huge but finite components must still come out unit length.
+glm::vec3 unitOr(glm::dvec3 v)
+{
+    double len = glm::length(v);
+    return len > 0.0 && std::isfinite(len) ? glm::vec3(v / len) : glm::vec3(0.0f, 1.0f, 0.0f);
+}
+
+}  // namespace
+
 std::vector<glm::vec3> computeVertexNormals(const std::vector<glm::vec3>& positions,
                                            const std::vector<uint32_t>& indices)
 {
-    std::vector<glm::vec3> normals(positions.size(), glm::vec3(0.0f));
+    // In double: the cross products of finite float coordinates (up to 3.4e38) stay finite.
+    std::vector<glm::dvec3> sums(positions.size(), glm::dvec3(0.0));
     for (size_t t = 0; t + 2 < indices.size(); t += 3) {
-        const glm::vec3& a = positions[indices[t]];
-        const glm::vec3& b = positions[indices[t + 1]];
-        const glm::vec3& c = positions[indices[t + 2]];
-        glm::vec3 n = glm::cross(b - a, c - a);  // length = 2 * area: area weighting
+        glm::dvec3 a = positions[indices[t]];
+        glm::dvec3 b = positions[indices[t + 1]];
+        glm::dvec3 c = positions[indices[t + 2]];
+        glm::dvec3 n = glm::cross(b - a, c - a);  // length = 2 * area: area weighting
         for (size_t k = 0; k < 3; ++k)
-            normals[indices[t + k]] += n;
+            sums[indices[t + k]] += n;
     }
-    for (glm::vec3& n : normals) {
-        float len = glm::length(n);
-        n = len > 0.0f ? n / len : glm::vec3(0.0f, 1.0f, 0.0f);
-    }
+    std::vector<glm::vec3> normals(positions.size());
+    for (size_t v = 0; v < sums.size(); ++v)
+        normals[v] = unitOr(sums[v]);
     return normals;
 }
 
@@ -85,24 +98,54 @@ bool parseFloat(std::string_view token, float& out)
     return ec == std::errc() && end == token.data() + token.size() && std::isfinite(out);
 }
 
+// One line as tinyobjloader reads it: ended by "\n", "\r" or "\r\n" (so the line numbers agree).
+bool objLine(std::istream& in, std::string& line)
+{
+    line.clear();
+    for (int c = in.get(); c != std::char_traits<char>::eof(); c = in.get()) {
+        if (c == '\n')
+            return true;
+        if (c == '\r') {
+            if (in.peek() == '\n')
+                in.get();
+            return true;
+        }
+        line.push_back(char(c));
+    }
+    return !line.empty();
+}
+
+// The words of a line as tinyobjloader splits them: on spaces and tabs only, up to a NUL.
+std::vector<std::string> objWords(const std::string& line)
+{
+    std::vector<std::string> words;
+    std::string_view rest(line.c_str());
+    while (true) {
+        size_t start = rest.find_first_not_of(" \t");
+        if (start == std::string_view::npos)
+            return words;
+        rest.remove_prefix(start);
+        size_t end = std::min(rest.find_first_of(" \t"), rest.size());
+        words.emplace_back(rest.substr(0, end));
+        rest.remove_prefix(end);
+    }
+}
+
 // Checks the lines tinyobjloader would otherwise accept silently or mis-read: vertex records
-// with missing or non-numeric coordinates, and faces whose indices name no vertex.
+// with missing or non-numeric coordinates, and faces whose indices name no vertex or that it
+// would read past (a corner ending in '/' takes its last index from the next corner).
 void checkObj(const std::filesystem::path& path, std::istream& in)
 {
     std::string line;
     size_t lineNumber = 0;
     long positions = 0, texcoords = 0, normals = 0;
-    while (std::getline(in, line)) {
+    while (objLine(in, line)) {
         ++lineNumber;
-        if (!line.empty() && line.back() == '\r')
-            line.pop_back();
-        std::istringstream words(line);
-        std::string key;
-        if (!(words >> key) || key[0] == '#')
+        std::vector<std::string> args = objWords(line);
+        if (args.empty() || args.front()[0] == '#')
             continue;
-        std::vector<std::string> args;
-        for (std::string w; words >> w;)
-            args.push_back(w);
+        std::string key = args.front();
+        args.erase(args.begin());
         if (key == "v" || key == "vn" || key == "vt") {
             size_t need = key == "vt" ? 1 : 3;
             if (args.size() < need)
@@ -118,6 +161,8 @@ void checkObj(const std::filesystem::path& path, std::istream& in)
             if (args.size() < 3)
                 badFile(path, lineNumber, "a face needs at least 3 vertices, found " + std::to_string(args.size()));
             for (const std::string& corner : args) {
+                if (corner.back() == '/')
+                    badFile(path, lineNumber, "face corner '" + corner + "' ends with '/': an index must follow it");
                 long counts[3] = {positions, texcoords, normals};
                 const char* names[3] = {"vertex", "texture coordinate", "normal"};
                 size_t start = 0;
@@ -149,51 +194,7 @@ Mesh loadObj(const std::filesystem::path& path)
     std::ifstream file(path, std::ios::binary);
     if (!file)
         throw UserError(path.string() + ": cannot open mesh file");
-    checkObj(path, file);
-    file.clear();
-    file.seekg(0);
-
-    tinyobj::attrib_t attrib;
-    std::vector<tinyobj::shape_t> shapes;
-    std::vector<tinyobj::material_t> materials;
-    std::string warnings, errors;
-    bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warnings, &errors, &file, nullptr, true);
-    if (!ok)
-        throw UserError(path.string() + ": " + (errors.empty() ? std::string("malformed OBJ") : errors));
-
-    Mesh mesh;
-    mesh.sourceVertices = attrib.vertices.size() / 3;
-    bool haveNormals = !attrib.normals.empty();
-    std::map<std::pair<int, int>, uint32_t> corners;  // (position, normal) -> vertex
-    for (const tinyobj::shape_t& shape : shapes) {
-        for (const tinyobj::index_t& idx : shape.mesh.indices) {
-            int normal = haveNormals ? idx.normal_index : -1;
-            auto [it, inserted] = corners.try_emplace({idx.vertex_index, normal}, static_cast<uint32_t>(mesh.positions.size()));
-            if (inserted) {
-                const float* p = &attrib.vertices[3 * static_cast<size_t>(idx.vertex_index)];
-                mesh.positions.emplace_back(p[0], p[1], p[2]);
-                if (normal >= 0) {
-                    const float* n = &attrib.normals[3 * static_cast<size_t>(normal)];
-                    glm::vec3 v(n[0], n[1], n[2]);
-                    float len = glm::length(v);
-                    mesh.normals.push_back(len > 0.0f ? v / len : glm::vec3(0.0f, 1.0f, 0.0f));
-                } else {
-                    mesh.normals.emplace_back(0.0f);
-                }
-            }
-            mesh.indices.push_back(it->second);
-        }
-    }
-    bool anyMissing = false;
-    for (const auto& [key, vertex] : corners)
-        anyMissing = anyMissing || key.second < 0;
-    if (anyMissing) {  // some corners had no normal: smooth normals over shared positions
-        std::vector<glm::vec3> smooth = computeVertexNormals(mesh.positions, mesh.indices);
-        for (const auto& [key, vertex] : corners)
-            if (key.second < 0)
-                mesh.normals[vertex] = smooth[vertex];
-    }
-    return mesh;
+    return parseObj(file, path);
 }
 
 Mesh loadWithAssimp(const std::filesystem::path& path)
@@ -212,10 +213,9 @@ Mesh loadWithAssimp(const std::filesystem::path& path)
         uint32_t base = static_cast<uint32_t>(mesh.positions.size());
         for (unsigned v = 0; v < src->mNumVertices; ++v) {
             mesh.positions.emplace_back(src->mVertices[v].x, src->mVertices[v].y, src->mVertices[v].z);
-            glm::vec3 n = src->mNormals ? glm::vec3(src->mNormals[v].x, src->mNormals[v].y, src->mNormals[v].z)
-                                        : glm::vec3(0.0f);
-            float len = glm::length(n);
-            mesh.normals.push_back(len > 0.0f ? n / len : glm::vec3(0.0f, 1.0f, 0.0f));
+            glm::dvec3 n = src->mNormals ? glm::dvec3(src->mNormals[v].x, src->mNormals[v].y, src->mNormals[v].z)
+                                         : glm::dvec3(0.0);
+            mesh.normals.push_back(unitOr(n));
         }
         for (unsigned f = 0; f < src->mNumFaces; ++f) {
             const aiFace& face = src->mFaces[f];
@@ -230,6 +230,63 @@ Mesh loadWithAssimp(const std::filesystem::path& path)
 }
 
 }  // namespace
+
+Mesh parseObj(std::istream& file, const std::filesystem::path& path)
+{
+    checkObj(path, file);
+    file.clear();
+    file.seekg(0);
+
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> materials;
+    std::string warnings, errors;
+    bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warnings, &errors, &file, nullptr, true);
+    if (!ok)
+        throw UserError(path.string() + ": " + (errors.empty() ? std::string("malformed OBJ") : errors));
+
+    // tinyobjloader reports indices it could not resolve only as warnings and returns them: a
+    // face it read differently from the check above must still never index past the arrays.
+    size_t vertexCount = attrib.vertices.size() / 3, normalCount = attrib.normals.size() / 3;
+    for (const tinyobj::shape_t& shape : shapes)
+        for (const tinyobj::index_t& idx : shape.mesh.indices)
+            if (idx.vertex_index < 0 || size_t(idx.vertex_index) >= vertexCount ||
+                (idx.normal_index >= 0 && size_t(idx.normal_index) >= normalCount))
+                throw UserError(path.string() + ": a face names a vertex or normal that does not exist" +
+                                (warnings.empty() ? std::string() : " (" + warnings.substr(0, warnings.find('\n')) + ")"));
+
+    Mesh mesh;
+    mesh.sourceVertices = vertexCount;
+    bool haveNormals = !attrib.normals.empty();
+    std::map<std::pair<int, int>, uint32_t> corners;  // (position, normal) -> vertex
+    for (const tinyobj::shape_t& shape : shapes) {
+        for (const tinyobj::index_t& idx : shape.mesh.indices) {
+            int normal = haveNormals ? idx.normal_index : -1;
+            auto [it, inserted] = corners.try_emplace({idx.vertex_index, normal}, static_cast<uint32_t>(mesh.positions.size()));
+            if (inserted) {
+                const float* p = &attrib.vertices[3 * static_cast<size_t>(idx.vertex_index)];
+                mesh.positions.emplace_back(p[0], p[1], p[2]);
+                if (normal >= 0) {
+                    const float* n = &attrib.normals[3 * static_cast<size_t>(normal)];
+                    mesh.normals.push_back(unitOr(glm::dvec3(n[0], n[1], n[2])));
+                } else {
+                    mesh.normals.emplace_back(0.0f);
+                }
+            }
+            mesh.indices.push_back(it->second);
+        }
+    }
+    bool anyMissing = false;
+    for (const auto& [key, vertex] : corners)
+        anyMissing = anyMissing || key.second < 0;
+    if (anyMissing) {  // some corners had no normal: smooth normals over shared positions
+        std::vector<glm::vec3> smooth = computeVertexNormals(mesh.positions, mesh.indices);
+        for (const auto& [key, vertex] : corners)
+            if (key.second < 0)
+                mesh.normals[vertex] = smooth[vertex];
+    }
+    return mesh;
+}
 
 Mesh loadMesh(const std::filesystem::path& path)
 {

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,9 @@ struct Mesh {
 // Throws UserError naming the file (and line, for .obj) when it is missing, unreadable,
 // malformed or holds no triangles.
 Mesh loadMesh(const std::filesystem::path& path);
+// An OBJ file's text from a stream (seekable: it is read twice, checked then parsed), as loadMesh
+// reads a .obj file; `source` names it in errors. The fuzz target uses it.
+Mesh parseObj(std::istream& in, const std::filesystem::path& source);
 
 // A unit sphere around the origin (latitude-longitude: `stacks` x `slices` quads), for the
 // collision sphere and the light's marker.

@@ -7,6 +7,16 @@
 
 namespace wisp {
 
+uint64_t solverDeviceBytes(uint64_t strands, uint32_t verticesPerStrand, uint64_t gridNodes, bool fixedPointGrid)
+{
+    uint64_t block = gpu::kSimStrandBlock;
+    uint64_t slots = (strands + block - 1) / block * block * verticesPerStrand;
+    uint64_t vertexBuffers = slots * (3 * sizeof(glm::vec4) + sizeof(gpu::RestVertex));
+    uint64_t gridSums = fixedPointGrid ? gpu::kGridFixedWordsPerNode * sizeof(int64_t) : sizeof(gpu::GridNode);
+    return vertexBuffers + strands * sizeof(gpu::StrandInfo) + gridNodes * (gridSums + sizeof(glm::vec4)) +
+           sizeof(gpu::SimParams) + sizeof(gpu::SimCounters);
+}
+
 SimSetup makeSimSetup(const SimSettings& s, const StrandSet& strands, const std::vector<gpu::Ellipsoid>& colliders,
                       float unitsPerMetre)
 {

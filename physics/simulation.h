@@ -10,6 +10,9 @@
 
 namespace wisp {
 
+// Wind beyond this (m/s², per component; gravity is 9.81) is refused rather than simulated.
+inline constexpr float kMaxWind = 1000.0f;
+
 struct SimSettings {
     float stepHz = 120.0f;                  // fixed steps per simulated second, 30 .. 1000
     uint32_t substeps = 2;                  // integrate/FTL substeps per step, 1 .. 16
@@ -40,6 +43,12 @@ SimSetup makeSimSetup(const SimSettings& settings, const StrandSet& strands,
 // The largest scale at which no fixed-point grid node can overflow 2^62: every vertex adds at
 // most 1 (density) or maxSpeed (each momentum component) to a node.
 float gridFixedScale(uint64_t vertexCount, float maxSplatSpeed);
+// The device memory the GPU solver allocates (gpu_solver.cpp) for `strands` strands of V vertices
+// and a grid of `gridNodes` nodes summed in 64-bit fixed point (4 words a node) or float atomics:
+// the interleaved vertex buffers (positions, velocities, tangents, rest; strands padded to blocks
+// of 32), the per-strand info, the grid's sums and velocities, the parameters and counters. The
+// solver checks it against the device before allocating, and the command line before building.
+uint64_t solverDeviceBytes(uint64_t strands, uint32_t verticesPerStrand, uint64_t gridNodes, bool fixedPointGrid);
 gpu::SimStep makeStep(const SimSetup& setup, const glm::mat4& headTransform, const glm::vec4& sphere, float time);
 
 // The simulated state, one entry per vertex (world space).

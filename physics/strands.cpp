@@ -14,10 +14,15 @@ void StrandSet::add(const std::vector<glm::vec3>& points, uint32_t part, uint32_
     if (points.size() != verticesPerStrand)
         throw std::logic_error("StrandSet::add: strand has " + std::to_string(points.size()) + " points, expected " +
                                std::to_string(verticesPerStrand));
-    for (size_t i = 1; i < points.size(); ++i)
-        if (!(glm::length(points[i] - points[i - 1]) > 0.0f))
+    for (size_t i = 1; i < points.size(); ++i) {
+        float length = glm::length(points[i] - points[i - 1]);
+        if (!(length > 0.0f))
             throw UserError("hair strand " + std::to_string(strands.size()) + " has a zero-length segment (" +
                             std::to_string(i - 1) + " to " + std::to_string(i) + "): cannot simulate it");
+        if (!std::isfinite(length))
+            throw UserError("hair strand " + std::to_string(strands.size()) + " has a segment too long for floats (" +
+                            std::to_string(i - 1) + " to " + std::to_string(i) + "): cannot simulate it");
+    }
     uint32_t index = static_cast<uint32_t>(strands.size());
     strands.push_back({.part = part,
                        .pinnedRoot = std::clamp<uint32_t>(pinnedRoot, 1, verticesPerStrand - 1),

@@ -299,6 +299,80 @@ TEST(BadInput, OutOfRangePhysicsValues)
     expectUserError(runWisp("simulate --guides 0"), "--guides");
 }
 
+TEST(BadInput, NonFiniteAndAbsurdNumbersAreRangeErrors)
+{
+    // CLI11's own ranges let "nan" through (comparisons with NaN are false): every floating-point
+    // option refuses it, and the infinities, naming itself.
+    for (const char* option : {"--friction nan", "--repulsion nan", "--hair-length inf", "--length-variation -inf",
+                               "--curl nan", "--step-hz -1", "--global-stiffness nan", "--local-stiffness inf",
+                               "--damping nan", "--drag nan", "--hair-scale nan"}) {
+        std::string name = std::string(option).substr(0, std::string(option).find(' '));
+        expectUserError(runWisp(std::string("simulate --steps 1 ") + option), name);
+    }
+    TempDir dir;
+    std::string out = " --out '" + (dir / "a.png").string() + "'";
+    for (const char* option : {"--fps nan", "--light-azimuth nan", "--light-elevation inf", "--light-intensity nan",
+                               "--width 0", "--height 100000", "--frames -1"}) {
+        std::string name = std::string(option).substr(0, std::string(option).find(' '));
+        expectUserError(runWisp(std::string("render ") + option + out), name);
+    }
+    expectUserError(runWisp("simulate --guides 10000000"), "--guides");
+    expectUserError(runWisp("simulate --guides -1"), "--guides");
+    expectUserError(runWisp("simulate --vertices 0"), "--vertices");
+    expectUserError(runWisp("simulate --seed -1"), "--seed");
+    // A device index past what std::stoul reads was an internal error (exit 1).
+    expectUserError(runWisp("--gpu 99999999999999999999 simulate --steps 1"), "--gpu");
+    expectUserError(runWisp("simulate --steps 1 --set friction=nan"), "friction");
+    expectUserError(runWisp("render --set width=inf" + out), "width");
+    EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
+}
+
+TEST(BadInput, SphereWindAndOffsetMustBeFinite)
+{
+    expectUserError(runWisp("simulate --steps 1 --sphere nan,0,0,1"), "--sphere: value 1 is not a finite number");
+    expectUserError(runWisp("simulate --steps 1 --sphere 0,0,0,inf"), "--sphere: value 4 is not a finite number");
+    expectUserError(runWisp("simulate --steps 1 --wind nan,0,0"), "--wind: value 1 is not a finite number");
+    expectUserError(runWisp("simulate --steps 1 --wind 1e9,0,0"), "--wind");
+    expectUserError(runWisp("simulate --steps 1 --hair-offset 0,nan,0"), "--hair-offset: value 2");
+}
+
+TEST(BadInput, DrawnStrandsPast32BitsAreRefusedBeforeGrowing)
+{
+    // 2,000,000 guides x 4096 strands: more strands than 32-bit numbers, refused before any guide
+    // is grown (growing them would take minutes) and before the device is touched.
+    TempDir dir;
+    auto r = runWisp("render --guides 2000000 --set strands_per_guide=4096 --out '" + (dir / "a.png").string() + "'");
+    expectUserError(r, "8192000000 drawn strands");
+    EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
+}
+
+TEST(BadInput, WorkloadLargerThanTheGpuIsRefusedUpFront)
+{
+    // The device's memory from `wisp info`; a GPU with more than these workloads need is skipped.
+    auto info = runWisp("info --json");
+    ASSERT_EQ(info.status, 0) << info.err;
+    uint64_t most = 0;
+    for (const auto& d : nlohmann::json::parse(info.out))
+        most = std::max(most, d["device_local_bytes"].get<uint64_t>());
+    if (most > (uint64_t(6) << 30))
+        GTEST_SKIP() << "the device has " << (most >> 20) << " MiB: these workloads fit";
+    // About 8.6 GB of solver state: refused with both sizes before 2,000,000 guides are grown.
+    auto r = runWisp("simulate --guides 2000000 --vertices 64 --grid 256 --steps 1");
+    expectUserError(r, "MiB of GPU memory");
+    EXPECT_NE(r.err.find("needs"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("' has " + std::to_string((most + (1u << 20) - 1) >> 20) + " MiB"), std::string::npos) << r.err;
+    // A picture of 8192 x 8192 x 8 samples with 8192^2 light maps: about 6 GB of images.
+    TempDir dir;
+    r = runWisp("render --width 8192 --height 8192 --samples 8 --set shadow_size=8192 --out '" + (dir / "a.png").string() + "'");
+    expectUserError(r, "MiB of GPU memory");
+    EXPECT_NE(r.err.find("8192 x 8192 x 8 samples"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
+    r = runWisp("render --no-hair --width 8192 --height 8192 --samples 8 --set shadow_size=8192 --out '" +
+                (dir / "a.png").string() + "'");
+    expectUserError(r, "MiB of GPU memory");
+    EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
+}
+
 TEST(Cli, EachPartTakesItsOwnParameters)
 {
     WISP_REQUIRE_DATA(front, "tressfx-text/hair_front_16_guide.tfx");

@@ -683,3 +683,34 @@ TEST(HairDescribe, InspectJsonKeys)
     EXPECT_EQ(j["bbox"][1], nlohmann::json({1.0f, 2.5f, 0.0f}));
     EXPECT_EQ(j.size(), 6u);
 }
+
+// ---- Found by fuzzing (fuzz/fuzz_cyhair.cpp, fuzz_tfx.cpp, fuzz_tfx2.cpp) -----------------------
+
+TEST(HairErrors, CyHairHeaderCountsCostNoMemoryTheFileDoesNotBack)
+{
+    // A 128-byte header claiming 50,000,000 strands (100,000,000 points, within what Wisp reads):
+    // the reader allocated 200 MB of per-strand counts before finding the arrays missing, which
+    // made the fuzzer crawl. Now every array is checked against the file before any allocation.
+    TempDir dir;
+    for (uint32_t arrays : {2u, 3u}) {  // points only (d_segments 1), and with a segments array
+        Bytes b;
+        b.text("HAIR").u32(50'000'000).u32(100'000'000).u32(arrays).u32(1).zeros(128 - 20);
+        writeFile(dir / "big.hair", b.data);
+        test::resetLargestAllocation();
+        std::string e = errorOf(dir / "big.hair");
+        EXPECT_NE(e.find(arrays == 2u ? "the points array needs" : "the segments array needs"), std::string::npos) << e;
+        EXPECT_LT(test::largestAllocation(), size_t(1) << 20) << "arrays " << arrays;
+    }
+}
+
+TEST(HairErrors, Tfx2HeaderTransformToNonFinitePointsNamesTheLine)
+{
+    // Finite numbers made infinite by the header's scale (1e30 x 1e30): the points were returned
+    // non-finite. The fuzz targets' contract check reports it (fuzz/fuzz_support.h); found while
+    // reviewing the reader, not by the fuzzer's own search.
+    TempDir dir;
+    writeFile(dir / "inf.tfx", "scale 1e30\nnumStrands 1\nstrand 0 numVerts 2 texcoord 0 0\n1e30 0 0\n0 0 0\n");
+    std::string e = errorOf(dir / "inf.tfx");
+    EXPECT_NE(e.find("inf.tfx:4:"), std::string::npos) << e;
+    EXPECT_NE(e.find("not finite once scaled"), std::string::npos) << e;
+}

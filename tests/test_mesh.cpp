@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 using namespace wisp;
 using wisp::test::TempDir;
 using wisp::test::writeFile;
@@ -158,4 +160,57 @@ TEST(MeshErrors, DirectoryIsNotAMesh)
 {
     TempDir dir;
     EXPECT_NE(errorOf(dir.path()).find("directory"), std::string::npos);
+}
+
+// ---- Found by fuzzing (fuzz/fuzz_obj.cpp) -------------------------------------------------------
+
+TEST(MeshErrors, CornerEndingInSlashNamesTheLine)
+{
+    // tinyobjloader reads the missing index of "3/3/" from the next corner (normal 2 of 1) and only
+    // warns; Wisp then read past the normals (heap overflow). The fuzzer's input, minimized:
+    TempDir dir;
+    writeFile(dir / "bad.obj", "v 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/ 2/2/1\n");
+    std::string e = errorOf(dir / "bad.obj");
+    EXPECT_NE(e.find("bad.obj:8:"), std::string::npos) << e;
+    EXPECT_NE(e.find("'3/3/'"), std::string::npos) << e;
+    writeFile(dir / "bad.obj", "v 1 0 0\nv 1 1 0\nv 0 1 0\nf 1// 2// 3//\n");
+    EXPECT_NE(errorOf(dir / "bad.obj").find("bad.obj:4:"), std::string::npos);
+}
+
+TEST(MeshErrors, LinesEndAtABareCarriageReturnAsInTinyobjloader)
+{
+    // Old Mac line endings: tinyobjloader ends lines at "\r", so the check must too, or a face
+    // naming a missing vertex reaches the loader unchecked (it read past the positions).
+    TempDir dir;
+    writeFile(dir / "cr.obj", "v 0 0 0\rv 1 0 0\rf 1 2 3\r");
+    std::string e = errorOf(dir / "cr.obj");
+    EXPECT_NE(e.find("cr.obj:3:"), std::string::npos) << e;
+    EXPECT_NE(e.find("only 2"), std::string::npos) << e;
+    writeFile(dir / "cr.obj", "v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 3\r");
+    EXPECT_EQ(loadMesh(dir / "cr.obj").triangleCount(), 1u);
+}
+
+TEST(MeshErrors, WordsSplitOnSpacesAndTabsOnlyAsInTinyobjloader)
+{
+    // "v\v1 2 3" is no vertex to tinyobjloader (its keys end at a space or tab): the face naming it
+    // is refused with its line instead of read past the positions.
+    TempDir dir;
+    writeFile(dir / "vt.obj", "v 0 0 0\nv 1 0 0\nv\v0 1 0\nf 1 2 3\n");
+    std::string e = errorOf(dir / "vt.obj");
+    EXPECT_NE(e.find("vt.obj:4:"), std::string::npos) << e;
+}
+
+TEST(Mesh, HugeCoordinatesStillGiveUnitNormals)
+{
+    // Cross products of coordinates near the float maximum overflow in float; normals are summed
+    // and normalized in double, so they stay unit length (they were NaN or zero).
+    TempDir dir;
+    writeFile(dir / "big.obj", "v -3e38 0 0\nv 3e38 0 0\nv 0 3e38 0\nf 1 2 3\n");
+    Mesh mesh = loadMesh(dir / "big.obj");
+    expectUnitNormals(mesh);
+    EXPECT_NEAR(mesh.normals[0].z, 1.0f, 1e-6f);
+    writeFile(dir / "big.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 3e38 3e38 0\nf 1//1 2//1 3//1\n");
+    mesh = loadMesh(dir / "big.obj");
+    expectUnitNormals(mesh);
+    EXPECT_NEAR(mesh.normals[0].x, std::sqrt(0.5f), 1e-6f);
 }

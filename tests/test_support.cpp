@@ -2,16 +2,60 @@
 #include "test_support.h"
 
 #include <array>
+#include <atomic>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
+#include <new>
 #include <random>
 #include <sys/wait.h>
 
+namespace {
+
+std::atomic<size_t> largest{0};
+
+}  // namespace
+
+// The replaceable global allocation functions, recording the largest request (the aligned and
+// array forms forward to these).
+void* operator new(size_t bytes)
+{
+    size_t seen = largest.load(std::memory_order_relaxed);
+    while (bytes > seen && !largest.compare_exchange_weak(seen, bytes, std::memory_order_relaxed)) {
+    }
+    if (void* p = std::malloc(bytes ? bytes : 1))
+        return p;
+    throw std::bad_alloc();
+}
+
+void operator delete(void* p) noexcept
+{
+    std::free(p);
+}
+
+void operator delete(void* p, size_t) noexcept
+{
+    std::free(p);
+}
+
 namespace wisp::test {
+
+void resetLargestAllocation()
+{
+    largest.store(0);
+}
+
+size_t largestAllocation()
+{
+    return largest.load();
+}
 
 vk::ContextOptions validatedOptions()
 {
-    return {.validation = true};
+    // WISP_TEST_SYNC_VALIDATION=1 (scripts/test.sh --ci runs the GPU suites once so) adds the
+    // layer's synchronization checks: any hazard is a validation message and fails the test.
+    const char* sync = std::getenv("WISP_TEST_SYNC_VALIDATION");
+    return {.validation = true, .synchronizationValidation = sync != nullptr && std::string(sync) == "1"};
 }
 
 RunResult runWisp(const std::string& args, const std::string& envPrefix)

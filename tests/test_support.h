@@ -9,7 +9,8 @@
 
 namespace wisp::test {
 
-// A context on the default device with validation on (the suites assert zero messages).
+// A context on the default device with validation on (the suites assert zero messages), and the
+// synchronization checks too when the environment has WISP_TEST_SYNC_VALIDATION=1.
 vk::ContextOptions validatedOptions();
 
 struct RunResult {
@@ -37,6 +38,12 @@ void writeFile(const std::filesystem::path& path, const std::string& text);
 std::string readFile(const std::filesystem::path& path);
 // ../shared/data/<relative>, or an empty path when the shared data is not beside the checkout.
 std::filesystem::path sharedData(const std::string& relative);
+
+// The largest single allocation through operator new since the last reset (the test binaries
+// replace the global operator new to record it): a loader must not allocate what its input
+// does not back.
+void resetLargestAllocation();
+size_t largestAllocation();
 
 }  // namespace wisp::test
 

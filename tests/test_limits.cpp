@@ -1,0 +1,212 @@
+// tests/test_limits.cpp: absurd values are range errors, not undefined behaviour: every setting
+// `--set` takes against NaN, infinities and huge numbers; the sphere, wind, offset and per-part
+// values; loaded hair too large for floats once placed; the workload's 32-bit counts, and its GPU
+// memory estimated and checked against a device before anything is allocated. (The same through
+// the real binary: test_cli.cpp, BadInput.*.)
+#include "app/hair_options.h"
+#include "app/settings_registry.h"
+#include "app/workload.h"
+#include "core/error.h"
+#include "physics/hair_scene.h"
+#include "renderer/vk/context.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+using namespace wisp;
+
+namespace {
+
+// The UserError `f` throws ("" when it throws none).
+template <typename F>
+std::string errorOf(F&& f)
+{
+    try {
+        f();
+    } catch (const UserError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST(Limits, EverySettingRefusesNonFiniteAndAbsurdValues)
+{
+    for (const SettingSpec& spec : settingSpecs()) {
+        for (const char* value : {"nan", "-nan", "inf", "-inf", "1e309", "1e30", "-1e30", "", "1,2", "0x10"}) {
+            GrowthSettings growth;
+            SimSettings sim;
+            RenderSettings render;
+            std::string what = errorOf([&] { applySetting({&growth, &sim, &render}, spec.name + "=" + value); });
+            EXPECT_NE(what.find("--set " + spec.name + "="), std::string::npos) << spec.name << "=" << value << ": " << what;
+        }
+    }
+}
+
+TEST(Limits, NumericSettingsStayInsideTheirRange)
+{
+    // Each range's ends are accepted and just past them refused, for every numeric setting whose
+    // range reads "lo .. hi".
+    int checked = 0;
+    for (const SettingSpec& spec : settingSpecs()) {
+        size_t dots = spec.range.find(" .. ");
+        if (dots == std::string::npos || spec.range.find_first_not_of("0123456789.-e") < dots)
+            continue;  // choices, and lists such as hair_color's R,G,B
+        double lo = std::stod(spec.range.substr(0, dots)), hi = std::stod(spec.range.substr(dots + 4));
+        GrowthSettings growth;
+        SimSettings sim;
+        RenderSettings render;
+        SettingsRefs refs{&growth, &sim, &render};
+        auto set = [&](double v) {
+            std::ostringstream s;
+            s.precision(17);
+            s << v;
+            return errorOf([&] { applySetting(refs, spec.name + "=" + s.str()); });
+        };
+        EXPECT_EQ(set(lo), "") << spec.name;
+        EXPECT_EQ(set(hi), "") << spec.name;
+        EXPECT_NE(set(lo - std::max(1.0, std::abs(lo))), "") << spec.name;
+        EXPECT_NE(set(hi + std::max(1.0, std::abs(hi))), "") << spec.name;
+        ++checked;
+    }
+    EXPECT_GT(checked, 20);
+}
+
+TEST(Limits, SphereWindAndOffsetMustBeFinite)
+{
+    auto applied = [](auto edit) {
+        HairOptions h;
+        edit(h);
+        return errorOf([&] { h.apply(); });
+    };
+    float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+    EXPECT_NE(applied([&](HairOptions& h) { h.sphere = {nan, 0, 0, 1}; }).find("--sphere: value 1"), std::string::npos);
+    EXPECT_NE(applied([&](HairOptions& h) { h.sphere = {0, 0, 0, inf}; }).find("--sphere: value 4"), std::string::npos);
+    EXPECT_NE(applied([&](HairOptions& h) { h.sphere = {0, 0, 0, -1}; }).find("radius"), std::string::npos);
+    EXPECT_NE(applied([&](HairOptions& h) { h.sphere = {0, 0, 0, 0}; }).find("radius"), std::string::npos);
+    EXPECT_NE(applied([&](HairOptions& h) { h.wind = {nan, 0, 0}; }).find("--wind: value 1"), std::string::npos);
+    EXPECT_NE(applied([&](HairOptions& h) { h.wind = {0, -inf, 0}; }).find("--wind: value 2"), std::string::npos);
+    EXPECT_NE(applied([&](HairOptions& h) { h.wind = {0, 0, 1e9f}; }).find("out of range"), std::string::npos);
+    EXPECT_NE(applied([&](HairOptions& h) { h.hairOffset = {0, 0, nan}; }).find("--hair-offset: value 3"), std::string::npos);
+    EXPECT_EQ(applied([&](HairOptions& h) {
+                  h.sphere = {0, 1, 0, 0.5f};
+                  h.wind = {-kMaxWind, 0, kMaxWind};
+              }),
+              "");
+}
+
+TEST(Limits, PartValuesRefuseNonFiniteAndOutOfRange)
+{
+    for (const char* spec : {"0:global=nan", "0:local=inf", "0:damping=-0.1", "0:drag=1e40", "0:drag=-inf", "0:global=1e-50x"}) {
+        std::vector<PartSettings> parts(1);
+        std::string what = errorOf([&] { HairOptions::applyPartOverride(parts, spec); });
+        EXPECT_NE(what.find(std::string("--part ") + spec), std::string::npos) << spec << ": " << what;
+    }
+}
+
+TEST(Limits, LoadedHairTooLargeForFloatsOncePlacedIsRefused)
+{
+    // A TressFX 2 strand with coordinates near the float maximum, scaled up 10x by its placement.
+    test::TempDir dir;
+    std::string text = "numStrands 1\nstrand 0 numVerts 3 texcoord 0 0\n0 0 0\n0 3e38 0\n0 3.2e38 0\n";
+    test::writeFile(dir / "huge.tfx", text);
+    HairPartSource part{.file = dir / "huge.tfx", .placement = HairPlacement{.scale = 10.0f}, .settings = {}};
+    std::string what = errorOf([&] { buildLoadedScene(defaultHeadPath(), {part}, 8); });
+    EXPECT_NE(what.find("huge.tfx"), std::string::npos) << what;
+    EXPECT_NE(what.find("not finite"), std::string::npos) << what;
+    // Finite but 6e38 apart: a segment's length overflows a float.
+    test::writeFile(dir / "far.tfx", "numStrands 1\nstrand 0 numVerts 2 texcoord 0 0\n-3e38 0 0\n3e38 0 0\n");
+    part = {.file = dir / "far.tfx", .placement = HairPlacement{}, .settings = {}};
+    what = errorOf([&] { buildLoadedScene(defaultHeadPath(), {part}, 4); });
+    EXPECT_NE(what.find("too long for floats"), std::string::npos) << what;
+}
+
+// ---- The workload: counts and GPU memory -------------------------------------------------------
+
+TEST(Workload, SolverMemoryByHand)
+{
+    // 33 strands pad to 64 (blocks of 32) x 4 vertices = 256 slots of positions, velocities,
+    // tangents and rest vertices (16 bytes each); 33 strand infos; 512 grid nodes of 4 64-bit
+    // fixed-point sums (or one 16-byte float node) plus a velocity each; parameters and counters.
+    uint64_t common = 33 * 16 + sizeof(gpu::SimParams) + sizeof(gpu::SimCounters);
+    EXPECT_EQ(solverDeviceBytes(33, 4, 512, true), 256u * 64u + 512u * (32u + 16u) + common);
+    EXPECT_EQ(solverDeviceBytes(33, 4, 512, false), 256u * 64u + 512u * (16u + 16u) + common);
+    // The largest grown workload: 2e6 x 64 vertices, a 256^3 grid: about 8.5 GB, in 64 bits.
+    uint64_t big = solverDeviceBytes(kMaxGuides, kMaxVerticesPerStrand, 256ull * 256 * 256, true);
+    EXPECT_GT(big, uint64_t(8) << 30);
+}
+
+TEST(Workload, RenderMemoryByHand)
+{
+    RenderSettings r;
+    r.width = 100;
+    r.height = 50;
+    r.samples = 4;
+    r.shadows.mapSize = 64;
+    r.transparency.mode = Transparency::Oit;
+    r.transparency.oitNodesPerPixel = 10;
+    SimSettings sim;
+    sim.gridResolution = 8;
+    GpuMemory m = estimateGpuMemory({.guides = 10, .verticesPerStrand = 4, .sim = sim, .render = &r});
+    EXPECT_EQ(m.simulation, solverDeviceBytes(10, 4, 512, true));
+    // MSAA colour (4 bytes) and depth (4 bytes) x 4 samples, and the resolved colour, per pixel.
+    EXPECT_EQ(m.target, 5000u * (16u + 16u + 4u));
+    // Two depth maps (4 bytes) and the opacity layers (RGBA16F) per texel.
+    EXPECT_EQ(m.lightMaps, 64u * 64u * 16u);
+    // A list head (4 bytes), the resolved colour (8) and 10 nodes of 12 bytes per pixel.
+    EXPECT_EQ(m.oit, 5000u * (4u + 8u + 120u));
+    // A triangle of guides (16 bytes) each, the 64^2 x 5 RGBA32F tables, two indices per guide line.
+    EXPECT_EQ(m.hair, 10u * 16u + 64u * 64u * 5u * 16u + 10u * 3u * 2u * 4u);
+    EXPECT_EQ(m.total(), m.simulation + m.hair + m.target + m.lightMaps + m.oit);
+    r.transparency.mode = Transparency::Msaa;
+    EXPECT_EQ(estimateGpuMemory({.guides = 10, .verticesPerStrand = 4, .sim = sim, .render = &r}).oit, 0u);
+    EXPECT_EQ(estimateGpuMemory({.guides = 10, .verticesPerStrand = 4, .sim = sim, .render = nullptr}).total(),
+              m.simulation);
+    // No guides (the head alone): nothing simulated, no guide triangles.
+    GpuMemory head = estimateGpuMemory({.guides = 0, .verticesPerStrand = 4, .sim = sim, .render = &r});
+    EXPECT_EQ(head.simulation, 0u);
+    EXPECT_EQ(head.hair, 64u * 64u * 5u * 16u);
+}
+
+TEST(Workload, DrawnStrandsAndSegmentsMustFit32Bits)
+{
+    RenderSettings r;
+    r.strands.strandsPerGuide = 4096;
+    r.strands.divisions = 1;
+    Workload w{.guides = kMaxGuides, .verticesPerStrand = 16, .sim = {}, .render = &r};
+    std::string what = errorOf([&] { checkCounts(w); });
+    EXPECT_NE(what.find("8192000000 drawn strands"), std::string::npos) << what;
+    r.strands.strandsPerGuide = 2000;  // 4e9 strands fit, their segments do not
+    r.strands.divisions = 2;
+    what = errorOf([&] { checkCounts(w); });
+    EXPECT_NE(what.find("8000000000 segments"), std::string::npos) << what;
+    r.strands.divisions = 1;
+    EXPECT_EQ(errorOf([&] { checkCounts(w); }), "");
+    w.render = nullptr;  // the simulation alone draws nothing
+    r.strands.strandsPerGuide = 4096;
+    EXPECT_EQ(errorOf([&] { checkCounts(w); }), "");
+}
+
+TEST(Workload, TooLargeForTheDeviceIsRefusedWithBothSizes)
+{
+    vk::DeviceReport tiny;
+    tiny.name = "Tiny GPU";
+    tiny.deviceLocalBytes = uint64_t(256) << 20;
+    RenderSettings r;
+    Workload w{.guides = kMaxGuides, .verticesPerStrand = 64, .sim = {}, .render = &r};
+    std::string what = errorOf([&] { checkWorkload(w, tiny); });
+    uint64_t need = (estimateGpuMemory(w).total() + (1u << 20) - 1) >> 20;
+    EXPECT_NE(what.find("needs " + std::to_string(need) + " MiB"), std::string::npos) << what;
+    EXPECT_NE(what.find("'Tiny GPU' has 256 MiB"), std::string::npos) << what;
+    EXPECT_NE(what.find("--guides"), std::string::npos) << what;
+    // The default workload fits in 256 MiB.
+    w.guides = GrowthSettings{}.guides;
+    w.verticesPerStrand = GrowthSettings{}.verticesPerStrand;
+    EXPECT_EQ(errorOf([&] { checkWorkload(w, tiny); }), "") << estimateGpuMemory(w).total();
+}
