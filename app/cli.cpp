@@ -86,19 +86,19 @@ void addLookOptions(CLI::App* cmd, RenderSettings& s)
 void addHairOptions(CLI::App* cmd, HairOptions& h)
 {
     cmd->add_option("--guides", h.growth.guides, "guide strands to grow on the scalp")
-        ->check(CLI::Range(1u, 2000000u))
+        ->check(CLI::Range(uint32_t(kGuidesRange.min), uint32_t(kGuidesRange.max)))
         ->capture_default_str();
     cmd->add_option("--vertices", h.growth.verticesPerStrand, "vertices per guide strand")
         ->check(CLI::Range(kMinVerticesPerStrand, kMaxVerticesPerStrand))
         ->capture_default_str();
     cmd->add_option("--hair-length", h.growth.lengthMetres, "mean grown strand length, metres (scaled to the head's units)")
-        ->check(CLI::Range(0.01f, 2.0f))
+        ->check(CLI::Range(float(kHairLengthRange.min), float(kHairLengthRange.max)))
         ->capture_default_str();
     cmd->add_option("--length-variation", h.growth.lengthVariation, "relative spread of grown strand lengths")
-        ->check(CLI::Range(0.0f, 0.9f))
+        ->check(CLI::Range(float(kLengthVariationRange.min), float(kLengthVariationRange.max)))
         ->capture_default_str();
     cmd->add_option("--curl", h.growth.curlRadiusMetres, "curl radius of grown strands, metres (0 = straight)")
-        ->check(CLI::Range(0.0f, 0.1f))
+        ->check(CLI::Range(float(kCurlRange.min), float(kCurlRange.max)))
         ->capture_default_str();
     cmd->add_flag("--poisson", h.growth.poissonDisk, "blue-noise (Poisson-disk) roots instead of area-weighted random");
     cmd->add_option("--seed", h.growth.seed, "seed for root sampling and strand variation")->capture_default_str();
@@ -116,24 +116,25 @@ void addHairOptions(CLI::App* cmd, HairOptions& h)
             {"fixed", SimSettings::GridAtomics::Fixed}, {"float", SimSettings::GridAtomics::Float}}))
         ->capture_default_str();
     cmd->add_option("--repulsion", h.sim.gridRepulsion, "hair-hair repulsion along the density gradient (keeps volume; 0 = off)")
-        ->check(CLI::Range(0.0f, 1.0f))
+        ->check(CLI::Range(float(kRepulsionRange.min), float(kRepulsionRange.max)))
         ->capture_default_str();
     cmd->add_option("--hair", h.hairFiles,
                     "hair file to load instead of growing guides (TressFX .tfx 2/3/4, cyHair .hair); repeat for a groom in parts")
         ->check(CLI::ExistingFile);
     cmd->add_option("--hair-scale", h.hairScale, "scale loaded hair by this (default: automatic when units clearly differ)")
-        ->check(CLI::Range(1e-6f, 1e6f));
+        ->check(CLI::Range(float(kHairScaleRange.min), float(kHairScaleRange.max)));
     cmd->add_option("--hair-offset", h.hairOffset, "move loaded hair by x,y,z (head units) after scaling")->delimiter(',')->expected(3);
     cmd->add_option("--hair-z-up", h.zUp, "loaded hair is z-up: turn it y-up (default: automatic, true for cyHair)");
     cmd->add_option("--hair-mirror-z", h.mirrorZ, "mirror loaded hair's z (default: automatic, true for TressFX 3)");
     cmd->add_option("--part", h.partOverrides,
                     "one part's parameters: PART:key=value,... with PART its index or file name, keys global, local, damping, drag");
+    auto stiffness = CLI::Range(float(kStiffnessRange.min), float(kStiffnessRange.max));
     cmd->add_option("--global-stiffness", h.globalStiffness, "pull toward the rest pose per step at the root, every part")
-        ->check(CLI::Range(0.0f, 1.0f));
+        ->check(stiffness);
     cmd->add_option("--local-stiffness", h.localStiffness, "pull of each segment toward its rest direction per step, every part")
-        ->check(CLI::Range(0.0f, 1.0f));
-    cmd->add_option("--damping", h.damping, "FTL velocity correction s_damp (Muller 2012), every part")->check(CLI::Range(0.0f, 1.0f));
-    cmd->add_option("--drag", h.drag, "air drag, 1/s, every part")->check(CLI::Range(0.0f, 100.0f));
+        ->check(stiffness);
+    cmd->add_option("--damping", h.damping, "FTL velocity correction s_damp (Muller 2012), every part")->check(stiffness);
+    cmd->add_option("--drag", h.drag, "air drag, 1/s, every part")->check(CLI::Range(float(kDragRange.min), float(kDragRange.max)));
     cmd->add_option("--sphere", h.sphere, "collision sphere x,y,z,r in the head's units")->delimiter(',')->expected(4);
     cmd->add_option("--wind", h.wind, "wind x,y,z in m/s^2 (scaled to the head's units)")->delimiter(',')->expected(3);
 }
