@@ -580,6 +580,44 @@ TEST(SceneCli, RecordCoversTheScenesDurationByDefault)
     EXPECT_FALSE(std::filesystem::exists(dir / "f" / "frame_00003.png"));
 }
 
+TEST(SceneCli, ShippedScenesRenderAtATinySize)
+{
+    TempDir dir;
+    for (const char* name : {"sphere-sweep", "wind-gusts", "head-turn"}) {
+        std::string scene = std::string(WISP_SOURCE_DIR) + "/scenes/" + name + ".json";
+        auto r = runWisp("--validation render --scene '" + scene + "' --frames 2 --width 96 --height 72 --guides 60 "
+                         "--set strands_per_guide=4 --set shadow_size=256 --out '" + (dir / name).string() + ".png'");
+        EXPECT_EQ(r.status, 0) << name << "\n" << r.err;
+        EXPECT_TRUE(r.err.empty()) << name << "\n" << r.err;
+        EXPECT_NE(r.out.find("hair: 60 guides x 4 strands"), std::string::npos) << name << "\n" << r.out;
+        EXPECT_GT(std::filesystem::file_size(dir / (std::string(name) + ".png")), 1000u) << name;
+    }
+}
+
+TEST(SceneCli, SintelSceneRendersWithTheSharedData)
+{
+    WISP_REQUIRE_DATA(groom, "sintel/sintel_hair_11400x16.tfx");
+    WISP_REQUIRE_DATA(bust, "sintel/sintel.obj");
+    TempDir dir;
+    auto r = runWisp("render --scene '" + std::string(WISP_SOURCE_DIR) +
+                     "/scenes/sintel.json' --frames 1 --width 96 --height 72 --set strands_per_guide=1 "
+                     "--set shadow_size=256 --out '" + (dir / "sintel.png").string() + "'",
+                     "WISP_SHARED_DATA='" + groom.parent_path().parent_path().string() + "'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("hair: 11400 guides x 1 strands"), std::string::npos) << r.out;
+}
+
+TEST(SceneCli, SintelSceneWithoutTheSharedDataSaysSo)
+{
+    TempDir dir;
+    auto r = runWisp("render --scene '" + std::string(WISP_SOURCE_DIR) + "/scenes/sintel.json' --out '" +
+                         (dir / "s.png").string() + "'",
+                     "WISP_SHARED_DATA=/nonexistent/shared-data");
+    expectUserError(r, "the shared data is missing");
+    EXPECT_NE(r.err.find("sintel.json: /head: 'shared:sintel/sintel.obj'"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "s.png"));
+}
+
 TEST(SceneCli, CommandLineOptionsOverrideTheScene)
 {
     TempDir dir;
