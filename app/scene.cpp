@@ -815,6 +815,32 @@ OrbitCamera poseCamera(const OrbitCamera& framing, const CameraPose& pose)
     return c;
 }
 
+CameraPose cameraPoseOf(const OrbitCamera& framing, const OrbitCamera& camera)
+{
+    auto clamp = [](float v, const Range& r) { return std::clamp(v, float(r.min), float(r.max)); };
+    return {.yawDeg = clamp(camera.yawDeg, kSceneCameraYawRange),
+            .pitchDeg = clamp(camera.pitchDeg, kSceneCameraPitchRange),
+            .distance = clamp(camera.distance / std::max(framing.distance, 1e-12f), kSceneCameraDistanceRange),
+            .target = camera.target};
+}
+
+SceneKey sceneKey(double time, const SceneState& state)
+{
+    SceneKey k;
+    k.time = time;
+    k.cameraYawDeg = state.camera.yawDeg;
+    k.cameraPitchDeg = state.camera.pitchDeg;
+    k.cameraDistance = state.camera.distance;
+    k.cameraTarget = state.camera.target;
+    k.sphere = state.sphere;
+    k.lightAzimuthDeg = state.light.azimuthDeg;
+    k.lightElevationDeg = state.light.elevationDeg;
+    k.lightIntensity = state.light.intensity;
+    k.wind = state.wind;
+    k.headYawDeg = state.headYawDeg;
+    return k;
+}
+
 glm::mat4 headYawTransform(const Bounds& head, float yawDeg)
 {
     glm::vec3 centre = head.center();

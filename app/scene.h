@@ -136,6 +136,9 @@ struct CameraPose {
 };
 // `framing` (OrbitCamera::framing) moved to `pose`; near and far planes follow the distance.
 OrbitCamera poseCamera(const OrbitCamera& framing, const CameraPose& pose);
+// The pose that gives `camera` from `framing` (what a window saves for its orbit camera), within
+// the ranges a scene file allows.
+CameraPose cameraPoseOf(const OrbitCamera& framing, const OrbitCamera& camera);
 // The head turned by `yawDeg` about the vertical axis through the centre of `head` (the head
 // mesh's bounds), as the window's Viewer::headTransform() does.
 glm::mat4 headYawTransform(const Bounds& head, float yawDeg);
@@ -148,6 +151,9 @@ struct SceneState {
     glm::vec3 wind{0.0f};  // m/s²
     float headYawDeg = 0.0f;
 };
+
+// A key at `time` that sets every channel to `state` (saving what a window shows as one key).
+SceneKey sceneKey(double time, const SceneState& state);
 
 // The keys as functions of time. A channel moves between the keys that set it (linearly or by
 // smoothstep, angles too, without wrapping), holds its first key's value before it and its last

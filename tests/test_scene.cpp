@@ -271,6 +271,39 @@ TEST(Scene, PosedCameraMovesTheFraming)
     EXPECT_GT(c.farPlane, c.distance + radius + glm::length(c.target - head.center()));
 }
 
+TEST(Scene, AWindowsStateSavesAsOneKey)
+{
+    // What the window will do: its orbit camera relative to the framing, and every channel, as
+    // one key that a timeline gives back.
+    Bounds head{glm::vec3(-0.2f, -0.1f, -0.1f), glm::vec3(0.2f, 0.3f, 0.1f)};
+    OrbitCamera framing = OrbitCamera::framing(head, 1.5f);
+    OrbitCamera camera = framing;
+    camera.orbit(40.0f, -15.0f);
+    camera.zoom(0.8f);
+    camera.pan(0.01f, 0.02f);
+    SceneState state;
+    state.camera = cameraPoseOf(framing, camera);
+    state.sphere = glm::vec4(0.1f, 0.2f, 0.3f, 0.05f);
+    state.light.azimuthDeg = -20.0f;
+    state.wind = glm::vec3(2.0f, 0.0f, 1.0f);
+    state.headYawDeg = 12.0f;
+    Scene scene;
+    scene.keys = {sceneKey(0.0, state)};
+    TempDir dir;
+    saveScene(dir / "saved.json", scene);
+    Scene loaded = loadScene(dir / "saved.json");
+    SceneState back = SceneTimeline(loaded.keys, loaded.interpolation, SceneState{}).at(3.0);
+    OrbitCamera again = poseCamera(framing, back.camera);
+    EXPECT_FLOAT_EQ(again.yawDeg, camera.yawDeg);
+    EXPECT_FLOAT_EQ(again.pitchDeg, camera.pitchDeg);
+    EXPECT_NEAR(again.distance, camera.distance, 1e-6f);
+    EXPECT_EQ(again.target, camera.target);
+    EXPECT_EQ(back.sphere, state.sphere);
+    EXPECT_EQ(back.light.azimuthDeg, -20.0f);
+    EXPECT_EQ(back.wind, state.wind);
+    EXPECT_EQ(back.headYawDeg, 12.0f);
+}
+
 TEST(Scene, ShippedScenesLoad)
 {
     std::filesystem::path folder = std::filesystem::path(WISP_SOURCE_DIR) / "scenes";
