@@ -7,6 +7,7 @@
 #include "app/image_io.h"
 #include "app/hair_options.h"
 #include "app/record.h"
+#include "app/scene.h"
 #include "app/settings_registry.h"
 #include "app/sweep.h"
 #include "app/workload.h"
@@ -26,6 +27,7 @@
 #include <cstdio>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 
 namespace wisp {
@@ -156,19 +158,19 @@ void addLookOptions(CLI::App* cmd, RenderSettings& s)
 void addHairOptions(CLI::App* cmd, HairOptions& h)
 {
     cmd->add_option("--guides", h.growth.guides, "guide strands to grow on the scalp")
-        ->check(CLI::Range(1u, kMaxGuides))
+        ->check(CLI::Range(uint32_t(kGuidesRange.min), uint32_t(kGuidesRange.max)))
         ->capture_default_str();
     cmd->add_option("--vertices", h.growth.verticesPerStrand, "vertices per guide strand")
         ->check(CLI::Range(kMinVerticesPerStrand, kMaxVerticesPerStrand))
         ->capture_default_str();
     cmd->add_option("--hair-length", h.growth.lengthMetres, "mean grown strand length, metres (scaled to the head's units)")
-        ->check(within(0.01, 2.0))
+        ->check(within(kHairLengthRange.min, kHairLengthRange.max))
         ->capture_default_str();
     cmd->add_option("--length-variation", h.growth.lengthVariation, "relative spread of grown strand lengths")
-        ->check(within(0.0, 0.9))
+        ->check(within(kLengthVariationRange.min, kLengthVariationRange.max))
         ->capture_default_str();
     cmd->add_option("--curl", h.growth.curlRadiusMetres, "curl radius of grown strands, metres (0 = straight)")
-        ->check(within(0.0, 0.1))
+        ->check(within(kCurlRange.min, kCurlRange.max))
         ->capture_default_str();
     cmd->add_flag("--poisson", h.growth.poissonDisk, "blue-noise (Poisson-disk) roots instead of area-weighted random");
     cmd->add_option("--seed", h.growth.seed, "seed for root sampling and strand variation")->capture_default_str();
@@ -186,26 +188,64 @@ void addHairOptions(CLI::App* cmd, HairOptions& h)
             {"fixed", SimSettings::GridAtomics::Fixed}, {"float", SimSettings::GridAtomics::Float}}))
         ->capture_default_str();
     cmd->add_option("--repulsion", h.sim.gridRepulsion, "hair-hair repulsion along the density gradient (keeps volume; 0 = off)")
-        ->check(within(0.0, 1.0))
+        ->check(within(kRepulsionRange.min, kRepulsionRange.max))
         ->capture_default_str();
     cmd->add_option("--hair", h.hairFiles,
                     "hair file to load instead of growing guides (TressFX .tfx 2/3/4, cyHair .hair); repeat for a groom in parts")
         ->check(CLI::ExistingFile);
     cmd->add_option("--hair-scale", h.hairScale, "scale loaded hair by this (default: automatic when units clearly differ)")
-        ->check(within(1e-6, 1e6));
+        ->check(within(kHairScaleRange.min, kHairScaleRange.max));
     cmd->add_option("--hair-offset", h.hairOffset, "move loaded hair by x,y,z (head units) after scaling")->delimiter(',')->expected(3);
     cmd->add_option("--hair-z-up", h.zUp, "loaded hair is z-up: turn it y-up (default: automatic, true for cyHair)");
     cmd->add_option("--hair-mirror-z", h.mirrorZ, "mirror loaded hair's z (default: automatic, true for TressFX 3)");
     cmd->add_option("--part", h.partOverrides,
                     "one part's parameters: PART:key=value,... with PART its index or file name, keys global, local, damping, drag");
+    auto stiffness = within(kStiffnessRange.min, kStiffnessRange.max);
     cmd->add_option("--global-stiffness", h.globalStiffness, "pull toward the rest pose per step at the root, every part")
-        ->check(within(0.0, 1.0));
+        ->check(stiffness);
     cmd->add_option("--local-stiffness", h.localStiffness, "pull of each segment toward its rest direction per step, every part")
-        ->check(within(0.0, 1.0));
-    cmd->add_option("--damping", h.damping, "FTL velocity correction s_damp (Muller 2012), every part")->check(within(0.0, 1.0));
-    cmd->add_option("--drag", h.drag, "air drag, 1/s, every part")->check(within(0.0, 100.0));
+        ->check(stiffness);
+    cmd->add_option("--damping", h.damping, "FTL velocity correction s_damp (Muller 2012), every part")->check(stiffness);
+    cmd->add_option("--drag", h.drag, "air drag, 1/s, every part")->check(within(kDragRange.min, kDragRange.max));
     cmd->add_option("--sphere", h.sphere, "collision sphere x,y,z,r in the head's units")->delimiter(',')->expected(4);
     cmd->add_option("--wind", h.wind, "wind x,y,z in m/s^2 (scaled to the head's units)")->delimiter(',')->expected(3);
+}
+
+void addSceneOption(CLI::App* cmd, std::string& file)
+{
+    cmd->add_option("--scene", file,
+                    "scene file (.json, see scenes/): head, hair, colliders, settings, physics and keyframes over time; "
+                    "options given on the command line override the scene's values (and replace the keys of --wind, "
+                    "--sphere, --light-*)");
+}
+
+// The scene's keys over the command line's base (its sphere, wind and light). A channel the
+// command line names explicitly (--wind, --sphere, --light-azimuth, ...) is the command line's
+// value throughout: the scene's keys for it are dropped.
+SceneTimeline commandTimeline(const std::optional<Scene>& scene, const CLI::App* cmd, const HairOptions& hair,
+                              const LightSettings& light)
+{
+    SceneState base;
+    base.sphere = hair.sphereOrNone();
+    base.wind = hair.sim.wind;
+    base.light = light;
+    if (!scene)
+        return SceneTimeline({}, SceneInterpolation::Smooth, base);
+    auto given = [&](const char* name) { return cmd->get_option(name)->count() > 0; };
+    std::vector<SceneKey> keys = scene->keys;
+    for (SceneKey& k : keys) {
+        if (given("--wind"))
+            k.wind.reset();
+        if (given("--sphere"))
+            k.sphere.reset();
+        if (given("--light-azimuth"))
+            k.lightAzimuthDeg.reset();
+        if (given("--light-elevation"))
+            k.lightElevationDeg.reset();
+        if (given("--light-intensity"))
+            k.lightIntensity.reset();
+    }
+    return SceneTimeline(keys, scene->interpolation, base);
 }
 
 int runInfo(bool json)
@@ -288,6 +328,8 @@ int runInspect(const std::string& file)
 struct RenderOptions {
     std::string out;
     std::string headFile;
+    std::string sceneFile;
+    SceneTimeline timeline;  // the scene's keys (or the command line's still sphere, wind and light)
     RenderSettings settings;
     HairOptions hair;
     bool noHair = false;
@@ -340,7 +382,7 @@ int runRender(const GlobalOptions& g, RenderOptions& o)
     HairScene scene = buildCheckedScene(g, o.hair, headPath, &o.settings, o.noHair);
     vk::Context ctx(contextOptions(g));
     HairRun run{.scene = &scene, .sim = o.hair.sim, .frames = o.frames, .framesPerSecond = o.fps, .sphere = o.hair.sphereOrNone()};
-    Picture picture = renderPicture(ctx, scene.head, o.settings, o.noHair ? nullptr : &run);
+    Picture picture = renderPicture(ctx, scene.head, o.settings, o.noHair ? nullptr : &run, &o.timeline);
     int status = validationStatus(ctx);
     if (status != 0)
         return status;  // a picture made with validation errors is not trusted: nothing written
@@ -390,6 +432,7 @@ int runCli(int argc, char** argv)
         ->capture_default_str();
     render->add_option("--fps", ro.fps, "simulated frames per second")->check(within(1.0, 1000.0))->capture_default_str();
     render->add_flag("--no-hair", ro.noHair, "draw the head alone");
+    addSceneOption(render, ro.sceneFile);
     addImageSize(render, ro.settings);
     addLookOptions(render, ro.settings);
     addHairOptions(render, ro.hair);
@@ -406,6 +449,8 @@ int runCli(int argc, char** argv)
     view->footer("Keys and mouse: " + viewerHelp());
     view->add_option("--head", viewHead, "head description (.json) or mesh file; default models/head.json");
     view->add_flag("--no-hair", viewNoHair, "show the head alone");
+    std::string viewScene;
+    addSceneOption(view, viewScene);
     addHairOptions(view, viewHair);
     std::vector<std::string> viewSets;
     view->add_option("--set", viewSets, "NAME=VALUE for any setting in 'wisp settings' (repeatable)");
@@ -440,19 +485,22 @@ int runCli(int argc, char** argv)
 
     RecordOptions rec;
     HairOptions recHair;
-    std::string recHead, recOut, recVideo;
+    std::string recHead, recOut, recVideo, recScene;
     bool recNoHair = false;
     CLI::App* record = app.add_subcommand(
         "record", "render a run frame by frame into a folder of PNGs (+ a video through ffmpeg, + a contact sheet); reproducible");
     record->add_option("--out", recOut, "output folder for frame_00000.png ... and contact_sheet.png (created; its parent must exist)")
         ->required();
     record->add_option("--video", recVideo, "also encode the frames into this video file (H.264 through ffmpeg)");
-    record->add_option("--frames", rec.frames, "frames to record")->check(CLI::Range(1u, 1000000u))->capture_default_str();
+    record->add_option("--frames", rec.frames, "frames to record (with --scene, by default as many as the scene lasts)")
+        ->check(CLI::Range(1u, 1000000u))
+        ->capture_default_str();
     record->add_option("--fps", rec.fps, "frames per simulated second (each frame is round(step_hz / fps) fixed steps)")
         ->check(within(1.0, 1000.0))
         ->capture_default_str();
     record->add_option("--head", recHead, "head description (.json) or mesh file; default models/head.json");
     record->add_flag("--no-hair", recNoHair, "record the head alone");
+    addSceneOption(record, recScene);
     addImageSize(record, rec.settings);
     addLookOptions(record, rec.settings);
     addHairOptions(record, recHair);
@@ -528,6 +576,33 @@ int runCli(int argc, char** argv)
     try {
         if (int status = runBsdf(); status >= 0)
             return status;
+        // A scene first, then the command line over it: the scene's values go into the variables
+        // the options write, and the command line is parsed again, so what it names wins.
+        std::optional<Scene> sceneFromFile;
+        CLI::App* sceneCommand = *render ? render : *record ? record : *view ? view : nullptr;
+        std::string sceneFile = *render ? ro.sceneFile : *record ? recScene : *view ? viewScene : "";
+        if (sceneCommand && !sceneFile.empty()) {
+            if (*view)
+                requireDisplay();  // before any loading
+            sceneFromFile = loadScene(sceneFile);
+            const Scene& s = *sceneFromFile;
+            if (*render)
+                applyScene(s, sceneFile, {&ro.hair, &ro.settings, &ro.headFile});
+            else if (*record)
+                applyScene(s, sceneFile, {&recHair, &rec.settings, &recHead});
+            else
+                applyScene(s, sceneFile, {&viewHair, &windowOptions.settings, &viewHead});
+            try {
+                app.parse(argc, argv);
+            } catch (const CLI::ParseError& e) {
+                throw UserError(std::string(e.what()) + " (see 'wisp --help')");
+            }
+            if (sceneCommand->get_option("--hair")->count() > 0) {  // other files: the scene's per-file values do not apply
+                ro.hair.scenePartOverrides.clear();
+                recHair.scenePartOverrides.clear();
+                viewHair.scenePartOverrides.clear();
+            }
+        }
         if (*record) {
             for (const std::string& a : recordSets)
                 applySetting({&recHair.growth, &recHair.sim, &rec.settings}, a);
@@ -535,7 +610,9 @@ int runCli(int argc, char** argv)
             rec.outDir = recOut;
             rec.video = recVideo;
             rec.sim = recHair.sim;
-            rec.sphere = recHair.sphereOrNone();
+            rec.timeline = commandTimeline(sceneFromFile, record, recHair, rec.settings.light);
+            if (sceneFromFile && record->get_option("--frames")->count() == 0 && sceneFromFile->length() > 0.0)
+                rec.frames = std::max(1u, uint32_t(std::ceil(sceneFromFile->length() * double(rec.fps) - 1e-6)));
             checkRecordOutputs(rec);  // before any loading
             HairScene scene = buildCheckedScene(g, recHair, headPathOrDefault(recHead), &rec.settings, recNoHair);
             vk::Context ctx(contextOptions(g));
@@ -564,6 +641,8 @@ int runCli(int argc, char** argv)
                 throw UserError("render: --out FILE.png is required (or --profile N to time frames)");
             for (const std::string& a : renderSets)
                 applySetting({&ro.hair.growth, &ro.hair.sim, &ro.settings}, a);
+            ro.hair.apply();
+            ro.timeline = commandTimeline(sceneFromFile, render, ro.hair, ro.settings.light);
             return runRender(g, ro);
         }
         if (*view) {
@@ -572,11 +651,15 @@ int runCli(int argc, char** argv)
             for (const std::string& a : viewSets)
                 applySetting({&viewHair.growth, &viewHair.sim, &windowOptions.settings}, a);
             viewHair.apply();
+            // The window starts from the scene's state at time 0 (its sphere, wind and light).
+            SceneState initial = commandTimeline(sceneFromFile, view, viewHair, windowOptions.settings.light).at(0.0);
             HairScene scene = buildCheckedScene(g, viewHair, headPathOrDefault(viewHead), &windowOptions.settings, viewNoHair,
                                                 /*window=*/true);
             windowOptions.scene = &scene;
             windowOptions.sim = viewHair.sim;
-            windowOptions.sphere = viewHair.sphereOrNone();
+            windowOptions.sim.wind = initial.wind;
+            windowOptions.sphere = initial.sphere;
+            windowOptions.settings.light = initial.light;
             return runWindow(windowOptions);
         }
         if (*simulate) {

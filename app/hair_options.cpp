@@ -7,13 +7,17 @@
 
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 namespace wisp {
 
 HairScene HairOptions::buildScene(const std::filesystem::path& headPath) const
 {
+    Head head = loadHead(headPath);
+    if (colliders)
+        head.description.colliders = *colliders;
     if (hairFiles.empty()) {
-        HairScene scene = buildGrownScene(headPath, growth);
+        HairScene scene = buildGrownScene(std::move(head), growth);
         overrideParts(scene.strands);
         return scene;
     }
@@ -23,7 +27,7 @@ HairScene HairOptions::buildScene(const std::filesystem::path& headPath) const
         part.settings.name = std::filesystem::path(file).stem().string();
         if (hairScale > 0.0f || !hairOffset.empty() || zUp || mirrorZ) {
             HairAsset probe = loadHairAsset(file);
-            HairPlacement placement = autoPlacement(probe, loadHead(headPath).mesh.bounds());
+            HairPlacement placement = autoPlacement(probe, head.mesh.bounds());
             if (hairScale > 0.0f)
                 placement.scale = hairScale;
             if (!hairOffset.empty())
@@ -34,7 +38,7 @@ HairScene HairOptions::buildScene(const std::filesystem::path& headPath) const
         }
         parts.push_back(part);
     }
-    HairScene scene = buildLoadedScene(headPath, parts, growth.verticesPerStrand);
+    HairScene scene = buildLoadedScene(std::move(head), parts, growth.verticesPerStrand);
     overrideParts(scene.strands);
     return scene;
 }
@@ -46,6 +50,8 @@ void HairOptions::overrideParts(StrandSet& strands) const
         p.ftlDamping = damping.value_or(p.ftlDamping);
         p.drag = drag.value_or(p.drag);
     }
+    for (const std::string& spec : scenePartOverrides)
+        applyPartOverride(strands.parts, spec);
     for (const std::string& spec : partOverrides)
         applyPartOverride(strands.parts, spec);
 }

@@ -5,6 +5,7 @@
 
 #include "physics/hair_scene.h"
 #include "physics/simulation.h"
+#include "renderer/settings.h"
 
 #include <filesystem>
 #include <optional>
@@ -12,6 +13,16 @@
 #include <vector>
 
 namespace wisp {
+
+// Ranges of the hair options (the command line and scene files check against these).
+inline constexpr Range kGuidesRange{1, 2000000};
+inline constexpr Range kHairLengthRange{0.01, 2.0};       // metres
+inline constexpr Range kLengthVariationRange{0.0, 0.9};   // relative spread
+inline constexpr Range kCurlRange{0.0, 0.1};              // metres (curl radius)
+inline constexpr Range kHairScaleRange{1e-6, 1e6};
+inline constexpr Range kStiffnessRange{0.0, 1.0};         // global, local stiffness; damping
+inline constexpr Range kDragRange{0.0, 100.0};            // 1/s
+inline constexpr Range kRepulsionRange{0.0, 1.0};
 
 struct HairOptions {
     GrowthSettings growth;
@@ -24,6 +35,8 @@ struct HairOptions {
     std::optional<float> globalStiffness, localStiffness, damping, drag;
     std::optional<bool> zUp, mirrorZ;            // placement overrides for loaded hair
     std::vector<std::string> partOverrides;      // "PART:key=value,key=value" (PART: index or name)
+    std::vector<std::string> scenePartOverrides; // the same from a scene file, applied before partOverrides
+    std::optional<std::vector<Ellipsoid>> colliders;  // replace the head's (head space)
 
     // The head with grown guides, or with the hair files as parts (each with its placement and
     // per-part overrides applied).

@@ -28,30 +28,61 @@ Picture renderFrame(const vk::Context& ctx, Renderer& renderer, Frame& frame, co
     return {e.width, e.height, readback.pixels(), "", renderer.oitStats(fc.slot)};
 }
 
-Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSettings& settings, const HairRun* hair)
+TimedSteps timedSteps(const SceneTimeline& timeline, const SimSetup& setup, const Bounds& head, float unitsPerMetre,
+                      float stepHz, uint64_t first, uint32_t count)
+{
+    TimedSteps out;
+    float stepSeconds = 1.0f / stepHz;
+    for (uint64_t k = first; k < first + count; ++k) {
+        SceneState s = timeline.at(double(k + 1) / double(stepHz));
+        out.steps.push_back(makeStep(setup, headYawTransform(head, s.headYawDeg), s.sphere, float(k) * stepSeconds));
+        out.winds.push_back(s.wind * unitsPerMetre);
+    }
+    return out;
+}
+
+OrbitCamera poseFrame(Renderer& renderer, const SceneTimeline& timeline, double seconds, const OrbitCamera& framing)
+{
+    SceneState s = timeline.at(seconds);
+    renderer.setHeadTransform(headYawTransform(renderer.sceneBounds(), s.headYawDeg));
+    renderer.setSphere(s.sphere);
+    renderer.settings().light = s.light;
+    return poseCamera(framing, s.camera);
+}
+
+Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSettings& settings, const HairRun* hair,
+                      const SceneTimeline* timeline)
 {
     Renderer renderer(ctx, settings, 1);
     renderer.setHead(head);
     Frame frame(ctx, 1);
+    SceneState still;
+    still.light = settings.light;
+    if (hair) {
+        still.sphere = hair->sphere;
+        still.wind = hair->sim.wind;
+    }
+    SceneTimeline held({}, SceneInterpolation::Linear, still);
+    const SceneTimeline& poses = timeline ? *timeline : held;
+    const Bounds headBounds = renderer.sceneBounds();
 
     std::unique_ptr<GpuSolver> solver;
-    SimSetup setup;
-    glm::mat4 headTransform(1.0f);
+    double seconds = 0.0;
     if (hair) {
-        setup = makeSimSetup(hair->sim, hair->scene->strands, hair->scene->gpuColliders, hair->scene->unitsPerMetre);
-        solver = std::make_unique<GpuSolver>(ctx, hair->scene->strands, setup, headTransform);
+        SceneState start = poses.at(0.0);
+        SimSettings sim = hair->sim;
+        sim.wind = start.wind;
+        SimSetup setup = makeSimSetup(sim, hair->scene->strands, hair->scene->gpuColliders, hair->scene->unitsPerMetre);
+        solver = std::make_unique<GpuSolver>(ctx, hair->scene->strands, setup, headYawTransform(headBounds, start.headYawDeg));
         renderer.attachHair(*solver, hair->scene->strands, hair->scene->unitsPerMetre);
         // Fixed steps only: each frame advances exactly round(stepHz / fps) steps of 1 / stepHz.
         uint32_t stepsPerFrame = std::max(1u, uint32_t(std::lround(hair->sim.stepHz / hair->framesPerSecond)));
-        float stepSeconds = 1.0f / hair->sim.stepHz;
         uint32_t totalSteps = hair->frames * stepsPerFrame;
         constexpr uint32_t kBatch = 32;
         for (uint32_t done = 0; done < totalSteps;) {
             uint32_t n = std::min(kBatch, totalSteps - done);
-            std::vector<gpu::SimStep> steps;
-            for (uint32_t k = 0; k < n; ++k)
-                steps.push_back(makeStep(setup, headTransform, hair->sphere, float(done + k) * stepSeconds));
-            renderer.setSteps(std::move(steps));
+            TimedSteps steps = timedSteps(poses, setup, headBounds, hair->scene->unitsPerMetre, hair->sim.stepHz, done, n);
+            renderer.setSteps(std::move(steps.steps), std::move(steps.winds));
             FrameContext& fc = frame.begin({});
             std::vector<Pass*> passes = {renderer.physics()};
             frame.run(fc, passes);
@@ -60,10 +91,11 @@ Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSett
             done += n;
         }
         renderer.setSteps({});
+        seconds = double(totalSteps) / double(hair->sim.stepHz);
     }
 
     float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
-    OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), aspect);
+    OrbitCamera camera = poseFrame(renderer, poses, seconds, OrbitCamera::framing(headBounds, aspect));
 
     Picture picture = renderFrame(ctx, renderer, frame, camera);
     if (hair) {

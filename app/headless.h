@@ -2,6 +2,7 @@
 // them back. Used by `wisp render` (and later `record` and `sweep`), and by the rendering tests.
 #pragma once
 
+#include "app/scene.h"
 #include "physics/hair_scene.h"
 #include "physics/simulation.h"
 #include "renderer/camera.h"
@@ -38,10 +39,25 @@ struct HairRun {
 // One full frame of `renderer` (all its passes) seen by `camera`, read back.
 Picture renderFrame(const vk::Context& ctx, Renderer& renderer, Frame& frame, const OrbitCamera& camera);
 
-// Renders one frame of `head` (with `hair` when given) as the default camera frames it.
-// Deterministic for a device.
+// The fixed steps [first, first + count) of a run at `stepHz`, posed by `timeline`: step k runs
+// from k / stepHz to (k + 1) / stepHz and takes the head turn, sphere and wind the timeline has
+// at its end (so the frame drawn after it shows one moment). `head`: the head mesh's bounds.
+struct TimedSteps {
+    std::vector<gpu::SimStep> steps;
+    std::vector<glm::vec3> winds;  // head units / s², one per step
+};
+TimedSteps timedSteps(const SceneTimeline& timeline, const SimSetup& setup, const Bounds& head, float unitsPerMetre,
+                      float stepHz, uint64_t first, uint32_t count);
+// Poses `renderer` as `timeline` has it at `seconds` (head turn, sphere, light) and returns the
+// camera there (`framing` moved by the timeline's camera).
+OrbitCamera poseFrame(Renderer& renderer, const SceneTimeline& timeline, double seconds, const OrbitCamera& framing);
+
+// Renders one frame of `head` (with `hair` when given) as the default camera frames it, or as
+// `timeline` poses it (camera, light, head turn, sphere and wind over the simulated frames; the
+// picture shows the moment after them, time 0 without hair). Without a timeline the hair's
+// sphere and wind hold still. Deterministic for a device.
 Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSettings& settings,
-                      const HairRun* hair = nullptr);
+                      const HairRun* hair = nullptr, const SceneTimeline* timeline = nullptr);
 
 // Per-pass GPU time of whole frames (physics stepping one frame's worth each frame, as the window
 // does): `warmup` frames, then `frames` timed; medians and p95 in milliseconds, per pass and for

@@ -117,23 +117,28 @@ int runRecord(const vk::Context& ctx, const HairScene& scene, const RecordOption
     Frame frame(ctx, 1);
     std::unique_ptr<GpuSolver> solver;
     SimSetup setup;
+    const Bounds head = renderer.sceneBounds();
+    SceneState initial = o.timeline.at(0.0);
     if (scene.strands.strandCount() > 0) {
-        setup = makeSimSetup(o.sim, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
-        solver = std::make_unique<GpuSolver>(ctx, scene.strands, setup, glm::mat4(1.0f));
+        SimSettings sim = o.sim;
+        sim.wind = initial.wind;
+        setup = makeSimSetup(sim, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
+        solver = std::make_unique<GpuSolver>(ctx, scene.strands, setup, headYawTransform(head, initial.headYawDeg));
         renderer.attachHair(*solver, scene.strands, scene.unitsPerMetre);
     }
-    OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(o.settings.width) / float(o.settings.height));
+    OrbitCamera framing = OrbitCamera::framing(head, float(o.settings.width) / float(o.settings.height));
     uint32_t stepsPerFrame = std::max(1u, uint32_t(std::lround(o.sim.stepHz / o.fps)));
-    float stepSeconds = 1.0f / o.sim.stepHz;
     std::vector<Picture> sheet;
     uint32_t sheetEvery = std::max(1u, (o.frames + 11) / 12);
     auto start = std::chrono::steady_clock::now();
     uint64_t step = 0;
     for (uint32_t f = 0; f < o.frames; ++f) {
-        std::vector<gpu::SimStep> steps;
-        for (uint32_t k = 0; solver && k < stepsPerFrame; ++k, ++step)
-            steps.push_back(makeStep(setup, glm::mat4(1.0f), o.sphere, float(step) * stepSeconds));
-        renderer.setSteps(std::move(steps));
+        if (solver) {
+            TimedSteps steps = timedSteps(o.timeline, setup, head, scene.unitsPerMetre, o.sim.stepHz, step, stepsPerFrame);
+            renderer.setSteps(std::move(steps.steps), std::move(steps.winds));
+        }
+        step += stepsPerFrame;  // time passes for the camera and light without hair too
+        OrbitCamera camera = poseFrame(renderer, o.timeline, double(step) / double(o.sim.stepHz), framing);
         Picture picture = renderFrame(ctx, renderer, frame, camera);
         writePng(framePath(o.outDir, f), picture.width, picture.height, picture.rgba);
         if (f % sheetEvery == 0)

@@ -1,9 +1,10 @@
 // app/record.h: `wisp record`: a run rendered frame by frame offscreen into a folder of PNGs, with
 // a video through an ffmpeg subprocess and a contact sheet. Fixed steps only (exactly
 // round(step_hz / fps) per frame) and the fixed-point hair grid: the same command gives the same
-// frames, byte for byte, on the same device.
+// frames, byte for byte, on the same device. A scene's timeline poses every step and frame.
 #pragma once
 
+#include "app/scene.h"
 #include "physics/hair_scene.h"
 #include "physics/simulation.h"
 #include "renderer/settings.h"
@@ -21,7 +22,10 @@ struct RecordOptions {
     float fps = 30.0f;
     RenderSettings settings;
     SimSettings sim;
-    glm::vec4 sphere{0.0f};
+    // The sphere, wind, head turn, camera and light over time (its base: the command line's
+    // sphere, wind and light). Step k takes its values at (k + 1) / step_hz; frame f, drawn after
+    // its steps, shows the moment (f + 1) x steps per frame / step_hz.
+    SceneTimeline timeline;
 };
 
 // Fails (UserError) before any work when the folder or the video cannot be written.

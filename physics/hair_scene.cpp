@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 namespace wisp {
 
@@ -29,8 +30,13 @@ void prepareHead(HairScene& scene)
 
 HairScene buildGrownScene(const std::filesystem::path& headFile, const GrowthSettings& growth)
 {
+    return buildGrownScene(loadHead(headFile), growth);
+}
+
+HairScene buildGrownScene(Head head, const GrowthSettings& growth)
+{
     HairScene scene;
-    scene.head = loadHead(headFile);
+    scene.head = std::move(head);
     prepareHead(scene);
     scene.strands = growGuides(scene.head.mesh, scene.scalp, scene.gpuColliders, growth, scene.unitsPerMetre);
     return scene;
@@ -47,13 +53,18 @@ PartSettings styledPartDefaults()
 HairScene buildLoadedScene(const std::filesystem::path& headFile, const std::vector<HairPartSource>& parts,
                            uint32_t verticesPerStrand)
 {
+    return buildLoadedScene(loadHead(headFile), parts, verticesPerStrand);
+}
+
+HairScene buildLoadedScene(Head head, const std::vector<HairPartSource>& parts, uint32_t verticesPerStrand)
+{
     if (parts.empty())
         throw std::invalid_argument("buildLoadedScene: no hair files");
     if (parts.size() > gpu::kSimMaxParts)
         throw UserError("at most " + std::to_string(gpu::kSimMaxParts) + " hair files can be loaded at once, got " +
                         std::to_string(parts.size()));
     HairScene scene;
-    scene.head = loadHead(headFile);
+    scene.head = std::move(head);
     prepareHead(scene);
     scene.strands.verticesPerStrand = verticesPerStrand;
     Bounds headBounds = scene.head.mesh.bounds();

@@ -26,6 +26,8 @@ struct HairScene {
 
 // Loads the head and grows guides on it.
 HairScene buildGrownScene(const std::filesystem::path& headFile, const GrowthSettings& growth);
+// The same on a head already loaded (its description's colliders may have been replaced).
+HairScene buildGrownScene(Head head, const GrowthSettings& growth);
 
 // One hair file of a groom, with how to place it and its own simulation parameters.
 struct HairPartSource {
@@ -37,6 +39,7 @@ struct HairPartSource {
 // Loads the head and the hair files (each a part), resampled to `verticesPerStrand`.
 HairScene buildLoadedScene(const std::filesystem::path& headFile, const std::vector<HairPartSource>& parts,
                            uint32_t verticesPerStrand);
+HairScene buildLoadedScene(Head head, const std::vector<HairPartSource>& parts, uint32_t verticesPerStrand);
 
 // The default parameters of a loaded (styled) part: it keeps its shape more than grown hair.
 PartSettings styledPartDefaults();

@@ -17,6 +17,7 @@ struct Ellipsoid {
     glm::vec3 center{0.0f};       // asset units
     glm::vec3 radii{1.0f};        // asset units, > 0
     glm::vec3 rotationDeg{0.0f};  // XYZ Euler angles in degrees, applied as R = Rz * Ry * Rx
+    bool operator==(const Ellipsoid&) const = default;
 };
 
 // Which triangles grow hair: centroid above the plane (dot(c - planePoint, planeNormal) > 0),

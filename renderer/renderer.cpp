@@ -236,10 +236,10 @@ HairDrawCounts Renderer::hairCounts() const
     return hairDrawCounts(guideCount_, settings_.strands);
 }
 
-void Renderer::setSteps(std::vector<gpu::SimStep> steps)
+void Renderer::setSteps(std::vector<gpu::SimStep> steps, std::vector<glm::vec3> winds)
 {
     if (physicsPass_)
-        physicsPass_->setSteps(std::move(steps));
+        physicsPass_->setSteps(std::move(steps), std::move(winds));
 }
 
 std::vector<Pass*> Renderer::passes()

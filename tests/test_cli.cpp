@@ -642,3 +642,156 @@ TEST(BadInput, SweepVaryValuesAreChecked)
     expectUserError(runWisp("sweep --vary divisions=4,,8" + out), "empty value");
     EXPECT_FALSE(std::filesystem::exists(dir / "s"));  // checked before anything is written
 }
+
+namespace {
+
+// A tiny scene: a few grown guides, small light maps, and every channel keyed.
+const char* kTinyScene = R"({
+  "hair": {"guides": 40, "hair_length": 0.3},
+  "settings": {"strands_per_guide": 3, "shadow_size": 256},
+  "keys": [
+    {"time": 0, "head_yaw": 0, "sphere": [0.3, 0.06, -0.2, 0.06], "wind": [0, 0, 0],
+     "camera": {"yaw": 120, "pitch": 10}, "light": {"azimuth": 60}},
+    {"time": 0.1, "head_yaw": 30, "sphere": [-0.3, 0.06, -0.2, 0.06], "wind": [6, 0, -2],
+     "camera": {"yaw": 150}, "light": {"azimuth": 120}}
+  ]
+})";
+
+}  // namespace
+
+TEST(SceneCli, RecordWithASceneGivesIdenticalFrames)
+{
+    TempDir dir;
+    writeFile(dir / "tiny.json", kTinyScene);
+    std::string common = "record --scene '" + (dir / "tiny.json").string() + "' --frames 3 --fps 30 --width 96 --height 72 --out ";
+    auto first = runWisp("--validation " + common + "'" + (dir / "a").string() + "'");
+    ASSERT_EQ(first.status, 0) << first.err;
+    auto second = runWisp(common + "'" + (dir / "b").string() + "'");
+    ASSERT_EQ(second.status, 0) << second.err;
+    for (const char* name : {"frame_00000.png", "frame_00001.png", "frame_00002.png", "contact_sheet.png"}) {
+        ASSERT_TRUE(std::filesystem::exists(dir / "a" / name)) << name;
+        EXPECT_EQ(readFile(dir / "a" / name), readFile(dir / "b" / name)) << name;
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir / "a" / "frame_00003.png"));
+    // The keys move the camera, the light, the head and the sphere from frame to frame.
+    EXPECT_NE(readFile(dir / "a" / "frame_00000.png"), readFile(dir / "a" / "frame_00002.png"));
+}
+
+TEST(SceneCli, RecordCoversTheScenesDurationByDefault)
+{
+    TempDir dir;
+    writeFile(dir / "short.json", R"({"duration": 0.1, "keys": [{"time": 0, "light": {"azimuth": 10}}]})");
+    auto r = runWisp("record --scene '" + (dir / "short.json").string() + "' --no-hair --fps 30 --width 64 --height 48 --out '" +
+                     (dir / "f").string() + "'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(std::filesystem::exists(dir / "f" / "frame_00002.png"));  // 0.1 s at 30 frames a second
+    EXPECT_FALSE(std::filesystem::exists(dir / "f" / "frame_00003.png"));
+}
+
+TEST(SceneCli, ShippedScenesRenderAtATinySize)
+{
+    TempDir dir;
+    for (const char* name : {"sphere-sweep", "wind-gusts", "head-turn"}) {
+        std::string scene = std::string(WISP_SOURCE_DIR) + "/scenes/" + name + ".json";
+        auto r = runWisp("--validation render --scene '" + scene + "' --frames 2 --width 96 --height 72 --guides 60 "
+                         "--set strands_per_guide=4 --set shadow_size=256 --out '" + (dir / name).string() + ".png'");
+        EXPECT_EQ(r.status, 0) << name << "\n" << r.err;
+        EXPECT_TRUE(r.err.empty()) << name << "\n" << r.err;
+        EXPECT_NE(r.out.find("hair: 60 guides x 4 strands"), std::string::npos) << name << "\n" << r.out;
+        EXPECT_GT(std::filesystem::file_size(dir / (std::string(name) + ".png")), 1000u) << name;
+    }
+}
+
+TEST(SceneCli, SintelSceneRendersWithTheSharedData)
+{
+    WISP_REQUIRE_DATA(groom, "sintel/sintel_hair_11400x16.tfx");
+    WISP_REQUIRE_DATA(bust, "sintel/sintel.obj");
+    TempDir dir;
+    auto r = runWisp("render --scene '" + std::string(WISP_SOURCE_DIR) +
+                     "/scenes/sintel.json' --frames 1 --width 96 --height 72 --set strands_per_guide=1 "
+                     "--set shadow_size=256 --out '" + (dir / "sintel.png").string() + "'",
+                     "WISP_SHARED_DATA='" + groom.parent_path().parent_path().string() + "'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("hair: 11400 guides x 1 strands"), std::string::npos) << r.out;
+}
+
+TEST(SceneCli, SintelSceneWithoutTheSharedDataSaysSo)
+{
+    TempDir dir;
+    auto r = runWisp("render --scene '" + std::string(WISP_SOURCE_DIR) + "/scenes/sintel.json' --out '" +
+                         (dir / "s.png").string() + "'",
+                     "WISP_SHARED_DATA=/nonexistent/shared-data");
+    expectUserError(r, "the shared data is missing");
+    EXPECT_NE(r.err.find("sintel.json: /head: 'shared:sintel/sintel.obj'"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "s.png"));
+}
+
+TEST(SceneCli, CommandLineOptionsOverrideTheScene)
+{
+    TempDir dir;
+    writeFile(dir / "tiny.json", kTinyScene);
+    std::string scene = " --scene '" + (dir / "tiny.json").string() + "' --width 80 --height 60 --out ";
+    // The scene's values apply...
+    auto own = runWisp("render" + scene + "'" + (dir / "own.png").string() + "'");
+    ASSERT_EQ(own.status, 0) << own.err;
+    EXPECT_NE(own.out.find("hair: 40 guides x 3 strands"), std::string::npos) << own.out;
+    // ...and what the command line names wins: options, --set, and keyed channels (the light).
+    auto over = runWisp("render" + scene + "'" + (dir / "over.png").string() + "' --guides 20 --set strands_per_guide=2");
+    ASSERT_EQ(over.status, 0) << over.err;
+    EXPECT_NE(over.out.find("hair: 20 guides x 2 strands"), std::string::npos) << over.out;
+
+    // A keyed light replaced by --light-azimuth gives the picture of a scene without light keys.
+    writeFile(dir / "keyed.json", R"({"keys": [{"time": 0, "light": {"azimuth": 150, "elevation": 5}, "head_yaw": 25}]})");
+    writeFile(dir / "plain.json", R"({"keys": [{"time": 0, "head_yaw": 25}]})");
+    std::string bald = " --no-hair --width 80 --height 60 --out ";
+    auto keyed = runWisp("render --scene '" + (dir / "keyed.json").string() + "'" + bald + "'" + (dir / "keyed.png").string() + "'");
+    auto keyedOver = runWisp("render --scene '" + (dir / "keyed.json").string() + "' --light-azimuth -30 --light-elevation 35" +
+                             bald + "'" + (dir / "keyed-over.png").string() + "'");
+    auto plainOver = runWisp("render --scene '" + (dir / "plain.json").string() + "' --light-azimuth -30 --light-elevation 35" +
+                             bald + "'" + (dir / "plain-over.png").string() + "'");
+    auto straight = runWisp("render --light-azimuth -30 --light-elevation 35" + bald + "'" + (dir / "straight.png").string() + "'");
+    for (const auto* r : {&keyed, &keyedOver, &plainOver, &straight})
+        ASSERT_EQ(r->status, 0) << r->err;
+    EXPECT_EQ(readFile(dir / "keyed-over.png"), readFile(dir / "plain-over.png"));
+    EXPECT_NE(readFile(dir / "keyed.png"), readFile(dir / "keyed-over.png"));   // the keys did light it
+    EXPECT_NE(readFile(dir / "plain-over.png"), readFile(dir / "straight.png"));  // the head is turned
+}
+
+TEST(SceneCli, BadScenesAreOneLineAndWriteNothing)
+{
+    TempDir dir;
+    writeFile(dir / "bad.json", R"({"keys": [{"time": 0, "sphere": [0, 0, 0, -1]}]})");
+    auto r = runWisp("render --scene '" + (dir / "bad.json").string() + "' --out '" + (dir / "a.png").string() + "'");
+    expectUserError(r, "bad.json: /keys/0/sphere/3: -1 is out of range");
+    EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
+    auto rec = runWisp("record --scene '" + (dir / "bad.json").string() + "' --out '" + (dir / "frames").string() + "'");
+    expectUserError(rec, "/keys/0/sphere/3");
+    EXPECT_FALSE(std::filesystem::exists(dir / "frames"));
+    writeFile(dir / "setting.json", R"({"settings": {"shadow_size": 10}})");
+    auto s = runWisp("render --scene '" + (dir / "setting.json").string() + "' --out '" + (dir / "a.png").string() + "'");
+    expectUserError(s, "setting.json: /settings/shadow_size: 10: out of range: allowed 64 .. 8192");
+    writeFile(dir / "head.json", R"({"head": "missing-head.obj"})");
+    auto h = runWisp("render --scene '" + (dir / "head.json").string() + "' --out '" + (dir / "a.png").string() + "'");
+    expectUserError(h, "head.json: /head: 'missing-head.obj': no such file");
+    expectUserError(runWisp("render --scene /nonexistent/s.json --out '" + (dir / "a.png").string() + "'"),
+                    "/nonexistent/s.json: the scene file does not exist");
+    EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
+}
+
+TEST(Window, SceneSetsTheInitialSphereAndLight)
+{
+    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb): cannot test the window here";
+    TempDir dir;
+    writeFile(dir / "s.json", R"({"keys": [{"time": 0, "sphere": [0.1, 0.2, 0.05, 0.04], "light": {"azimuth": 77, "elevation": 12}}]})");
+    auto r = runWisp("view --scene '" + (dir / "s.json").string() + "' --no-hair --width 160 --height 120 --frames 2",
+                     "xvfb-run -a -s '-screen 0 640x480x24'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    ViewerStatus s = parseStatus(r.out);
+    EXPECT_TRUE(s.sphereOn);
+    EXPECT_NEAR(s.x, 0.1f, 1e-4f);
+    EXPECT_NEAR(s.y, 0.2f, 1e-4f);
+    EXPECT_NEAR(s.r, 0.04f, 1e-4f);
+    EXPECT_NEAR(s.azimuth, 77.0f, 0.05f);
+    EXPECT_NEAR(s.elevation, 12.0f, 0.05f);
+}

@@ -1,0 +1,918 @@
+// app/scene.cpp: scene files read and checked value by value (errors name the file and a JSON
+// pointer), written back atomically, applied to the command line's options, and the keyframe
+// timeline.
+#include "app/scene.h"
+
+#include "app/settings_registry.h"
+#include "core/error.h"
+#include "physics/strands.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <initializer_list>
+#include <iomanip>
+#include <sstream>
+#include <unistd.h>
+
+#ifndef WISP_SOURCE_DIR
+#error "WISP_SOURCE_DIR must name the source tree (the shared data folder is beside it)"
+#endif
+
+namespace wisp {
+
+namespace {
+
+// Ordered, so that settings apply in the file's order and saved files keep a readable order.
+using Json = nlohmann::ordered_json;
+
+constexpr int kSceneVersion = 1;
+constexpr const char* kSharedPrefix = "shared:";
+
+std::string text(double v)
+{
+    std::ostringstream s;
+    s << std::setprecision(10) << v;
+    return s.str();
+}
+
+std::string rangeText(const Range& r, const std::string& unit)
+{
+    return text(r.min) + " .. " + text(r.max) + (unit.empty() ? "" : " " + unit);
+}
+
+// RFC 6901: '~' and '/' in a key are escaped.
+std::string pointerTo(const std::string& parent, const std::string& key)
+{
+    std::string escaped;
+    for (char c : key)
+        escaped += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
+    return parent + "/" + escaped;
+}
+
+std::string pointerTo(const std::string& parent, size_t index)
+{
+    return parent + "/" + std::to_string(index);
+}
+
+std::string typeName(const Json& v)
+{
+    switch (v.type()) {
+    case Json::value_t::object:
+        return "an object";
+    case Json::value_t::array:
+        return "an array";
+    case Json::value_t::string:
+        return "a string";
+    case Json::value_t::boolean:
+        return "true or false";
+    case Json::value_t::null:
+        return "null";
+    default:
+        return "a number";
+    }
+}
+
+// Reads values of one file; every failure names the file and the value's JSON pointer.
+struct Reader {
+    std::filesystem::path file;
+
+    [[noreturn]] void fail(const std::string& pointer, const std::string& what) const
+    {
+        throw UserError(file.string() + ": " + (pointer.empty() ? std::string("the document") : pointer) + ": " + what);
+    }
+    void expect(const Json& v, const std::string& pointer, bool ok, const std::string& wanted) const
+    {
+        if (!ok)
+            fail(pointer, "must be " + wanted + ", got " + typeName(v));
+    }
+    // An object whose keys are all among `known`.
+    void object(const Json& v, const std::string& pointer, std::initializer_list<const char*> known) const
+    {
+        expect(v, pointer, v.is_object(), "an object");
+        for (const auto& [key, value] : v.items()) {
+            bool found = std::any_of(known.begin(), known.end(), [&](const char* k) { return key == k; });
+            if (!found) {
+                std::string names;
+                for (const char* k : known)
+                    names += (names.empty() ? "" : ", ") + std::string(k);
+                fail(pointerTo(pointer, key), "unknown key (known: " + names + ")");
+            }
+        }
+    }
+    double number(const Json& v, const std::string& pointer, const Range& range, const std::string& unit = "") const
+    {
+        expect(v, pointer, v.is_number(), "a number");
+        double d = v.get<double>();
+        if (!std::isfinite(d))
+            fail(pointer, "must be a finite number");
+        if (!range.contains(d))
+            fail(pointer, text(d) + " is out of range: allowed " + rangeText(range, unit));
+        return d;
+    }
+    float real(const Json& v, const std::string& pointer, const Range& range, const std::string& unit = "") const
+    {
+        return float(number(v, pointer, range, unit));
+    }
+    uint32_t whole(const Json& v, const std::string& pointer, const Range& range) const
+    {
+        double d = number(v, pointer, range);
+        if (d != std::floor(d))
+            fail(pointer, text(d) + " is not a whole number");
+        return uint32_t(d);
+    }
+    bool boolean(const Json& v, const std::string& pointer) const
+    {
+        expect(v, pointer, v.is_boolean(), "true or false");
+        return v.get<bool>();
+    }
+    std::string string(const Json& v, const std::string& pointer) const
+    {
+        expect(v, pointer, v.is_string(), "a string");
+        return v.get<std::string>();
+    }
+    // An array of `n` numbers, each within `range`.
+    std::vector<float> numbers(const Json& v, const std::string& pointer, size_t n, const Range& range,
+                               const std::string& unit) const
+    {
+        expect(v, pointer, v.is_array(), "an array of " + std::to_string(n) + " numbers");
+        if (v.size() != n)
+            fail(pointer, "must hold " + std::to_string(n) + " numbers, got " + std::to_string(v.size()));
+        std::vector<float> out;
+        for (size_t i = 0; i < n; ++i)
+            out.push_back(real(v[i], pointerTo(pointer, i), range, unit));
+        return out;
+    }
+    glm::vec3 vec3(const Json& v, const std::string& pointer, const Range& range, const std::string& unit) const
+    {
+        std::vector<float> n = numbers(v, pointer, 3, range, unit);
+        return {n[0], n[1], n[2]};
+    }
+    // x, y, z, radius (head units).
+    glm::vec4 sphere(const Json& v, const std::string& pointer) const
+    {
+        expect(v, pointer, v.is_array() && v.size() == 4, "an array of 4 numbers x, y, z, radius");
+        glm::vec3 c(real(v[0], pointerTo(pointer, 0), kScenePositionRange, "head units"),
+                    real(v[1], pointerTo(pointer, 1), kScenePositionRange, "head units"),
+                    real(v[2], pointerTo(pointer, 2), kScenePositionRange, "head units"));
+        return {c, real(v[3], pointerTo(pointer, 3), kSceneRadiusRange, "head units")};
+    }
+};
+
+// A value of "settings" as the text `--set NAME=VALUE` takes.
+std::string settingText(const Reader& r, const Json& v, const std::string& pointer)
+{
+    if (v.is_string())
+        return v.get<std::string>();
+    if (v.is_boolean())
+        return v.get<bool>() ? "on" : "off";
+    if (v.is_number()) {
+        r.number(v, pointer, Range{-1e300, 1e300});  // finite
+        return v.dump();
+    }
+    if (v.is_array()) {  // R,G,B
+        std::string joined;
+        for (size_t i = 0; i < v.size(); ++i) {
+            r.expect(v[i], pointerTo(pointer, i), v[i].is_number(), "a number");
+            r.number(v[i], pointerTo(pointer, i), Range{-1e300, 1e300});
+            joined += (i ? "," : "") + v[i].dump();
+        }
+        return joined;
+    }
+    r.fail(pointer, "must be a number, a string, true or false, or an array of numbers, got " + typeName(v));
+}
+
+// Applies NAME=VALUE, naming the scene file and the setting's pointer when it is refused.
+void applySceneSetting(const std::filesystem::path& file, const SettingsRefs& refs, const std::string& name,
+                       const std::string& value)
+{
+    try {
+        applySetting(refs, name + "=" + value);
+    } catch (const UserError& e) {
+        std::string why = e.what();
+        std::string prefix = "--set " + name + "=" + value + ": ";
+        if (why.rfind(prefix, 0) == 0)
+            why = why.substr(prefix.size());
+        else if (why.rfind("--set " + name + ": ", 0) == 0)
+            why = why.substr(std::string("--set " + name + ": ").size());
+        if (why.rfind("unknown setting", 0) == 0) {
+            std::string names;
+            for (const SettingSpec& s : settingSpecs())
+                names += (names.empty() ? "" : ", ") + s.name;
+            why = "unknown setting (known: " + names + ")";
+        }
+        throw UserError(file.string() + ": " + pointerTo("/settings", name) + ": " + value + ": " + why);
+    }
+}
+
+void readHair(const Reader& r, const Json& v, SceneHair& hair)
+{
+    const std::string at = "/hair";
+    r.object(v, at,
+             {"guides", "vertices", "hair_length", "length_variation", "curl", "poisson", "seed", "files", "scale",
+              "offset", "z_up", "mirror_z", "global_stiffness", "local_stiffness", "damping", "drag"});
+    auto has = [&](const char* key) { return v.contains(key); };
+    auto p = [&](const char* key) { return pointerTo(at, key); };
+    if (has("guides"))
+        hair.guides = r.whole(v["guides"], p("guides"), kGuidesRange);
+    if (has("vertices"))
+        hair.vertices =
+            r.whole(v["vertices"], p("vertices"), Range{double(kMinVerticesPerStrand), double(kMaxVerticesPerStrand)});
+    if (has("hair_length"))
+        hair.hairLength = r.real(v["hair_length"], p("hair_length"), kHairLengthRange, "m");
+    if (has("length_variation"))
+        hair.lengthVariation = r.real(v["length_variation"], p("length_variation"), kLengthVariationRange);
+    if (has("curl"))
+        hair.curl = r.real(v["curl"], p("curl"), kCurlRange, "m");
+    if (has("poisson"))
+        hair.poisson = r.boolean(v["poisson"], p("poisson"));
+    if (has("seed"))
+        hair.seed = r.whole(v["seed"], p("seed"), Range{0.0, 4294967295.0});
+    if (has("scale"))
+        hair.scale = r.real(v["scale"], p("scale"), kHairScaleRange);
+    if (has("offset"))
+        hair.offset = r.vec3(v["offset"], p("offset"), kScenePositionRange, "head units");
+    if (has("z_up"))
+        hair.zUp = r.boolean(v["z_up"], p("z_up"));
+    if (has("mirror_z"))
+        hair.mirrorZ = r.boolean(v["mirror_z"], p("mirror_z"));
+    auto partValues = [&](const Json& o, const std::string& where, std::optional<float>& global,
+                          std::optional<float>& local, std::optional<float>& damping, std::optional<float>& drag) {
+        if (o.contains("global_stiffness"))
+            global = r.real(o["global_stiffness"], pointerTo(where, "global_stiffness"), kStiffnessRange);
+        if (o.contains("local_stiffness"))
+            local = r.real(o["local_stiffness"], pointerTo(where, "local_stiffness"), kStiffnessRange);
+        if (o.contains("damping"))
+            damping = r.real(o["damping"], pointerTo(where, "damping"), kStiffnessRange);
+        if (o.contains("drag"))
+            drag = r.real(o["drag"], pointerTo(where, "drag"), kDragRange, "1/s");
+    };
+    partValues(v, at, hair.globalStiffness, hair.localStiffness, hair.damping, hair.drag);
+    if (has("files")) {
+        const Json& files = v["files"];
+        r.expect(files, p("files"), files.is_array(), "an array of file names (or objects with \"file\")");
+        if (files.empty() || files.size() > gpu::kSimMaxParts)
+            r.fail(p("files"), "must name 1 to " + std::to_string(gpu::kSimMaxParts) + " hair files, got " +
+                                   std::to_string(files.size()));
+        for (size_t i = 0; i < files.size(); ++i) {
+            std::string where = pointerTo(p("files"), i);
+            SceneHairFile f;
+            if (files[i].is_string()) {
+                f.path = files[i].get<std::string>();
+            } else {
+                r.expect(files[i], where, files[i].is_object(), "a file name or an object with \"file\"");
+                r.object(files[i], where, {"file", "global_stiffness", "local_stiffness", "damping", "drag"});
+                if (!files[i].contains("file"))
+                    r.fail(pointerTo(where, "file"), "is missing");
+                f.path = r.string(files[i]["file"], pointerTo(where, "file"));
+                partValues(files[i], where, f.globalStiffness, f.localStiffness, f.damping, f.drag);
+            }
+            if (f.path.empty())
+                r.fail(where, "must not be empty");
+            hair.files.push_back(f);
+        }
+        for (const char* grown : {"guides", "hair_length", "length_variation", "curl", "poisson", "seed"})
+            if (has(grown))
+                r.fail(p(grown), "applies to grown hair, but this hair is loaded from /hair/files");
+    } else {
+        for (const char* placed : {"scale", "offset", "z_up", "mirror_z"})
+            if (has(placed))
+                r.fail(p(placed), "places loaded hair, but this hair is grown (no /hair/files)");
+    }
+}
+
+std::vector<Ellipsoid> readColliders(const Reader& r, const Json& v)
+{
+    const std::string at = "/colliders";
+    r.expect(v, at, v.is_array(), "an array of ellipsoids");
+    std::vector<Ellipsoid> out;
+    for (size_t i = 0; i < v.size(); ++i) {
+        std::string where = pointerTo(at, i);
+        const Json& c = v[i];
+        r.object(c, where, {"name", "center", "radii", "rotation_deg"});
+        for (const char* required : {"center", "radii"})
+            if (!c.contains(required))
+                r.fail(pointerTo(where, required), "is missing");
+        Ellipsoid e;
+        e.name = c.contains("name") ? r.string(c["name"], pointerTo(where, "name")) : "collider" + std::to_string(i);
+        e.center = r.vec3(c["center"], pointerTo(where, "center"), kScenePositionRange, "head units");
+        e.radii = r.vec3(c["radii"], pointerTo(where, "radii"), kSceneRadiusRange, "head units");
+        if (e.radii.x <= 0.0f || e.radii.y <= 0.0f || e.radii.z <= 0.0f)
+            r.fail(pointerTo(where, "radii"), "must all be > 0");
+        if (c.contains("rotation_deg"))
+            e.rotationDeg =
+                r.vec3(c["rotation_deg"], pointerTo(where, "rotation_deg"), Range{-360.0, 360.0}, "degrees");
+        out.push_back(e);
+    }
+    if (out.empty())
+        r.fail(at, "must hold at least one ellipsoid (leave it out for the head's own)");
+    return out;
+}
+
+void readPhysics(const Reader& r, const Json& v, Scene& scene)
+{
+    const std::string at = "/physics";
+    r.expect(v, at, v.is_object(), "an object");
+    for (const char* setting : {"step_hz", "substeps", "grid", "friction"})
+        if (v.contains(setting))
+            r.fail(pointerTo(at, setting), "is a setting: put it under /settings");
+    r.object(v, at, {"wind", "sphere", "repulsion", "grid_atomics"});
+    if (v.contains("wind"))
+        scene.wind = r.vec3(v["wind"], pointerTo(at, "wind"), kSceneWindRange, "m/s^2");
+    if (v.contains("sphere"))
+        scene.sphere = r.sphere(v["sphere"], pointerTo(at, "sphere"));
+    if (v.contains("repulsion"))
+        scene.repulsion = r.real(v["repulsion"], pointerTo(at, "repulsion"), kRepulsionRange);
+    if (v.contains("grid_atomics")) {
+        std::string a = r.string(v["grid_atomics"], pointerTo(at, "grid_atomics"));
+        if (a == "fixed")
+            scene.gridAtomics = SimSettings::GridAtomics::Fixed;
+        else if (a == "float")
+            scene.gridAtomics = SimSettings::GridAtomics::Float;
+        else
+            r.fail(pointerTo(at, "grid_atomics"), "'" + a + "' is not allowed: fixed | float");
+    }
+}
+
+SceneKey readKey(const Reader& r, const Json& v, const std::string& at)
+{
+    r.object(v, at, {"time", "camera", "sphere", "light", "wind", "head_yaw"});
+    if (!v.contains("time"))
+        r.fail(pointerTo(at, "time"), "is missing (every key has a time in seconds)");
+    SceneKey k;
+    k.time = r.number(v["time"], pointerTo(at, "time"), kSceneTimeRange, "s");
+    if (v.contains("camera")) {
+        std::string c = pointerTo(at, "camera");
+        const Json& cam = v["camera"];
+        r.object(cam, c, {"yaw", "pitch", "distance", "target"});
+        if (cam.contains("yaw"))
+            k.cameraYawDeg = r.real(cam["yaw"], pointerTo(c, "yaw"), kSceneCameraYawRange, "degrees");
+        if (cam.contains("pitch"))
+            k.cameraPitchDeg = r.real(cam["pitch"], pointerTo(c, "pitch"), kSceneCameraPitchRange, "degrees");
+        if (cam.contains("distance"))
+            k.cameraDistance = r.real(cam["distance"], pointerTo(c, "distance"), kSceneCameraDistanceRange,
+                                      "times the default framing's");
+        if (cam.contains("target"))
+            k.cameraTarget = r.vec3(cam["target"], pointerTo(c, "target"), kScenePositionRange, "head units");
+    }
+    if (v.contains("sphere"))
+        k.sphere = r.sphere(v["sphere"], pointerTo(at, "sphere"));
+    if (v.contains("light")) {
+        std::string l = pointerTo(at, "light");
+        const Json& light = v["light"];
+        r.object(light, l, {"azimuth", "elevation", "intensity"});
+        if (light.contains("azimuth"))
+            k.lightAzimuthDeg = r.real(light["azimuth"], pointerTo(l, "azimuth"), kSceneLightAzimuthRange, "degrees");
+        if (light.contains("elevation"))
+            k.lightElevationDeg =
+                r.real(light["elevation"], pointerTo(l, "elevation"), kLightElevationRange, "degrees");
+        if (light.contains("intensity"))
+            k.lightIntensity = r.real(light["intensity"], pointerTo(l, "intensity"), kLightIntensityRange);
+    }
+    if (v.contains("wind"))
+        k.wind = r.vec3(v["wind"], pointerTo(at, "wind"), kSceneWindRange, "m/s^2");
+    if (v.contains("head_yaw"))
+        k.headYawDeg = r.real(v["head_yaw"], pointerTo(at, "head_yaw"), kSceneHeadYawRange, "degrees");
+    return k;
+}
+
+// Where in `text` byte `offset` is, as line and column (1-based).
+std::pair<size_t, size_t> lineAndColumn(const std::string& text, size_t offset)
+{
+    size_t line = 1, column = 1;
+    for (size_t i = 0; i < std::min(offset, text.size()); ++i) {
+        if (text[i] == '\n') {
+            ++line;
+            column = 1;
+        } else {
+            ++column;
+        }
+    }
+    return {line, column};
+}
+
+// A float as the shortest decimal that reads back as the same float (0.3f is written 0.3, not
+// 0.30000001192092896).
+Json num(float v)
+{
+    char buffer[32];
+    auto [end, ec] = std::to_chars(buffer, buffer + sizeof(buffer), v);
+    return ec == std::errc() ? Json(std::strtod(std::string(buffer, end).c_str(), nullptr)) : Json(double(v));
+}
+
+Json vecJson(const float* v, size_t n)
+{
+    Json a = Json::array();
+    for (size_t i = 0; i < n; ++i)
+        a.push_back(num(v[i]));
+    return a;
+}
+
+// A setting's text as JSON: a number when it reads back as the same text, else the string.
+Json settingJson(const std::string& value)
+{
+    if (value == "on" || value == "off")
+        return value == "on";
+    Json parsed = Json::parse(value, nullptr, false);
+    if (!parsed.is_discarded() && parsed.is_number() && parsed.dump() == value)
+        return parsed;
+    return value;
+}
+
+}  // namespace
+
+double Scene::length() const
+{
+    if (duration)
+        return *duration;
+    return keys.empty() ? 0.0 : keys.back().time;
+}
+
+Scene loadScene(const std::filesystem::path& path)
+{
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec))
+        throw UserError(path.string() + ": the scene file does not exist");
+    std::ifstream in(path, std::ios::binary);
+    if (!in || std::filesystem::is_directory(path, ec))
+        throw UserError(path.string() + ": cannot read the scene file");
+    std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    Json doc;
+    try {
+        doc = Json::parse(content);
+    } catch (const Json::parse_error& e) {
+        auto [line, column] = lineAndColumn(content, e.byte > 0 ? e.byte - 1 : 0);
+        std::string why = e.what();
+        if (size_t c = why.find("column"); c != std::string::npos && why.find(": ", c) != std::string::npos)
+            why = why.substr(why.find(": ", c) + 2);
+        throw UserError(path.string() + ":" + std::to_string(line) + ":" + std::to_string(column) +
+                        ": malformed JSON: " + why);
+    } catch (const Json::out_of_range& e) {
+        // A number too large for a double (1e400): nlohmann names the literal but not where it is.
+        std::string why = e.what();
+        std::string where = path.string();
+        size_t quote = why.find('\'');
+        if (quote != std::string::npos && why.find('\'', quote + 1) != std::string::npos) {
+            std::string literal = why.substr(quote + 1, why.find('\'', quote + 1) - quote - 1);
+            if (size_t at = content.find(literal); at != std::string::npos) {
+                auto [line, column] = lineAndColumn(content, at);
+                where += ":" + std::to_string(line) + ":" + std::to_string(column);
+            }
+            why = literal + " is too large a number";
+        }
+        throw UserError(where + ": " + why);
+    }
+    Reader r{path};
+    r.object(doc, "",
+             {"version", "description", "head", "hair", "colliders", "physics", "settings", "interpolation", "duration",
+              "keys"});
+    Scene scene;
+    if (doc.contains("version")) {
+        double version = r.number(doc["version"], "/version", Range{0.0, 1e9});
+        if (version != kSceneVersion)
+            r.fail("/version", text(version) + " is not a version this Wisp reads (it reads " +
+                                   std::to_string(kSceneVersion) + ")");
+    }
+    if (doc.contains("description"))
+        scene.description = r.string(doc["description"], "/description");
+    if (doc.contains("head")) {
+        scene.head = r.string(doc["head"], "/head");
+        if (scene.head.empty())
+            r.fail("/head", "must not be empty (leave it out for the default head)");
+    }
+    if (doc.contains("hair"))
+        readHair(r, doc["hair"], scene.hair);
+    if (doc.contains("colliders"))
+        scene.colliders = readColliders(r, doc["colliders"]);
+    if (doc.contains("physics"))
+        readPhysics(r, doc["physics"], scene);
+    if (doc.contains("settings")) {
+        const Json& settings = doc["settings"];
+        r.expect(settings, "/settings", settings.is_object(), "an object of settings from 'wisp settings'");
+        // Checked here, against default structs, so a bad value fails before anything runs.
+        GrowthSettings growth;
+        SimSettings sim;
+        RenderSettings render;
+        for (const auto& [name, value] : settings.items()) {
+            std::string v = settingText(r, value, pointerTo("/settings", name));
+            applySceneSetting(path, {&growth, &sim, &render}, name, v);
+            scene.settings.emplace_back(name, v);
+        }
+    }
+    if (doc.contains("interpolation")) {
+        std::string i = r.string(doc["interpolation"], "/interpolation");
+        if (i == "linear")
+            scene.interpolation = SceneInterpolation::Linear;
+        else if (i == "smooth")
+            scene.interpolation = SceneInterpolation::Smooth;
+        else
+            r.fail("/interpolation", "'" + i + "' is not allowed: linear | smooth");
+    }
+    if (doc.contains("duration"))
+        scene.duration = r.number(doc["duration"], "/duration", kSceneTimeRange, "s");
+    if (doc.contains("keys")) {
+        const Json& keys = doc["keys"];
+        r.expect(keys, "/keys", keys.is_array(), "an array of keys");
+        for (size_t i = 0; i < keys.size(); ++i) {
+            SceneKey k = readKey(r, keys[i], pointerTo("/keys", i));
+            if (!scene.keys.empty() && !(k.time > scene.keys.back().time))
+                r.fail(pointerTo(pointerTo("/keys", i), "time"), text(k.time) + " is not after the previous key's " +
+                                                                     text(scene.keys.back().time) +
+                                                                     " (times must increase)");
+            scene.keys.push_back(k);
+        }
+    }
+    return scene;
+}
+
+std::string sceneJson(const Scene& scene)
+{
+    Json doc;
+    doc["version"] = kSceneVersion;
+    if (!scene.description.empty())
+        doc["description"] = scene.description;
+    if (!scene.head.empty())
+        doc["head"] = scene.head;
+    const SceneHair& h = scene.hair;
+    Json hair = Json::object();
+    if (h.guides)
+        hair["guides"] = *h.guides;
+    if (h.vertices)
+        hair["vertices"] = *h.vertices;
+    if (h.hairLength)
+        hair["hair_length"] = num(*h.hairLength);
+    if (h.lengthVariation)
+        hair["length_variation"] = num(*h.lengthVariation);
+    if (h.curl)
+        hair["curl"] = num(*h.curl);
+    if (h.poisson)
+        hair["poisson"] = *h.poisson;
+    if (h.seed)
+        hair["seed"] = *h.seed;
+    auto partValues = [](Json& o, const std::optional<float>& global, const std::optional<float>& local,
+                         const std::optional<float>& damping, const std::optional<float>& drag) {
+        if (global)
+            o["global_stiffness"] = num(*global);
+        if (local)
+            o["local_stiffness"] = num(*local);
+        if (damping)
+            o["damping"] = num(*damping);
+        if (drag)
+            o["drag"] = num(*drag);
+    };
+    if (!h.files.empty()) {
+        Json files = Json::array();
+        for (const SceneHairFile& f : h.files) {
+            if (!f.globalStiffness && !f.localStiffness && !f.damping && !f.drag) {
+                files.push_back(f.path);
+                continue;
+            }
+            Json o = {{"file", f.path}};
+            partValues(o, f.globalStiffness, f.localStiffness, f.damping, f.drag);
+            files.push_back(o);
+        }
+        hair["files"] = files;
+    }
+    if (h.scale)
+        hair["scale"] = num(*h.scale);
+    if (h.offset)
+        hair["offset"] = vecJson(&h.offset->x, 3);
+    if (h.zUp)
+        hair["z_up"] = *h.zUp;
+    if (h.mirrorZ)
+        hair["mirror_z"] = *h.mirrorZ;
+    partValues(hair, h.globalStiffness, h.localStiffness, h.damping, h.drag);
+    if (!hair.empty())
+        doc["hair"] = hair;
+    if (scene.colliders) {
+        Json list = Json::array();
+        for (const Ellipsoid& e : *scene.colliders)
+            list.push_back({{"name", e.name},
+                            {"center", vecJson(&e.center.x, 3)},
+                            {"radii", vecJson(&e.radii.x, 3)},
+                            {"rotation_deg", vecJson(&e.rotationDeg.x, 3)}});
+        doc["colliders"] = list;
+    }
+    Json physics = Json::object();
+    if (scene.wind)
+        physics["wind"] = vecJson(&scene.wind->x, 3);
+    if (scene.sphere)
+        physics["sphere"] = vecJson(&scene.sphere->x, 4);
+    if (scene.repulsion)
+        physics["repulsion"] = num(*scene.repulsion);
+    if (scene.gridAtomics)
+        physics["grid_atomics"] = *scene.gridAtomics == SimSettings::GridAtomics::Fixed ? "fixed" : "float";
+    if (!physics.empty())
+        doc["physics"] = physics;
+    if (!scene.settings.empty()) {
+        Json settings = Json::object();
+        for (const auto& [name, value] : scene.settings)
+            settings[name] = settingJson(value);
+        doc["settings"] = settings;
+    }
+    doc["interpolation"] = scene.interpolation == SceneInterpolation::Linear ? "linear" : "smooth";
+    if (scene.duration)
+        doc["duration"] = *scene.duration;
+    Json keys = Json::array();
+    for (const SceneKey& k : scene.keys) {
+        Json key = {{"time", k.time}};
+        Json camera = Json::object();
+        if (k.cameraYawDeg)
+            camera["yaw"] = num(*k.cameraYawDeg);
+        if (k.cameraPitchDeg)
+            camera["pitch"] = num(*k.cameraPitchDeg);
+        if (k.cameraDistance)
+            camera["distance"] = num(*k.cameraDistance);
+        if (k.cameraTarget)
+            camera["target"] = vecJson(&k.cameraTarget->x, 3);
+        if (!camera.empty())
+            key["camera"] = camera;
+        if (k.sphere)
+            key["sphere"] = vecJson(&k.sphere->x, 4);
+        Json light = Json::object();
+        if (k.lightAzimuthDeg)
+            light["azimuth"] = num(*k.lightAzimuthDeg);
+        if (k.lightElevationDeg)
+            light["elevation"] = num(*k.lightElevationDeg);
+        if (k.lightIntensity)
+            light["intensity"] = num(*k.lightIntensity);
+        if (!light.empty())
+            key["light"] = light;
+        if (k.wind)
+            key["wind"] = vecJson(&k.wind->x, 3);
+        if (k.headYawDeg)
+            key["head_yaw"] = num(*k.headYawDeg);
+        keys.push_back(key);
+    }
+    doc["keys"] = keys;
+    return doc.dump(2) + "\n";
+}
+
+void saveScene(const std::filesystem::path& path, const Scene& scene)
+{
+    std::string content = sceneJson(scene);
+    std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
+    std::error_code ec;
+    if (!std::filesystem::is_directory(folder, ec))
+        throw UserError(path.string() + ": folder '" + folder.string() + "' does not exist");
+    std::filesystem::path temp = path;
+    temp += ".partial-" + std::to_string(getpid());
+    {
+        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+        out << content;
+        out.flush();
+        if (!out) {
+            out.close();
+            std::filesystem::remove(temp, ec);
+            throw UserError(path.string() + ": cannot write the scene file");
+        }
+    }
+    std::filesystem::rename(temp, path, ec);
+    if (ec) {
+        std::error_code ignored;
+        std::filesystem::remove(temp, ignored);
+        throw UserError(path.string() + ": cannot write the scene file (" + ec.message() + ")");
+    }
+}
+
+std::filesystem::path sharedDataFolder()
+{
+    if (const char* env = std::getenv("WISP_SHARED_DATA"); env && *env)
+        return std::filesystem::path(env).lexically_normal();
+    return (std::filesystem::path(WISP_SOURCE_DIR) / ".." / "shared" / "data").lexically_normal();
+}
+
+std::filesystem::path resolveScenePath(const std::filesystem::path& sceneFile, const std::string& text,
+                                       const std::string& pointer)
+{
+    if (text.rfind(kSharedPrefix, 0) == 0) {
+        std::string relative = text.substr(std::string(kSharedPrefix).size());
+        std::filesystem::path folder = sharedDataFolder();
+        std::filesystem::path file = (folder / relative).lexically_normal();
+        std::error_code ec;
+        if (!std::filesystem::exists(file, ec))
+            throw UserError(sceneFile.string() + ": " + pointer + ": '" + text + "': the shared data is missing: " +
+                            file.string() + " does not exist (this scene needs the shared third-party assets in " +
+                            folder.string() + ", beside the checkout, or in the folder $WISP_SHARED_DATA names)");
+        return file;
+    }
+    std::filesystem::path p(text);
+    std::filesystem::path file = p.is_absolute() ? p : (sceneFile.parent_path() / p).lexically_normal();
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec))
+        throw UserError(
+            sceneFile.string() + ": " + pointer + ": '" + text + "': no such file" +
+            (file.string() != text ? " (" + file.string() + ", relative to the scene's folder)" : std::string()));
+    return file;
+}
+
+std::string scenePathText(const std::filesystem::path& sceneFile, const std::filesystem::path& file)
+{
+    std::filesystem::path absolute = std::filesystem::absolute(file).lexically_normal();
+    std::filesystem::path shared = std::filesystem::absolute(sharedDataFolder()).lexically_normal();
+    std::filesystem::path inShared = absolute.lexically_relative(shared);
+    if (!inShared.empty() && *inShared.begin() != "..")
+        return kSharedPrefix + inShared.generic_string();
+    std::filesystem::path folder = std::filesystem::absolute(sceneFile).lexically_normal().parent_path();
+    std::filesystem::path relative = absolute.lexically_relative(folder);
+    return relative.empty() ? absolute.generic_string() : relative.generic_string();
+}
+
+void applyScene(const Scene& scene, const std::filesystem::path& sceneFile, const SceneTargets& t)
+{
+    HairOptions& hair = *t.hair;
+    if (!scene.head.empty() && t.headFile)
+        *t.headFile = resolveScenePath(sceneFile, scene.head, "/head").string();
+    const SceneHair& h = scene.hair;
+    if (h.guides)
+        hair.growth.guides = *h.guides;
+    if (h.vertices)
+        hair.growth.verticesPerStrand = *h.vertices;
+    if (h.hairLength)
+        hair.growth.lengthMetres = *h.hairLength;
+    if (h.lengthVariation)
+        hair.growth.lengthVariation = *h.lengthVariation;
+    if (h.curl)
+        hair.growth.curlRadiusMetres = *h.curl;
+    if (h.poisson)
+        hair.growth.poissonDisk = *h.poisson;
+    if (h.seed)
+        hair.growth.seed = *h.seed;
+    hair.hairFiles.clear();
+    hair.scenePartOverrides.clear();
+    for (size_t i = 0; i < h.files.size(); ++i) {
+        const SceneHairFile& f = h.files[i];
+        std::string pointer = "/hair/files/" + std::to_string(i);
+        hair.hairFiles.push_back(resolveScenePath(sceneFile, f.path, pointer).string());
+        std::string values;
+        auto add = [&](const char* key, const std::optional<float>& v) {
+            if (v)
+                values += (values.empty() ? "" : ",") + std::string(key) + "=" + text(double(*v));
+        };
+        add("global", f.globalStiffness);
+        add("local", f.localStiffness);
+        add("damping", f.damping);
+        add("drag", f.drag);
+        if (!values.empty())
+            hair.scenePartOverrides.push_back(std::to_string(i) + ":" + values);
+    }
+    if (h.scale)
+        hair.hairScale = *h.scale;
+    if (h.offset)
+        hair.hairOffset = {h.offset->x, h.offset->y, h.offset->z};
+    if (h.zUp)
+        hair.zUp = h.zUp;
+    if (h.mirrorZ)
+        hair.mirrorZ = h.mirrorZ;
+    if (h.globalStiffness)
+        hair.globalStiffness = h.globalStiffness;
+    if (h.localStiffness)
+        hair.localStiffness = h.localStiffness;
+    if (h.damping)
+        hair.damping = h.damping;
+    if (h.drag)
+        hair.drag = h.drag;
+    if (scene.colliders)
+        hair.colliders = scene.colliders;
+    if (scene.wind)
+        hair.wind = {scene.wind->x, scene.wind->y, scene.wind->z};
+    if (scene.sphere && scene.sphere->w > 0.0f)
+        hair.sphere = {scene.sphere->x, scene.sphere->y, scene.sphere->z, scene.sphere->w};
+    if (scene.repulsion)
+        hair.sim.gridRepulsion = *scene.repulsion;
+    if (scene.gridAtomics)
+        hair.sim.gridAtomics = *scene.gridAtomics;
+    for (const auto& [name, value] : scene.settings)
+        applySceneSetting(sceneFile, {&hair.growth, &hair.sim, t.render}, name, value);
+}
+
+std::vector<std::pair<std::string, std::string>> currentSettings(const SettingsRefs& refs)
+{
+    std::vector<std::pair<std::string, std::string>> out;
+    for (const SettingSpec& spec : settingSpecs()) {
+        std::string value = spec.get(refs);
+        if (value != "-")
+            out.emplace_back(spec.name, value);
+    }
+    return out;
+}
+
+OrbitCamera poseCamera(const OrbitCamera& framing, const CameraPose& pose)
+{
+    OrbitCamera c = framing;
+    float radius = (framing.farPlane - framing.distance) / 8.0f;  // as OrbitCamera::framing sets the planes
+    c.yawDeg = pose.yawDeg.value_or(framing.yawDeg);
+    c.pitchDeg = pose.pitchDeg.value_or(framing.pitchDeg);
+    c.distance = framing.distance * pose.distance.value_or(1.0f);
+    c.target = pose.target.value_or(framing.target);
+    c.nearPlane = std::max(1e-4f, c.distance - 4.0f * radius) * 0.5f;
+    c.farPlane = c.distance + 8.0f * radius + glm::length(c.target - framing.target);
+    return c;
+}
+
+CameraPose cameraPoseOf(const OrbitCamera& framing, const OrbitCamera& camera)
+{
+    auto clamp = [](float v, const Range& r) { return std::clamp(v, float(r.min), float(r.max)); };
+    return {.yawDeg = clamp(camera.yawDeg, kSceneCameraYawRange),
+            .pitchDeg = clamp(camera.pitchDeg, kSceneCameraPitchRange),
+            .distance = clamp(camera.distance / std::max(framing.distance, 1e-12f), kSceneCameraDistanceRange),
+            .target = camera.target};
+}
+
+SceneKey sceneKey(double time, const SceneState& state)
+{
+    SceneKey k;
+    k.time = time;
+    k.cameraYawDeg = state.camera.yawDeg;
+    k.cameraPitchDeg = state.camera.pitchDeg;
+    k.cameraDistance = state.camera.distance;
+    k.cameraTarget = state.camera.target;
+    k.sphere = state.sphere;
+    k.lightAzimuthDeg = state.light.azimuthDeg;
+    k.lightElevationDeg = state.light.elevationDeg;
+    k.lightIntensity = state.light.intensity;
+    k.wind = state.wind;
+    k.headYawDeg = state.headYawDeg;
+    return k;
+}
+
+glm::mat4 headYawTransform(const Bounds& head, float yawDeg)
+{
+    glm::vec3 centre = head.center();
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), centre);
+    m = glm::rotate(m, glm::radians(yawDeg), glm::vec3(0.0f, 1.0f, 0.0f));
+    return glm::translate(m, -centre);
+}
+
+SceneTimeline::SceneTimeline(const std::vector<SceneKey>& keys, SceneInterpolation interpolation,
+                             const SceneState& base)
+    : interpolation_(interpolation), base_(base)
+{
+    for (const SceneKey& k : keys) {
+        if (k.cameraYawDeg)
+            cameraYaw_.emplace_back(k.time, *k.cameraYawDeg);
+        if (k.cameraPitchDeg)
+            cameraPitch_.emplace_back(k.time, *k.cameraPitchDeg);
+        if (k.cameraDistance)
+            cameraDistance_.emplace_back(k.time, *k.cameraDistance);
+        if (k.cameraTarget)
+            cameraTarget_.emplace_back(k.time, *k.cameraTarget);
+        if (k.sphere)
+            sphere_.emplace_back(k.time, *k.sphere);
+        if (k.lightAzimuthDeg)
+            lightAzimuth_.emplace_back(k.time, *k.lightAzimuthDeg);
+        if (k.lightElevationDeg)
+            lightElevation_.emplace_back(k.time, *k.lightElevationDeg);
+        if (k.lightIntensity)
+            lightIntensity_.emplace_back(k.time, *k.lightIntensity);
+        if (k.wind)
+            wind_.emplace_back(k.time, *k.wind);
+        if (k.headYawDeg)
+            headYaw_.emplace_back(k.time, *k.headYawDeg);
+    }
+}
+
+template <typename T> T SceneTimeline::sample(const Track<T>& track, double t, const T& fallback) const
+{
+    if (track.empty())
+        return fallback;
+    if (t <= track.front().first)
+        return track.front().second;
+    if (t >= track.back().first)
+        return track.back().second;
+    auto next =
+        std::upper_bound(track.begin(), track.end(), t, [](double time, const auto& key) { return time < key.first; });
+    auto previous = next - 1;
+    double u = (t - previous->first) / (next->first - previous->first);
+    if (interpolation_ == SceneInterpolation::Smooth)
+        u = u * u * (3.0 - 2.0 * u);
+    return previous->second + (next->second - previous->second) * float(u);
+}
+
+SceneState SceneTimeline::at(double seconds) const
+{
+    SceneState s = base_;
+    auto optional = [&](const auto& track, auto fallback) -> decltype(fallback) {
+        if (track.empty())
+            return fallback;
+        return sample(track, seconds, track.front().second);
+    };
+    s.camera.yawDeg = optional(cameraYaw_, base_.camera.yawDeg);
+    s.camera.pitchDeg = optional(cameraPitch_, base_.camera.pitchDeg);
+    s.camera.distance = optional(cameraDistance_, base_.camera.distance);
+    s.camera.target = optional(cameraTarget_, base_.camera.target);
+    s.sphere = sample(sphere_, seconds, base_.sphere);
+    s.light.azimuthDeg = sample(lightAzimuth_, seconds, base_.light.azimuthDeg);
+    s.light.elevationDeg = sample(lightElevation_, seconds, base_.light.elevationDeg);
+    s.light.intensity = sample(lightIntensity_, seconds, base_.light.intensity);
+    s.wind = sample(wind_, seconds, base_.wind);
+    s.headYawDeg = sample(headYaw_, seconds, base_.headYawDeg);
+    return s;
+}
+
+}  // namespace wisp

@@ -1,0 +1,479 @@
+// tests/test_scene.cpp: scene files without a GPU: save and load give the same scene, the
+// timeline's values by hand (linear and smoothstep, held before the first and after the last key,
+// each channel between its own keys), the head's turn and the posed camera, the shipped scenes,
+// and every validation error naming the file and the value's JSON pointer.
+#include "app/scene.h"
+#include "app/viewer.h"
+#include "core/error.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+using namespace wisp;
+using wisp::test::TempDir;
+using wisp::test::writeFile;
+
+namespace {
+
+// A scene with every field of grown hair set.
+Scene grownScene()
+{
+    Scene s;
+    s.description = "every field";
+    s.head = "heads/bust.json";
+    s.hair.guides = 120;
+    s.hair.vertices = 12;
+    s.hair.seed = 7;
+    s.hair.hairLength = 0.3f;
+    s.hair.lengthVariation = 0.2f;
+    s.hair.curl = 0.01f;
+    s.hair.poisson = true;
+    s.hair.globalStiffness = 0.15f;
+    s.hair.localStiffness = 0.35f;
+    s.hair.damping = 0.8f;
+    s.hair.drag = 2.5f;
+    s.colliders = std::vector<Ellipsoid>{{"cranium", {0.0f, 0.14f, 0.0f}, {0.09f, 0.11f, 0.12f}, {56.2f, 0.0f, 0.0f}},
+                                         {"neck", {0.0f, 0.0f, -0.02f}, {0.06f, 0.12f, 0.06f}, {0.0f, 0.0f, 0.0f}}};
+    s.wind = glm::vec3(1.0f, 0.0f, -2.5f);
+    s.sphere = glm::vec4(0.1f, 0.2f, -0.3f, 0.05f);
+    s.repulsion = 0.25f;
+    s.gridAtomics = SimSettings::GridAtomics::Float;
+    s.settings = {{"hair_preset", "auburn"},
+                  {"strands_per_guide", "8"},
+                  {"width", "0.0004"},
+                  {"lod", "off"},
+                  {"hair_color", "0.3,0.2,0.1"}};
+    s.interpolation = SceneInterpolation::Linear;
+    s.duration = 4.5;
+    SceneKey a;
+    a.time = 0.0;
+    a.cameraYawDeg = 30.0f;
+    a.cameraPitchDeg = -5.0f;
+    a.cameraDistance = 1.25f;
+    a.cameraTarget = glm::vec3(0.0f, 0.1f, 0.0f);
+    a.sphere = glm::vec4(0.3f, 0.1f, -0.1f, 0.06f);
+    a.lightAzimuthDeg = -40.0f;
+    a.lightElevationDeg = 20.0f;
+    a.lightIntensity = 2.5f;
+    a.wind = glm::vec3(0.0f, 0.0f, 0.0f);
+    a.headYawDeg = 0.0f;
+    SceneKey b;
+    b.time = 1.5;
+    b.headYawDeg = -45.5f;
+    SceneKey c;
+    c.time = 3.25;
+    c.wind = glm::vec3(3.0f, 0.5f, -7.0f);
+    c.cameraYawDeg = 390.0f;
+    s.keys = {a, b, c};
+    return s;
+}
+
+Scene loadedScene()
+{
+    Scene s;
+    s.hair.files = {{"shared:sintel/groom.tfx", std::nullopt, std::nullopt, std::nullopt, std::nullopt},
+                    {"parts/tail.tfx", 0.5f, std::nullopt, 0.9f, 3.0f}};
+    s.hair.vertices = 16;
+    s.hair.scale = 0.01f;
+    s.hair.offset = glm::vec3(0.0f, -0.02f, 0.01f);
+    s.hair.zUp = true;
+    s.hair.mirrorZ = false;
+    return s;
+}
+
+// What loadScene says about `text` (empty when it loads).
+std::string loadError(const std::string& text, const std::string& name = "bad.json")
+{
+    TempDir dir;
+    writeFile(dir / name, text);
+    try {
+        loadScene(dir / name);
+    } catch (const UserError& e) {
+        std::string message = e.what();
+        EXPECT_EQ(message.rfind((dir / name).string() + ":", 0), 0u) << "names the file first: " << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
+        return message;
+    }
+    return "";
+}
+
+SceneKey keyAt(double time)
+{
+    SceneKey k;
+    k.time = time;
+    return k;
+}
+
+}  // namespace
+
+TEST(Scene, SaveThenLoadGivesTheSameScene)
+{
+    TempDir dir;
+    for (const Scene& original : {grownScene(), loadedScene(), Scene{}}) {
+        saveScene(dir / "s.json", original);
+        Scene loaded = loadScene(dir / "s.json");
+        EXPECT_TRUE(loaded == original) << sceneJson(original) << "\nloaded as\n" << sceneJson(loaded);
+        EXPECT_EQ(sceneJson(loaded), sceneJson(original));
+    }
+    // Written under a temporary name and renamed: nothing else is left in the folder.
+    size_t files = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+        files += entry.is_regular_file() ? 1 : 0;
+    EXPECT_EQ(files, 1u);
+    // Floats are written as the shortest decimal that reads back the same.
+    std::string text = sceneJson(grownScene());
+    EXPECT_NE(text.find("\"hair_length\": 0.3,"), std::string::npos) << text;
+    EXPECT_NE(text.find("\"strands_per_guide\": 8"), std::string::npos) << text;  // a number again
+    EXPECT_NE(text.find("\"lod\": false"), std::string::npos) << text;
+}
+
+TEST(Scene, SaveNeedsAnExistingFolder)
+{
+    EXPECT_THROW(saveScene("/nonexistent/folder/s.json", Scene{}), UserError);
+}
+
+TEST(Scene, ACompleteFileLoadsWithItsValues)
+{
+    std::string text = R"({
+  "version": 1,
+  "hair": {"guides": 40, "hair_length": 0.3},
+  "physics": {"wind": [1, 0, 0], "sphere": [0, 0.1, -0.2, 0.05], "grid_atomics": "fixed"},
+  "settings": {"melanin": 0.3, "hair_preset": "black", "lod": false, "hair_color": [0.5, 0.4, 0.3]},
+  "keys": [
+    {"time": 0, "camera": {"yaw": 10, "target": [0, 0.1, 0]}, "light": {"azimuth": 20}},
+    {"time": 2.5, "head_yaw": -30, "wind": [0, 0, -4], "sphere": [0.2, 0.1, -0.2, 0]}
+  ]
+})";
+    TempDir dir;
+    writeFile(dir / "s.json", text);
+    Scene s = loadScene(dir / "s.json");
+    EXPECT_EQ(s.hair.guides, 40u);
+    EXPECT_FLOAT_EQ(*s.hair.hairLength, 0.3f);
+    EXPECT_EQ(*s.gridAtomics, SimSettings::GridAtomics::Fixed);
+    // In the file's order (a later setting wins over an earlier one), as --set takes them.
+    ASSERT_EQ(s.settings.size(), 4u);
+    EXPECT_EQ(s.settings[0], std::make_pair(std::string("melanin"), std::string("0.3")));
+    EXPECT_EQ(s.settings[1].first, "hair_preset");
+    EXPECT_EQ(s.settings[2].second, "off");
+    EXPECT_EQ(s.settings[3].second, "0.5,0.4,0.3");
+    ASSERT_EQ(s.keys.size(), 2u);
+    EXPECT_EQ(*s.keys[0].cameraTarget, glm::vec3(0.0f, 0.1f, 0.0f));
+    EXPECT_FALSE(s.keys[0].cameraPitchDeg.has_value());
+    EXPECT_EQ(*s.keys[1].headYawDeg, -30.0f);
+    EXPECT_EQ(s.keys[1].sphere->w, 0.0f);
+    EXPECT_DOUBLE_EQ(s.length(), 2.5);                       // no duration: the last key's time
+    EXPECT_EQ(s.interpolation, SceneInterpolation::Smooth);  // the default
+}
+
+TEST(SceneTimeline, LinearValuesByHand)
+{
+    SceneState base;
+    base.sphere = glm::vec4(1.0f, 2.0f, 3.0f, 0.5f);
+    base.light.azimuthDeg = 7.0f;
+    SceneKey a = keyAt(1.0), b = keyAt(3.0);
+    a.headYawDeg = 10.0f;
+    b.headYawDeg = 50.0f;
+    a.wind = glm::vec3(0.0f);
+    b.wind = glm::vec3(4.0f, 0.0f, -8.0f);
+    b.cameraYawDeg = 350.0f;  // alone: held at every time
+    SceneTimeline t({a, b}, SceneInterpolation::Linear, base);
+    EXPECT_FLOAT_EQ(t.at(0.0).headYawDeg, 10.0f);  // before the first key: held
+    EXPECT_FLOAT_EQ(t.at(1.0).headYawDeg, 10.0f);
+    EXPECT_FLOAT_EQ(t.at(1.5).headYawDeg, 20.0f);  // a quarter of the way
+    EXPECT_FLOAT_EQ(t.at(2.0).headYawDeg, 30.0f);
+    EXPECT_FLOAT_EQ(t.at(3.0).headYawDeg, 50.0f);
+    EXPECT_FLOAT_EQ(t.at(99.0).headYawDeg, 50.0f);  // after the last: held
+    glm::vec3 w = t.at(2.5).wind;
+    EXPECT_FLOAT_EQ(w.x, 3.0f);
+    EXPECT_FLOAT_EQ(w.z, -6.0f);
+    EXPECT_FLOAT_EQ(*t.at(0.0).camera.yawDeg, 350.0f);
+    EXPECT_FALSE(t.at(2.0).camera.pitchDeg.has_value());  // no key: the framing's
+    EXPECT_FALSE(t.at(2.0).camera.target.has_value());
+    EXPECT_EQ(t.at(2.0).sphere, base.sphere);  // no key: the base
+    EXPECT_FLOAT_EQ(t.at(2.0).light.azimuthDeg, 7.0f);
+    EXPECT_EQ(t.at(2.0).light.color, base.light.color);
+}
+
+TEST(SceneTimeline, SmoothstepEasesBetweenKeys)
+{
+    SceneKey a = keyAt(1.0), b = keyAt(3.0);
+    a.lightElevationDeg = 10.0f;
+    b.lightElevationDeg = 50.0f;
+    SceneTimeline t({a, b}, SceneInterpolation::Smooth, SceneState{});
+    // u = 0.25: 3u² - 2u³ = 0.15625; u = 0.5: 0.5; u = 0.75: 0.84375.
+    EXPECT_FLOAT_EQ(t.at(1.5).light.elevationDeg, 10.0f + 40.0f * 0.15625f);
+    EXPECT_FLOAT_EQ(t.at(2.0).light.elevationDeg, 30.0f);
+    EXPECT_FLOAT_EQ(t.at(2.5).light.elevationDeg, 10.0f + 40.0f * 0.84375f);
+    // At rest at the keys: the first step away moves far less than a linear one would.
+    float nearStart = t.at(1.01).light.elevationDeg - 10.0f;
+    EXPECT_GT(nearStart, 0.0f);
+    EXPECT_LT(nearStart, 0.1f * 40.0f * 0.005f);
+}
+
+TEST(SceneTimeline, EachChannelMovesBetweenItsOwnKeys)
+{
+    SceneKey a = keyAt(0.0), b = keyAt(1.0), c = keyAt(2.0);
+    a.sphere = glm::vec4(0.0f, 0.0f, 0.0f, 0.1f);
+    c.sphere = glm::vec4(2.0f, 0.0f, 0.0f, 0.3f);
+    b.wind = glm::vec3(5.0f, 0.0f, 0.0f);  // sets the wind only
+    a.cameraDistance = 1.0f;
+    c.cameraDistance = 2.0f;
+    SceneTimeline t({a, b, c}, SceneInterpolation::Linear, SceneState{});
+    SceneState s = t.at(1.0);
+    EXPECT_FLOAT_EQ(s.sphere.x, 1.0f);  // halfway from a to c, through b
+    EXPECT_FLOAT_EQ(s.sphere.w, 0.2f);
+    EXPECT_FLOAT_EQ(*s.camera.distance, 1.5f);
+    EXPECT_EQ(t.at(0.0).wind, glm::vec3(5.0f, 0.0f, 0.0f));  // its only key, held both ways
+    EXPECT_EQ(t.at(2.0).wind, glm::vec3(5.0f, 0.0f, 0.0f));
+}
+
+TEST(Scene, HeadTurnIsTheWindowsConvention)
+{
+    Bounds head{glm::vec3(-0.2f, -0.1f, -0.1f), glm::vec3(0.2f, 0.3f, 0.1f)};
+    Viewer viewer(OrbitCamera::framing(head, 1.5f), head, glm::vec4(0.0f), LightSettings{}, glm::vec3(0.0f));
+    viewer.press(ViewerKey::HeadLeft);
+    viewer.release(ViewerKey::HeadLeft);
+    for (int i = 0; i < 30; ++i)
+        viewer.update(1.0f / 60.0f);
+    ASSERT_NE(viewer.headYawDeg(), 0.0f);
+    glm::mat4 a = headYawTransform(head, viewer.headYawDeg()), b = viewer.headTransform();
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            EXPECT_NEAR(a[c][r], b[c][r], 1e-6f);
+    // The centre stays put; a point in front of it turns about the vertical axis.
+    glm::vec3 centre = head.center();
+    glm::mat4 quarter = headYawTransform(head, 90.0f);
+    glm::vec3 moved = glm::vec3(quarter * glm::vec4(centre + glm::vec3(0.0f, 0.0f, 0.1f), 1.0f));
+    EXPECT_NEAR(glm::length(glm::vec3(quarter * glm::vec4(centre, 1.0f)) - centre), 0.0f, 1e-6f);
+    EXPECT_NEAR(moved.x - centre.x, 0.1f, 1e-6f);
+    EXPECT_NEAR(moved.y - centre.y, 0.0f, 1e-6f);
+}
+
+TEST(Scene, PosedCameraMovesTheFraming)
+{
+    Bounds head{glm::vec3(-0.2f, -0.1f, -0.1f), glm::vec3(0.2f, 0.3f, 0.1f)};
+    OrbitCamera framing = OrbitCamera::framing(head, 1.5f);
+    OrbitCamera same = poseCamera(framing, CameraPose{});
+    EXPECT_EQ(same.yawDeg, framing.yawDeg);
+    EXPECT_EQ(same.distance, framing.distance);
+    EXPECT_EQ(same.target, framing.target);
+    CameraPose pose{.yawDeg = 180.0f, .pitchDeg = 30.0f, .distance = 3.0f, .target = glm::vec3(0.0f, 0.2f, 0.0f)};
+    OrbitCamera c = poseCamera(framing, pose);
+    EXPECT_EQ(c.yawDeg, 180.0f);
+    EXPECT_EQ(c.pitchDeg, 30.0f);
+    EXPECT_FLOAT_EQ(c.distance, 3.0f * framing.distance);
+    EXPECT_EQ(c.target, glm::vec3(0.0f, 0.2f, 0.0f));
+    // The whole head stays between the planes.
+    float radius = 0.5f * glm::length(head.size());
+    EXPECT_LT(c.nearPlane, c.distance - radius - glm::length(c.target - head.center()));
+    EXPECT_GT(c.farPlane, c.distance + radius + glm::length(c.target - head.center()));
+}
+
+TEST(Scene, AWindowsStateSavesAsOneKey)
+{
+    // What the window will do: its orbit camera relative to the framing, and every channel, as
+    // one key that a timeline gives back.
+    Bounds head{glm::vec3(-0.2f, -0.1f, -0.1f), glm::vec3(0.2f, 0.3f, 0.1f)};
+    OrbitCamera framing = OrbitCamera::framing(head, 1.5f);
+    OrbitCamera camera = framing;
+    camera.orbit(40.0f, -15.0f);
+    camera.zoom(0.8f);
+    camera.pan(0.01f, 0.02f);
+    SceneState state;
+    state.camera = cameraPoseOf(framing, camera);
+    state.sphere = glm::vec4(0.1f, 0.2f, 0.3f, 0.05f);
+    state.light.azimuthDeg = -20.0f;
+    state.wind = glm::vec3(2.0f, 0.0f, 1.0f);
+    state.headYawDeg = 12.0f;
+    Scene scene;
+    scene.keys = {sceneKey(0.0, state)};
+    TempDir dir;
+    saveScene(dir / "saved.json", scene);
+    Scene loaded = loadScene(dir / "saved.json");
+    SceneState back = SceneTimeline(loaded.keys, loaded.interpolation, SceneState{}).at(3.0);
+    OrbitCamera again = poseCamera(framing, back.camera);
+    EXPECT_FLOAT_EQ(again.yawDeg, camera.yawDeg);
+    EXPECT_FLOAT_EQ(again.pitchDeg, camera.pitchDeg);
+    EXPECT_NEAR(again.distance, camera.distance, 1e-6f);
+    EXPECT_EQ(again.target, camera.target);
+    EXPECT_EQ(back.sphere, state.sphere);
+    EXPECT_EQ(back.light.azimuthDeg, -20.0f);
+    EXPECT_EQ(back.wind, state.wind);
+    EXPECT_EQ(back.headYawDeg, 12.0f);
+}
+
+TEST(Scene, ShippedScenesLoad)
+{
+    std::filesystem::path folder = std::filesystem::path(WISP_SOURCE_DIR) / "scenes";
+    for (const char* name : {"sphere-sweep.json", "wind-gusts.json", "head-turn.json", "sintel.json"}) {
+        Scene s = loadScene(folder / name);
+        EXPECT_FALSE(s.description.empty()) << name;
+        EXPECT_GE(s.keys.size(), 2u) << name;
+        EXPECT_GT(s.length(), 2.0) << name;
+        // Saved again, each reads back the same.
+        TempDir dir;
+        saveScene(dir / name, s);
+        EXPECT_TRUE(loadScene(dir / name) == s) << name;
+    }
+    Scene sweep = loadScene(folder / "sphere-sweep.json");
+    SceneTimeline t(sweep.keys, sweep.interpolation, SceneState{});
+    EXPECT_GT(glm::distance(glm::vec3(t.at(0.0).sphere), glm::vec3(t.at(2.2).sphere)), 0.3f);  // it sweeps
+    Scene sintel = loadScene(folder / "sintel.json");
+    ASSERT_EQ(sintel.hair.files.size(), 1u);
+    EXPECT_EQ(sintel.hair.files[0].path.rfind("shared:", 0), 0u);
+}
+
+TEST(Scene, SharedPathsAndRelativePaths)
+{
+    TempDir shared, scenes;
+    std::filesystem::create_directories(shared / "sintel");
+    writeFile(shared / "sintel" / "head.obj", "v 0 0 0\n");
+    writeFile(scenes / "local.tfx", "x");
+    const char* previous = std::getenv("WISP_SHARED_DATA");
+    std::string saved = previous ? previous : "";
+    setenv("WISP_SHARED_DATA", shared.path().c_str(), 1);
+    std::filesystem::path scene = scenes / "s.json";
+    EXPECT_EQ(resolveScenePath(scene, "shared:sintel/head.obj", "/head"), shared / "sintel" / "head.obj");
+    EXPECT_EQ(resolveScenePath(scene, "local.tfx", "/hair/files/0"), scenes / "local.tfx");
+    EXPECT_EQ(scenePathText(scene, shared / "sintel" / "head.obj"), "shared:sintel/head.obj");
+    EXPECT_EQ(scenePathText(scene, scenes / "local.tfx"), "local.tfx");
+    try {
+        resolveScenePath(scene, "shared:sintel/missing.tfx", "/hair/files/0");
+        ADD_FAILURE() << "a missing shared file was accepted";
+    } catch (const UserError& e) {
+        std::string m = e.what();
+        EXPECT_NE(m.find("/hair/files/0"), std::string::npos) << m;
+        EXPECT_NE(m.find("the shared data is missing"), std::string::npos) << m;
+    }
+    try {
+        resolveScenePath(scene, "nowhere.obj", "/head");
+        ADD_FAILURE() << "a missing file was accepted";
+    } catch (const UserError& e) {
+        EXPECT_NE(std::string(e.what()).find("/head: 'nowhere.obj': no such file"), std::string::npos) << e.what();
+    }
+    if (previous)
+        setenv("WISP_SHARED_DATA", saved.c_str(), 1);
+    else
+        unsetenv("WISP_SHARED_DATA");
+}
+
+TEST(SceneErrors, WrongTypesNameTheJsonPointer)
+{
+    EXPECT_NE(loadError(R"({"keys": [{"time": "1"}]})").find("/keys/0/time: must be a number, got a string"),
+              std::string::npos);
+    EXPECT_NE(loadError(R"({"keys": {"time": 1}})").find("/keys: must be an array of keys, got an object"),
+              std::string::npos);
+    EXPECT_NE(loadError(R"({"keys": [{"time": 0, "sphere": [0, 0, 1]}]})")
+                  .find("/keys/0/sphere: must be an array of 4 numbers"),
+              std::string::npos);
+    EXPECT_NE(loadError(R"({"keys": [{"time": 0, "wind": [0, "x", 1]}]})").find("/keys/0/wind/1: must be a number"),
+              std::string::npos);
+    EXPECT_NE(loadError(R"({"hair": {"poisson": 1}})").find("/hair/poisson: must be true or false, got a number"),
+              std::string::npos);
+    EXPECT_NE(loadError(R"({"hair": {"guides": 2.5}})").find("/hair/guides: 2.5 is not a whole number"),
+              std::string::npos);
+    EXPECT_NE(loadError(R"({"settings": {"shading": {"model": "karis"}}})")
+                  .find("/settings/shading: must be a number, a string"),
+              std::string::npos);
+    EXPECT_NE(loadError("[1, 2]").find("must be an object, got an array"), std::string::npos);
+}
+
+TEST(SceneErrors, UnknownKeysListTheKnownOnes)
+{
+    std::string top = loadError(R"({"kes": []})");
+    EXPECT_NE(top.find("/kes: unknown key (known: version, description, head, hair, colliders, physics, settings, "
+                       "interpolation, duration, keys)"),
+              std::string::npos)
+        << top;
+    std::string key = loadError(R"({"keys": [{"time": 0, "spheer": [0, 0, 0, 1]}]})");
+    EXPECT_NE(key.find("/keys/0/spheer: unknown key (known: time, camera, sphere, light, wind, head_yaw)"),
+              std::string::npos)
+        << key;
+    EXPECT_NE(loadError(R"({"keys": [{"time": 0, "camera": {"zoom": 2}}]})")
+                  .find("/keys/0/camera/zoom: unknown key (known: yaw"),
+              std::string::npos);
+    EXPECT_NE(loadError(R"({"hair": {"lenght": 0.2}})")
+                  .find("/hair/lenght: unknown key (known: guides, vertices, hair_length"),
+              std::string::npos);
+    std::string setting = loadError(R"({"settings": {"sparkle": 3}})");
+    EXPECT_NE(setting.find("/settings/sparkle: 3: unknown setting (known: guides,"), std::string::npos) << setting;
+    EXPECT_NE(
+        loadError(R"({"physics": {"step_hz": 240}})").find("/physics/step_hz: is a setting: put it under /settings"),
+        std::string::npos);
+}
+
+TEST(SceneErrors, TimesMustIncrease)
+{
+    std::string m = loadError(R"({"keys": [{"time": 0}, {"time": 2}, {"time": 1.5}]})");
+    EXPECT_NE(m.find("/keys/2/time: 1.5 is not after the previous key's 2 (times must increase)"), std::string::npos)
+        << m;
+    EXPECT_NE(loadError(R"({"keys": [{"time": 1}, {"time": 1}]})").find("/keys/1/time"), std::string::npos);
+    EXPECT_NE(loadError(R"({"keys": [{"head_yaw": 3}]})").find("/keys/0/time: is missing"), std::string::npos);
+    EXPECT_NE(loadError(R"({"keys": [{"time": -1}]})").find("/keys/0/time: -1 is out of range: allowed 0 .. 3600 s"),
+              std::string::npos);
+}
+
+TEST(SceneErrors, OutOfRangeValuesNameTheRange)
+{
+    auto expect = [](const std::string& text, const std::string& mention) {
+        std::string m = loadError(text);
+        EXPECT_NE(m.find(mention), std::string::npos) << text << "\n" << m;
+    };
+    expect(R"({"keys": [{"time": 0, "sphere": [0, 0, 0, -1]}]})",
+           "/keys/0/sphere/3: -1 is out of range: allowed 0 .. 10000");
+    expect(R"({"keys": [{"time": 0, "light": {"elevation": 95}}]})",
+           "/keys/0/light/elevation: 95 is out of range: allowed -89 .. 89");
+    expect(R"({"keys": [{"time": 0, "light": {"intensity": -1}}]})",
+           "/keys/0/light/intensity: -1 is out of range: allowed 0 .. 20");
+    expect(R"({"keys": [{"time": 0, "head_yaw": 120}]})", "/keys/0/head_yaw: 120 is out of range: allowed -80 .. 80");
+    expect(R"({"keys": [{"time": 0, "camera": {"distance": 0}}]})",
+           "/keys/0/camera/distance: 0 is out of range: allowed 0.1 .. 10");
+    expect(R"({"keys": [{"time": 0, "camera": {"pitch": 90}}]})",
+           "/keys/0/camera/pitch: 90 is out of range: allowed -85 .. 85");
+    // JSON has no NaN or infinity, but it has huge numbers.
+    expect(R"({"keys": [{"time": 0, "wind": [1e300, 0, 0]}]})",
+           "/keys/0/wind/0: 1e+300 is out of range: allowed -100 .. 100");
+    expect("{\n  \"keys\": [\n    {\"time\": 0, \"wind\": [1e400, 0, 0]}\n  ]\n}",
+           "bad.json:3:26: 1e400 is too large a number");
+    expect(R"({"hair": {"guides": 0}})", "/hair/guides: 0 is out of range: allowed 1 .. 2000000");
+    expect(R"({"hair": {"vertices": 65}})", "/hair/vertices: 65 is out of range: allowed 4 .. 64");
+    expect(R"({"hair": {"files": ["a.tfx", {"file": "b.tfx", "drag": 101}]}})",
+           "/hair/files/1/drag: 101 is out of range: allowed 0 .. 100");
+    expect(R"({"physics": {"sphere": [0, 0, 0, 1e5]}})", "/physics/sphere/3: 100000 is out of range");
+    expect(R"({"colliders": [{"center": [0, 0, 0], "radii": [0.1, 0, 0.1]}]})", "/colliders/0/radii: must all be > 0");
+    expect(R"({"settings": {"strands_per_guide": 0}})",
+           "/settings/strands_per_guide: 0: out of range: allowed 1 .. 4096");
+    expect(R"({"settings": {"interpolation": "cubic"}})",
+           "/settings/interpolation: cubic: allowed: single | multi | mixed");
+    expect(R"({"interpolation": "cubic"})", "/interpolation: 'cubic' is not allowed: linear | smooth");
+    expect(R"({"version": 2})", "/version: 2 is not a version this Wisp reads (it reads 1)");
+}
+
+TEST(SceneErrors, ContradictionsAreNamed)
+{
+    EXPECT_NE(loadError(R"({"hair": {"files": ["a.tfx"], "guides": 3}})")
+                  .find("/hair/guides: applies to grown hair, but this hair is loaded from /hair/files"),
+              std::string::npos);
+    EXPECT_NE(loadError(R"({"hair": {"scale": 2}})").find("/hair/scale: places loaded hair, but this hair is grown"),
+              std::string::npos);
+    EXPECT_NE(loadError(R"({"hair": {"files": []}})").find("/hair/files: must name 1 to 8 hair files, got 0"),
+              std::string::npos);
+    EXPECT_NE(loadError(R"({"head": ""})").find("/head: must not be empty"), std::string::npos);
+}
+
+TEST(SceneErrors, MissingAndMalformedFiles)
+{
+    try {
+        loadScene("/nonexistent/scene.json");
+        ADD_FAILURE() << "a missing scene was accepted";
+    } catch (const UserError& e) {
+        EXPECT_EQ(std::string(e.what()), "/nonexistent/scene.json: the scene file does not exist");
+    }
+    // A trailing comma on line 4: the message names the line and column.
+    std::string m = loadError("{\n  \"hair\": {\n    \"guides\": 60,\n  }\n}\n");
+    EXPECT_NE(m.find("bad.json:4:3: malformed JSON:"), std::string::npos) << m;
+    EXPECT_NE(loadError("{\"keys\": [").find("bad.json:1:11: malformed JSON:"), std::string::npos);
+    EXPECT_NE(loadError("").find("malformed JSON"), std::string::npos);
+}
