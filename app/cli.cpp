@@ -463,7 +463,7 @@ int runCli(int argc, char** argv)
     view->add_option("--script", windowOptions.script,
                      "replay timed input events from this file: lines 'FRAME press|release|tap KEY' or "
                      "'FRAME drag-sphere|drag-light|orbit DX DY' or 'FRAME set NAME=VALUE' (a setting, as typed into the "
-                     "panel) (KEY: left right up down pageup pagedown j l i k a d w plus minus space n r p f5 o h escape)")
+                     "panel) (KEY: left right up down pageup pagedown j l i k a d w plus minus space n r p f5 o h t f2 f3 escape)")
         ->check(CLI::ExistingFile);
 
     SimulateOptions sim;
@@ -656,6 +656,10 @@ int runCli(int argc, char** argv)
             HairScene scene = buildCheckedScene(g, viewHair, headPathOrDefault(viewHead), &windowOptions.settings, viewNoHair,
                                                 /*window=*/true);
             windowOptions.scene = &scene;
+            windowOptions.timeline = commandTimeline(sceneFromFile, view, viewHair, windowOptions.settings.light);
+            windowOptions.sceneLength = sceneFromFile ? sceneFromFile->length() : 0.0;
+            windowOptions.headFile = viewHead;
+            windowOptions.hair = viewHair;
             windowOptions.sim = viewHair.sim;
             windowOptions.sim.wind = initial.wind;
             windowOptions.sphere = initial.sphere;

@@ -60,6 +60,9 @@ const std::vector<ViewerKeyInfo>& viewerKeys()
         {ViewerKey::Reload, "f5", "F5: reload shaders"},
         {ViewerKey::SphereToggle, "o", "O: sphere on/off"},
         {ViewerKey::Help, "h", "H: help"},
+        {ViewerKey::Play, "t", "T: play/stop the scene"},
+        {ViewerKey::SaveScene, "f2", "F2: save the scene"},
+        {ViewerKey::LoadScene, "f3", "F3: load the last saved scene"},
         {ViewerKey::Quit, "escape", "Esc: quit"},
     };
     return keys;
@@ -117,6 +120,9 @@ void Viewer::press(ViewerKey key)
     case ViewerKey::SphereToggle: sphereOn_ = !sphereOn_; break;
     case ViewerKey::Help: help_ = !help_; break;
     case ViewerKey::Quit: quit_ = true; break;
+    case ViewerKey::Play: playing_ = !playing_; break;
+    case ViewerKey::SaveScene: save_ = true; break;
+    case ViewerKey::LoadScene: load_ = true; break;
     default: break;
     }
 }
@@ -164,6 +170,25 @@ void Viewer::dragLight(float dx, float dy)
     light_.azimuthDeg = std::remainder(light_.azimuthDeg + 0.4f * dx, 360.0f);
     light_.elevationDeg =
         std::clamp(light_.elevationDeg - 0.4f * dy, float(kLightElevationRange.min), float(kLightElevationRange.max));
+}
+
+void Viewer::pose(const OrbitCamera& camera, const glm::vec4& sphere, const LightSettings& light, const glm::vec3& wind,
+                  float headYawDeg)
+{
+    camera_ = camera;
+    sphereOn_ = sphere.w > 0.0f;
+    if (sphereOn_) {
+        sphereCentre_ = glm::vec3(sphere);
+        sphereRadius_ = sphere.w;
+    }
+    light_ = light;
+    windOn_ = glm::length(wind) > 0.0f;
+    if (windOn_) {
+        windStrength_ = glm::length(wind);
+        windDirection_ = wind / windStrength_;
+    }
+    headYaw_ = headYawTarget_ = headYawDeg;
+    headYawRate_ = 0.0f;
 }
 
 glm::vec4 Viewer::sphere() const

@@ -24,6 +24,7 @@ enum class ViewerKey {
     HeadLeft, HeadRight,                                                    // A D
     Wind, WindStronger, WindWeaker,                                         // W + -
     Pause, Step, Reset, Screenshot, Reload, SphereToggle, Help, Quit,       // Space N R P F5 O H Esc
+    Play, SaveScene, LoadScene,                                             // T F2 F3
 };
 
 struct ViewerKeyInfo {
@@ -51,6 +52,11 @@ public:
     void dragSphere(float dx, float dy, float viewportHeight);
     void dragLight(float dx, float dy);
     void orbit(float dx, float dy) { camera_.orbit(-0.3f * dx, 0.3f * dy); }
+    // Puts every animated thing where a scene's timeline has it (the head's turn at once).
+    void pose(const OrbitCamera& camera, const glm::vec4& sphere, const LightSettings& light, const glm::vec3& wind,
+              float headYawDeg);
+    bool playing() const { return playing_; }
+    void setPlaying(bool playing) { playing_ = playing; }
 
     OrbitCamera& camera() { return camera_; }
     const LightSettings& light() const { return light_; }
@@ -65,6 +71,8 @@ public:
     bool takeReset() { return std::exchange(reset_, false); }
     bool takeScreenshot() { return std::exchange(screenshot_, false); }
     bool takeReload() { return std::exchange(reload_, false); }
+    bool takeSave() { return std::exchange(save_, false); }
+    bool takeLoad() { return std::exchange(load_, false); }
     bool quit() const { return quit_; }
     // A one-line summary for the title bar and the exit message.
     std::string status() const;
@@ -84,6 +92,7 @@ private:
     bool paused_ = false;
     uint32_t steps_ = 0;
     bool reset_ = false, screenshot_ = false, reload_ = false, quit_ = false, help_ = true;
+    bool playing_ = false, save_ = false, load_ = false;
     std::set<ViewerKey> held_;
 };
 

@@ -178,6 +178,9 @@ bool viewerKeyOf(int glfwKey, ViewerKey& key)
     case GLFW_KEY_O: key = ViewerKey::SphereToggle; return true;
     case GLFW_KEY_H: key = ViewerKey::Help; return true;
     case GLFW_KEY_ESCAPE: key = ViewerKey::Quit; return true;
+    case GLFW_KEY_T: key = ViewerKey::Play; return true;
+    case GLFW_KEY_F2: key = ViewerKey::SaveScene; return true;
+    case GLFW_KEY_F3: key = ViewerKey::LoadScene; return true;
     default: return false;
     }
 }
@@ -319,6 +322,11 @@ int runWindow(const WindowOptions& options)
     });
     glm::vec3 windApplied = options.sim.wind;
     std::string title;
+    const OrbitCamera framing = OrbitCamera::framing(renderer->sceneBounds(), float(settings.width) / float(settings.height));
+    SceneTimeline timeline = options.timeline;
+    viewer.setPlaying(options.sceneLength > 0.0);
+    std::filesystem::path lastSaved;
+    uint32_t scenesSaved = 0;
     // After the window's callbacks: ImGui's GLFW backend chains them.
     UiOverlay ui(ctx, window, kFramesInFlight);
     ui.setTarget(renderer->target());
@@ -449,6 +457,59 @@ int runWindow(const WindowOptions& options)
             if (!error.empty())
                 throw UserError("--script: " + assignment + ": " + error);
         }
+        if (viewer.takeSave()) {  // F2: the window's state as a scene of one key
+            char name[64];
+            std::snprintf(name, sizeof(name), "wisp-scene-%03u.json", ++scenesSaved);
+            std::filesystem::path out = std::filesystem::absolute(name);
+            Scene saved;
+            saved.description = "saved by wisp view";
+            if (!options.headFile.empty())
+                saved.head = scenePathText(out, std::filesystem::absolute(options.headFile));
+            const HairOptions& h = options.hair;
+            if (h.hairFiles.empty()) {
+                saved.hair.guides = h.growth.guides;
+                saved.hair.vertices = h.growth.verticesPerStrand;
+                saved.hair.seed = h.growth.seed;
+                saved.hair.hairLength = h.growth.lengthMetres;
+                saved.hair.lengthVariation = h.growth.lengthVariation;
+                saved.hair.curl = h.growth.curlRadiusMetres;
+                saved.hair.poisson = h.growth.poissonDisk;
+            } else {
+                for (const std::string& f : h.hairFiles)
+                    saved.hair.files.push_back({.path = scenePathText(out, std::filesystem::absolute(f))});
+            }
+            RenderSettings current = renderer->settings();
+            saved.settings = currentSettings({nullptr, &sim, &current});
+            SceneState state{.camera = cameraPoseOf(framing, viewer.camera()),
+                             .sphere = viewer.sphere(),
+                             .light = viewer.light(),
+                             .wind = viewer.wind(),
+                             .headYawDeg = viewer.headYawDeg()};
+            saved.keys.push_back(sceneKey(0.0, state));
+            saveScene(out, saved);
+            lastSaved = out;
+            std::printf("wisp: saved the scene %s\n", out.string().c_str());
+        }
+        if (viewer.takeLoad()) {  // F3: the last saved scene's settings and keys (head and hair stay)
+            if (lastSaved.empty()) {
+                std::fprintf(stderr, "wisp: no scene saved yet (F2 saves one; 'wisp view --scene FILE' opens any)\n");
+            } else {
+                Scene loaded = loadScene(lastSaved);
+                for (const auto& [name, value] : loaded.settings)
+                    if (std::string error = applyFromPanel(name, value); !error.empty())
+                        std::fprintf(stderr, "wisp: %s: %s=%s: %s\n", lastSaved.string().c_str(), name.c_str(), value.c_str(),
+                                     error.c_str());
+                SceneState base{.camera = cameraPoseOf(framing, viewer.camera()),
+                                .sphere = viewer.sphere(),
+                                .light = viewer.light(),
+                                .wind = viewer.wind(),
+                                .headYawDeg = viewer.headYawDeg()};
+                timeline = SceneTimeline(loaded.keys, loaded.interpolation, base);
+                SceneState s0 = timeline.at(0.0);
+                viewer.pose(poseCamera(framing, s0.camera), s0.sphere, s0.light, s0.wind, s0.headYawDeg);
+                std::printf("wisp: loaded the scene %s (its head and hair are not reloaded)\n", lastSaved.string().c_str());
+            }
+        }
         if (change == Change::Live) {
             renderer->settings() = pendingRender;
         } else if (change == Change::Renderer) {
@@ -484,6 +545,10 @@ int runWindow(const WindowOptions& options)
         float frameSeconds = options.maxFrames > 0 ? 1.0f / 60.0f : float(std::min(elapsed, 0.1));
         viewer.update(frameSeconds);
         paused = viewer.paused();
+        if (viewer.playing()) {  // the scene's keys drive the camera, sphere, light, wind and head
+            SceneState st = timeline.at(double(stepsDone) * stepSeconds);
+            viewer.pose(poseCamera(framing, st.camera), st.sphere, st.light, st.wind, st.headYawDeg);
+        }
         uint32_t due = 0;
         if (solver) {
             if (paused) {

@@ -6,6 +6,8 @@
 // it says so and points to `wisp render`.
 #pragma once
 
+#include "app/hair_options.h"
+#include "app/scene.h"
 #include "physics/hair_scene.h"
 #include "physics/simulation.h"
 #include "renderer/settings.h"
@@ -26,6 +28,12 @@ struct WindowOptions {
     std::string screenshot;  // PNG of the last frame, written on exit when set
     std::string script;      // timed input events (app/viewer.h), replayed by frame number
     bool screenshotPanel = false;  // the screenshot includes the panel (else the scene alone)
+    // A scene's keys, played from the start (T toggles playing; the keys and drags work while it
+    // is stopped), and what F2 saves the window's state with.
+    SceneTimeline timeline;
+    double sceneLength = 0.0;         // seconds; 0: nothing to play
+    std::filesystem::path headFile;   // the head as given (empty: the default)
+    HairOptions hair;                 // the hair as given
 };
 
 // Throws UserError, pointing to `wisp render`, when there is no display to open a window on.

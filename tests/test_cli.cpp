@@ -507,6 +507,55 @@ TEST(Window, ThePanelAppliesSettingsLiveAndDrawsOverTheScene)
     EXPECT_NE(bad.err.find("karis | kajiya | lut"), std::string::npos) << bad.err;
 }
 
+TEST(Window, F2SavesTheStateAsASceneAndF3LoadsItBack)
+{
+    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb): cannot test the window here";
+    TempDir dir;
+    // Sphere moved and switched on, Kajiya-Kay, saved at frame 9; switched off, then loaded back.
+    writeFile(dir / "s.txt", "3 press right\n8 release right\n9 tap f2\n12 tap o\n14 tap f3\n");
+    std::string prefix = "cd '" + dir.path().string() + "' && xvfb-run -a -s '-screen 0 640x480x24'";
+    auto r = runWisp("--validation view --frames 18 --width 160 --height 120 --guides 60 --set strands_per_guide=4 "
+                     "--set shadow_size=256 --set shading=kajiya --script s.txt",
+                     prefix);
+    ASSERT_EQ(r.status, 0) << r.err;
+    ASSERT_TRUE(std::filesystem::exists(dir / "wisp-scene-001.json")) << r.out;
+    EXPECT_NE(r.out.find("loaded the scene"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("sphere on at"), std::string::npos) << "F3 brought back the saved sphere: " << r.out;
+    std::string json = readFile(dir / "wisp-scene-001.json");
+    EXPECT_NE(json.find("\"shading\": \"kajiya\""), std::string::npos) << json;
+    EXPECT_NE(json.find("\"guides\": 60"), std::string::npos) << json;
+    // The saved file is a scene like any other.
+    auto rendered = runWisp("--validation render --scene '" + (dir / "wisp-scene-001.json").string() +
+                            "' --width 96 --height 72 --out '" + (dir / "saved.png").string() + "'");
+    EXPECT_EQ(rendered.status, 0) << rendered.err;
+    EXPECT_TRUE(std::filesystem::exists(dir / "saved.png"));
+}
+
+TEST(Window, AScenePlaysItsKeysAndTStopsIt)
+{
+    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb): cannot test the window here";
+    TempDir dir;
+    writeFile(dir / "stop.txt", "0 tap t\n");
+    writeFile(dir / "none.txt", "");
+    auto xvfb = "xvfb-run -a -s '-screen 0 640x480x24'";
+    // 60 frames of 1/60 s: 1.0 s into head-turn.json, whose head turns from 0 (0.5 s) to -60 (1.2 s).
+    std::string common = "--validation view --scene '" + std::string(WISP_SOURCE_DIR) +
+                         "/scenes/head-turn.json' --frames 60 --width 96 --height 72 --guides 40 "
+                         "--set strands_per_guide=2 --set shadow_size=128 --script '";
+    auto played = runWisp(common + (dir / "none.txt").string() + "'", xvfb);
+    ASSERT_EQ(played.status, 0) << played.err;
+    auto stopped = runWisp(common + (dir / "stop.txt").string() + "'", xvfb);
+    ASSERT_EQ(stopped.status, 0) << stopped.err;
+    float playedYaw = 0.0f, stoppedYaw = 0.0f;
+    ASSERT_EQ(std::sscanf(played.out.c_str() + played.out.find("head yaw"), "head yaw %f", &playedYaw), 1) << played.out;
+    ASSERT_EQ(std::sscanf(stopped.out.c_str() + stopped.out.find("head yaw"), "head yaw %f", &stoppedYaw), 1) << stopped.out;
+    EXPECT_LT(playedYaw, -20.0f);
+    EXPECT_GT(playedYaw, -60.0f);
+    EXPECT_EQ(stoppedYaw, 0.0f);
+}
+
 TEST(BadInput, ViewScriptErrorsNameTheFileAndLine)
 {
     if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
