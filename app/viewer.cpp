@@ -1,9 +1,9 @@
 // app/viewer.cpp: the window's interactive state, its keys, and input scripts.
 #include "app/viewer.h"
 
+#include "app/scene.h"
 #include "core/error.h"
 
-#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <charconv>
@@ -79,7 +79,7 @@ std::string viewerHelp()
 
 Viewer::Viewer(const OrbitCamera& camera, const Bounds& scene, const glm::vec4& sphere, const LightSettings& light,
                const glm::vec3& wind)
-    : camera_(camera), centre_(scene.center()), size_(std::max(scene.diagonal(), 1e-6f)), light_(light)
+    : camera_(camera), scene_(scene), centre_(scene.center()), size_(std::max(scene.diagonal(), 1e-6f)), light_(light)
 {
     sphereOn_ = sphere.w > 0.0f;
     sphereRadius_ = sphereOn_ ? sphere.w : 0.12f * size_;
@@ -198,9 +198,7 @@ glm::vec4 Viewer::sphere() const
 
 glm::mat4 Viewer::headTransform() const
 {
-    glm::mat4 m = glm::translate(glm::mat4(1.0f), centre_);
-    m = glm::rotate(m, glm::radians(headYaw_), glm::vec3(0.0f, 1.0f, 0.0f));
-    return glm::translate(m, -centre_);
+    return headYawTransform(scene_, headYaw_);
 }
 
 glm::vec3 Viewer::wind() const

@@ -79,6 +79,7 @@ public:
 
 private:
     OrbitCamera camera_;
+    Bounds scene_;
     glm::vec3 centre_;
     float size_;
     glm::vec3 sphereCentre_;

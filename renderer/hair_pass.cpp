@@ -87,18 +87,7 @@ HairPass::HairPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
               .name = "hair.layout"});
     setLayout_ = std::move(layout.setLayout);
     layout_ = std::move(layout.layout);
-    VkSamplerCreateInfo samplerInfo{.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
-                                    .magFilter = VK_FILTER_LINEAR,
-                                    .minFilter = VK_FILTER_LINEAR,
-                                    .mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST,
-                                    .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-                                    .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-                                    .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-                                    .maxLod = 0.0f};
-    VkSampler sampler = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateSampler(ctx.device(), &samplerInfo, nullptr, &sampler));
-    ctx.setName(sampler, VK_OBJECT_TYPE_SAMPLER, "hair.lut.sampler");
-    lutSampler_ = vk::Sampler(ctx.device(), sampler);
+    lutSampler_ = vk::createSampler(ctx, VK_FILTER_LINEAR, false, "hair.lut.sampler");
 
     vk::GraphicsPipelineDesc camera{.layout = layout_,
                                     .shaders = {"hair.vert", "hair.tesc", "hair.tese", "hair.geom", "hair.frag"},

@@ -6,30 +6,12 @@
 #include "renderer/mesh_pass.h"
 #include "renderer/vk/check.h"
 #include "renderer/vk/context.h"
+#include "renderer/vk/pipeline.h"
 #include "shaders/shared/shadows.h"
 
 namespace wisp {
 
 namespace {
-
-vk::Sampler createSampler(const vk::Context& ctx, VkFilter filter, bool compare, const char* name)
-{
-    VkSamplerCreateInfo info{.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
-                             .magFilter = filter,
-                             .minFilter = filter,
-                             .mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST,
-                             .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-                             .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-                             .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-                             .compareEnable = compare ? VK_TRUE : VK_FALSE,
-                             .compareOp = VK_COMPARE_OP_LESS_OR_EQUAL,
-                             .maxLod = 0.0f,
-                             .borderColor = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE};
-    VkSampler sampler = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateSampler(ctx.device(), &info, nullptr, &sampler));
-    ctx.setName(sampler, VK_OBJECT_TYPE_SAMPLER, name);
-    return vk::Sampler(ctx.device(), sampler);
-}
 
 VkWriteDescriptorSet imageWrite(uint32_t binding, const VkDescriptorImageInfo* info)
 {
@@ -44,9 +26,9 @@ VkWriteDescriptorSet imageWrite(uint32_t binding, const VkDescriptorImageInfo* i
 
 LightMaps::LightMaps(const vk::Context& ctx, uint32_t size) : ctx_(ctx)
 {
-    compare_ = createSampler(ctx, VK_FILTER_LINEAR, true, "light.sampler.compare");
-    nearest_ = createSampler(ctx, VK_FILTER_NEAREST, false, "light.sampler.nearest");
-    linear_ = createSampler(ctx, VK_FILTER_LINEAR, false, "light.sampler.linear");
+    compare_ = vk::createSampler(ctx, VK_FILTER_LINEAR, true, "light.sampler.compare");
+    nearest_ = vk::createSampler(ctx, VK_FILTER_NEAREST, false, "light.sampler.nearest");
+    linear_ = vk::createSampler(ctx, VK_FILTER_LINEAR, false, "light.sampler.linear");
     resize(size);
 }
 

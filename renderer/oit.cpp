@@ -71,7 +71,6 @@ void Oit::resize(VkExtent2D extent, uint32_t requestedNodesPerPixel)
                         device.name + "' allows (" + mib(limit) +
                         ": one storage buffer, at most half the device memory); lower oit_nodes_per_pixel or the "
                         "resolution, or use transparency=msaa");
-    nodesPerPixel_ = nodesPerPixel;
     extent_ = extent;
     capacity_ = uint32_t(nodes);
     heads_ = ctx_.createBuffer({.size = pixels * sizeof(uint32_t),
@@ -181,16 +180,7 @@ void OitResolvePass::record(VkCommandBuffer cmd, FrameContext&)
 OitCompositePass::OitCompositePass(const vk::Context& ctx, Oit& oit, RenderTarget& target)
     : ctx_(ctx), oit_(oit), target_(target)
 {
-    VkSamplerCreateInfo samplerInfo{.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
-                                    .magFilter = VK_FILTER_NEAREST,
-                                    .minFilter = VK_FILTER_NEAREST,
-                                    .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-                                    .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-                                    .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE};
-    VkSampler sampler = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateSampler(ctx.device(), &samplerInfo, nullptr, &sampler));
-    ctx.setName(sampler, VK_OBJECT_TYPE_SAMPLER, "oit.composite.sampler");
-    sampler_ = vk::Sampler(ctx.device(), sampler);
+    sampler_ = vk::createSampler(ctx, VK_FILTER_NEAREST, false, "oit.composite.sampler");
     vk::PipelineLayoutBundle layout = vk::createPipelineLayout(
         ctx, {.bindings = {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}},
               .name = "oit.composite.layout"});

@@ -42,7 +42,6 @@ public:
     // Re-sizes the lists and the pool; the device must be idle. Throws UserError when the pool
     // would pass the device's storage-buffer range or half its memory.
     void resize(VkExtent2D extent, uint32_t nodesPerPixel);
-    uint32_t nodesPerPixel() const { return nodesPerPixel_; }
 
     TrackedBuffer& heads() { return headsTrack_; }
     TrackedBuffer& nodes() { return nodesTrack_; }
@@ -64,7 +63,6 @@ private:
     const vk::Context& ctx_;
     VkExtent2D extent_{};
     uint32_t capacity_ = 0;
-    uint32_t nodesPerPixel_ = 0;
     vk::Buffer heads_, nodes_, counters_;
     vk::Image color_;
     TrackedImage colorTrack_;

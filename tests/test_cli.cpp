@@ -13,6 +13,11 @@ using wisp::test::runWisp;
 using wisp::test::TempDir;
 using wisp::test::writeFile;
 
+// Skips a window test, saying why, where Xvfb is not installed.
+#define WISP_REQUIRE_XVFB()                                                      \
+    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)                 \
+    GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb): cannot test the window here"
+
 namespace {
 
 size_t lineCount(const std::string& s)
@@ -198,8 +203,7 @@ TEST(BadInput, InspectMissingFile)
 
 TEST(Window, OpensUnderXvfbDrawsAndClosesCleanly)
 {
-    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
-        GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb): cannot test the window here";
+    WISP_REQUIRE_XVFB();
     TempDir dir;
     auto r = runWisp("--validation view --width 320 --height 240 --frames 4 --guides 200 --set shadow_size=512 --screenshot '" +
                          (dir / "shot.png").string() + "'",
@@ -401,8 +405,7 @@ TEST(Window, ScriptedRunsWithHairAreReproducible)
 {
     // With --frames every frame advances one frame's worth of fixed steps, and the hair grid sums
     // in fixed point: two runs give the same screenshot, and it differs from the bald head.
-    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
-        GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb): cannot test the window here";
+    WISP_REQUIRE_XVFB();
     TempDir dir;
     std::string common =
         "view --width 200 --height 150 --frames 12 --guides 200 --set strands_per_guide=8 --set shadow_size=256 --wind 3,0,0 --screenshot ";
@@ -442,8 +445,7 @@ ViewerStatus parseStatus(const std::string& out)
 
 TEST(Window, AScriptMovesTheSphereAndTheLightAndTurnsTheHead)
 {
-    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
-        GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb): cannot test the window here";
+    WISP_REQUIRE_XVFB();
     TempDir dir;
     writeFile(dir / "moves.txt",
               "# sphere: held right for 18 frames, then dragged up; light: held L for 20 frames; head: one turn\n"
@@ -478,8 +480,7 @@ TEST(Window, ThePanelAppliesSettingsLiveAndDrawsOverTheScene)
     // Settings set as the panel sets them: one applied in place (shading), one that rebuilds the
     // renderer (shadow_size), one that rebuilds the solver (step_hz); the panel drawn over the
     // scene only when asked into the screenshot.
-    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
-        GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb): cannot test the window here";
+    WISP_REQUIRE_XVFB();
     TempDir dir;
     writeFile(dir / "sets.txt", "2 set shading=kajiya\n3 set shadow_size=128\n4 set step_hz=120\n5 set hair_preset=blonde\n");
     writeFile(dir / "none.txt", "");
@@ -509,8 +510,7 @@ TEST(Window, ThePanelAppliesSettingsLiveAndDrawsOverTheScene)
 
 TEST(Window, F2SavesTheStateAsASceneAndF3LoadsItBack)
 {
-    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
-        GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb): cannot test the window here";
+    WISP_REQUIRE_XVFB();
     TempDir dir;
     // Sphere moved and switched on, Kajiya-Kay, saved at frame 9; switched off, then loaded back.
     writeFile(dir / "s.txt", "3 press right\n8 release right\n9 tap f2\n12 tap o\n14 tap f3\n");
@@ -534,8 +534,7 @@ TEST(Window, F2SavesTheStateAsASceneAndF3LoadsItBack)
 
 TEST(Window, AScenePlaysItsKeysAndTStopsIt)
 {
-    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
-        GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb): cannot test the window here";
+    WISP_REQUIRE_XVFB();
     TempDir dir;
     writeFile(dir / "stop.txt", "0 tap t\n");
     writeFile(dir / "none.txt", "");
@@ -558,8 +557,7 @@ TEST(Window, AScenePlaysItsKeysAndTStopsIt)
 
 TEST(BadInput, ViewScriptErrorsNameTheFileAndLine)
 {
-    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
-        GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb): cannot test the window here";
+    WISP_REQUIRE_XVFB();
     TempDir dir;
     auto xvfb = "xvfb-run -a -s '-screen 0 640x480x24'";
     auto check = [&](const std::string& text, const std::string& expected) {
@@ -829,8 +827,7 @@ TEST(SceneCli, BadScenesAreOneLineAndWriteNothing)
 
 TEST(Window, SceneSetsTheInitialSphereAndLight)
 {
-    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
-        GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb): cannot test the window here";
+    WISP_REQUIRE_XVFB();
     TempDir dir;
     writeFile(dir / "s.json", R"({"keys": [{"time": 0, "sphere": [0.1, 0.2, 0.05, 0.04], "light": {"azimuth": 77, "elevation": 12}}]})");
     auto r = runWisp("view --scene '" + (dir / "s.json").string() + "' --no-hair --width 160 --height 120 --frames 2",

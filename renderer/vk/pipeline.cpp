@@ -205,6 +205,25 @@ Pipeline createComputePipeline(const Context& ctx, VkPipelineLayout layout, cons
     return Pipeline(ctx.device(), pipeline);
 }
 
+Sampler createSampler(const Context& ctx, VkFilter filter, bool compare, const char* name)
+{
+    VkSamplerCreateInfo info{.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
+                             .magFilter = filter,
+                             .minFilter = filter,
+                             .mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST,
+                             .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                             .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                             .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                             .compareEnable = compare ? VK_TRUE : VK_FALSE,
+                             .compareOp = VK_COMPARE_OP_LESS_OR_EQUAL,
+                             .maxLod = 0.0f,
+                             .borderColor = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE};
+    VkSampler sampler = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateSampler(ctx.device(), &info, nullptr, &sampler));
+    ctx.setName(sampler, VK_OBJECT_TYPE_SAMPLER, name);
+    return Sampler(ctx.device(), sampler);
+}
+
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                    VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess)
 {

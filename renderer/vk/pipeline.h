@@ -76,6 +76,10 @@ Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& 
 Pipeline createComputePipeline(const Context& ctx, VkPipelineLayout layout, const std::string& shader, const char* name,
                                std::optional<bool> boolConstant0 = std::nullopt);
 
+// A clamp-to-edge sampler without mipmaps: `filter` for magnification and minification, and
+// with `compare` a depth comparison (LESS_OR_EQUAL: shadow maps).
+Sampler createSampler(const Context& ctx, VkFilter filter, bool compare, const char* name);
+
 // A global memory dependency (no image layouts, no particular buffer).
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                    VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
