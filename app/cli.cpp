@@ -231,7 +231,10 @@ SceneTimeline commandTimeline(const std::optional<Scene>& scene, const CLI::App*
     base.light = light;
     if (!scene)
         return SceneTimeline({}, SceneInterpolation::Smooth, base);
-    auto given = [&](const char* name) { return cmd->get_option(name)->count() > 0; };
+    auto given = [&](const char* name) {  // `simulate` has no light options
+        const CLI::Option* option = cmd->get_option_no_throw(name);
+        return option && option->count() > 0;
+    };
     std::vector<SceneKey> keys = scene->keys;
     for (SceneKey& k : keys) {
         if (given("--wind"))
@@ -245,7 +248,7 @@ SceneTimeline commandTimeline(const std::optional<Scene>& scene, const CLI::App*
         if (given("--light-intensity"))
             k.lightIntensity.reset();
     }
-    return SceneTimeline(keys, scene->interpolation, base);
+    return SceneTimeline(keys, scene->interpolation, base, scene->loop ? scene->length() : 0.0);
 }
 
 int runInfo(bool json)
@@ -480,6 +483,9 @@ int runCli(int argc, char** argv)
                        "time each kernel: --warmup steps, then --steps steps each timed on its own (median and p95)");
     simulate->add_option("--warmup", sim.warmup, "steps before timing with --profile")->check(CLI::Range(0u, 100000u))->capture_default_str();
     addHairOptions(simulate, simHair);
+    std::string simScene;
+    RenderSettings simSceneRender;  // a scene's render settings: read and checked, unused by the physics
+    addSceneOption(simulate, simScene);
     std::vector<std::string> simulateSets;
     simulate->add_option("--set", simulateSets, "NAME=VALUE for any setting in 'wisp settings' (repeatable)");
 
@@ -579,8 +585,8 @@ int runCli(int argc, char** argv)
         // A scene first, then the command line over it: the scene's values go into the variables
         // the options write, and the command line is parsed again, so what it names wins.
         std::optional<Scene> sceneFromFile;
-        CLI::App* sceneCommand = *render ? render : *record ? record : *view ? view : nullptr;
-        std::string sceneFile = *render ? ro.sceneFile : *record ? recScene : *view ? viewScene : "";
+        CLI::App* sceneCommand = *render ? render : *record ? record : *view ? view : *simulate ? simulate : nullptr;
+        std::string sceneFile = *render ? ro.sceneFile : *record ? recScene : *view ? viewScene : *simulate ? simScene : "";
         if (sceneCommand && !sceneFile.empty()) {
             if (*view)
                 requireDisplay();  // before any loading
@@ -590,6 +596,8 @@ int runCli(int argc, char** argv)
                 applyScene(s, sceneFile, {&ro.hair, &ro.settings, &ro.headFile});
             else if (*record)
                 applyScene(s, sceneFile, {&recHair, &rec.settings, &recHead});
+            else if (*simulate)
+                applyScene(s, sceneFile, {&simHair, &simSceneRender, &simHead});
             else
                 applyScene(s, sceneFile, {&viewHair, &windowOptions.settings, &viewHead});
             try {
@@ -601,6 +609,7 @@ int runCli(int argc, char** argv)
                 ro.hair.scenePartOverrides.clear();
                 recHair.scenePartOverrides.clear();
                 viewHair.scenePartOverrides.clear();
+                simHair.scenePartOverrides.clear();
             }
         }
         if (*record) {
@@ -674,6 +683,8 @@ int runCli(int argc, char** argv)
             sim.sim = simHair.sim;
             if (!simHair.sphere.empty())
                 sim.sphere = simHair.sphereOrNone();
+            if (sceneFromFile)
+                sim.timeline = commandTimeline(sceneFromFile, simulate, simHair, simSceneRender.light);
             HairScene scene = buildCheckedScene(g, simHair, headPathOrDefault(simHead), nullptr, /*noHair=*/false);
             return runSimulate(sim, scene);
         }

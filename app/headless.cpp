@@ -2,16 +2,34 @@
 // per batch), then one full frame renders and reads back the picture.
 #include "app/headless.h"
 
+#include "core/host_memory.h"
 #include "physics/gpu_solver.h"
 #include "renderer/frame.h"
 #include "renderer/renderer.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <memory>
 
 namespace wisp {
+
+MemorySample sampleMemory()
+{
+    return {hostResidentBytes(), vk::deviceMemoryStats()};
+}
+
+std::string describeMemory(const MemorySample& start, const MemorySample& end)
+{
+    auto mib = [](uint64_t bytes) { return double(bytes) / (1024.0 * 1024.0); };
+    char text[200];
+    std::snprintf(text, sizeof(text), "host RSS %.1f -> %.1f MiB, device %llu -> %llu allocations (%.1f -> %.1f MiB)",
+                  mib(start.hostResidentBytes), mib(end.hostResidentBytes),
+                  static_cast<unsigned long long>(start.device.allocations),
+                  static_cast<unsigned long long>(end.device.allocations), mib(start.device.bytes), mib(end.device.bytes));
+    return text;
+}
 
 Picture renderFrame(const vk::Context& ctx, Renderer& renderer, Frame& frame, const OrbitCamera& camera)
 {

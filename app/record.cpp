@@ -131,6 +131,7 @@ int runRecord(const vk::Context& ctx, const HairScene& scene, const RecordOption
     std::vector<Picture> sheet;
     uint32_t sheetEvery = std::max(1u, (o.frames + 11) / 12);
     auto start = std::chrono::steady_clock::now();
+    MemorySample memoryStart;
     uint64_t step = 0;
     for (uint32_t f = 0; f < o.frames; ++f) {
         if (solver) {
@@ -143,8 +144,14 @@ int runRecord(const vk::Context& ctx, const HairScene& scene, const RecordOption
         writePng(framePath(o.outDir, f), picture.width, picture.height, picture.rgba);
         if (f % sheetEvery == 0)
             sheet.push_back(std::move(picture));
+        if (f == 0)
+            memoryStart = sampleMemory();  // after the first frame: every resource exists
         progress(f + 1, o.frames, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }
+    // Before the contact sheet and the video, which the loop does not hold: a long recording's
+    // memory stays flat (the soak test compares these).
+    std::fprintf(stderr, "record: memory after frame 1 and frame %u: %s\n", o.frames,
+                 describeMemory(memoryStart, sampleMemory()).c_str());
     writeContactSheet(o.outDir / "contact_sheet.png", sheet);
     if (!o.video.empty())
         encodeVideo(o.outDir, o.video, o.fps);

@@ -470,7 +470,7 @@ Scene loadScene(const std::filesystem::path& path)
     Reader r{path};
     r.object(doc, "",
              {"version", "description", "head", "hair", "colliders", "physics", "settings", "interpolation", "duration",
-              "keys"});
+              "loop", "keys"});
     Scene scene;
     if (doc.contains("version")) {
         double version = r.number(doc["version"], "/version", Range{0.0, 1e9});
@@ -526,6 +526,11 @@ Scene loadScene(const std::filesystem::path& path)
                                                                      " (times must increase)");
             scene.keys.push_back(k);
         }
+    }
+    if (doc.contains("loop")) {
+        scene.loop = r.boolean(doc["loop"], "/loop");
+        if (scene.loop && !(scene.length() > 0.0))
+            r.fail("/loop", "a scene that loops needs a duration or keys after time 0");
     }
     return scene;
 }
@@ -618,6 +623,8 @@ std::string sceneJson(const Scene& scene)
     doc["interpolation"] = scene.interpolation == SceneInterpolation::Linear ? "linear" : "smooth";
     if (scene.duration)
         doc["duration"] = *scene.duration;
+    if (scene.loop)
+        doc["loop"] = true;
     Json keys = Json::array();
     for (const SceneKey& k : scene.keys) {
         Json key = {{"time", k.time}};
@@ -850,8 +857,8 @@ glm::mat4 headYawTransform(const Bounds& head, float yawDeg)
 }
 
 SceneTimeline::SceneTimeline(const std::vector<SceneKey>& keys, SceneInterpolation interpolation,
-                             const SceneState& base)
-    : interpolation_(interpolation), base_(base)
+                             const SceneState& base, double loopPeriod)
+    : interpolation_(interpolation), base_(base), loopPeriod_(loopPeriod)
 {
     for (const SceneKey& k : keys) {
         if (k.cameraYawDeg)
@@ -896,6 +903,8 @@ template <typename T> T SceneTimeline::sample(const Track<T>& track, double t, c
 
 SceneState SceneTimeline::at(double seconds) const
 {
+    if (loopPeriod_ > 0.0)
+        seconds = std::fmod(std::max(seconds, 0.0), loopPeriod_);
     SceneState s = base_;
     auto optional = [&](const auto& track, auto fallback) -> decltype(fallback) {
         if (track.empty())

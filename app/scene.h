@@ -89,6 +89,7 @@ struct Scene {
     std::vector<std::pair<std::string, std::string>> settings;
     SceneInterpolation interpolation = SceneInterpolation::Smooth;
     std::optional<double> duration;  // seconds; absent: the last key's time
+    bool loop = false;               // the keys repeat every length() seconds (a soak runs for hours)
     std::vector<SceneKey> keys;      // by increasing time
     bool operator==(const Scene&) const = default;
 
@@ -157,11 +158,13 @@ SceneKey sceneKey(double time, const SceneState& state);
 
 // The keys as functions of time. A channel moves between the keys that set it (linearly or by
 // smoothstep, angles too, without wrapping), holds its first key's value before it and its last
-// key's after; a channel no key sets keeps the base value.
+// key's after; a channel no key sets keeps the base value. With a `loopPeriod` (> 0), time runs
+// modulo the period: the keys play again and again.
 class SceneTimeline {
 public:
     SceneTimeline() = default;
-    SceneTimeline(const std::vector<SceneKey>& keys, SceneInterpolation interpolation, const SceneState& base);
+    SceneTimeline(const std::vector<SceneKey>& keys, SceneInterpolation interpolation, const SceneState& base,
+                  double loopPeriod = 0.0);
     SceneState at(double seconds) const;
     const SceneState& base() const { return base_; }
 
@@ -171,6 +174,7 @@ private:
 
     SceneInterpolation interpolation_ = SceneInterpolation::Smooth;
     SceneState base_;
+    double loopPeriod_ = 0.0;
     Track<float> cameraYaw_, cameraPitch_, cameraDistance_, lightAzimuth_, lightElevation_, lightIntensity_, headYaw_;
     Track<glm::vec3> cameraTarget_, wind_;
     Track<glm::vec4> sphere_;

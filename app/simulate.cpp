@@ -19,7 +19,10 @@ namespace wisp {
 SimulationReport simulateHeadless(const vk::Context& ctx, const HairScene& scene, const SimSettings& sim, uint32_t steps,
                                   const Motion& motion, uint32_t sampleEvery, const std::function<void(uint32_t)>& progress)
 {
-    SimSetup setup = makeSimSetup(sim, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
+    SimSettings settings = sim;
+    if (motion.wind)
+        settings.wind = motion.wind(0.0f);
+    SimSetup setup = makeSimSetup(settings, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
     GpuSolver solver(ctx, scene.strands, setup, motion.head(0.0f));
     PhysicsPass physics(solver);
     Frame frame(ctx, 1);
@@ -34,9 +37,13 @@ SimulationReport simulateHeadless(const vk::Context& ctx, const HairScene& scene
     uint32_t done = 0;
     auto submit = [&](uint32_t count) {
         std::vector<gpu::SimStep> list;
-        for (uint32_t k = 0; k < count; ++k)
+        std::vector<glm::vec3> winds;
+        for (uint32_t k = 0; k < count; ++k) {
             list.push_back(stepAt(done + k));
-        physics.setSteps(std::move(list));
+            if (motion.wind)
+                winds.push_back(motion.wind(float(done + k) * stepSeconds) * scene.unitsPerMetre);
+        }
+        physics.setSteps(std::move(list), std::move(winds));
         FrameContext& fc = frame.begin({});
         std::vector<Pass*> passes = {&physics};
         frame.run(fc, passes);
@@ -54,12 +61,19 @@ SimulationReport simulateHeadless(const vk::Context& ctx, const HairScene& scene
         std::vector<glm::vec4> before = solver.readState().positions;
         submit(1);
         report.state = solver.readState();
-        report.last = measure(report.state, before, stepSeconds, scene.strands, setup, stepAt(done));
+        report.last = measure(report.state, before, stepSeconds, scene.strands, setup, stepAt(done - 1));  // the step just run
+        report.worst.maxStretch = std::max(report.worst.maxStretch, report.last.maxStretch);
+        report.worst.maxPenetration = std::max(report.worst.maxPenetration, report.last.maxPenetration);
+        report.worst.rootDrift = std::max(report.worst.rootDrift, report.last.rootDrift);
+        report.worst.kineticEnergy = std::max(report.worst.kineticEnergy, report.last.kineticEnergy);
         report.energy.emplace_back(done, report.last.kineticEnergy);
+        if (report.energy.size() == 1)
+            report.memoryStart = sampleMemory();
         report.stepMs.emplace_back(done, (gpuMs - msBefore) / double(n));
         if (progress)
             progress(done);
     }
+    report.memoryEnd = sampleMemory();
     report.gpuMsPerStep = gpuMs / double(std::max(steps, 1u));
     report.nonfiniteResets = report.state.nonfiniteResets;
     return report;
@@ -148,6 +162,13 @@ int runSimulate(const SimulateOptions& o, const HairScene& scene)
     Motion motion;
     glm::vec4 sphere = o.sphere.value_or(glm::vec4(0.0f));
     motion.sphere = [sphere](float) { return sphere; };
+    if (o.timeline) {
+        const SceneTimeline& keys = *o.timeline;
+        Bounds head = scene.head.mesh.bounds();
+        motion.head = [&keys, head](float t) { return headYawTransform(head, keys.at(t).headYawDeg); };
+        motion.sphere = [&keys](float t) { return keys.at(t).sphere; };
+        motion.wind = [&keys](float t) { return keys.at(t).wind; };
+    }
     SimulationReport r = simulateHeadless(ctx, scene, o.sim, o.steps, motion, o.sampleEvery, [&](uint32_t done) {
         if (!o.json)
             std::fprintf(stderr, "\rsimulate: %u / %u steps", done, o.steps);
@@ -178,6 +199,13 @@ int runSimulate(const SimulateOptions& o, const HairScene& scene)
                           {"max_penetration", r.last.maxPenetration / diagonal},
                           {"root_drift", r.last.rootDrift},
                           {"nonfinite_resets", r.nonfiniteResets},
+                          {"worst", {{"max_stretch", r.worst.maxStretch},
+                                     {"max_penetration", r.worst.maxPenetration / diagonal},
+                                     {"root_drift", r.worst.rootDrift},
+                                     {"kinetic_energy", r.worst.kineticEnergy}}},
+                          {"memory", {{"host_rss_bytes", {r.memoryStart.hostResidentBytes, r.memoryEnd.hostResidentBytes}},
+                                      {"device_allocations", {r.memoryStart.device.allocations, r.memoryEnd.device.allocations}},
+                                      {"device_bytes", {r.memoryStart.device.bytes, r.memoryEnd.device.bytes}}}},
                           {"kinetic_energy", energy},
                           {"gpu_ms_per_step", r.gpuMsPerStep},
                           {"gpu_ms_per_step_over_time", stepMs},
@@ -195,6 +223,9 @@ int runSimulate(const SimulateOptions& o, const HairScene& scene)
                     "  non-finite resets %u\n  kinetic energy    %.4g (last)\n  GPU time per step %.4f ms\n",
                     double(r.last.maxStretch), double(r.last.maxPenetration / diagonal), double(r.last.rootDrift),
                     r.nonfiniteResets, double(r.last.kineticEnergy), r.gpuMsPerStep);
+        std::printf("  worst over %zu samples: stretch %.3g, penetration %.3g, root drift %.3g\n  memory            %s\n",
+                    r.energy.size(), double(r.worst.maxStretch), double(r.worst.maxPenetration / diagonal),
+                    double(r.worst.rootDrift), describeMemory(r.memoryStart, r.memoryEnd).c_str());
     }
     if (ctx.validationMessages() > 0) {
         std::fprintf(stderr, "wisp: %u Vulkan validation messages (printed above)\n", ctx.validationMessages());

@@ -2,6 +2,8 @@
 // run loop behind it, which tests also drive with scripted head and sphere motion.
 #pragma once
 
+#include "app/headless.h"
+#include "app/scene.h"
 #include "physics/hair_scene.h"
 #include "physics/simulation.h"
 #include "renderer/vk/context.h"
@@ -13,19 +15,22 @@
 
 namespace wisp {
 
-// Where the head and the sphere are at simulated time t (seconds).
+// Where the head and the sphere are, and the wind, at simulated time t (seconds).
 struct Motion {
     std::function<glm::mat4(float)> head = [](float) { return glm::mat4(1.0f); };
     std::function<glm::vec4(float)> sphere = [](float) { return glm::vec4(0.0f); };  // xyz, radius (0: none)
+    std::function<glm::vec3(float)> wind;  // m/s²; empty: the settings' wind throughout
 };
 
 struct SimulationReport {
     SimMetrics last;                                     // after the final step
+    SimMetrics worst;                                    // the largest of each metric over every sample
     std::vector<std::pair<uint32_t, float>> energy;      // (step, kinetic energy) every sample
     std::vector<std::pair<uint32_t, double>> stepMs;     // (step, GPU ms per step since the last sample)
     double gpuMsPerStep = 0.0;
     uint32_t nonfiniteResets = 0;
     SimState state;                                      // the final state
+    MemorySample memoryStart, memoryEnd;                 // after the first sample, and at the end
 };
 
 // Runs `steps` fixed steps on the GPU, sampling every `sampleEvery` steps.
@@ -47,6 +52,7 @@ struct SimulateOptions {
     SimSettings sim;
     uint32_t steps = 1000;
     std::optional<glm::vec4> sphere;  // centre xyz and radius, asset units
+    std::optional<SceneTimeline> timeline;  // a scene's keys (head turn, sphere, wind), instead of a still sphere
     bool json = false;
     // Steps between samples of the kinetic energy (each reads the state back). Frequent samples of a
     // large run leave the GPU mostly idle while the CPU copies, and the H100 then runs the same

@@ -304,10 +304,36 @@ TEST(Scene, AWindowsStateSavesAsOneKey)
     EXPECT_EQ(back.headYawDeg, 12.0f);
 }
 
+TEST(SceneTimeline, ALoopingScenePlaysItsKeysAgain)
+{
+    SceneKey a = keyAt(0.0), b = keyAt(2.0);
+    a.headYawDeg = 0.0f;
+    b.headYawDeg = 40.0f;
+    SceneTimeline once({a, b}, SceneInterpolation::Linear, SceneState{});
+    SceneTimeline looped({a, b}, SceneInterpolation::Linear, SceneState{}, 4.0);  // 2 s of keys, 2 s held
+    for (double t : {0.0, 0.5, 1.5, 3.0})
+        EXPECT_FLOAT_EQ(looped.at(t).headYawDeg, once.at(t).headYawDeg) << t;
+    EXPECT_FLOAT_EQ(looped.at(4.5).headYawDeg, 10.0f);  // the second time round
+    EXPECT_FLOAT_EQ(looped.at(4000.5).headYawDeg, 10.0f);
+    EXPECT_FLOAT_EQ(once.at(4.5).headYawDeg, 40.0f);  // without the loop: held
+
+    // "loop" reads, saves and reads back; it needs a length to repeat.
+    TempDir dir;
+    writeFile(dir / "loop.json", R"({"duration": 4, "loop": true, "keys": [{"time": 0, "head_yaw": 0}, {"time": 2, "head_yaw": 40}]})");
+    Scene s = loadScene(dir / "loop.json");
+    EXPECT_TRUE(s.loop);
+    saveScene(dir / "again.json", s);
+    EXPECT_TRUE(loadScene(dir / "again.json") == s);
+    EXPECT_NE(loadError(R"({"loop": true})").find("/loop: a scene that loops needs a duration or keys after time 0"),
+              std::string::npos);
+    EXPECT_NE(loadError(R"({"loop": 1})").find("/loop: must be true or false"), std::string::npos)
+        << loadError(R"({"loop": 1})");
+}
+
 TEST(Scene, ShippedScenesLoad)
 {
     std::filesystem::path folder = std::filesystem::path(WISP_SOURCE_DIR) / "scenes";
-    for (const char* name : {"sphere-sweep.json", "wind-gusts.json", "head-turn.json", "sintel.json"}) {
+    for (const char* name : {"sphere-sweep.json", "wind-gusts.json", "head-turn.json", "sintel.json", "soak.json"}) {
         Scene s = loadScene(folder / name);
         EXPECT_FALSE(s.description.empty()) << name;
         EXPECT_GE(s.keys.size(), 2u) << name;
@@ -384,7 +410,7 @@ TEST(SceneErrors, UnknownKeysListTheKnownOnes)
 {
     std::string top = loadError(R"({"kes": []})");
     EXPECT_NE(top.find("/kes: unknown key (known: version, description, head, hair, colliders, physics, settings, "
-                       "interpolation, duration, keys)"),
+                       "interpolation, duration, loop, keys)"),
               std::string::npos)
         << top;
     std::string key = loadError(R"({"keys": [{"time": 0, "spheer": [0, 0, 0, 1]}]})");

@@ -433,6 +433,7 @@ VkDeviceMemory allocate(const Context& ctx, VkMemoryRequirements req, Memory use
                         ctx.report().name + "' has " + std::to_string(ctx.report().deviceLocalBytes) +
                         " bytes of device-local memory in all");
     VK_CHECK(result);
+    trackDeviceMemory(memory, req.size);
     ctx.setName(memory, VK_OBJECT_TYPE_DEVICE_MEMORY, name);
     return memory;
 }

@@ -2,9 +2,56 @@
 // Context, which knows the memory types).
 #include "renderer/vk/resources.h"
 
+#include <mutex>
+#include <unordered_map>
 #include <utility>
 
 namespace wisp::vk {
+
+namespace {
+
+// Every live allocation and its size: a soak reports them at its start and end (they must match).
+struct AllocationTable {
+    std::mutex mutex;
+    std::unordered_map<VkDeviceMemory, VkDeviceSize> sizes;
+    DeviceMemoryStats stats;
+};
+
+AllocationTable& allocationTable()
+{
+    static AllocationTable table;
+    return table;
+}
+
+}  // namespace
+
+void trackDeviceMemory(VkDeviceMemory memory, VkDeviceSize bytes)
+{
+    AllocationTable& t = allocationTable();
+    std::lock_guard lock(t.mutex);
+    t.sizes[memory] = bytes;
+    t.stats.allocations += 1;
+    t.stats.bytes += bytes;
+}
+
+void freeDeviceMemory(VkDevice device, VkDeviceMemory memory)
+{
+    vkFreeMemory(device, memory, nullptr);  // unmaps too
+    AllocationTable& t = allocationTable();
+    std::lock_guard lock(t.mutex);
+    if (auto it = t.sizes.find(memory); it != t.sizes.end()) {
+        t.stats.allocations -= 1;
+        t.stats.bytes -= it->second;
+        t.sizes.erase(it);
+    }
+}
+
+DeviceMemoryStats deviceMemoryStats()
+{
+    AllocationTable& t = allocationTable();
+    std::lock_guard lock(t.mutex);
+    return t.stats;
+}
 
 Buffer::Buffer(VkDevice device, VkBuffer buffer, VkDeviceMemory memory, VkDeviceSize size, void* mapped)
     : device_(device), buffer_(buffer), memory_(memory), size_(size), mapped_(mapped)
@@ -29,7 +76,7 @@ void Buffer::reset()
     if (buffer_)
         vkDestroyBuffer(device_, std::exchange(buffer_, VK_NULL_HANDLE), nullptr);
     if (memory_)
-        vkFreeMemory(device_, std::exchange(memory_, VK_NULL_HANDLE), nullptr);  // unmaps too
+        freeDeviceMemory(device_, std::exchange(memory_, VK_NULL_HANDLE));
     mapped_ = nullptr;
     size_ = 0;
 }
@@ -62,7 +109,7 @@ void Image::reset()
     if (image_)
         vkDestroyImage(device_, std::exchange(image_, VK_NULL_HANDLE), nullptr);
     if (memory_)
-        vkFreeMemory(device_, std::exchange(memory_, VK_NULL_HANDLE), nullptr);
+        freeDeviceMemory(device_, std::exchange(memory_, VK_NULL_HANDLE));
 }
 
 VkImageAspectFlags Image::aspect() const

@@ -93,4 +93,15 @@ private:
 
 bool isDepthFormat(VkFormat format);
 
+// Device memory Wisp holds (Context's allocations, which Buffer and Image free): a long run
+// reports it at its start and end to show it does not grow. Memory the ImGui backend allocates
+// for itself is not counted.
+struct DeviceMemoryStats {
+    uint64_t allocations = 0;
+    uint64_t bytes = 0;
+};
+DeviceMemoryStats deviceMemoryStats();
+void trackDeviceMemory(VkDeviceMemory memory, VkDeviceSize bytes);
+void freeDeviceMemory(VkDevice device, VkDeviceMemory memory);  // vkFreeMemory, and forgets it
+
 }  // namespace wisp::vk
