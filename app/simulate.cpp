@@ -142,6 +142,7 @@ int runSimulate(const SimulateOptions& o, const HairScene& scene)
                               {"vertices", scene.strands.vertexCount()},
                               {"grid_resolution", o.sim.gridResolution},
                               {"grid_atomics", o.sim.gridAtomics == SimSettings::GridAtomics::Fixed ? "fixed" : "float"},
+                              {"grid_subgroups", o.sim.gridSubgroupSums && ctx.report().subgroupShuffles},
                               {"substeps", o.sim.substeps},
                               {"warmup_steps", o.warmup},
                               {"timed_steps", o.steps},

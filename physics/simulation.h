@@ -28,6 +28,10 @@ struct SimSettings {
     // bits) or float atomics (order-dependent in the last bits). Each falls back to the other on a
     // device that lacks it.
     enum class GridAtomics { Fixed, Float } gridAtomics = GridAtomics::Fixed;
+    // Neighbouring strands that splat into the same cell sum their shares in the subgroup before
+    // the atomics (where the device has subgroup ballot and relative shuffles in compute). The
+    // grid is the same either way; this only changes how fast it is built.
+    bool gridSubgroupSums = true;
 };
 
 // Everything needed to run: packed parameters plus the grid's placement relative to the head.
@@ -36,6 +40,7 @@ struct SimSetup {
     uint32_t substeps = 1;           // integrate/FTL passes per step (each params.dt long)
     glm::vec3 gridCenterHead{0.0f};  // grid centre in head space (the grid follows the head)
     float gridSide = 0.0f;           // asset units
+    bool gridSubgroupSums = true;    // SimSettings::gridSubgroupSums
 };
 
 SimSetup makeSimSetup(const SimSettings& settings, const StrandSet& strands,

@@ -5,14 +5,12 @@
 #ifdef GRID_FIXED
 layout(set = 0, binding = kSimBindingGrid, std430) buffer Grid { int64_t gridFixed[]; };  // 4 per node
 
-void gridAdd(uint node, float density, vec3 momentum)
+// Adds density and momentum already scaled to integers (the splat rounds each run's sums).
+void gridAddSum(uint node, i64vec4 sum)
 {
-    float s = params.gridFixedScale;
     uint base = node * kGridFixedWordsPerNode;
-    atomicAdd(gridFixed[base + 0u], int64_t(round(density * s)));
-    atomicAdd(gridFixed[base + 1u], int64_t(round(momentum.x * s)));
-    atomicAdd(gridFixed[base + 2u], int64_t(round(momentum.y * s)));
-    atomicAdd(gridFixed[base + 3u], int64_t(round(momentum.z * s)));
+    for (uint w = 0u; w < kGridFixedWordsPerNode; ++w)
+        atomicAdd(gridFixed[base + w], sum[w]);
 }
 
 void gridZero(uint node)
@@ -33,12 +31,13 @@ GridNode gridRead(uint node)
 #else
 layout(set = 0, binding = kSimBindingGrid, std430) buffer Grid { GridNode grid[]; };
 
-void gridAdd(uint node, float density, vec3 momentum)
+// Adds (density, momentum).
+void gridAddSum(uint node, vec4 sum)
 {
-    atomicAdd(grid[node].density, density);
-    atomicAdd(grid[node].momentum.x, momentum.x);
-    atomicAdd(grid[node].momentum.y, momentum.y);
-    atomicAdd(grid[node].momentum.z, momentum.z);
+    atomicAdd(grid[node].density, sum.x);
+    atomicAdd(grid[node].momentum.x, sum.y);
+    atomicAdd(grid[node].momentum.y, sum.z);
+    atomicAdd(grid[node].momentum.z, sum.w);
 }
 
 void gridZero(uint node)

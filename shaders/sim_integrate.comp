@@ -19,7 +19,18 @@
 // vertices, instead of one per vertex (atomics on the same nodes were the step's bottleneck).
 // The sums are CpuSolver::gridSplat's, up to float order (a strand reset for non-finite values
 // keeps the finite contributions it made before the reset; the CPU splats its rest pose).
+//
+// With kSubgroupSums, the lanes of a subgroup that flush a run in the same iteration also sum
+// their runs with their neighbours' when they share the cell (a segmented scan with shuffles),
+// and only the first lane of each such segment does the atomics. Grown strands are sorted along
+// a Morton curve of their roots, so the 32 strands of a warp grow from one patch of scalp and
+// mostly cross the same cells. In fixed point the sums are the same integers in another order:
+// the grid is identical bit for bit with and without it.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_ballot : require
+#extension GL_KHR_shader_subgroup_shuffle_relative : require
+#extension GL_KHR_shader_subgroup_vote : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 #ifdef GRID_FIXED
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
@@ -31,6 +42,7 @@
 
 layout(local_size_x = SIM_GROUP_SIZE) in;
 layout(constant_id = 0) const bool kSplatToGrid = false;
+layout(constant_id = 1) const bool kSubgroupSums = false;
 
 // The run of vertices being summed: the cell they share and each corner's density and momentum.
 ivec3 runCell = ivec3(-1);
@@ -38,26 +50,93 @@ bool runOpen = false;
 float runDensity[8];
 vec3 runMomentum[8];
 
+// One run's share of a grid node, as the atomics add it: integers in fixed point, else floats.
+#ifdef GRID_FIXED
+#define GridSum i64vec4
+GridSum toGridSum(float density, vec3 momentum)
+{
+    float s = params.gridFixedScale;
+    return GridSum(int64_t(round(density * s)), int64_t(round(momentum.x * s)), int64_t(round(momentum.y * s)),
+                   int64_t(round(momentum.z * s)));
+}
+GridSum shuffleDown(GridSum v, uint delta)  // as two 32-bit halves: shuffles move bits, not types
+{
+    GridSum moved;
+    for (int c = 0; c < 4; ++c) {
+        uvec2 halves = unpackUint2x32(uint64_t(v[c]));
+        halves = uvec2(subgroupShuffleDown(halves.x, delta), subgroupShuffleDown(halves.y, delta));
+        moved[c] = int64_t(packUint2x32(halves));
+    }
+    return moved;
+}
+#else
+#define GridSum vec4
+GridSum toGridSum(float density, vec3 momentum)
+{
+    return GridSum(density, momentum);
+}
+GridSum shuffleDown(GridSum v, uint delta)
+{
+    return subgroupShuffleDown(v, delta);
+}
+#endif
+
 void flushRun()
 {
-    if (!runOpen)
-        return;
     for (uint k = 0u; k < 8u; ++k)
-        gridAdd(gridIndex(runCell + cornerOffset(k), params.gridResolution), runDensity[k], runMomentum[k]);
+        gridAddSum(gridIndex(runCell + cornerOffset(k), params.gridResolution), toGridSum(runDensity[k], runMomentum[k]));
     runOpen = false;
 }
 
-// Adds a finished vertex (position p, velocity v) to the run, flushing when it leaves the cell.
+// Every lane calls this at the same point of the loop: the lanes with `flushing` add their runs
+// to the grid. Lanes next to each other that flush the same cell form a segment; a segmented
+// scan (doubling the shuffle distance, never past the segment's last lane) sums each segment
+// into its first lane, which does the atomics for all of them.
+void flushRuns(bool flushing)
+{
+    if (!kSubgroupSums) {
+        if (flushing)
+            flushRun();
+        return;
+    }
+    if (subgroupAll(!flushing))
+        return;
+    uint lane = gl_SubgroupInvocationID;
+    uint node = flushing ? gridIndex(runCell, params.gridResolution) : 0xFFFFFFFFu;
+    uvec4 live = subgroupBallot(true);
+    uint below = subgroupShuffleUp(node, 1u), above = subgroupShuffleDown(node, 1u);
+    bool belowSame = lane > 0u && subgroupBallotBitExtract(live, lane - 1u) && below == node;
+    bool aboveSame = lane + 1u < gl_SubgroupSize && subgroupBallotBitExtract(live, lane + 1u) && above == node;
+    bool first = flushing && !belowSame;
+    uint last = subgroupBallotFindLSB(subgroupBallot(flushing && !aboveSame) & gl_SubgroupGeMask);
+    uint longest = subgroupMax(flushing ? last - lane + 1u : 1u);
+    for (uint k = 0u; k < 8u; ++k) {
+        GridSum sum = toGridSum(flushing ? runDensity[k] : 0.0, flushing ? runMomentum[k] : vec3(0.0));
+        for (uint delta = 1u; delta < longest; delta *= 2u) {
+            GridSum further = shuffleDown(sum, delta);
+            if (flushing && lane + delta <= last)
+                sum += further;
+        }
+        if (first)
+            gridAddSum(gridIndex(runCell + cornerOffset(k), params.gridResolution), sum);
+    }
+    if (flushing)
+        runOpen = false;
+}
+
+// Adds a finished vertex (position p, velocity v) to the lane's run, flushing the run first when
+// the vertex leaves its cell. Called by every lane at the same point of the loop.
 void splatVertex(vec3 p, vec3 v)
 {
-    if (!isFinite3(p) || !isFinite3(v))
-        return;  // a strand about to be reset contributes nothing non-finite
-    v = clampSpeed(v, params.gridMaxSplatSpeed);
-    GridCell cell = gridCell(p, step.gridOrigin, params.gridCellSize);
-    if (!cellInside(cell.base, params.gridResolution))
+    // A strand about to be reset contributes nothing non-finite; vertices outside the grid nothing.
+    bool valid = isFinite3(p) && isFinite3(v);
+    GridCell cell = gridCell(valid ? p : vec3(0.0), step.gridOrigin, params.gridCellSize);
+    valid = valid && cellInside(cell.base, params.gridResolution);
+    flushRuns(valid && runOpen && cell.base != runCell);
+    if (!valid)
         return;
-    if (!runOpen || cell.base != runCell) {
-        flushRun();
+    v = clampSpeed(v, params.gridMaxSplatSpeed);
+    if (!runOpen) {
         runCell = cell.base;
         runOpen = true;
         for (uint k = 0u; k < 8u; ++k) {
@@ -186,7 +265,7 @@ void main()
     tangents[tip] = vec4(lastTangent, 0.0);
     if (kSplatToGrid) {
         splatVertex(prevP, tipV);
-        flushRun();
+        flushRuns(runOpen);
     }
 
     if (!finite) {
