@@ -46,10 +46,11 @@ void CpuSolver::integrateStrand(uint32_t s, const SimStep& step)
 
     auto penalty = [&](vec3 x) {
         vec3 a(0.0f);
+        vec3 local = toHeadSpace(step.headTransform, x);
         for (uint32_t c = 0; c < params.colliderCount; ++c) {
-            Contact k = headColliderContact(params.colliders[c], step.headTransform, x, params.collisionMargin);
+            Contact k = ellipsoidContact(params.colliders[c], local, params.collisionMargin);
             if (k.depth > 0.0f)
-                a += params.penaltyStiffness * k.depth * k.normal;
+                a += params.penaltyStiffness * k.depth * (glm::mat3(step.headTransform) * k.normal);
         }
         if (step.sphereRadius > 0.0f) {
             Contact k = sphereContact(step.sphereCenter, step.sphereRadius, x, params.collisionMargin);
@@ -59,10 +60,13 @@ void CpuSolver::integrateStrand(uint32_t s, const SimStep& step)
         return a;
     };
     auto pushOut = [&](vec3 p) {
+        vec3 local = toHeadSpace(step.headTransform, p);
         for (uint32_t c = 0; c < params.colliderCount; ++c) {
-            Contact k = headColliderContact(params.colliders[c], step.headTransform, p, 0.0f);
-            if (k.depth > 0.0f)
-                p += k.depth * k.normal;
+            Contact k = ellipsoidContact(params.colliders[c], local, 0.0f);
+            if (k.depth > 0.0f) {
+                p += k.depth * (glm::mat3(step.headTransform) * k.normal);
+                local = toHeadSpace(step.headTransform, p);
+            }
         }
         if (step.sphereRadius > 0.0f) {
             Contact k = sphereContact(step.sphereCenter, step.sphereRadius, p, 0.0f);

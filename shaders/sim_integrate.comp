@@ -24,8 +24,12 @@
 // their runs with their neighbours' when they share the cell (a segmented scan with shuffles),
 // and only the first lane of each such segment does the atomics. Grown strands are sorted along
 // a Morton curve of their roots, so the 32 strands of a warp grow from one patch of scalp and
-// mostly cross the same cells. In fixed point the sums are the same integers in another order:
-// the grid is identical bit for bit with and without it.
+// mostly cross the same cells. The segments depend only on the positions, so a run is still
+// reproducible bit for bit in fixed point; against the grid without subgroup sums, the floats
+// are rounded after the segment's sum instead of per run (a difference of rounding).
+//
+// The variant for the last substep (kSplatToGrid) also writes the tangents; earlier substeps
+// leave them to it.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_ballot : require
 #extension GL_KHR_shader_subgroup_shuffle_relative : require
@@ -52,46 +56,29 @@ vec3 runMomentum[8];
 
 // One run's share of a grid node, as the atomics add it: integers in fixed point, else floats.
 #ifdef GRID_FIXED
-#define GridSum i64vec4
-GridSum toGridSum(float density, vec3 momentum)
+i64vec4 toGridSum(vec4 densityMomentum)
 {
-    float s = params.gridFixedScale;
-    return GridSum(int64_t(round(density * s)), int64_t(round(momentum.x * s)), int64_t(round(momentum.y * s)),
-                   int64_t(round(momentum.z * s)));
-}
-GridSum shuffleDown(GridSum v, uint delta)  // as two 32-bit halves: shuffles move bits, not types
-{
-    GridSum moved;
-    for (int c = 0; c < 4; ++c) {
-        uvec2 halves = unpackUint2x32(uint64_t(v[c]));
-        halves = uvec2(subgroupShuffleDown(halves.x, delta), subgroupShuffleDown(halves.y, delta));
-        moved[c] = int64_t(packUint2x32(halves));
-    }
-    return moved;
+    return i64vec4(round(densityMomentum * params.gridFixedScale));
 }
 #else
-#define GridSum vec4
-GridSum toGridSum(float density, vec3 momentum)
+vec4 toGridSum(vec4 densityMomentum)
 {
-    return GridSum(density, momentum);
-}
-GridSum shuffleDown(GridSum v, uint delta)
-{
-    return subgroupShuffleDown(v, delta);
+    return densityMomentum;
 }
 #endif
 
 void flushRun()
 {
     for (uint k = 0u; k < 8u; ++k)
-        gridAddSum(gridIndex(runCell + cornerOffset(k), params.gridResolution), toGridSum(runDensity[k], runMomentum[k]));
+        gridAddSum(gridIndex(runCell + cornerOffset(k), params.gridResolution), toGridSum(vec4(runDensity[k], runMomentum[k])));
     runOpen = false;
 }
 
 // Every lane calls this at the same point of the loop: the lanes with `flushing` add their runs
 // to the grid. Lanes next to each other that flush the same cell form a segment; a segmented
-// scan (doubling the shuffle distance, never past the segment's last lane) sums each segment
-// into its first lane, which does the atomics for all of them.
+// scan (doubling the shuffle distance, never past the segment's last lane; the eight corners
+// side by side, so their shuffles overlap) sums each segment's floats into its first lane, which
+// rounds them (in fixed point) and does the atomics for all of them.
 void flushRuns(bool flushing)
 {
     if (!kSubgroupSums) {
@@ -110,16 +97,20 @@ void flushRuns(bool flushing)
     bool first = flushing && !belowSame;
     uint last = subgroupBallotFindLSB(subgroupBallot(flushing && !aboveSame) & gl_SubgroupGeMask);
     uint longest = subgroupMax(flushing ? last - lane + 1u : 1u);
-    for (uint k = 0u; k < 8u; ++k) {
-        GridSum sum = toGridSum(flushing ? runDensity[k] : 0.0, flushing ? runMomentum[k] : vec3(0.0));
-        for (uint delta = 1u; delta < longest; delta *= 2u) {
-            GridSum further = shuffleDown(sum, delta);
-            if (flushing && lane + delta <= last)
-                sum += further;
+    vec4 sums[8];
+    for (uint k = 0u; k < 8u; ++k)
+        sums[k] = flushing ? vec4(runDensity[k], runMomentum[k]) : vec4(0.0);
+    for (uint delta = 1u; delta < longest; delta *= 2u) {
+        bool take = flushing && lane + delta <= last;
+        for (uint k = 0u; k < 8u; ++k) {
+            vec4 further = subgroupShuffleDown(sums[k], delta);
+            if (take)
+                sums[k] += further;
         }
-        if (first)
-            gridAddSum(gridIndex(runCell + cornerOffset(k), params.gridResolution), sum);
     }
+    if (first)
+        for (uint k = 0u; k < 8u; ++k)
+            gridAddSum(gridIndex(runCell + cornerOffset(k), params.gridResolution), toGridSum(sums[k]));
     if (flushing)
         runOpen = false;
 }
@@ -151,14 +142,16 @@ void splatVertex(vec3 p, vec3 v)
     }
 }
 
-// Acceleration from the colliders' penalty forces k * depth * n at x.
+// Acceleration from the colliders' penalty forces k * depth * n at x (x in the head's space once
+// for every head collider).
 vec3 penalty(vec3 x)
 {
     vec3 a = vec3(0.0);
+    vec3 local = toHeadSpace(step.headTransform, x);
     for (uint c = 0u; c < params.colliderCount; ++c) {
-        Contact k = headColliderContact(params.colliders[c], step.headTransform, x, params.collisionMargin);
+        Contact k = ellipsoidContact(params.colliders[c], local, params.collisionMargin);
         if (k.depth > 0.0)
-            a += params.penaltyStiffness * k.depth * k.normal;
+            a += params.penaltyStiffness * k.depth * (mat3(step.headTransform) * k.normal);
     }
     if (step.sphereRadius > 0.0) {
         Contact k = sphereContact(step.sphereCenter, step.sphereRadius, x, params.collisionMargin);
@@ -168,13 +161,16 @@ vec3 penalty(vec3 x)
     return a;
 }
 
-// Moves p onto the surface of any collider it is inside (no margin).
+// Moves p onto the surface of any collider it is inside (no margin), one collider after another.
 vec3 pushOut(vec3 p)
 {
+    vec3 local = toHeadSpace(step.headTransform, p);
     for (uint c = 0u; c < params.colliderCount; ++c) {
-        Contact k = headColliderContact(params.colliders[c], step.headTransform, p, 0.0);
-        if (k.depth > 0.0)
-            p += k.depth * k.normal;
+        Contact k = ellipsoidContact(params.colliders[c], local, 0.0);
+        if (k.depth > 0.0) {
+            p += k.depth * (mat3(step.headTransform) * k.normal);
+            local = toHeadSpace(step.headTransform, p);
+        }
     }
     if (step.sphereRadius > 0.0) {
         Contact k = sphereContact(step.sphereCenter, step.sphereRadius, p, 0.0);
@@ -248,7 +244,8 @@ void main()
         if (kSplatToGrid)
             splatVertex(prevP, prevV);
         vec3 actualDir = normalize(p - prevP);  // |p - prevP| = L_i > 0 after FTL
-        tangents[parent] = vec4(actualDir, 0.0);
+        if (kSplatToGrid)
+            tangents[parent] = vec4(actualDir, 0.0);
         lastTangent = actualDir;
 
         frame = transportFrame(frame, targetDir, actualDir);
@@ -262,7 +259,8 @@ void main()
     vec3 tipV = (prevP - prevX - prevShift) / dt;
     positions[tip].xyz = prevP;
     velocities[tip].xyz = tipV;
-    tangents[tip] = vec4(lastTangent, 0.0);
+    if (kSplatToGrid)
+        tangents[tip] = vec4(lastTangent, 0.0);
     if (kSplatToGrid) {
         splatVertex(prevP, tipV);
         flushRuns(runOpen);

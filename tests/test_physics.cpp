@@ -216,8 +216,9 @@ TEST(GpuSolver, FixedPointGridIsDeterministic)
 TEST(GpuSolver, SubgroupSumsBuildTheSameGrid)
 {
     // Grown guides (sorted along a Morton curve, so neighbouring lanes share cells) on a coarse
-    // grid: summing neighbours in the subgroup before the atomics adds the same integers in
-    // another order, so the fixed-point grid and everything after it is identical bit for bit.
+    // grid: summing neighbours in the subgroup before the atomics gives the grid of per-strand
+    // atomics up to rounding (each segment's floats are rounded once instead of each run's), and
+    // two runs give the same bits.
     GrowthSettings g;
     g.guides = 300;
     g.verticesPerStrand = 12;
@@ -229,29 +230,40 @@ TEST(GpuSolver, SubgroupSumsBuildTheSameGrid)
     vk::Context ctx(test::validatedOptions());
     if (!ctx.report().subgroupShuffles)
         GTEST_SKIP() << "the device has no subgroup shuffles in compute";
-    std::vector<gpu::GridNode> grids[2];
-    SimState states[2];
-    for (bool subgroups : {false, true}) {
+    std::vector<gpu::GridNode> grids[3];
+    SimState states[3];
+    for (int run : {0, 1, 2}) {
+        bool subgroups = run > 0;
         s.gridSubgroupSums = subgroups;
         SimSetup setup = makeSimSetup(s, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
         GpuSolver solver(ctx, scene.strands, setup, glm::mat4(1.0f));
         ASSERT_EQ(solver.subgroupGridSums(), subgroups);
         ASSERT_TRUE(solver.fixedPointGrid());
-        states[subgroups] = runGpu(ctx, solver, setup, 40, [&](uint32_t n) {
+        states[run] = runGpu(ctx, solver, setup, 40, [&](uint32_t n) {
             return makeStep(setup, glm::mat4(1.0f), glm::vec4(0.0f), float(n) / 120.0f);
         });
-        grids[subgroups] = solver.readGrid();
+        grids[run] = solver.readGrid();
     }
     double density = 0.0;
     for (const gpu::GridNode& node : grids[1])
         density += node.density;
     EXPECT_GT(density, 0.5 * double(scene.strands.vertexCount()));  // the grid was splatted
     ASSERT_EQ(grids[0].size(), grids[1].size());
-    EXPECT_EQ(std::memcmp(grids[0].data(), grids[1].data(), grids[0].size() * sizeof(gpu::GridNode)), 0);
-    EXPECT_EQ(std::memcmp(states[0].positions.data(), states[1].positions.data(),
-                          states[0].positions.size() * sizeof(glm::vec4)), 0);
-    EXPECT_EQ(std::memcmp(states[0].velocities.data(), states[1].velocities.data(),
-                          states[0].velocities.size() * sizeof(glm::vec4)), 0);
+    // A segment that lost or doubled a lane's run would move a node by a whole run (about 0.1).
+    float worstDensity = 0.0f, worstMomentum = 0.0f;
+    for (size_t n = 0; n < grids[0].size(); ++n) {
+        worstDensity = std::max(worstDensity, std::abs(grids[0][n].density - grids[1][n].density));
+        worstMomentum = std::max(worstMomentum, glm::length(grids[0][n].momentum - grids[1][n].momentum));
+    }
+    EXPECT_LT(worstDensity, 1e-4f);
+    EXPECT_LT(worstMomentum, 1e-4f);
+    float worstPosition = 0.0f;
+    for (size_t v = 0; v < states[0].positions.size(); ++v)
+        worstPosition = std::max(worstPosition, glm::length(glm::vec3(states[0].positions[v] - states[1].positions[v])));
+    EXPECT_LT(worstPosition, 1e-4f * scene.unitsPerMetre);
+    EXPECT_EQ(std::memcmp(grids[1].data(), grids[2].data(), grids[1].size() * sizeof(gpu::GridNode)), 0);
+    EXPECT_EQ(std::memcmp(states[1].positions.data(), states[2].positions.data(),
+                          states[1].positions.size() * sizeof(glm::vec4)), 0);
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 

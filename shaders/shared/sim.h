@@ -221,18 +221,26 @@ GPU_FN Contact ellipsoidContact(Ellipsoid e, vec3 p, float margin)
         return c;
     }
     vec3 surface = radii * (q / len);
-    c.normal = normalize(R * (surface / (radii * radii)));
     c.depth = (1.0f - len) * length(surface);
+    c.normal = vec3(0.0f);
+    if (c.depth > 0.0f)  // outside (most hair, most of the time) the normal is not used
+        c.normal = normalize(R * (surface / (radii * radii)));
     return c;
 }
 
+// A world-space point in the head's space, for a head posed by the rigid `head`.
+GPU_FN vec3 toHeadSpace(mat4 head, vec3 p)
+{
+    return transpose(mat3(head)) * (p - vec3(head[3]));
+}
+
 // A head-space ellipsoid against a world-space point, for a head posed by the rigid `head`.
+// (The solvers transform each vertex once for every collider with toHeadSpace and
+// ellipsoidContact, which is this.)
 GPU_FN Contact headColliderContact(Ellipsoid e, mat4 head, vec3 p, float margin)
 {
-    mat3 R = mat3(head);
-    vec3 local = transpose(R) * (p - vec3(head[3]));
-    Contact c = ellipsoidContact(e, local, margin);
-    c.normal = R * c.normal;
+    Contact c = ellipsoidContact(e, toHeadSpace(head, p), margin);
+    c.normal = mat3(head) * c.normal;
     return c;
 }
 
