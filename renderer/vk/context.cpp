@@ -140,7 +140,7 @@ std::vector<DeviceReport> queryDevices(VkInstance instance)
         r.int64Atomics = r.vulkan13 && features.features.shaderInt64 && f12.shaderBufferInt64Atomics;
         constexpr VkSubgroupFeatureFlags kShuffles =
             VK_SUBGROUP_FEATURE_BALLOT_BIT | VK_SUBGROUP_FEATURE_VOTE_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT |
-            VK_SUBGROUP_FEATURE_SHUFFLE_RELATIVE_BIT;
+            VK_SUBGROUP_FEATURE_SHUFFLE_BIT | VK_SUBGROUP_FEATURE_SHUFFLE_RELATIVE_BIT;
         r.subgroupShuffles = (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) != 0 &&
                              (subgroup.supportedOperations & kShuffles) == kShuffles;
         r.subgroupSize = subgroup.subgroupSize;
