@@ -207,13 +207,16 @@ void GpuSolver::recordStep(VkCommandBuffer cmd, const gpu::SimStep& step, vk::Gp
     vk::computeToComputeBarrier(cmd);
     end();
     gpu::SimStep sub = step;
-    begin("integrate+splat");
     for (uint32_t k = 0; k < setup_.substeps; ++k) {
+        bool last = k + 1 == setup_.substeps;
+        if (k == 0 || last)
+            begin(last ? "integrate+splat" : "integrate");  // the substeps before the last, then the last
         sub.time = step.time + float(k) * p.dt;
-        dispatch(k + 1 == setup_.substeps ? integrateSplat_ : integrate_, strandGroups, sub);
+        dispatch(last ? integrateSplat_ : integrate_, strandGroups, sub);
         vk::computeToComputeBarrier(cmd);
+        if (last || k + 2 == setup_.substeps)
+            end();
     }
-    end();
     begin("grid_normalize");
     dispatch(normalize_, nodeGroups, step);
     vk::computeToComputeBarrier(cmd);
@@ -273,10 +276,11 @@ std::vector<gpu::GridNode> GpuSolver::readGrid() const
     std::vector<int64_t> words(bytes.size() / sizeof(int64_t));
     std::memcpy(words.data(), bytes.data(), words.size() * sizeof(int64_t));
     double inv = 1.0 / double(setup_.params.gridFixedScale);
-    for (size_t n = 0; n < out.size(); ++n) {
-        const int64_t* w = &words[n * gpu::kGridFixedWordsPerNode];
-        out[n].density = float(double(w[0]) * inv);
-        out[n].momentum = glm::vec3(float(double(w[1]) * inv), float(double(w[2]) * inv), float(double(w[3]) * inv));
+    uint32_t count = setup_.params.gridNodeCount;
+    for (uint32_t n = 0; n < count; ++n) {
+        auto word = [&](uint32_t w) { return double(words[gpu::gridFixedWord(n, w, count)]) * inv; };
+        out[n].density = float(word(0));
+        out[n].momentum = glm::vec3(float(word(1)), float(word(2)), float(word(3)));
     }
     return out;
 }

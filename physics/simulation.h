@@ -28,11 +28,15 @@ struct SimSettings {
     // bits) or float atomics (order-dependent in the last bits). Each falls back to the other on a
     // device that lacks it.
     enum class GridAtomics { Fixed, Float } gridAtomics = GridAtomics::Fixed;
-    // Neighbouring strands that splat into the same cell sum their shares in the subgroup before
-    // the atomics (where the device has subgroup ballot and relative shuffles in compute). The
-    // grid is the same either way; this only changes how fast it is built.
-    bool gridSubgroupSums = true;
+    // Strands that splat into the same cell in one subgroup sum their shares there before the
+    // atomics (where the device has subgroup ballot, vote, arithmetic and shuffles in compute).
+    // The grid is the same up to float rounding; only the speed differs. It pays where many
+    // strands share cells (large workloads) and costs time where few do: Auto turns it on from
+    // kGridSubgroupSumsFrom strands (measured on an H100: README, Physics).
+    enum class GridSubgroups { Auto, On, Off } gridSubgroups = GridSubgroups::Auto;
 };
+
+inline constexpr uint32_t kGridSubgroupSumsFrom = 32768;
 
 // Everything needed to run: packed parameters plus the grid's placement relative to the head.
 struct SimSetup {
@@ -40,7 +44,7 @@ struct SimSetup {
     uint32_t substeps = 1;           // integrate/FTL passes per step (each params.dt long)
     glm::vec3 gridCenterHead{0.0f};  // grid centre in head space (the grid follows the head)
     float gridSide = 0.0f;           // asset units
-    bool gridSubgroupSums = true;    // SimSettings::gridSubgroupSums
+    bool gridSubgroupSums = true;    // SimSettings::gridSubgroups, Auto decided for the strand count
 };
 
 SimSetup makeSimSetup(const SimSettings& settings, const StrandSet& strands,

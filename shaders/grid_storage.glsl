@@ -1,32 +1,35 @@
 // grid_storage.glsl: the hair-hair grid's accumulators as the three kernels that write or read
 // them see them: float sums (float atomics) or, in the GRID_FIXED variants, 64-bit integer sums
-// scaled by params.gridFixedScale (deterministic: integer adds commute). Include after
+// scaled by params.gridFixedScale (deterministic: integer adds commute). The integer sums are
+// four arrays one after another (density, then each momentum component), so the four atomics of
+// one node go to four cache lines, which the GPU's memory serves in parallel (in one line they
+// queue behind each other where many strands splat into the same node). Include after
 // sim_common.glsl; the .comp file enables the extensions at its top.
 #ifdef GRID_FIXED
-layout(set = 0, binding = kSimBindingGrid, std430) buffer Grid { int64_t gridFixed[]; };  // 4 per node
+layout(set = 0, binding = kSimBindingGrid, std430) buffer Grid { int64_t gridFixed[]; };  // 4 arrays of nodes
 
 // Adds density and momentum already scaled to integers (the splat rounds each run's sums).
 void gridAddSum(uint node, i64vec4 sum)
 {
-    uint base = node * kGridFixedWordsPerNode;
     for (uint w = 0u; w < kGridFixedWordsPerNode; ++w)
-        atomicAdd(gridFixed[base + w], sum[w]);
+        atomicAdd(gridFixed[gridFixedWord(node, w, params.gridNodeCount)], sum[w]);
 }
 
 void gridZero(uint node)
 {
     for (uint w = 0u; w < kGridFixedWordsPerNode; ++w)
-        gridFixed[node * kGridFixedWordsPerNode + w] = int64_t(0);
+        gridFixed[gridFixedWord(node, w, params.gridNodeCount)] = int64_t(0);
 }
 
 GridNode gridRead(uint node)
 {
-    uint base = node * kGridFixedWordsPerNode;
+    uint n = params.gridNodeCount;
     float inv = 1.0 / params.gridFixedScale;
-    GridNode n;
-    n.density = float(gridFixed[base]) * inv;
-    n.momentum = vec3(float(gridFixed[base + 1u]), float(gridFixed[base + 2u]), float(gridFixed[base + 3u])) * inv;
-    return n;
+    GridNode g;
+    g.density = float(gridFixed[gridFixedWord(node, 0u, n)]) * inv;
+    g.momentum = vec3(float(gridFixed[gridFixedWord(node, 1u, n)]), float(gridFixed[gridFixedWord(node, 2u, n)]),
+                      float(gridFixed[gridFixedWord(node, 3u, n)])) * inv;
+    return g;
 }
 #else
 layout(set = 0, binding = kSimBindingGrid, std430) buffer Grid { GridNode grid[]; };

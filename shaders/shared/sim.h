@@ -95,6 +95,11 @@ struct StrandInfo {
 // variants) keeps the same four sums as 64-bit integers scaled by SimParams.gridFixedScale, four
 // per node: integer adds commute, so its result does not depend on the order threads run in.
 GPU_CONST uint kGridFixedWordsPerNode = 4u;
+// Where word w (0 density, 1..3 momentum) of a node lies: four arrays of `nodeCount` words.
+GPU_FN uint gridFixedWord(uint node, uint w, uint nodeCount)
+{
+    return w * nodeCount + node;
+}
 // The fixed-point scale is chosen so no node can overflow: each vertex adds weights summing to 1
 // and momenta of at most kGridMaxSplatSpeed (metres per second, in the head's units) to a node.
 GPU_CONST float kGridMaxSplatSpeed = 20.0f;
