@@ -77,8 +77,8 @@ GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const Sim
     std::vector<gpu::RestVertex> rest = toSlots(restVertices(strands), count, V, gpu::RestVertex{glm::vec3(0.0f), 1.0f});
     slotCount_ = uint32_t(initial.positions.size());
     size_t vec4Bytes = size_t(slotCount_) * sizeof(glm::vec4);
-    size_t gridBytes = fixedGrid_ ? size_t(gpu::gridFixedWordCount(setup.params.gridNodeCount)) * sizeof(int64_t)
-                                  : size_t(setup.params.gridNodeCount) * sizeof(gpu::GridNode);
+    size_t gridBytes = size_t(setup.params.gridNodeCount) *
+                       (fixedGrid_ ? gpu::kGridFixedWordsPerNode * sizeof(int64_t) : sizeof(gpu::GridNode));
 
     constexpr VkBufferUsageFlags kStorageCopy = vk::kStorage | vk::kTransferSrc | vk::kTransferDst;
     params_ = ctx.createBufferWithData({.size = sizeof(gpu::SimParams), .usage = vk::kUniform, .name = "sim.params"},

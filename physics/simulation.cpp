@@ -12,9 +12,8 @@ uint64_t solverDeviceBytes(uint64_t strands, uint32_t verticesPerStrand, uint64_
     uint64_t block = gpu::kSimStrandBlock;
     uint64_t slots = (strands + block - 1) / block * block * verticesPerStrand;
     uint64_t vertexBuffers = slots * (3 * sizeof(glm::vec4) + sizeof(gpu::RestVertex));
-    uint64_t gridSums = fixedPointGrid ? uint64_t(gpu::gridFixedWordCount(uint32_t(gridNodes))) * sizeof(int64_t)
-                                       : gridNodes * sizeof(gpu::GridNode);
-    return vertexBuffers + strands * sizeof(gpu::StrandInfo) + gridSums + gridNodes * sizeof(glm::vec4) +
+    uint64_t gridSums = fixedPointGrid ? gpu::kGridFixedWordsPerNode * sizeof(int64_t) : sizeof(gpu::GridNode);
+    return vertexBuffers + strands * sizeof(gpu::StrandInfo) + gridNodes * (gridSums + sizeof(glm::vec4)) +
            sizeof(gpu::SimParams) + sizeof(gpu::SimCounters);
 }
 

@@ -1,13 +1,12 @@
 // grid_storage.glsl: the hair-hair grid's accumulators as the three kernels that write or read
 // them see them: float sums (float atomics) or, in the GRID_FIXED variants, 64-bit integer sums
 // scaled by params.gridFixedScale (deterministic: integer adds commute). The integer sums are
-// four arrays one after another (density, then each momentum component), their nodes dealt round
-// 16 banks (gridFixedWord), so the atomics of one node and of its neighbours go to different
-// cache lines, which the GPU's memory serves in parallel (in one line they queue behind each
-// other where many strands splat into the same nodes). Include after sim_common.glsl; the .comp
-// file enables the extensions at its top.
+// four arrays one after another (density, then each momentum component), so the four atomics of
+// one node go to four cache lines, which the GPU's memory serves in parallel (in one line they
+// queue behind each other where many strands splat into the same node). Include after
+// sim_common.glsl; the .comp file enables the extensions at its top.
 #ifdef GRID_FIXED
-layout(set = 0, binding = kSimBindingGrid, std430) buffer Grid { int64_t gridFixed[]; };  // see gridFixedWord
+layout(set = 0, binding = kSimBindingGrid, std430) buffer Grid { int64_t gridFixed[]; };  // 4 arrays of nodes
 
 // Adds density and momentum already scaled to integers (the splat rounds each run's sums).
 void gridAddSum(uint node, i64vec4 sum)

@@ -95,22 +95,10 @@ struct StrandInfo {
 // variants) keeps the same four sums as 64-bit integers scaled by SimParams.gridFixedScale, four
 // per node: integer adds commute, so its result does not depend on the order threads run in.
 GPU_CONST uint kGridFixedWordsPerNode = 4u;
-// Where word w (0 density, 1..3 momentum) of a node lies. Each word has its own array, and
-// within it the nodes are dealt round 16 banks (node & 15), so that neighbouring nodes (a cell's
-// corners along x) fall in different cache lines: the atomics of many strands splatting into the
-// same few nodes then spread over more of the GPU's memory slices instead of queueing on one line.
-GPU_FN uint gridFixedBankSize(uint nodeCount)
-{
-    return (nodeCount + 15u) / 16u;
-}
+// Where word w (0 density, 1..3 momentum) of a node lies: four arrays of `nodeCount` words.
 GPU_FN uint gridFixedWord(uint node, uint w, uint nodeCount)
 {
-    return (w * 16u + (node & 15u)) * gridFixedBankSize(nodeCount) + (node >> 4u);
-}
-// Words the fixed-point grid occupies (with the padding of its last bank).
-GPU_FN uint gridFixedWordCount(uint nodeCount)
-{
-    return kGridFixedWordsPerNode * 16u * gridFixedBankSize(nodeCount);
+    return w * nodeCount + node;
 }
 // The fixed-point scale is chosen so no node can overflow: each vertex adds weights summing to 1
 // and momenta of at most kGridMaxSplatSpeed (metres per second, in the head's units) to a node.
