@@ -15,8 +15,10 @@
 //
 // The variant with kSplatToGrid (the step's last substep) also splats the hair-hair grid for its
 // strand: consecutive vertices of a strand usually fall in the same grid cell, so their trilinear
-// contributions are summed in registers and added with one set of float atomics per run of
-// vertices, instead of one per vertex (atomics on the same nodes were the step's bottleneck).
+// contributions are summed in registers and added with one set of atomics per run of vertices,
+// instead of one per vertex (atomics on the same nodes were the step's bottleneck). Without
+// subgroup sums, a run that moves into a neighbouring cell keeps the corners both cells share
+// and adds only the ones it leaves (slideRun).
 // The sums are CpuSolver::gridSplat's, up to float order (a strand reset for non-finite values
 // keeps the finite contributions it made before the reset; the CPU splats its rest pose).
 //
@@ -70,6 +72,59 @@ vec4 toGridSum(vec4 densityMomentum)
     return densityMomentum;
 }
 #endif
+
+void flushRun();
+
+// Adds corner k of the run to the grid and empties it.
+void flushCorner(uint k)
+{
+    gridAddSum(gridIndex(runCell + cornerOffset(k), params.gridResolution), toGridSum(vec4(runDensity[k], runMomentum[k])));
+    runDensity[k] = 0.0;
+    runMomentum[k] = vec3(0.0);
+}
+
+// Slides the run one cell along the axis whose corner bit is `bit` (1 x, 2 y, 4 z), by `dir`
+// (+1 or -1): the four corners both cells share keep their sums, the four the run leaves behind
+// go to the grid. A strand crossing into a neighbouring cell so adds 4 nodes instead of 8.
+void slideRun(uint bit, int dir, ivec3 offset)
+{
+    for (uint low = 0u; low < 8u; ++low) {
+        if ((low & bit) != 0u)
+            continue;
+        uint high = low | bit;
+        if (dir > 0) {  // the low corners are left behind; the high ones become the new low ones
+            flushCorner(low);
+            runDensity[low] = runDensity[high];
+            runMomentum[low] = runMomentum[high];
+            runDensity[high] = 0.0;
+            runMomentum[high] = vec3(0.0);
+        } else {
+            flushCorner(high);
+            runDensity[high] = runDensity[low];
+            runMomentum[high] = runMomentum[low];
+            runDensity[low] = 0.0;
+            runMomentum[low] = vec3(0.0);
+        }
+    }
+    runCell += offset;
+}
+
+// Moves the lane's run to `cell`: slid along each axis when it is a neighbour (face, edge or
+// corner), else flushed whole (the next vertex opens a new run).
+void moveRun(ivec3 cell)
+{
+    ivec3 d = cell - runCell;
+    if (any(greaterThan(abs(d), ivec3(1)))) {
+        flushRun();
+        return;
+    }
+    if (d.x != 0)
+        slideRun(1u, d.x, ivec3(d.x, 0, 0));
+    if (d.y != 0)
+        slideRun(2u, d.y, ivec3(0, d.y, 0));
+    if (d.z != 0)
+        slideRun(4u, d.z, ivec3(0, 0, d.z));
+}
 
 void flushRun()
 {
@@ -151,7 +206,10 @@ void splatVertex(bool live, vec3 p, vec3 v)
     bool valid = live && isFinite3(p) && isFinite3(v);
     GridCell cell = gridCell(valid ? p : vec3(0.0), step.gridOrigin, params.gridCellSize);
     valid = valid && cellInside(cell.base, params.gridResolution);
-    flushRuns(valid && runOpen && cell.base != runCell);
+    if (kSubgroupSums)
+        flushRuns(valid && runOpen && cell.base != runCell);
+    else if (valid && runOpen && cell.base != runCell)
+        moveRun(cell.base);
     if (!valid)
         return;
     v = clampSpeed(v, params.gridMaxSplatSpeed);
