@@ -187,14 +187,11 @@ void addHairOptions(CLI::App* cmd, HairOptions& h)
         ->transform(CLI::CheckedTransformer(std::map<std::string, SimSettings::GridAtomics>{
             {"fixed", SimSettings::GridAtomics::Fixed}, {"float", SimSettings::GridAtomics::Float}}))
         ->capture_default_str();
-    cmd->add_option("--grid-subgroups", h.sim.gridSubgroups,
+    cmd->add_option("--grid-subgroups", h.sim.gridSubgroupSums,
                     "on: strands that splat into the same grid cell sum their shares in a subgroup before the atomics "
-                    "(faster with many strands, slower with few); off: every strand's own atomics; auto: on from " +
-                        std::to_string(kGridSubgroupSumsFrom) + " strands")
-        ->transform(CLI::CheckedTransformer(std::map<std::string, SimSettings::GridSubgroups>{
-            {"auto", SimSettings::GridSubgroups::Auto}, {"on", SimSettings::GridSubgroups::On},
-            {"off", SimSettings::GridSubgroups::Off}}))
-        ->default_str("auto");
+                    "(faster with float atomics and 100,000 strands, slower elsewhere); off: each strand's own atomics")
+        ->transform(CLI::CheckedTransformer(std::map<std::string, bool>{{"on", true}, {"off", false}}))
+        ->default_str("off");
     cmd->add_option("--repulsion", h.sim.gridRepulsion, "hair-hair repulsion along the density gradient (keeps volume; 0 = off)")
         ->check(within(kRepulsionRange.min, kRepulsionRange.max))
         ->capture_default_str();

@@ -42,8 +42,7 @@ SimSetup makeSimSetup(const SimSettings& s, const StrandSet& strands, const std:
     p.gridRepulsion = s.gridRepulsion;
     p.partCount = uint32_t(strands.parts.size());
     p.gridMaxSplatSpeed = gpu::kGridMaxSplatSpeed * unitsPerMetre;
-    setup.gridSubgroupSums = s.gridSubgroups == SimSettings::GridSubgroups::On ||
-                             (s.gridSubgroups == SimSettings::GridSubgroups::Auto && strands.strandCount() >= kGridSubgroupSumsFrom);
+    setup.gridSubgroupSums = s.gridSubgroupSums;
     p.gridFixedScale = s.gridAtomics == SimSettings::GridAtomics::Fixed
                            ? gridFixedScale(strands.vertexCount(), p.gridMaxSplatSpeed)
                            : 0.0f;

@@ -29,14 +29,12 @@ struct SimSettings {
     // device that lacks it.
     enum class GridAtomics { Fixed, Float } gridAtomics = GridAtomics::Fixed;
     // Strands that splat into the same cell in one subgroup sum their shares there before the
-    // atomics (where the device has subgroup ballot, vote, arithmetic and shuffles in compute).
-    // The grid is the same up to float rounding; only the speed differs. It pays where many
-    // strands share cells (large workloads) and costs time where few do: Auto turns it on from
-    // kGridSubgroupSumsFrom strands (measured on an H100: README, Physics).
-    enum class GridSubgroups { Auto, On, Off } gridSubgroups = GridSubgroups::Auto;
+    // atomics (where the device has subgroup ballot, vote, arithmetic and shuffles in compute),
+    // instead of each strand sliding its own run from cell to cell. The grid is the same up to
+    // float rounding; only the speed differs: on an H100 it pays with float atomics and 100,000
+    // strands, and costs time elsewhere (README, Physics), so it is off unless asked for.
+    bool gridSubgroupSums = false;
 };
-
-inline constexpr uint32_t kGridSubgroupSumsFrom = 32768;
 
 // Everything needed to run: packed parameters plus the grid's placement relative to the head.
 struct SimSetup {
@@ -44,7 +42,7 @@ struct SimSetup {
     uint32_t substeps = 1;           // integrate/FTL passes per step (each params.dt long)
     glm::vec3 gridCenterHead{0.0f};  // grid centre in head space (the grid follows the head)
     float gridSide = 0.0f;           // asset units
-    bool gridSubgroupSums = true;    // SimSettings::gridSubgroups, Auto decided for the strand count
+    bool gridSubgroupSums = false;   // SimSettings::gridSubgroupSums
 };
 
 SimSetup makeSimSetup(const SimSettings& settings, const StrandSet& strands,

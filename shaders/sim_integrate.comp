@@ -16,22 +16,23 @@
 // The variant with kSplatToGrid (the step's last substep) also splats the hair-hair grid for its
 // strand: consecutive vertices of a strand usually fall in the same grid cell, so their trilinear
 // contributions are summed in registers and added with one set of atomics per run of vertices,
-// instead of one per vertex (atomics on the same nodes were the step's bottleneck). Without
-// subgroup sums, a run that moves into a neighbouring cell keeps the corners both cells share
-// and adds only the ones it leaves (slideRun).
-// The sums are CpuSolver::gridSplat's, up to float order (a strand reset for non-finite values
-// keeps the finite contributions it made before the reset; the CPU splats its rest pose).
+// instead of one per vertex (atomics on the same nodes were the step's bottleneck). A run that
+// moves into a neighbouring cell keeps the corners both cells share and adds only the ones it
+// leaves (slideRun): 4 nodes per cell crossed instead of 8. The sums are CpuSolver::gridSplat's,
+// up to float order (a strand reset for non-finite values keeps the finite contributions it made
+// before the reset; the CPU splats its rest pose).
 //
-// With kSubgroupSums, the lanes of a subgroup that flush a run in the same iteration also sum
+// With kSubgroupSums (opt-in: --grid-subgroups on), runs are not slid but added whole when they
+// leave their cell, and the lanes of a subgroup that flush a run in the same iteration also sum
 // their runs by cell across the subgroup (sorted by cell, then a segmented scan with shuffles),
 // and one lane per cell does the atomics. Grown strands are sorted along a Morton curve of their
 // roots, so the 32 strands of a warp grow from one patch of scalp and mostly cross the same few
 // cells: at 100,000 guides x 32 vertices on a 64³ grid, 1.32 M runs become 0.30 M sets of
-// atomics (counted on the rest pose). The sums depend only on the positions, so a run is still
-// reproducible bit for bit in fixed point; against the grid without subgroup sums, the floats
-// are rounded after each cell's sum instead of each run's (a difference of rounding). Every lane
-// must take part: threads past the last strand run the loop on the last strand's data and write
-// nothing.
+// atomics (counted on the rest pose). The sort and scan cost more than they save with the
+// fixed-point grid on an H100 (README, Physics); with float atomics and 100,000 strands they pay.
+// The sums depend only on the positions, so a run is still reproducible bit for bit in fixed
+// point. Every lane must take part: threads past the last strand run the loop on the last
+// strand's data and write nothing.
 //
 // The variant for the last substep (kSplatToGrid) also writes the tangents; earlier substeps
 // leave them to it.

@@ -234,7 +234,7 @@ TEST(GpuSolver, SubgroupSumsBuildTheSameGrid)
     SimState states[3];
     for (int run : {0, 1, 2}) {
         bool subgroups = run > 0;
-        s.gridSubgroups = subgroups ? SimSettings::GridSubgroups::On : SimSettings::GridSubgroups::Off;
+        s.gridSubgroupSums = subgroups;
         SimSetup setup = makeSimSetup(s, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
         GpuSolver solver(ctx, scene.strands, setup, glm::mat4(1.0f));
         ASSERT_EQ(solver.subgroupGridSums(), subgroups);
