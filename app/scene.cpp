@@ -442,6 +442,11 @@ Scene loadScene(const std::filesystem::path& path)
     if (!in || std::filesystem::is_directory(path, ec))
         throw UserError(path.string() + ": cannot read the scene file");
     std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return parseScene(content, path);
+}
+
+Scene parseScene(const std::string& content, const std::filesystem::path& path)
+{
     Json doc;
     try {
         doc = Json::parse(content);
