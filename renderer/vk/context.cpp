@@ -1,12 +1,15 @@
 // renderer/vk/context.cpp: instance and device creation, the up-front feature check, device
-// choice, the counting validation messenger, and resource factories.
+// choice, the counting validation messenger, resource factories, and queue submission (with the
+// tests' fault injection of a lost device).
 #include "renderer/vk/context.h"
 
 #include "core/error.h"
 #include "renderer/vk/check.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <sstream>
 
@@ -35,6 +38,20 @@ std::string lowercase(std::string s)
 {
     std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     return s;
+}
+
+// WISP_INJECT_DEVICE_LOST: the queue submission that reports the device lost (0: none).
+uint64_t injectedDeviceLoss()
+{
+    const char* env = std::getenv("WISP_INJECT_DEVICE_LOST");
+    if (!env || !*env)
+        return 0;
+    uint64_t n = 0;
+    auto [end, ec] = std::from_chars(env, env + std::strlen(env), n);
+    if (ec != std::errc() || *end != '\0' || n == 0)
+        throw UserError(std::string("WISP_INJECT_DEVICE_LOST=") + env +
+                        ": must be a queue submission number, 1 or more (a test-only fault injection)");
+    return n;
 }
 
 }  // namespace
@@ -212,7 +229,7 @@ const DeviceReport& selectDevice(const std::vector<DeviceReport>& devices, const
     return requireUsable(*order.front());  // throws, naming what the best device lacks
 }
 
-Context::Context(const ContextOptions& options)
+Context::Context(const ContextOptions& options) : deviceLostAtSubmission_(injectedDeviceLoss())
 {
     VkApplicationInfo app{.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
                           .pApplicationName = "wisp",
@@ -354,7 +371,7 @@ void Context::destroy()
 {
     uploadPool_.reset();
     if (device_) {
-        vkDeviceWaitIdle(device_);
+        vkDeviceWaitIdle(device_);  // a lost device returns VK_ERROR_DEVICE_LOST at once: nothing left to wait for
         vkDestroyDevice(device_, nullptr);
         device_ = VK_NULL_HANDLE;
     }
@@ -563,11 +580,20 @@ void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) 
     record(cmd);
     VK_CHECK(vkEndCommandBuffer(cmd));
     Fence fence = createFence(false, "context.submitAndWait");
-    VkSubmitInfo submit{.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1, .pCommandBuffers = &cmd};
-    VK_CHECK(vkQueueSubmit(queue_, 1, &submit, fence));
+    VkCommandBufferSubmitInfo cmdInfo{.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = cmd};
+    VkSubmitInfo2 info{.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cmdInfo};
+    VK_CHECK(queueSubmit(info, fence));
     VkFence waitFence = fence;
     VK_CHECK(vkWaitForFences(device_, 1, &waitFence, VK_TRUE, UINT64_MAX));
     vkFreeCommandBuffers(device_, uploadPool_, 1, &cmd);
+}
+
+VkResult Context::queueSubmit(const VkSubmitInfo2& info, VkFence fence) const
+{
+    ++submissions_;
+    if (deviceLostAtSubmission_ > 0 && submissions_ >= deviceLostAtSubmission_)
+        return VK_ERROR_DEVICE_LOST;  // injected: see context.h
+    return vkQueueSubmit2(queue_, 1, &info, fence);
 }
 
 }  // namespace wisp::vk
