@@ -959,3 +959,30 @@ TEST(BadInput, DeviceLossInjectionTakesASubmissionNumber)
                     "WISP_INJECT_DEVICE_LOST=0: must be a queue submission number");
     EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
 }
+
+// A device lacking a feature Wisp needs, through the test-only WISP_HIDE_FEATURE=NAME (renderer/
+// vk/context.h: every device reports NAME absent): one line naming the device and the feature.
+TEST(BadInput, DeviceLackingAFeatureIsNamedWithTheFeature)
+{
+    TempDir dir;
+    auto info = runWisp("info --json");
+    ASSERT_EQ(info.status, 0) << info.err;
+    std::string device0 = nlohmann::json::parse(info.out)[0]["name"].get<std::string>();
+    const std::string hide = "WISP_HIDE_FEATURE=geometryShader";
+    auto r = runWisp("render --out '" + (dir / "a.png").string() + "'", hide);
+    expectUserError(r, "lacks what Wisp needs: geometryShader");
+    EXPECT_NE(r.err.find("Vulkan device "), std::string::npos) << r.err;
+    auto chosen = runWisp("--gpu 0 record --frames 1 --out '" + (dir / "f").string() + "'", hide);
+    expectUserError(chosen, "Vulkan device 0 '" + device0 + "' lacks what Wisp needs: geometryShader");
+    auto two = runWisp("simulate --steps 1", "WISP_HIDE_FEATURE=tessellationShader,VK_KHR_push_descriptor");
+    expectUserError(two, "lacks what Wisp needs: tessellationShader, VK_KHR_push_descriptor");
+    EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "f"));  // refused before the folder is made
+    auto listed = runWisp("info --json", hide);
+    ASSERT_EQ(listed.status, 0) << listed.err;
+    nlohmann::json d = nlohmann::json::parse(listed.out)[0];
+    EXPECT_FALSE(d["usable"].get<bool>());
+    EXPECT_EQ(d["missing"], nlohmann::json::array({"geometryShader"}));
+    expectUserError(runWisp("info", "WISP_HIDE_FEATURE=warpDrive"),
+                    "WISP_HIDE_FEATURE: 'warpDrive' is not a feature it can hide (known: dynamicRendering");
+}

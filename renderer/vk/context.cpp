@@ -1,6 +1,6 @@
 // renderer/vk/context.cpp: instance and device creation, the up-front feature check, device
 // choice, the counting validation messenger, resource factories, and queue submission (with the
-// tests' fault injection of a lost device).
+// tests' fault injections: a lost device, a hidden feature).
 #include "renderer/vk/context.h"
 
 #include "core/error.h"
@@ -38,6 +38,45 @@ std::string lowercase(std::string s)
 {
     std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     return s;
+}
+
+// What WISP_HIDE_FEATURE can hide (test-only), by the names DeviceReport::missing() uses.
+struct HideableFeature {
+    const char* name;
+    bool DeviceReport::*have;
+};
+constexpr HideableFeature kHideable[] = {
+    {"dynamicRendering", &DeviceReport::dynamicRendering},
+    {"synchronization2", &DeviceReport::synchronization2},
+    {"maintenance4", &DeviceReport::maintenance4},
+    {"tessellationShader", &DeviceReport::tessellationShader},
+    {"geometryShader", &DeviceReport::geometryShader},
+    {"fragmentStoresAndAtomics", &DeviceReport::fragmentStoresAndAtomics},
+    {"timestamps", &DeviceReport::timestamps},
+    {"shaderBufferFloat32AtomicAdd", &DeviceReport::floatAtomicAdd},
+    {"shaderBufferInt64Atomics", &DeviceReport::int64Atomics},
+    {"VK_KHR_push_descriptor", &DeviceReport::pushDescriptor},
+    {"VK_KHR_swapchain", &DeviceReport::swapchain},
+};
+
+// The report members WISP_HIDE_FEATURE=NAME[,NAME...] names (none when it is unset).
+std::vector<bool DeviceReport::*> hiddenFeatures()
+{
+    std::vector<bool DeviceReport::*> hidden;
+    const char* env = std::getenv("WISP_HIDE_FEATURE");
+    std::stringstream list(env ? env : "");
+    for (std::string name; std::getline(list, name, ',');) {
+        auto found = std::find_if(std::begin(kHideable), std::end(kHideable),
+                                  [&](const HideableFeature& f) { return name == f.name; });
+        if (found == std::end(kHideable)) {
+            std::string known;
+            for (const HideableFeature& f : kHideable)
+                known += (known.empty() ? "" : ", ") + std::string(f.name);
+            throw UserError("WISP_HIDE_FEATURE: '" + name + "' is not a feature it can hide (known: " + known + ")");
+        }
+        hidden.push_back(found->have);
+    }
+    return hidden;
 }
 
 // WISP_INJECT_DEVICE_LOST: the queue submission that reports the device lost (0: none).
@@ -103,6 +142,7 @@ int deviceTypeRank(VkPhysicalDeviceType type)
 
 std::vector<DeviceReport> queryDevices(VkInstance instance)
 {
+    std::vector<bool DeviceReport::*> hidden = hiddenFeatures();
     uint32_t count = 0;
     VK_CHECK(vkEnumeratePhysicalDevices(instance, &count, nullptr));
     std::vector<VkPhysicalDevice> devices(count);
@@ -168,6 +208,8 @@ std::vector<DeviceReport> queryDevices(VkInstance instance)
             }
         }
         r.timestamps = limits.timestampComputeAndGraphics && r.timestampValidBits > 0;
+        for (bool DeviceReport::*have : hidden)
+            r.*have = false;
 
         VkPhysicalDeviceMemoryProperties memory;
         vkGetPhysicalDeviceMemoryProperties(pd, &memory);

@@ -62,6 +62,9 @@ struct DeviceReport {
 };
 
 // Fills a report from raw Vulkan data; separate so the feature check can be tested on any input.
+// Test-only: WISP_HIDE_FEATURE=NAME[,NAME...] reports the named features as absent on every
+// device (names as missing() gives them: geometryShader, VK_KHR_push_descriptor, ...), so a device
+// lacking one can be tested where every device has them all.
 std::vector<DeviceReport> queryDevices(VkInstance instance);
 // Best first: discrete > integrated > virtual > CPU, then by index.
 int deviceTypeRank(VkPhysicalDeviceType type);
