@@ -952,6 +952,15 @@ TEST(Cli, DeviceLostDuringSimulateExitsWithItsOwnStatus)
     }
 }
 
+TEST(Window, DeviceLostClosesTheWindowWithItsOwnStatus)
+{
+    WISP_REQUIRE_XVFB();
+    // Two frames in flight, a swapchain, the panel: their teardown after the loss returns cleanly.
+    auto r = runWisp("--validation view --guides 60 --set strands_per_guide=4 --width 160 --height 120 --frames 30",
+                     lostAt(30) + " xvfb-run -a -s '-screen 0 640x480x24'");
+    expectDeviceLost(r, "view");
+}
+
 TEST(BadInput, DeviceLossInjectionTakesASubmissionNumber)
 {
     TempDir dir;
