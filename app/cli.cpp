@@ -692,8 +692,8 @@ int runCli(int argc, char** argv)
         return kExitUserError;
     } catch (const vk::DeviceLost& e) {
         std::string command = app.get_subcommands().empty() ? "" : " " + app.get_subcommands().front()->get_name();
-        std::fprintf(stderr, "wisp: the GPU device was lost (VK_ERROR_DEVICE_LOST) during wisp%s: %s\n", command.c_str(),
-                     e.what());
+        std::fprintf(stderr, "wisp: the GPU device was lost (VK_ERROR_DEVICE_LOST) during wisp%s: %s\n",
+                     command.c_str(), e.what());
         return kExitDeviceLost;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "wisp: internal error: %s\n", e.what());

@@ -97,11 +97,12 @@ void encodeVideo(const std::filesystem::path& dir, const std::filesystem::path& 
 std::string leftAfterLoss(const RecordOptions& o, uint32_t written)
 {
     std::string last = std::filesystem::path(framePath(o.outDir, written == 0 ? 0 : written - 1)).filename().string();
-    std::string left = written == 0 ? "no frame was written"
-                       : written == 1 ? "1 of " + std::to_string(o.frames) + " frames is in " + o.outDir.string() +
-                                            " (" + last + ", complete)"
-                                      : std::to_string(written) + " of " + std::to_string(o.frames) + " frames are in " +
-                                            o.outDir.string() + " (frame_00000.png .. " + last + ", each complete)";
+    std::string left =
+        written == 0 ? "no frame was written"
+        : written == 1
+            ? "1 of " + std::to_string(o.frames) + " frames is in " + o.outDir.string() + " (" + last + ", complete)"
+            : std::to_string(written) + " of " + std::to_string(o.frames) + " frames are in " + o.outDir.string() +
+                  " (frame_00000.png .. " + last + ", each complete)";
     left += "; no contact sheet";
     if (!o.video.empty())
         left += ", and no video (" + o.video.string() + " is not made from an unfinished run)";

@@ -133,7 +133,8 @@ SCENE_NAMES = ["version", "description", "head", "hair", "colliders", "physics",
                "drag", "name", "center", "radii", "rotation_deg", "wind", "sphere", "repulsion", "grid_atomics", "time",
                "camera", "yaw", "pitch", "distance", "target", "light", "azimuth", "elevation", "intensity",
                "head_yaw", "strands_per_guide", "divisions", "width", "lod", "hair_preset", "hair_color", "shading",
-               "transparency", "step_hz", "substeps", "grid", "friction", "samples", "shadow_size", "oit_nodes_per_pixel"]
+               "transparency", "step_hz", "substeps", "grid", "friction", "samples", "shadow_size",
+               "oit_nodes_per_pixel"]
 
 DICTIONARIES = {
     "fuzz_tfx2": ["version", "scale", "rotation", "translation", "bothEndsImmovable", "maxNumVerticesInStrand",

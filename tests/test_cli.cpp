@@ -891,8 +891,9 @@ TEST(Record, DeviceLostKeepsTheFramesWrittenAndMakesNoSheetOrVideo)
     bool ffmpeg = std::system("command -v ffmpeg >/dev/null 2>&1") == 0;
     // About 15 submissions set up the renderer and the solver, then one per frame: the loss comes
     // after a few frames.
-    auto r = runWisp("--validation record --frames 12 --width 96 --height 64 --guides 60 --set strands_per_guide=4 --out '" +
-                         (dir / "frames").string() + "'" + (ffmpeg ? " --video '" + (dir / "run.mp4").string() + "'" : ""),
+    std::string video = ffmpeg ? " --video '" + (dir / "run.mp4").string() + "'" : "";
+    auto r = runWisp("--validation record --frames 12 --width 96 --height 64 --guides 60 --set strands_per_guide=4 "
+                     "--out '" + (dir / "frames").string() + "'" + video,
                      lostAt(22));
     expectDeviceLost(r, "record");
     std::smatch m;
@@ -908,8 +909,8 @@ TEST(Record, DeviceLostKeepsTheFramesWrittenAndMakesNoSheetOrVideo)
         ASSERT_GT(png.size(), 12u) << name;
         EXPECT_EQ(png.substr(png.size() - 8, 4), "IEND") << name << " ends with its last chunk";
         int w = 0, h = 0, channels = 0;
-        unsigned char* pixels = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(png.data()), int(png.size()),
-                                                      &w, &h, &channels, 4);
+        unsigned char* pixels = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(png.data()),
+                                                      int(png.size()), &w, &h, &channels, 4);
         EXPECT_NE(pixels, nullptr) << name << ": " << stbi_failure_reason();
         stbi_image_free(pixels);
         EXPECT_EQ(w, 96) << name;
@@ -932,8 +933,8 @@ TEST(Cli, DeviceLostDuringRenderWritesNoPicture)
     TempDir dir;
     // The first submission uploads the head; a later one simulates or draws a frame.
     for (int submission : {1, 16}) {
-        auto r = runWisp("--validation render --frames 3 --width 96 --height 64 --guides 60 --set strands_per_guide=4 --out '" +
-                             (dir / "a.png").string() + "'",
+        auto r = runWisp("--validation render --frames 3 --width 96 --height 64 --guides 60 --set strands_per_guide=4 "
+                         "--out '" + (dir / "a.png").string() + "'",
                          lostAt(submission));
         expectDeviceLost(r, "render");
         EXPECT_NE(r.err.find((dir / "a.png").string() + " was not written"), std::string::npos) << r.err;

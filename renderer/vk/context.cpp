@@ -623,7 +623,8 @@ void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) 
     VK_CHECK(vkEndCommandBuffer(cmd));
     Fence fence = createFence(false, "context.submitAndWait");
     VkCommandBufferSubmitInfo cmdInfo{.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = cmd};
-    VkSubmitInfo2 info{.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cmdInfo};
+    VkSubmitInfo2 info{
+        .sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cmdInfo};
     VK_CHECK(queueSubmit(info, fence));
     VkFence waitFence = fence;
     VK_CHECK(vkWaitForFences(device_, 1, &waitFence, VK_TRUE, UINT64_MAX));
