@@ -1,5 +1,5 @@
 // app/cli.cpp: subcommands render, view, info and inspect, their options and ranges, and the
-// error-to-exit-status policy.
+// error-to-exit-status policy (core/error.h: bad input 2, a lost device 3, anything else 1).
 #include "app/cli.h"
 
 #include "app/bsdf_command.h"
@@ -18,6 +18,7 @@
 #include "core/error.h"
 #include "physics/hair_scene.h"
 #include "physics/head.h"
+#include "renderer/vk/check.h"
 #include "renderer/vk/context.h"
 
 #include <CLI/CLI.hpp>
@@ -394,7 +395,12 @@ int runRender(const GlobalOptions& g, RenderOptions& o)
     HairScene scene = buildCheckedScene(g, o.hair, headPath, &o.settings, o.noHair);
     vk::Context ctx(contextOptions(g));
     HairRun run{.scene = &scene, .sim = o.hair.sim, .frames = o.frames, .framesPerSecond = o.fps, .sphere = o.hair.sphereOrNone()};
-    Picture picture = renderPicture(ctx, scene.head, o.settings, o.noHair ? nullptr : &run, &o.timeline);
+    Picture picture;
+    try {
+        picture = renderPicture(ctx, scene.head, o.settings, o.noHair ? nullptr : &run, &o.timeline);
+    } catch (const vk::DeviceLost& e) {
+        throw vk::DeviceLost(e.what() + std::string("; ") + o.out + " was not written");
+    }
     int status = validationStatus(ctx);
     if (status != 0)
         return status;  // a picture made with validation errors is not trusted: nothing written
@@ -704,6 +710,11 @@ int runCli(int argc, char** argv)
     } catch (const UserError& e) {
         std::fprintf(stderr, "wisp: %s\n", e.what());
         return kExitUserError;
+    } catch (const vk::DeviceLost& e) {
+        std::string command = app.get_subcommands().empty() ? "" : " " + app.get_subcommands().front()->get_name();
+        std::fprintf(stderr, "wisp: the GPU device was lost (VK_ERROR_DEVICE_LOST) during wisp%s: %s\n",
+                     command.c_str(), e.what());
+        return kExitDeviceLost;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "wisp: internal error: %s\n", e.what());
         return kExitInternalError;

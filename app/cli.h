@@ -1,6 +1,7 @@
 // app/cli.h: the `wisp` command line (CLI11): parses the subcommands and their options into
 // settings, runs them, and turns errors into one line on stderr and an exit status
-// (0 success, 2 bad input or environment, 1 internal error or validation messages).
+// (0 success, 2 bad input or environment, 3 the GPU device lost, 1 internal error or validation
+// messages).
 #pragma once
 
 namespace wisp {

@@ -1,5 +1,7 @@
 // app/record.cpp: the recording loop (simulate a frame's worth of fixed steps, render, read back,
-// write the PNG), the progress bar, the contact sheet and the ffmpeg subprocess.
+// write the PNG), the progress bar, the contact sheet and the ffmpeg subprocess. When the device
+// is lost, the frames written stay (each complete) and the error says which; no contact sheet or
+// video is made of the unfinished run.
 #include "app/record.h"
 
 #include "app/headless.h"
@@ -8,6 +10,7 @@
 #include "physics/gpu_solver.h"
 #include "renderer/frame.h"
 #include "renderer/renderer.h"
+#include "renderer/vk/check.h"
 
 #include <chrono>
 #include <cmath>
@@ -89,29 +92,28 @@ void encodeVideo(const std::filesystem::path& dir, const std::filesystem::path& 
     std::filesystem::rename(temp, video);
 }
 
-}  // namespace
-
-void checkRecordOutputs(const RecordOptions& o)
+// What is left after the device was lost with `written` frames done: complete PNGs (each written
+// under a temporary name and renamed), but no contact sheet and no video of an unfinished run.
+std::string leftAfterLoss(const RecordOptions& o, uint32_t written)
 {
-    std::error_code ec;
-    if (std::filesystem::exists(o.outDir, ec) && !std::filesystem::is_directory(o.outDir, ec))
-        throw UserError("--out " + o.outDir.string() + ": exists and is not a folder");
-    std::filesystem::path parent = o.outDir.parent_path().empty() ? "." : o.outDir.parent_path();
-    if (!std::filesystem::is_directory(parent, ec))
-        throw UserError("--out " + o.outDir.string() + ": folder '" + parent.string() + "' does not exist");
-    if (!o.video.empty()) {
-        std::filesystem::path dir = o.video.parent_path().empty() ? "." : o.video.parent_path();
-        if (!std::filesystem::is_directory(dir, ec))
-            throw UserError("--video " + o.video.string() + ": folder '" + dir.string() + "' does not exist");
-        if (std::system("command -v ffmpeg >/dev/null 2>&1") != 0)
-            throw UserError("--video: ffmpeg is not installed (Debian package ffmpeg)");
-    }
+    std::string last = std::filesystem::path(framePath(o.outDir, written == 0 ? 0 : written - 1)).filename().string();
+    std::string left =
+        written == 0 ? "no frame was written"
+        : written == 1
+            ? "1 of " + std::to_string(o.frames) + " frames is in " + o.outDir.string() + " (" + last + ", complete)"
+            : std::to_string(written) + " of " + std::to_string(o.frames) + " frames are in " + o.outDir.string() +
+                  " (frame_00000.png .. " + last + ", each complete)";
+    left += "; no contact sheet";
+    if (!o.video.empty())
+        left += ", and no video (" + o.video.string() + " is not made from an unfinished run)";
+    return left;
 }
 
-int runRecord(const vk::Context& ctx, const HairScene& scene, const RecordOptions& o)
+// Simulates, renders and writes the frames, counting in `written` those on disk; returns the
+// contact sheet's pictures.
+std::vector<Picture> recordFrames(const vk::Context& ctx, const HairScene& scene, const RecordOptions& o,
+                                  uint32_t& written)
 {
-    checkRecordOutputs(o);
-    std::filesystem::create_directories(o.outDir);
     Renderer renderer(ctx, o.settings, 1);
     renderer.setHead(scene.head);
     Frame frame(ctx, 1);
@@ -142,6 +144,7 @@ int runRecord(const vk::Context& ctx, const HairScene& scene, const RecordOption
         OrbitCamera camera = poseFrame(renderer, o.timeline, double(step) / double(o.sim.stepHz), framing);
         Picture picture = renderFrame(ctx, renderer, frame, camera);
         writePng(framePath(o.outDir, f), picture.width, picture.height, picture.rgba);
+        written = f + 1;
         if (f % sheetEvery == 0)
             sheet.push_back(std::move(picture));
         if (f == 0)
@@ -152,6 +155,41 @@ int runRecord(const vk::Context& ctx, const HairScene& scene, const RecordOption
     // memory stays flat (the soak test compares these).
     std::fprintf(stderr, "record: memory after frame 1 and frame %u: %s\n", o.frames,
                  describeMemory(memoryStart, sampleMemory()).c_str());
+    return sheet;
+}
+
+}  // namespace
+
+void checkRecordOutputs(const RecordOptions& o)
+{
+    std::error_code ec;
+    if (std::filesystem::exists(o.outDir, ec) && !std::filesystem::is_directory(o.outDir, ec))
+        throw UserError("--out " + o.outDir.string() + ": exists and is not a folder");
+    std::filesystem::path parent = o.outDir.parent_path().empty() ? "." : o.outDir.parent_path();
+    if (!std::filesystem::is_directory(parent, ec))
+        throw UserError("--out " + o.outDir.string() + ": folder '" + parent.string() + "' does not exist");
+    if (!o.video.empty()) {
+        std::filesystem::path dir = o.video.parent_path().empty() ? "." : o.video.parent_path();
+        if (!std::filesystem::is_directory(dir, ec))
+            throw UserError("--video " + o.video.string() + ": folder '" + dir.string() + "' does not exist");
+        if (std::system("command -v ffmpeg >/dev/null 2>&1") != 0)
+            throw UserError("--video: ffmpeg is not installed (Debian package ffmpeg)");
+    }
+}
+
+int runRecord(const vk::Context& ctx, const HairScene& scene, const RecordOptions& o)
+{
+    checkRecordOutputs(o);
+    std::filesystem::create_directories(o.outDir);
+    uint32_t written = 0;
+    std::vector<Picture> sheet;
+    try {
+        sheet = recordFrames(ctx, scene, o, written);
+    } catch (const vk::DeviceLost& e) {
+        if (written > 0 && isatty(STDERR_FILENO))
+            std::fputc('\n', stderr);  // ends the progress bar's line
+        throw vk::DeviceLost(e.what() + std::string("; ") + leftAfterLoss(o, written));
+    }
     writeContactSheet(o.outDir / "contact_sheet.png", sheet);
     if (!o.video.empty())
         encodeVideo(o.outDir, o.video, o.fps);

@@ -30,6 +30,8 @@ struct RecordOptions {
 
 // Fails (UserError) before any work when the folder or the video cannot be written.
 void checkRecordOutputs(const RecordOptions& options);
+// When the device is lost, throws vk::DeviceLost saying which frames were written (each a complete
+// PNG); no contact sheet or video is made.
 int runRecord(const vk::Context& ctx, const HairScene& scene, const RecordOptions& options);
 
 }  // namespace wisp

@@ -95,7 +95,8 @@ struct Reader {
     void object(const Json& v, const std::string& pointer, std::initializer_list<const char*> known) const
     {
         expect(v, pointer, v.is_object(), "an object");
-        for (const auto& [key, value] : v.items()) {
+        for (const auto& item : v.items()) {
+            const std::string& key = item.key();  // clang 14 lambdas cannot capture a structured binding
             bool found = std::any_of(known.begin(), known.end(), [&](const char* k) { return key == k; });
             if (!found) {
                 std::string names;
@@ -442,6 +443,11 @@ Scene loadScene(const std::filesystem::path& path)
     if (!in || std::filesystem::is_directory(path, ec))
         throw UserError(path.string() + ": cannot read the scene file");
     std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return parseScene(content, path);
+}
+
+Scene parseScene(const std::string& content, const std::filesystem::path& path)
+{
     Json doc;
     try {
         doc = Json::parse(content);

@@ -1,8 +1,9 @@
 // app/scene.h: scene files: one JSON file naming the head, the hair (grown or loaded in parts),
 // the colliders, any settings from `wisp settings`, the physics options, and keyframes over time
-// for the camera, the sphere, the light, the wind and the head's turn. loadScene() checks every
-// value (errors name the file and a JSON pointer), saveScene() writes one atomically, and
-// SceneTimeline evaluates the keys at any time. `render`, `record` and `view` take `--scene`.
+// for the camera, the sphere, the light, the wind and the head's turn. loadScene() (parseScene()
+// for text in memory) checks every value (errors name the file and a JSON pointer), saveScene()
+// writes one atomically, and SceneTimeline evaluates the keys at any time. `render`, `record` and
+// `view` take `--scene`.
 #pragma once
 
 #include "app/hair_options.h"
@@ -101,6 +102,8 @@ struct Scene {
 // of the value (/keys/2/sphere/3), the allowed range or type, unknown keys with the known ones,
 // the line and column of malformed JSON. Files named by the scene are not opened here.
 Scene loadScene(const std::filesystem::path& path);
+// The same from a scene file's text already in memory; errors name `path` as if it were read.
+Scene parseScene(const std::string& content, const std::filesystem::path& path);
 // Writes `scene` as JSON (to a temporary file in the same folder, then renamed: never half
 // written). Paths are written as the struct holds them (see scenePathText).
 void saveScene(const std::filesystem::path& path, const Scene& scene);

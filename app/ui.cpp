@@ -103,7 +103,7 @@ UiOverlay::UiOverlay(const vk::Context& ctx, GLFWwindow* window, uint32_t frames
 
 UiOverlay::~UiOverlay()
 {
-    vkDeviceWaitIdle(ctx_.device());
+    vkDeviceWaitIdle(ctx_.device());  // unchecked: after a lost device it fails at once, and destructors do not throw
     ImGui_ImplVulkan_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();

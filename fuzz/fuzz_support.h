@@ -1,6 +1,7 @@
-// fuzz/fuzz_support.h: what every loader fuzz target checks. A loader may refuse an input with a
-// UserError (that is a fine outcome); anything else it throws, and any result that breaks the
-// promises the rest of Wisp relies on, aborts so libFuzzer reports it as a crash.
+// fuzz/fuzz_support.h: what the fuzz targets share. A loader or the scene parser may refuse an
+// input with a UserError (that is a fine outcome); anything else it throws, and any result that
+// breaks the promises the rest of Wisp relies on, aborts so libFuzzer reports it as a crash. The
+// hair and mesh contracts live here; the scene's in fuzz_scene.cpp.
 #pragma once
 
 #include "core/error.h"
@@ -17,7 +18,7 @@ namespace wisp::fuzz {
 
 [[noreturn]] inline void broken(const std::string& what)
 {
-    std::fprintf(stderr, "fuzz: loader result breaks its contract: %s\n", what.c_str());
+    std::fprintf(stderr, "fuzz: the result breaks its contract: %s\n", what.c_str());
     std::abort();
 }
 

@@ -1,11 +1,16 @@
 #!/usr/bin/env python3
-"""fuzz/make_corpus.py OUT_DIR: writes the seed corpora of the loader fuzz targets, tiny valid
-files made here from the formats' descriptions (FORMATS.md), into OUT_DIR/<target>/. Nothing is
-copied from third-party data. The inputs are laid out as each target reads them (fuzz_tfx: a
-version byte then the file from byte 4; fuzz_cyhair: the file after "HAIR")."""
+"""fuzz/make_corpus.py OUT_DIR: writes the seed corpora of the fuzz targets into OUT_DIR/<target>/,
+and their dictionaries as OUT_DIR/<target>.dict: for the loaders, tiny valid files made here from
+the formats' descriptions (FORMATS.md); for fuzz_scene, the shipped scenes/*.json and small scenes
+made here. Nothing is copied from third-party data. The inputs are laid out as each target reads
+them (fuzz_tfx: a version byte then the file from byte 4; fuzz_cyhair: the file after "HAIR")."""
+import glob
+import json
 import os
 import struct
 import sys
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 
 
 def point(s, v):
@@ -64,6 +69,34 @@ OBJ_QUAD = (b"# a quad with texture coordinates and normals\no quad\nv 0 0 0\nv 
 OBJ_NEGATIVE = b"v 0 0 0\r\nv 2 0 0\r\nv 0 2 0\r\nvn 0 0 -1\r\nf -3//1 -1//1 -2//1\r\n"
 OBJ_PENTAGON = b"v 0 0 0\nv 1 0 0\nv 1.5 1 0\nv 0.5 1.6 0\nv -0.5 1 0\nf 1 2 3 4 5\nl 1 2\n"
 
+def scene(**values):
+    return json.dumps(values, indent=1).encode()
+
+
+SCENE_KEY = {"time": 0.5, "camera": {"yaw": -30, "pitch": 12.5, "distance": 1.5, "target": [0, 0.1, 0]},
+             "sphere": [0.1, 0.2, 0.3, 0.05], "light": {"azimuth": 40, "elevation": -10, "intensity": 2},
+             "wind": [1, 0, -2], "head_yaw": 20}
+SCENE_SEEDS = {
+    "empty.json": b"{}",
+    "version.json": scene(version=1, description="nothing else"),
+    "grown.json": scene(head="heads/bust.json", hair={"guides": 40, "vertices": 8, "hair_length": 0.3,
+                                                      "length_variation": 0.2, "curl": 0.01, "poisson": True,
+                                                      "seed": 7, "global_stiffness": 0.2, "drag": 3}),
+    "loaded.json": scene(hair={"files": ["shared:a/b.tfx", {"file": "c.tfx", "local_stiffness": 0.4, "damping": 0.9}],
+                               "scale": 0.01, "offset": [0, -0.02, 0.01], "z_up": True, "mirror_z": False}),
+    "colliders.json": scene(colliders=[{"name": "cranium", "center": [0, 0.1, 0], "radii": [0.09, 0.11, 0.12],
+                                        "rotation_deg": [10, 0, -5]}, {"center": [0, 0, 0], "radii": [1, 1, 1]}]),
+    "physics.json": scene(physics={"wind": [0, 0, 1], "sphere": [0, 0, 0, 0], "repulsion": 0.25,
+                                   "grid_atomics": "float"}),
+    "settings.json": scene(settings={"strands_per_guide": 8, "lod": False, "hair_preset": "auburn",
+                                     "hair_color": [0.3, 0.2, 0.1], "width": 0.0004, "transparency": "oit"}),
+    "keys.json": scene(interpolation="linear", duration=4, keys=[{"time": 0, "head_yaw": 0}, SCENE_KEY,
+                                                                 {"time": 3.25, "camera": {"yaw": 390}}]),
+}
+for path in sorted(glob.glob(os.path.join(ROOT, "scenes", "*.json"))):
+    with open(path, "rb") as f:
+        SCENE_SEEDS["shipped-" + os.path.basename(path)] = f.read()
+
 SEEDS = {
     "fuzz_tfx2": {
         "plain.tfx": tfx2(2, 3, "version 2.0"),
@@ -91,7 +124,17 @@ SEEDS = {
         "negative.obj": OBJ_NEGATIVE,
         "pentagon.obj": OBJ_PENTAGON,
     },
+    "fuzz_scene": SCENE_SEEDS,
 }
+
+SCENE_NAMES = ["version", "description", "head", "hair", "colliders", "physics", "settings", "interpolation",
+               "duration", "keys", "guides", "vertices", "hair_length", "length_variation", "curl", "poisson", "seed",
+               "files", "file", "scale", "offset", "z_up", "mirror_z", "global_stiffness", "local_stiffness", "damping",
+               "drag", "name", "center", "radii", "rotation_deg", "wind", "sphere", "repulsion", "grid_atomics", "time",
+               "camera", "yaw", "pitch", "distance", "target", "light", "azimuth", "elevation", "intensity",
+               "head_yaw", "strands_per_guide", "divisions", "width", "lod", "hair_preset", "hair_color", "shading",
+               "transparency", "step_hz", "substeps", "grid", "friction", "samples", "shadow_size",
+               "oit_nodes_per_pixel"]
 
 DICTIONARIES = {
     "fuzz_tfx2": ["version", "scale", "rotation", "translation", "bothEndsImmovable", "maxNumVerticesInStrand",
@@ -99,6 +142,10 @@ DICTIONARIES = {
                   "numVerts", "texcoord", "#", "\r\n", "1e38", "1e30", "-0", "nan", "inf"],
     "fuzz_obj": ["v ", "vn ", "vt ", "vp ", "f ", "l ", "p ", "o ", "g ", "s ", "usemtl ", "mtllib ", "/", "//", "-1",
                  "#", "\r\n", "\\\n", "1e38", "nan", "inf"],
+    "fuzz_scene": ['"%s":' % n for n in SCENE_NAMES] +
+                  ["{", "}", "[", "]", ",", ":", "true", "false", "null", '"shared:', '"linear"', '"smooth"',
+                   '"fixed"', '"float"', '"on"', '"off"', "\\u0000", "\\ud800", "1e308", "1e400", "-0", "0.1",
+                   "3600", "4294967295", "4294967296", "2000000", "1e-320"],
 }
 
 

@@ -86,7 +86,7 @@ Frame::Frame(const vk::Context& ctx, uint32_t framesInFlight) : ctx_(ctx)
 
 Frame::~Frame()
 {
-    vkDeviceWaitIdle(ctx_.device());
+    vkDeviceWaitIdle(ctx_.device());  // unchecked: after a lost device it fails at once, and destructors do not throw
 }
 
 void Frame::retireSlot(Slot& slot)
@@ -241,7 +241,7 @@ void Frame::submit(FrameContext& frame, VkSemaphore wait, VkPipelineStageFlags2 
                          .pCommandBufferInfos = &cmdInfo,
                          .signalSemaphoreInfoCount = signal ? 1u : 0u,
                          .pSignalSemaphoreInfos = &signalInfo};
-    VK_CHECK(vkQueueSubmit2(ctx_.queue(), 1, &submit, slot.fence));
+    VK_CHECK(ctx_.queueSubmit(submit, slot.fence));
     slot.submitted = true;
 }
 

@@ -1,16 +1,17 @@
 #!/usr/bin/env bash
-# scripts/fuzz.sh [SECONDS_PER_TARGET]: builds the loaders' libFuzzer targets (fuzz/, in
-# build-asan/ with ASan and UBSan), writes their seed corpora (fuzz/make_corpus.py: tiny files
-# made from the formats' descriptions) and runs each target for SECONDS_PER_TARGET (default 60).
-# A crash, a hang (an input taking over 10 s), an allocation over 256 MiB or a loader result
-# breaking its contract fails the run; the input is kept as build-asan/fuzz-runs/TARGET/crash-*
+# scripts/fuzz.sh [SECONDS_PER_TARGET]: builds the libFuzzer targets of the loaders and the scene
+# parser (fuzz/, in build-asan/ with ASan and UBSan), writes their seed corpora (fuzz/make_corpus.py:
+# tiny files made from the formats' descriptions, and the shipped scenes) and runs each of the five
+# targets for SECONDS_PER_TARGET (default 60; CI passes 12, a minute in all).
+# A crash, a hang (an input taking over 10 s), an allocation over 256 MiB or a result breaking its
+# contract fails the run; the input is kept as build-asan/fuzz-runs/TARGET/crash-*
 # (timeout-*, oom-*), to become a test in tests/ with the fix. New inputs found along the way
 # stay in build-asan/fuzz-runs/TARGET/corpus, so later runs start from them.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${WISP_ASAN_BUILD_DIR:-$root/build-asan}"
 seconds="${1:-60}"
-targets=(fuzz_tfx2 fuzz_tfx fuzz_cyhair fuzz_obj)
+targets=(fuzz_tfx2 fuzz_tfx fuzz_cyhair fuzz_obj fuzz_scene)
 "$root/scripts/build_asan.sh" "${targets[@]}"
 work="$build/fuzz-runs"
 rm -rf "$work/seeds"
@@ -30,7 +31,7 @@ for t in "${targets[@]}"; do
     echo
   else
     echo "fuzz: $t FAILED (log: $work/$t/log.txt):" >&2
-    grep -E "ERROR|SUMMARY|fuzz: loader|Test unit written|==[0-9]+==" "$work/$t/log.txt" | head -20 >&2 || true
+    grep -E "ERROR|SUMMARY|fuzz: the result|Test unit written|==[0-9]+==" "$work/$t/log.txt" | head -20 >&2 || true
     failed+=("$t")
   fi
 done

@@ -9,7 +9,7 @@
 #                tests' context options; Cli.EveryPassIsCleanUnderSynchronizationValidation covers
 #                the binary's passes under the same checks in the first round.
 #     sanitize   the CPU suites built with ASan and UBSan in build-asan/ (scripts/sanitize.sh)
-#     fuzz       each loader's fuzz target for 12 s (scripts/fuzz.sh 12)
+#     fuzz       each fuzz target (four loaders, the scene parser) for 12 s (scripts/fuzz.sh 12)
 #   and prints how long each step took.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

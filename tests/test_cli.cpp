@@ -1,13 +1,17 @@
 // tests/test_cli.cpp: the real wisp binary as a user runs it: help, render, info, inspect, and
-// every bad-input path: one line on stderr naming what and where, exit status 2, nothing written.
+// every bad-input path: one line on stderr naming what and where, exit status 2, nothing written;
+// a lost device (injected): its own exit status, and what was written is complete.
+#include "core/error.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <stb_image.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <regex>
 
 using wisp::test::readFile;
 using wisp::test::runWisp;
@@ -898,4 +902,155 @@ TEST(Window, SceneSetsTheInitialSphereAndLight)
     EXPECT_NEAR(s.r, 0.04f, 1e-4f);
     EXPECT_NEAR(s.azimuth, 77.0f, 0.05f);
     EXPECT_NEAR(s.elevation, 12.0f, 0.05f);
+}
+
+// A lost device, through the test-only fault injection WISP_INJECT_DEVICE_LOST=N (renderer/vk/
+// context.h): the N-th queue submission reports VK_ERROR_DEVICE_LOST, and from there the code
+// runs as after a real loss. `timeout` turns a hang in the teardown into a failure.
+
+namespace {
+
+const std::string kLostMessage = "wisp: the GPU device was lost (VK_ERROR_DEVICE_LOST) during wisp ";
+
+// The one line a lost device gives: its own exit status, no validation message, no internal error.
+void expectDeviceLost(const wisp::test::RunResult& r, const std::string& command)
+{
+    EXPECT_EQ(r.status, wisp::kExitDeviceLost) << r.err;
+    EXPECT_NE(r.err.find(kLostMessage + command + ": "), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("validation"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("internal"), std::string::npos) << r.err;
+    size_t lines = 0;
+    for (size_t at = r.err.find("wisp: "); at != std::string::npos; at = r.err.find("wisp: ", at + 1))
+        ++lines;
+    EXPECT_EQ(lines, 1u) << r.err;
+}
+
+std::string lostAt(int submission)
+{
+    return "WISP_INJECT_DEVICE_LOST=" + std::to_string(submission) + " timeout 300";
+}
+
+// Every file under `dir` left under a temporary name.
+std::vector<std::string> partialFiles(const std::filesystem::path& dir)
+{
+    std::vector<std::string> out;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(dir))
+        if (entry.path().filename().string().find(".partial") != std::string::npos)
+            out.push_back(entry.path().string());
+    return out;
+}
+
+}  // namespace
+
+TEST(Record, DeviceLostKeepsTheFramesWrittenAndMakesNoSheetOrVideo)
+{
+    static_assert(wisp::kExitDeviceLost != wisp::kExitUserError && wisp::kExitDeviceLost != wisp::kExitInternalError);
+    TempDir dir;
+    bool ffmpeg = std::system("command -v ffmpeg >/dev/null 2>&1") == 0;
+    // About 15 submissions set up the renderer and the solver, then one per frame: the loss comes
+    // after a few frames.
+    std::string video = ffmpeg ? " --video '" + (dir / "run.mp4").string() + "'" : "";
+    auto r = runWisp("--validation record --frames 12 --width 96 --height 64 --guides 60 --set strands_per_guide=4 "
+                     "--out '" + (dir / "frames").string() + "'" + video,
+                     lostAt(22));
+    expectDeviceLost(r, "record");
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(r.err, m, std::regex(R"((\d+) of 12 frames (is|are) in )"))) << r.err;
+    int written = std::stoi(m[1].str());
+    ASSERT_GE(written, 1) << "the loss came before the first frame: raise WISP_INJECT_DEVICE_LOST\n" << r.err;
+    ASSERT_LT(written, 12) << r.err;
+    EXPECT_NE(r.err.find((dir / "frames").string()), std::string::npos) << r.err;
+    for (int f = 0; f < written; ++f) {
+        char name[32];
+        std::snprintf(name, sizeof(name), "frame_%05d.png", f);
+        std::string png = readFile(dir / "frames" / name);
+        ASSERT_GT(png.size(), 12u) << name;
+        EXPECT_EQ(png.substr(png.size() - 8, 4), "IEND") << name << " ends with its last chunk";
+        int w = 0, h = 0, channels = 0;
+        unsigned char* pixels = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(png.data()),
+                                                      int(png.size()), &w, &h, &channels, 4);
+        EXPECT_NE(pixels, nullptr) << name << ": " << stbi_failure_reason();
+        stbi_image_free(pixels);
+        EXPECT_EQ(w, 96) << name;
+        EXPECT_EQ(h, 64) << name;
+    }
+    char next[32];
+    std::snprintf(next, sizeof(next), "frame_%05d.png", written);
+    EXPECT_FALSE(std::filesystem::exists(dir / "frames" / next));
+    EXPECT_FALSE(std::filesystem::exists(dir / "frames" / "contact_sheet.png"));
+    EXPECT_NE(r.err.find("no contact sheet"), std::string::npos) << r.err;
+    EXPECT_TRUE(partialFiles(dir.path()).empty()) << partialFiles(dir.path()).front();
+    if (!ffmpeg)
+        GTEST_SKIP() << "ffmpeg is not installed (Debian package ffmpeg): the video was not tested";
+    EXPECT_FALSE(std::filesystem::exists(dir / "run.mp4"));
+    EXPECT_NE(r.err.find("no video (" + (dir / "run.mp4").string()), std::string::npos) << r.err;
+}
+
+TEST(Cli, DeviceLostDuringRenderWritesNoPicture)
+{
+    TempDir dir;
+    // The first submission uploads the head; a later one simulates or draws a frame.
+    for (int submission : {1, 16}) {
+        auto r = runWisp("--validation render --frames 3 --width 96 --height 64 --guides 60 --set strands_per_guide=4 "
+                         "--out '" + (dir / "a.png").string() + "'",
+                         lostAt(submission));
+        expectDeviceLost(r, "render");
+        EXPECT_NE(r.err.find((dir / "a.png").string() + " was not written"), std::string::npos) << r.err;
+        EXPECT_TRUE(r.out.empty()) << r.out;
+        EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
+        EXPECT_TRUE(partialFiles(dir.path()).empty()) << partialFiles(dir.path()).front();
+    }
+}
+
+TEST(Cli, DeviceLostDuringSimulateExitsWithItsOwnStatus)
+{
+    for (int submission : {1, 20}) {
+        auto r = runWisp("--validation simulate --guides 60 --steps 200 --sample-every 10 --json", lostAt(submission));
+        expectDeviceLost(r, "simulate");
+        EXPECT_TRUE(r.out.empty()) << r.out;  // no metrics of an unfinished run
+    }
+}
+
+TEST(Window, DeviceLostClosesTheWindowWithItsOwnStatus)
+{
+    WISP_REQUIRE_XVFB();
+    // Two frames in flight, a swapchain, the panel: their teardown after the loss returns cleanly.
+    auto r = runWisp("--validation view --guides 60 --set strands_per_guide=4 --width 160 --height 120 --frames 30",
+                     lostAt(30) + " xvfb-run -a -s '-screen 0 640x480x24'");
+    expectDeviceLost(r, "view");
+}
+
+TEST(BadInput, DeviceLossInjectionTakesASubmissionNumber)
+{
+    TempDir dir;
+    expectUserError(runWisp("render --out '" + (dir / "a.png").string() + "'", "WISP_INJECT_DEVICE_LOST=0"),
+                    "WISP_INJECT_DEVICE_LOST=0: must be a queue submission number");
+    EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
+}
+
+// A device lacking a feature Wisp needs, through the test-only WISP_HIDE_FEATURE=NAME (renderer/
+// vk/context.h: every device reports NAME absent): one line naming the device and the feature.
+TEST(BadInput, DeviceLackingAFeatureIsNamedWithTheFeature)
+{
+    TempDir dir;
+    auto info = runWisp("info --json");
+    ASSERT_EQ(info.status, 0) << info.err;
+    std::string device0 = nlohmann::json::parse(info.out)[0]["name"].get<std::string>();
+    const std::string hide = "WISP_HIDE_FEATURE=geometryShader";
+    auto r = runWisp("render --out '" + (dir / "a.png").string() + "'", hide);
+    expectUserError(r, "lacks what Wisp needs: geometryShader");
+    EXPECT_NE(r.err.find("Vulkan device "), std::string::npos) << r.err;
+    auto chosen = runWisp("--gpu 0 record --frames 1 --out '" + (dir / "f").string() + "'", hide);
+    expectUserError(chosen, "Vulkan device 0 '" + device0 + "' lacks what Wisp needs: geometryShader");
+    auto two = runWisp("simulate --steps 1", "WISP_HIDE_FEATURE=tessellationShader,VK_KHR_push_descriptor");
+    expectUserError(two, "lacks what Wisp needs: tessellationShader, VK_KHR_push_descriptor");
+    EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "f"));  // refused before the folder is made
+    auto listed = runWisp("info --json", hide);
+    ASSERT_EQ(listed.status, 0) << listed.err;
+    nlohmann::json d = nlohmann::json::parse(listed.out)[0];
+    EXPECT_FALSE(d["usable"].get<bool>());
+    EXPECT_EQ(d["missing"], nlohmann::json::array({"geometryShader"}));
+    expectUserError(runWisp("info", "WISP_HIDE_FEATURE=warpDrive"),
+                    "WISP_HIDE_FEATURE: 'warpDrive' is not a feature it can hide (known: dynamicRendering");
 }

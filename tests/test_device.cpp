@@ -1,14 +1,18 @@
 // tests/test_device.cpp: device choice and the feature check (pure functions over reports), and
 // the Vulkan core on the real device: buffers round-trip through the GPU, timestamps measure,
-// and Frame's declared accesses produce the barriers that synchronization validation demands.
+// Frame's declared accesses produce the barriers that synchronization validation demands, and a
+// lost device (injected) is its own error that frames and the context survive.
 #include "core/error.h"
 #include "renderer/frame.h"
+#include "renderer/vk/check.h"
 #include "renderer/vk/context.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <cstring>
+#include <memory>
 
 using namespace wisp;
 
@@ -258,4 +262,52 @@ uint32_t fillThrowawayBuffers(int frames)
 TEST(FrameDeletion, RetiredObjectsLiveUntilTheirFrameIsDone)
 {
     EXPECT_EQ(fillThrowawayBuffers(5), 0u);
+}
+
+TEST(DeviceLoss, VkCheckThrowsDeviceLostForALostDeviceOnly)
+{
+    auto lost = [] { return VK_ERROR_DEVICE_LOST; };
+    auto exhausted = [] { return VK_ERROR_OUT_OF_POOL_MEMORY; };
+    try {
+        VK_CHECK(lost());
+        ADD_FAILURE() << "VK_CHECK let VK_ERROR_DEVICE_LOST through";
+    } catch (const vk::DeviceLost& e) {
+        std::string m = e.what();
+        EXPECT_EQ(m.rfind("lost() at ", 0), 0u) << m;
+        EXPECT_NE(m.find("test_device.cpp:"), std::string::npos) << m;
+    }
+    try {
+        VK_CHECK(exhausted());
+        ADD_FAILURE() << "VK_CHECK let VK_ERROR_OUT_OF_POOL_MEMORY through";
+    } catch (const vk::DeviceLost&) {
+        ADD_FAILURE() << "another error was reported as a lost device";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("VK_ERROR_OUT_OF_POOL_MEMORY"), std::string::npos) << e.what();
+    }
+}
+
+TEST(DeviceLoss, InjectedLossReachesEverySubmissionAndTearsDownCleanly)
+{
+    // WISP_INJECT_DEVICE_LOST is read once, when the context is made: the second submission and
+    // every later one report the device lost.
+    setenv("WISP_INJECT_DEVICE_LOST", "2", 1);
+    auto ctx = std::make_unique<vk::Context>(test::validatedOptions());
+    unsetenv("WISP_INJECT_DEVICE_LOST");
+    {
+        vk::Buffer buffer = ctx->createBuffer({.size = 256, .usage = vk::kTransferDst, .name = "test.lost"});
+        TrackedBuffer tracked{.buffer = buffer};
+        FillPass fill(tracked, 7u);
+        std::vector<Pass*> passes = {&fill};
+        Frame frame(*ctx, 1);
+        FrameContext& first = frame.begin({});
+        frame.run(first, passes);
+        frame.submit(first);  // submission 1 reaches the driver
+        frame.waitIdle();
+        FrameContext& second = frame.begin({});
+        frame.run(second, passes);
+        EXPECT_THROW(frame.submit(second), vk::DeviceLost);
+    }  // the frame's and the buffer's teardown after the loss returns
+    EXPECT_THROW(ctx->submitAndWait([](VkCommandBuffer) {}), vk::DeviceLost);  // a lost device stays lost
+    EXPECT_EQ(ctx->validationMessages(), 0u);
+    ctx.reset();  // and so does the context's
 }

@@ -1,4 +1,4 @@
-// tests/test_scene.cpp: scene files without a GPU: save and load give the same scene, the
+// tests/test_scene.cpp: scene files without a GPU: save and load (or parse) give the same scene, the
 // timeline's values by hand (linear and smoothstep, held before the first and after the last key,
 // each channel between its own keys), the head's turn and the posed camera, the shipped scenes,
 // and every validation error naming the file and the value's JSON pointer.
@@ -165,6 +165,29 @@ TEST(Scene, ACompleteFileLoadsWithItsValues)
     EXPECT_EQ(s.keys[1].sphere->w, 0.0f);
     EXPECT_DOUBLE_EQ(s.length(), 2.5);                       // no duration: the last key's time
     EXPECT_EQ(s.interpolation, SceneInterpolation::Smooth);  // the default
+}
+
+TEST(Scene, ParsedTextIsTheSameAsTheLoadedFile)
+{
+    // parseScene reads what loadScene reads from the file (the scene fuzz target uses it), and its
+    // errors name the path it is given.
+    std::string text = sceneJson(grownScene());
+    TempDir dir;
+    writeFile(dir / "s.json", text);
+    EXPECT_TRUE(parseScene(text, "memory.json") == loadScene(dir / "s.json"));
+    try {
+        parseScene(R"({"keys": [{"time": 0, "head_yaw": 120}]})", "scenes/turn.json");
+        ADD_FAILURE() << "an out-of-range head turn was accepted";
+    } catch (const UserError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("scenes/turn.json: /keys/0/head_yaw: 120 is out of range", 0), 0u)
+            << e.what();
+    }
+    try {
+        parseScene("{\n  \"keys\": [,]\n}", "scenes/broken.json");
+        ADD_FAILURE() << "malformed JSON was accepted";
+    } catch (const UserError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("scenes/broken.json:2:12: malformed JSON", 0), 0u) << e.what();
+    }
 }
 
 TEST(SceneTimeline, LinearValuesByHand)

@@ -1,7 +1,6 @@
-// renderer/vk/check.cpp: names for VkResult values and the failure path of VK_CHECK.
+// renderer/vk/check.cpp: names for VkResult values and the failure path of VK_CHECK (DeviceLost
+// for a lost device, std::runtime_error for anything else).
 #include "renderer/vk/check.h"
-
-#include "core/error.h"
 
 #include <string>
 
@@ -45,8 +44,7 @@ void failCheck(const char* call, VkResult result, const char* file, int line)
 {
     std::string where = std::string(file) + ":" + std::to_string(line);
     if (result == VK_ERROR_DEVICE_LOST)
-        throw std::runtime_error("the GPU device was lost (VK_ERROR_DEVICE_LOST) in " + std::string(call) + " at " +
-                                 where + "; files already written are complete");
+        throw DeviceLost(std::string(call) + " at " + where);
     throw std::runtime_error(std::string(call) + " failed with " + resultName(result) + " (" +
                              std::to_string(static_cast<int>(result)) + ") at " + where);
 }

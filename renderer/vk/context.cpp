@@ -1,12 +1,15 @@
 // renderer/vk/context.cpp: instance and device creation, the up-front feature check, device
-// choice, the counting validation messenger, and resource factories.
+// choice, the counting validation messenger, resource factories, and queue submission (with the
+// tests' fault injections: a lost device, a hidden feature).
 #include "renderer/vk/context.h"
 
 #include "core/error.h"
 #include "renderer/vk/check.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <sstream>
 
@@ -35,6 +38,59 @@ std::string lowercase(std::string s)
 {
     std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     return s;
+}
+
+// What WISP_HIDE_FEATURE can hide (test-only), by the names DeviceReport::missing() uses.
+struct HideableFeature {
+    const char* name;
+    bool DeviceReport::*have;
+};
+constexpr HideableFeature kHideable[] = {
+    {"dynamicRendering", &DeviceReport::dynamicRendering},
+    {"synchronization2", &DeviceReport::synchronization2},
+    {"maintenance4", &DeviceReport::maintenance4},
+    {"tessellationShader", &DeviceReport::tessellationShader},
+    {"geometryShader", &DeviceReport::geometryShader},
+    {"fragmentStoresAndAtomics", &DeviceReport::fragmentStoresAndAtomics},
+    {"timestamps", &DeviceReport::timestamps},
+    {"shaderBufferFloat32AtomicAdd", &DeviceReport::floatAtomicAdd},
+    {"shaderBufferInt64Atomics", &DeviceReport::int64Atomics},
+    {"VK_KHR_push_descriptor", &DeviceReport::pushDescriptor},
+    {"VK_KHR_swapchain", &DeviceReport::swapchain},
+};
+
+// The report members WISP_HIDE_FEATURE=NAME[,NAME...] names (none when it is unset).
+std::vector<bool DeviceReport::*> hiddenFeatures()
+{
+    std::vector<bool DeviceReport::*> hidden;
+    const char* env = std::getenv("WISP_HIDE_FEATURE");
+    std::stringstream list(env ? env : "");
+    for (std::string name; std::getline(list, name, ',');) {
+        auto found = std::find_if(std::begin(kHideable), std::end(kHideable),
+                                  [&](const HideableFeature& f) { return name == f.name; });
+        if (found == std::end(kHideable)) {
+            std::string known;
+            for (const HideableFeature& f : kHideable)
+                known += (known.empty() ? "" : ", ") + std::string(f.name);
+            throw UserError("WISP_HIDE_FEATURE: '" + name + "' is not a feature it can hide (known: " + known + ")");
+        }
+        hidden.push_back(found->have);
+    }
+    return hidden;
+}
+
+// WISP_INJECT_DEVICE_LOST: the queue submission that reports the device lost (0: none).
+uint64_t injectedDeviceLoss()
+{
+    const char* env = std::getenv("WISP_INJECT_DEVICE_LOST");
+    if (!env || !*env)
+        return 0;
+    uint64_t n = 0;
+    auto [end, ec] = std::from_chars(env, env + std::strlen(env), n);
+    if (ec != std::errc() || *end != '\0' || n == 0)
+        throw UserError(std::string("WISP_INJECT_DEVICE_LOST=") + env +
+                        ": must be a queue submission number, 1 or more (a test-only fault injection)");
+    return n;
 }
 
 }  // namespace
@@ -86,6 +142,7 @@ int deviceTypeRank(VkPhysicalDeviceType type)
 
 std::vector<DeviceReport> queryDevices(VkInstance instance)
 {
+    std::vector<bool DeviceReport::*> hidden = hiddenFeatures();
     uint32_t count = 0;
     VK_CHECK(vkEnumeratePhysicalDevices(instance, &count, nullptr));
     std::vector<VkPhysicalDevice> devices(count);
@@ -158,6 +215,8 @@ std::vector<DeviceReport> queryDevices(VkInstance instance)
             }
         }
         r.timestamps = limits.timestampComputeAndGraphics && r.timestampValidBits > 0;
+        for (bool DeviceReport::*have : hidden)
+            r.*have = false;
 
         VkPhysicalDeviceMemoryProperties memory;
         vkGetPhysicalDeviceMemoryProperties(pd, &memory);
@@ -219,7 +278,7 @@ const DeviceReport& selectDevice(const std::vector<DeviceReport>& devices, const
     return requireUsable(*order.front());  // throws, naming what the best device lacks
 }
 
-Context::Context(const ContextOptions& options)
+Context::Context(const ContextOptions& options) : deviceLostAtSubmission_(injectedDeviceLoss())
 {
     VkApplicationInfo app{.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
                           .pApplicationName = "wisp",
@@ -361,7 +420,7 @@ void Context::destroy()
 {
     uploadPool_.reset();
     if (device_) {
-        vkDeviceWaitIdle(device_);
+        vkDeviceWaitIdle(device_);  // a lost device returns VK_ERROR_DEVICE_LOST at once: nothing left to wait for
         vkDestroyDevice(device_, nullptr);
         device_ = VK_NULL_HANDLE;
     }
@@ -571,11 +630,21 @@ void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) 
     record(cmd);
     VK_CHECK(vkEndCommandBuffer(cmd));
     Fence fence = createFence(false, "context.submitAndWait");
-    VkSubmitInfo submit{.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1, .pCommandBuffers = &cmd};
-    VK_CHECK(vkQueueSubmit(queue_, 1, &submit, fence));
+    VkCommandBufferSubmitInfo cmdInfo{.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = cmd};
+    VkSubmitInfo2 info{
+        .sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cmdInfo};
+    VK_CHECK(queueSubmit(info, fence));
     VkFence waitFence = fence;
     VK_CHECK(vkWaitForFences(device_, 1, &waitFence, VK_TRUE, UINT64_MAX));
     vkFreeCommandBuffers(device_, uploadPool_, 1, &cmd);
+}
+
+VkResult Context::queueSubmit(const VkSubmitInfo2& info, VkFence fence) const
+{
+    ++submissions_;
+    if (deviceLostAtSubmission_ > 0 && submissions_ >= deviceLostAtSubmission_)
+        return VK_ERROR_DEVICE_LOST;  // injected: see context.h
+    return vkQueueSubmit2(queue_, 1, &info, fence);
 }
 
 }  // namespace wisp::vk

@@ -64,6 +64,9 @@ struct DeviceReport {
 };
 
 // Fills a report from raw Vulkan data; separate so the feature check can be tested on any input.
+// Test-only: WISP_HIDE_FEATURE=NAME[,NAME...] reports the named features as absent on every
+// device (names as missing() gives them: geometryShader, VK_KHR_push_descriptor, ...), so a device
+// lacking one can be tested where every device has them all.
 std::vector<DeviceReport> queryDevices(VkInstance instance);
 // Best first: discrete > integrated > virtual > CPU, then by index.
 int deviceTypeRank(VkPhysicalDeviceType type);
@@ -99,6 +102,11 @@ public:
 
     // Records with `record`, submits, and waits for the queue: for uploads and readbacks.
     void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
+    // Every queue submission goes through here (callers VK_CHECK the result). Test-only fault
+    // injection: with WISP_INJECT_DEVICE_LOST=N in the environment (read when the context is
+    // created), the N-th submission and every later one return VK_ERROR_DEVICE_LOST without
+    // reaching the driver, as on a lost device; from there on the code runs as after a real loss.
+    VkResult queueSubmit(const VkSubmitInfo2& info, VkFence fence) const;
     void setName(uint64_t handle, VkObjectType type, const char* name) const;
     template <typename T>
     void setName(T handle, VkObjectType type, const char* name) const
@@ -125,6 +133,8 @@ private:
     PFN_vkSetDebugUtilsObjectNameEXT setObjectName_ = nullptr;
     PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet_ = nullptr;
     mutable std::atomic<uint32_t> validationMessages_{0};
+    uint64_t deviceLostAtSubmission_ = 0;  // WISP_INJECT_DEVICE_LOST; 0: none
+    mutable uint64_t submissions_ = 0;
 
     static VKAPI_ATTR VkBool32 VKAPI_CALL onMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                     VkDebugUtilsMessageTypeFlagsEXT types,
