@@ -188,11 +188,6 @@ void addHairOptions(CLI::App* cmd, HairOptions& h)
         ->transform(CLI::CheckedTransformer(std::map<std::string, SimSettings::GridAtomics>{
             {"fixed", SimSettings::GridAtomics::Fixed}, {"float", SimSettings::GridAtomics::Float}}))
         ->capture_default_str();
-    cmd->add_option("--grid-subgroups", h.sim.gridSubgroupSums,
-                    "on: strands that splat into the same grid cell sum their shares in a subgroup before the atomics "
-                    "(faster with float atomics and 100,000 strands, slower elsewhere); off: each strand's own atomics")
-        ->transform(CLI::CheckedTransformer(std::map<std::string, bool>{{"on", true}, {"off", false}}))
-        ->default_str("off");
     cmd->add_option("--repulsion", h.sim.gridRepulsion, "hair-hair repulsion along the density gradient (keeps volume; 0 = off)")
         ->check(within(kRepulsionRange.min, kRepulsionRange.max))
         ->capture_default_str();
@@ -283,8 +278,6 @@ int runInfo(bool json)
                            {"timestamp_period_ns", d.timestampPeriodNs},
                            {"pipeline_statistics", d.pipelineStatisticsQuery},
                            {"float_atomic_add", d.floatAtomicAdd},
-                           {"subgroup_shuffles", d.subgroupShuffles},
-                           {"subgroup_size", d.subgroupSize},
                            {"int64_atomics", d.int64Atomics},
                            {"push_descriptor", d.pushDescriptor},
                            {"max_tessellation_generation_level", d.maxTessellationGenerationLevel},
@@ -308,8 +301,6 @@ int runInfo(bool json)
                   << d.maxGeometryOutputVertices << ")\n"
                   << "  fragment stores and atomics:  " << yes(d.fragmentStoresAndAtomics) << "\n"
                   << "  float atomic add (buffers):   " << yes(d.floatAtomicAdd) << "\n"
-                  << "  subgroup ballot and shuffles: " << yes(d.subgroupShuffles) << " (size " << d.subgroupSize
-                  << "; the hair grid's subgroup sums)\n"
                   << "  64-bit integer atomics:       " << yes(d.int64Atomics)
                   << " (the deterministic fixed-point hair grid" << (d.int64Atomics ? ")" : "; float atomics instead)") << "\n"
                   << "  timestamps:                   " << yes(d.timestamps) << " (" << d.timestampValidBits

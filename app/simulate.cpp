@@ -137,14 +137,11 @@ int runSimulate(const SimulateOptions& o, const HairScene& scene)
     vk::Context ctx(o.context);
     if (o.profile) {
         std::vector<DispatchTiming> timings = profilePhysics(ctx, scene, o.sim, o.warmup, o.steps);
-        bool subgroupSums = makeSimSetup(o.sim, scene.strands, scene.gpuColliders, scene.unitsPerMetre).gridSubgroupSums &&
-                            ctx.report().subgroupShuffles;  // as the solver decides
         nlohmann::json out = {{"strands", scene.strands.strandCount()},
                               {"vertices_per_strand", scene.strands.verticesPerStrand},
                               {"vertices", scene.strands.vertexCount()},
                               {"grid_resolution", o.sim.gridResolution},
                               {"grid_atomics", o.sim.gridAtomics == SimSettings::GridAtomics::Fixed ? "fixed" : "float"},
-                              {"grid_subgroups", subgroupSums},
                               {"substeps", o.sim.substeps},
                               {"warmup_steps", o.warmup},
                               {"timed_steps", o.steps},

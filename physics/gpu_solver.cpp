@@ -115,11 +115,10 @@ GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const Sim
     // The fixed-point grid's kernels are separate SPIR-V (they need 64-bit integer atomics, the
     // float ones need float atomics); the splatting substep is a specialization of integrate.
     std::string variant = fixedGrid_ ? "_fixed" : "";
-    subgroupSums_ = setup.gridSubgroupSums && ctx.report().subgroupShuffles;
     integrate_ = vk::createComputePipeline(ctx, layout_, "sim_integrate" + variant + ".comp", "sim.integrate",
-                                           {/*kSplatToGrid=*/false, /*kSubgroupSums=*/false});
+                                           {/*kSplatToGrid=*/false});
     integrateSplat_ = vk::createComputePipeline(ctx, layout_, "sim_integrate" + variant + ".comp", "sim.integrate+splat",
-                                                {/*kSplatToGrid=*/true, /*kSubgroupSums=*/subgroupSums_});
+                                                {/*kSplatToGrid=*/true});
     clear_ = vk::createComputePipeline(ctx, layout_, "grid_clear" + variant + ".comp", "grid.clear");
     normalize_ = vk::createComputePipeline(ctx, layout_, "grid_normalize" + variant + ".comp", "grid.normalize");
     gather_ = vk::createComputePipeline(ctx, layout_, "grid_gather.comp", "grid.gather");

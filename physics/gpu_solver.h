@@ -49,7 +49,6 @@ public:
     uint64_t deviceBytes() const { return deviceBytes_; }
     // True when the grid sums in 64-bit fixed point (deterministic), false for float atomics.
     bool fixedPointGrid() const { return fixedGrid_; }
-    bool subgroupGridSums() const { return subgroupSums_; }  // the splat sums neighbours in subgroups
 
 private:
     std::vector<uint8_t> download(const vk::Buffer& buffer) const;
@@ -61,7 +60,6 @@ private:
     uint32_t vertexCount_ = 0;
     uint32_t slotCount_ = 0;  // vertices in the interleaved buffers, padding included
     bool fixedGrid_ = false;
-    bool subgroupSums_ = false;
     uint64_t deviceBytes_ = 0;
     vk::Buffer params_, positions_, velocities_, rest_, strands_, tangents_, grid_, gridVelocity_, counters_;
     TrackedBuffer positionsTrack_, tangentsTrack_;

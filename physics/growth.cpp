@@ -34,42 +34,7 @@ RootSample pointOnTriangle(const Mesh& mesh, uint32_t t, float u1, float u2)
     return {p, len > 0.0f ? n / len : glm::normalize(face), t};
 }
 
-// Spreads the low 21 bits of x to every third bit (for a 63-bit Morton code).
-uint64_t spreadBits(uint64_t x)
-{
-    x &= 0x1FFFFF;
-    x = (x | x << 32) & 0x1F00000000FFFFull;
-    x = (x | x << 16) & 0x1F0000FF0000FFull;
-    x = (x | x << 8) & 0x100F00F00F00F00Full;
-    x = (x | x << 4) & 0x10C30C30C30C30C3ull;
-    x = (x | x << 2) & 0x1249249249249249ull;
-    return x;
-}
-
 }  // namespace
-
-void sortAlongMortonCurve(std::vector<RootSample>& roots)
-{
-    if (roots.empty())
-        return;
-    glm::vec3 lo = roots[0].position, hi = lo;
-    for (const RootSample& r : roots) {
-        lo = glm::min(lo, r.position);
-        hi = glm::max(hi, r.position);
-    }
-    glm::vec3 scale = float(0x1FFFFF) / glm::max(hi - lo, glm::vec3(1e-12f));
-    std::vector<std::pair<uint64_t, uint32_t>> keys(roots.size());
-    for (uint32_t i = 0; i < roots.size(); ++i) {
-        glm::uvec3 q = glm::uvec3(glm::clamp((roots[i].position - lo) * scale, glm::vec3(0.0f), glm::vec3(float(0x1FFFFF))));
-        keys[i] = {spreadBits(q.x) | spreadBits(q.y) << 1 | spreadBits(q.z) << 2, i};
-    }
-    std::sort(keys.begin(), keys.end());  // ties keep the sampling order: deterministic
-    std::vector<RootSample> sorted;
-    sorted.reserve(roots.size());
-    for (const auto& [code, i] : keys)
-        sorted.push_back(roots[i]);
-    roots = std::move(sorted);
-}
 
 std::vector<RootSample> sampleRoots(const Mesh& mesh, const std::vector<uint32_t>& triangles, uint32_t count,
                                     bool poissonDisk, uint32_t seed)
@@ -147,7 +112,6 @@ StrandSet growGuides(const Mesh& mesh, const ScalpRule& scalp, const std::vector
                      const GrowthSettings& s, float unitsPerMetre)
 {
     std::vector<RootSample> roots = sampleRoots(mesh, scalpTriangles(mesh, scalp), s.guides, s.poissonDisk, s.seed);
-    sortAlongMortonCurve(roots);
     StrandSet set;
     set.verticesPerStrand = s.verticesPerStrand;
     set.parts.push_back(PartSettings{});

@@ -32,11 +32,6 @@ struct RootSample {
     uint32_t triangle;
 };
 
-// Orders roots along a Morton (Z-order) curve through their bounding box, so that guides next to
-// each other in memory grow from neighbouring scalp: the 32 strands of a GPU warp then cross the
-// same grid cells, and the splat sums them in the subgroup before its atomics (sim_integrate.comp).
-void sortAlongMortonCurve(std::vector<RootSample>& roots);
-
 // Area-weighted samples on the given triangles; deterministic for a seed.
 std::vector<RootSample> sampleRoots(const Mesh& mesh, const std::vector<uint32_t>& triangles, uint32_t count,
                                     bool poissonDisk, uint32_t seed);

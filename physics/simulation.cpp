@@ -42,7 +42,6 @@ SimSetup makeSimSetup(const SimSettings& s, const StrandSet& strands, const std:
     p.gridRepulsion = s.gridRepulsion;
     p.partCount = uint32_t(strands.parts.size());
     p.gridMaxSplatSpeed = gpu::kGridMaxSplatSpeed * unitsPerMetre;
-    setup.gridSubgroupSums = s.gridSubgroupSums;
     p.gridFixedScale = s.gridAtomics == SimSettings::GridAtomics::Fixed
                            ? gridFixedScale(strands.vertexCount(), p.gridMaxSplatSpeed)
                            : 0.0f;

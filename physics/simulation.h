@@ -28,12 +28,6 @@ struct SimSettings {
     // bits) or float atomics (order-dependent in the last bits). Each falls back to the other on a
     // device that lacks it.
     enum class GridAtomics { Fixed, Float } gridAtomics = GridAtomics::Fixed;
-    // Strands that splat into the same cell in one subgroup sum their shares there before the
-    // atomics (where the device has subgroup ballot, vote, arithmetic and shuffles in compute),
-    // instead of each strand sliding its own run from cell to cell. The grid is the same up to
-    // float rounding; only the speed differs: on an H100 it pays with float atomics and 100,000
-    // strands, and costs time elsewhere (README, Physics), so it is off unless asked for.
-    bool gridSubgroupSums = false;
 };
 
 // Everything needed to run: packed parameters plus the grid's placement relative to the head.
@@ -42,7 +36,6 @@ struct SimSetup {
     uint32_t substeps = 1;           // integrate/FTL passes per step (each params.dt long)
     glm::vec3 gridCenterHead{0.0f};  // grid centre in head space (the grid follows the head)
     float gridSide = 0.0f;           // asset units
-    bool gridSubgroupSums = false;   // SimSettings::gridSubgroupSums
 };
 
 SimSetup makeSimSetup(const SimSettings& settings, const StrandSet& strands,

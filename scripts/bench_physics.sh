@@ -1,8 +1,7 @@
 #!/usr/bin/env bash
 # The physics benchmark: per-dispatch GPU times of one step (median and p95 over 300 steps after
 # 60 warm-up steps) for 1k, 10k, 30k and 100k grown guides x 16 and 32 vertices, grid 64³ and 128³,
-# with the fixed-point grid (the default) and with float atomics, each with the splat's subgroup
-# sums on (the default) and off.
+# with the fixed-point grid (the default) and with float atomics.
 # Usage: scripts/bench_physics.sh OUT_DIR   (WISP=path/to/wisp to choose the binary)
 # Writes OUT_DIR/physics.jsonl (one `wisp simulate --profile --json` object per line).
 set -euo pipefail
@@ -12,14 +11,12 @@ wisp="${WISP:-$root/build/wisp}"
 mkdir -p "$out"
 : > "$out/physics.jsonl"
 for atomics in fixed float; do
-  for subgroups in on off; do
-    for guides in 1000 10000 30000 100000; do
-      for vertices in 16 32; do
-        for grid in 64 128; do
-          "$wisp" simulate --profile --json --warmup 60 --steps 300 --grid-atomics "$atomics" --grid-subgroups "$subgroups" \
-            --guides "$guides" --vertices "$vertices" --grid "$grid" >> "$out/physics.jsonl"
-          echo "bench: $atomics, subgroups $subgroups, $guides guides x $vertices vertices, grid $grid done" >&2
-        done
+  for guides in 1000 10000 30000 100000; do
+    for vertices in 16 32; do
+      for grid in 64 128; do
+        "$wisp" simulate --profile --json --warmup 60 --steps 300 --grid-atomics "$atomics" \
+          --guides "$guides" --vertices "$vertices" --grid "$grid" >> "$out/physics.jsonl"
+        echo "bench: $atomics, $guides guides x $vertices vertices, grid $grid done" >&2
       done
     done
   done

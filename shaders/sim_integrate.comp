@@ -20,28 +20,9 @@
 // moves into a neighbouring cell keeps the corners both cells share and adds only the ones it
 // leaves (slideRun): 4 nodes per cell crossed instead of 8. The sums are CpuSolver::gridSplat's,
 // up to float order (a strand reset for non-finite values keeps the finite contributions it made
-// before the reset; the CPU splats its rest pose).
-//
-// With kSubgroupSums (opt-in: --grid-subgroups on), runs are not slid but added whole when they
-// leave their cell, and the lanes of a subgroup that flush a run in the same iteration also sum
-// their runs by cell across the subgroup (sorted by cell, then a segmented scan with shuffles),
-// and one lane per cell does the atomics. Grown strands are sorted along a Morton curve of their
-// roots, so the 32 strands of a warp grow from one patch of scalp and mostly cross the same few
-// cells: at 100,000 guides x 32 vertices on a 64³ grid, 1.32 M runs become 0.30 M sets of
-// atomics (counted on the rest pose). The sort and scan cost more than they save with the
-// fixed-point grid on an H100 (README, Physics); with float atomics and 100,000 strands they pay.
-// The sums depend only on the positions, so a run is still reproducible bit for bit in fixed
-// point. Every lane must take part: threads past the last strand run the loop on the last
-// strand's data and write nothing.
-//
-// The variant for the last substep (kSplatToGrid) also writes the tangents; earlier substeps
-// leave them to it.
+// before the reset; the CPU splats its rest pose). It also writes the tangents, which earlier
+// substeps leave to it.
 #extension GL_GOOGLE_include_directive : require
-#extension GL_KHR_shader_subgroup_ballot : require
-#extension GL_KHR_shader_subgroup_shuffle : require
-#extension GL_KHR_shader_subgroup_shuffle_relative : require
-#extension GL_KHR_shader_subgroup_vote : require
-#extension GL_KHR_shader_subgroup_arithmetic : require
 #ifdef GRID_FIXED
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
@@ -53,7 +34,6 @@
 
 layout(local_size_x = SIM_GROUP_SIZE) in;
 layout(constant_id = 0) const bool kSplatToGrid = false;
-layout(constant_id = 1) const bool kSubgroupSums = false;
 
 // The run of vertices being summed: the cell they share and each corner's density and momentum.
 ivec3 runCell = ivec3(-1);
@@ -74,7 +54,13 @@ vec4 toGridSum(vec4 densityMomentum)
 }
 #endif
 
-void flushRun();
+// Adds the whole run to the grid.
+void flushRun()
+{
+    for (uint k = 0u; k < 8u; ++k)
+        gridAddSum(gridIndex(runCell + cornerOffset(k), params.gridResolution), toGridSum(vec4(runDensity[k], runMomentum[k])));
+    runOpen = false;
+}
 
 // Adds corner k of the run to the grid and empties it.
 void flushCorner(uint k)
@@ -127,92 +113,17 @@ void moveRun(ivec3 cell)
         slideRun(4u, d.z, ivec3(0, 0, d.z));
 }
 
-void flushRun()
+// Adds a finished vertex (position p, velocity v) to the strand's run, sliding or flushing the
+// run first when the vertex leaves its cell.
+void splatVertex(vec3 p, vec3 v)
 {
-    for (uint k = 0u; k < 8u; ++k)
-        gridAddSum(gridIndex(runCell + cornerOffset(k), params.gridResolution), toGridSum(vec4(runDensity[k], runMomentum[k])));
-    runOpen = false;
-}
-
-// Sorts the subgroup's (key, lane) pairs into ascending order across its lanes: a bitonic
-// network (Batcher 1968) of compare-exchanges between lanes lane ^ j. Every lane must take part.
-void subgroupSortKeys(inout uint key, inout uint lane)
-{
-    uint self = gl_SubgroupInvocationID;
-    for (uint k = 2u; k <= gl_SubgroupSize; k *= 2u) {
-        for (uint j = k / 2u; j > 0u; j /= 2u) {
-            uint otherKey = subgroupShuffleXor(key, j);
-            uint otherLane = subgroupShuffleXor(lane, j);
-            bool otherSmaller = otherKey < key || (otherKey == key && otherLane < lane);
-            // The lower lane of an ascending pair keeps the smaller, as does the upper of a descending one.
-            bool keepSmaller = ((self & k) == 0u) == ((self & j) == 0u);
-            if (otherSmaller == keepSmaller) {
-                key = otherKey;
-                lane = otherLane;
-            }
-        }
-    }
-}
-
-// Every lane of the subgroup calls this at the same point of the loop: the lanes with `flushing`
-// add their runs to the grid. The runs are sorted by grid cell across the lanes, so that runs of
-// the same cell sit side by side; a segmented scan (doubling the shuffle distance, never past the
-// segment's last lane; the eight corners side by side, so their shuffles overlap) sums each
-// cell's floats into its first lane, which rounds them (in fixed point) and does the atomics for
-// all of them: one set per cell and iteration instead of one per run.
-void flushRuns(bool flushing)
-{
-    if (!kSubgroupSums) {
-        if (flushing)
-            flushRun();
+    if (!isFinite3(p) || !isFinite3(v))
+        return;  // a strand about to be reset contributes nothing non-finite
+    GridCell cell = gridCell(p, step.gridOrigin, params.gridCellSize);
+    if (!cellInside(cell.base, params.gridResolution))
         return;
-    }
-    if (subgroupAll(!flushing))
-        return;
-    uint self = gl_SubgroupInvocationID;
-    uint key = flushing ? gridIndex(runCell, params.gridResolution) : 0xFFFFFFFFu;
-    uint from = self;
-    subgroupSortKeys(key, from);
-    vec4 sums[8];
-    for (uint k = 0u; k < 8u; ++k)
-        sums[k] = subgroupShuffle(flushing ? vec4(runDensity[k], runMomentum[k]) : vec4(0.0), from);
-    ivec3 cell = subgroupShuffle(runCell, from);
-    bool holds = key != 0xFFFFFFFFu;  // this lane now holds a flushed run
-    bool first = holds && (self == 0u || subgroupShuffleUp(key, 1u) != key);
-    uint above = subgroupShuffleDown(key, 1u);
-    bool lastOfCell = holds && (self + 1u == gl_SubgroupSize || above != key);
-    uint last = subgroupBallotFindLSB(subgroupBallot(lastOfCell) & gl_SubgroupGeMask);
-    uint longest = subgroupMax(holds ? last - self + 1u : 1u);
-    for (uint delta = 1u; delta < longest; delta *= 2u) {
-        bool take = holds && self + delta <= last;
-        for (uint k = 0u; k < 8u; ++k) {
-            vec4 further = subgroupShuffleDown(sums[k], delta);
-            if (take)
-                sums[k] += further;
-        }
-    }
-    if (first)
-        for (uint k = 0u; k < 8u; ++k)
-            gridAddSum(gridIndex(cell + cornerOffset(k), params.gridResolution), toGridSum(sums[k]));
-    if (flushing)
-        runOpen = false;
-}
-
-// Adds a finished vertex (position p, velocity v) to the lane's run, flushing the run first when
-// the vertex leaves its cell. Called by every lane at the same point of the loop; a lane past the
-// last strand (`live` false) only takes part in the subgroup's sums.
-void splatVertex(bool live, vec3 p, vec3 v)
-{
-    // A strand about to be reset contributes nothing non-finite; vertices outside the grid nothing.
-    bool valid = live && isFinite3(p) && isFinite3(v);
-    GridCell cell = gridCell(valid ? p : vec3(0.0), step.gridOrigin, params.gridCellSize);
-    valid = valid && cellInside(cell.base, params.gridResolution);
-    if (kSubgroupSums)
-        flushRuns(valid && runOpen && cell.base != runCell);
-    else if (valid && runOpen && cell.base != runCell)
+    if (runOpen && cell.base != runCell)
         moveRun(cell.base);
-    if (!valid)
-        return;
     v = clampSpeed(v, params.gridMaxSplatSpeed);
     if (!runOpen) {
         runCell = cell.base;
@@ -270,10 +181,8 @@ vec3 pushOut(vec3 p)
 void main()
 {
     uint s = gl_GlobalInvocationID.x;
-    bool live = s < params.strandCount;
-    if (!live && !(kSplatToGrid && kSubgroupSums))
+    if (s >= params.strandCount)
         return;  // threads past the last strand write nothing
-    s = min(s, params.strandCount - 1u);
     uint V = params.verticesPerStrand;
     uint base = vertexSlot(s, 0u, V);  // vertex i is at base + i * kSimStrandBlock
     StrandInfo info = strands[s];
@@ -328,15 +237,13 @@ void main()
         vec3 prevV = (prevP - prevX - prevShift) / dt;
         if (!prevPinned)
             prevV -= part.ftlDamping * d / dt;
+        positions[parent].xyz = prevP;
+        velocities[parent].xyz = prevV;
         vec3 actualDir = normalize(p - prevP);  // |p - prevP| = L_i > 0 after FTL
-        if (live) {
-            positions[parent].xyz = prevP;
-            velocities[parent].xyz = prevV;
-            if (kSplatToGrid)
-                tangents[parent] = vec4(actualDir, 0.0);
+        if (kSplatToGrid) {
+            splatVertex(prevP, prevV);
+            tangents[parent] = vec4(actualDir, 0.0);
         }
-        if (kSplatToGrid)
-            splatVertex(live, prevP, prevV);
         lastTangent = actualDir;
 
         frame = transportFrame(frame, targetDir, actualDir);
@@ -348,18 +255,16 @@ void main()
     // The tip has no d_{i+1}.
     uint tip = base + (V - 1u) * kSimStrandBlock;
     vec3 tipV = (prevP - prevX - prevShift) / dt;
-    if (live) {
-        positions[tip].xyz = prevP;
-        velocities[tip].xyz = tipV;
-        if (kSplatToGrid)
-            tangents[tip] = vec4(lastTangent, 0.0);
-    }
+    positions[tip].xyz = prevP;
+    velocities[tip].xyz = tipV;
     if (kSplatToGrid) {
-        splatVertex(live, prevP, tipV);
-        flushRuns(runOpen);
+        tangents[tip] = vec4(lastTangent, 0.0);
+        splatVertex(prevP, tipV);
+        if (runOpen)
+            flushRun();
     }
 
-    if (!finite && live) {
+    if (!finite) {
         for (uint i = 0u; i < V; ++i) {
             uint g = base + i * kSimStrandBlock;
             positions[g].xyz = (step.headTransform * vec4(rest[g].position, 1.0)).xyz;

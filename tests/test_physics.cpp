@@ -213,62 +213,6 @@ TEST(GpuSolver, FixedPointGridIsDeterministic)
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 
-TEST(GpuSolver, SubgroupSumsBuildTheSameGrid)
-{
-    // Grown guides (sorted along a Morton curve, so neighbouring lanes share cells) on a coarse
-    // grid: summing neighbours in the subgroup before the atomics gives the grid of per-strand
-    // atomics up to rounding (each segment's floats are rounded once instead of each run's), and
-    // two runs give the same bits.
-    GrowthSettings g;
-    g.guides = 300;
-    g.verticesPerStrand = 12;
-    HairScene scene = buildGrownScene(defaultHeadPath(), g);
-    SimSettings s;
-    s.gridResolution = 12;
-    s.gridFriction = 0.3f;
-    s.wind = glm::vec3(3.0f, 0.0f, 1.0f);
-    vk::Context ctx(test::validatedOptions());
-    if (!ctx.report().subgroupShuffles)
-        GTEST_SKIP() << "the device has no subgroup shuffles in compute";
-    std::vector<gpu::GridNode> grids[3];
-    SimState states[3];
-    for (int run : {0, 1, 2}) {
-        bool subgroups = run > 0;
-        s.gridSubgroupSums = subgroups;
-        SimSetup setup = makeSimSetup(s, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
-        GpuSolver solver(ctx, scene.strands, setup, glm::mat4(1.0f));
-        ASSERT_EQ(solver.subgroupGridSums(), subgroups);
-        ASSERT_TRUE(solver.fixedPointGrid());
-        states[run] = runGpu(ctx, solver, setup, 40, [&](uint32_t n) {
-            return makeStep(setup, glm::mat4(1.0f), glm::vec4(0.0f), float(n) / 120.0f);
-        });
-        grids[run] = solver.readGrid();
-    }
-    double density = 0.0;
-    for (const gpu::GridNode& node : grids[1])
-        density += node.density;
-    EXPECT_GT(density, 0.5 * double(scene.strands.vertexCount()));  // the grid was splatted
-    ASSERT_EQ(grids[0].size(), grids[1].size());
-    // Relative to the node's size (at least 1): a sum that lost or doubled a lane's run would be
-    // off by a whole run, about 0.1 of a vertex's weight; float rounding is below 1e-6.
-    float worstDensity = 0.0f, worstMomentum = 0.0f;
-    for (size_t n = 0; n < grids[0].size(); ++n) {
-        const gpu::GridNode &a = grids[0][n], &b = grids[1][n];
-        worstDensity = std::max(worstDensity, std::abs(a.density - b.density) / std::max(1.0f, std::abs(a.density)));
-        worstMomentum = std::max(worstMomentum, glm::length(a.momentum - b.momentum) / std::max(1.0f, glm::length(a.momentum)));
-    }
-    EXPECT_LT(worstDensity, 1e-5f);
-    EXPECT_LT(worstMomentum, 1e-5f);
-    float worstPosition = 0.0f;
-    for (size_t v = 0; v < states[0].positions.size(); ++v)
-        worstPosition = std::max(worstPosition, glm::length(glm::vec3(states[0].positions[v] - states[1].positions[v])));
-    EXPECT_LT(worstPosition, 1e-4f * scene.unitsPerMetre);
-    EXPECT_EQ(std::memcmp(grids[1].data(), grids[2].data(), grids[1].size() * sizeof(gpu::GridNode)), 0);
-    EXPECT_EQ(std::memcmp(states[1].positions.data(), states[2].positions.data(),
-                          states[1].positions.size() * sizeof(glm::vec4)), 0);
-    EXPECT_EQ(ctx.validationMessages(), 0u);
-}
-
 TEST(GpuSolver, NonFiniteValuesResetStrandsAndAreCounted)
 {
     SimSettings s;

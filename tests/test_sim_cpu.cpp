@@ -14,7 +14,6 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
-#include <tuple>
 
 using namespace wisp;
 
@@ -256,37 +255,6 @@ TEST(RootSampling, AreaWeightedAndDeterministic)
     EXPECT_NEAR(mean.x, 11.0f, 0.03f);
     EXPECT_NEAR(mean.y, 1.0f, 0.03f);
     EXPECT_NE(sampleRoots(m, {0, 1}, 10, false, 8)[0].position, a[0].position);  // another seed differs
-}
-
-TEST(RootSampling, MortonOrderKeepsNeighboursTogether)
-{
-    Mesh m = twoTriangles();
-    std::vector<RootSample> random = sampleRoots(m, {1}, 4096, false, 5);
-    std::vector<RootSample> sorted = random;
-    sortAlongMortonCurve(sorted);
-    // The same roots, reordered.
-    auto byPosition = [](const RootSample& a, const RootSample& b) {
-        return std::tie(a.position.x, a.position.y) < std::tie(b.position.x, b.position.y);
-    };
-    std::vector<RootSample> x = random, y = sorted;
-    std::sort(x.begin(), x.end(), byPosition);
-    std::sort(y.begin(), y.end(), byPosition);
-    for (size_t i = 0; i < x.size(); ++i)
-        ASSERT_EQ(x[i].position, y[i].position);
-    // Runs of 32 (a warp's strands) cover a small patch: their spread is far below a random run's.
-    auto meanSpread = [](const std::vector<RootSample>& s) {
-        double total = 0.0;
-        for (size_t b = 0; b + 32 <= s.size(); b += 32) {
-            glm::vec3 lo = s[b].position, hi = lo;
-            for (size_t i = b; i < b + 32; ++i) {
-                lo = glm::min(lo, s[i].position);
-                hi = glm::max(hi, s[i].position);
-            }
-            total += double(glm::length(hi - lo));
-        }
-        return total / double(s.size() / 32);
-    };
-    EXPECT_LT(meanSpread(sorted), 0.2 * meanSpread(random)) << meanSpread(sorted) << " vs " << meanSpread(random);
 }
 
 TEST(RootSampling, PoissonDiskKeepsRootsApart)

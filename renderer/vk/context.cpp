@@ -154,8 +154,7 @@ std::vector<DeviceReport> queryDevices(VkInstance instance)
         DeviceReport r;
         r.index = i;
 
-        VkPhysicalDeviceSubgroupProperties subgroup{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
-        VkPhysicalDeviceDriverProperties driver{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES, .pNext = &subgroup};
+        VkPhysicalDeviceDriverProperties driver{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
         VkPhysicalDeviceProperties2 props{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &driver};
         vkGetPhysicalDeviceProperties2(pd, &props);
         const VkPhysicalDeviceLimits& limits = props.properties.limits;
@@ -195,12 +194,6 @@ std::vector<DeviceReport> queryDevices(VkInstance instance)
         r.pipelineStatisticsQuery = features.features.pipelineStatisticsQuery;
         r.floatAtomicAdd = r.vulkan13 && atomicFloatExt && atomicFloat.shaderBufferFloat32AtomicAdd;
         r.int64Atomics = r.vulkan13 && features.features.shaderInt64 && f12.shaderBufferInt64Atomics;
-        constexpr VkSubgroupFeatureFlags kShuffles =
-            VK_SUBGROUP_FEATURE_BALLOT_BIT | VK_SUBGROUP_FEATURE_VOTE_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT |
-            VK_SUBGROUP_FEATURE_SHUFFLE_BIT | VK_SUBGROUP_FEATURE_SHUFFLE_RELATIVE_BIT;
-        r.subgroupShuffles = (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) != 0 &&
-                             (subgroup.supportedOperations & kShuffles) == kShuffles;
-        r.subgroupSize = subgroup.subgroupSize;
 
         uint32_t familyCount = 0;
         vkGetPhysicalDeviceQueueFamilyProperties(pd, &familyCount, nullptr);

@@ -45,8 +45,6 @@ struct DeviceReport {
     bool timestamps = false;            // timestampComputeAndGraphics and valid bits on the queue
     bool pushDescriptor = false;        // VK_KHR_push_descriptor
     bool floatAtomicAdd = false;        // VK_EXT_shader_atomic_float shaderBufferFloat32AtomicAdd
-    bool subgroupShuffles = false;      // subgroup ballot, vote, arithmetic and shuffles in compute (the grid splat's sums)
-    uint32_t subgroupSize = 0;
     bool int64Atomics = false;          // shaderInt64 and shaderBufferInt64Atomics (the fixed-point grid)
     bool swapchain = false;             // VK_KHR_swapchain
     uint32_t timestampValidBits = 0;
