@@ -83,7 +83,6 @@ gpu::FrameParams pack(const RenderSettings& s, const OrbitCamera& camera, VkExte
     p.hairVariation = look.variation;
     p.hairStreaks = look.streaks;
     p.hairAmbientOcclusion = 0.6f;
-    p.hair = shading::packHairMaterial(hairParams(look));
     return p;
 }
 
@@ -135,20 +134,24 @@ OitStats Renderer::oitStats(uint32_t slot) const
 void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float timeSeconds)
 {
     target_->beginFrame();
+    // The hair material (64 samples across the fibre) and the lookup tables follow the look:
+    // packed again, or rebuilt (about 9 ms), only when its parameters change.
+    shading::HairParams look = hairParams(settings_.hair);
+    if (!materialParams_ || std::memcmp(&look, &*materialParams_, sizeof(look)) != 0) {
+        material_ = shading::packHairMaterial(look);
+        materialParams_ = look;
+    }
     gpu::FrameParams frameParams = pack(settings_, camera, target_->extent(), timeSeconds, lightFit_);
     frameParams.headTransform = headTransform_;
+    frameParams.hair = material_;
     uniforms_.write(frame.slot, frameParams);
     float sceneRadius = 0.5f * lightFit_.scene.diagonal();
     meshPass_->setLightMarker(lightFit_.scene.center() + 0.75f * sceneRadius * settings_.light.direction(),
                               showLightMarker_ ? 0.025f * sceneRadius : 0.0f);
     shadowPass_->setEnabled(settings_.shadows.enabled);
-    if (hairPass_ && settings_.hair.model == ShadingModel::Lut) {
-        // The lookup tables follow the look: rebuilt (about 9 ms) when its parameters change.
-        shading::HairParams params = hairParams(settings_.hair);
-        if (std::memcmp(&params, &lutParams_, sizeof(params)) != 0) {
-            hairPass_->setLut(shading::buildHairLut(params), &frame);
-            lutParams_ = params;
-        }
+    if (hairPass_ && settings_.hair.model == ShadingModel::Lut && std::memcmp(&look, &lutParams_, sizeof(look)) != 0) {
+        hairPass_->setLut(shading::buildHairLut(look), &frame);
+        lutParams_ = look;
     }
     opacityPass_->setEnabled(settings_.shadows.enabled && settings_.shadows.domLayers > 0);
     if (oitResolve_)

@@ -22,6 +22,7 @@
 #include "shading/hair_bsdf.h"
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace wisp {
@@ -38,7 +39,8 @@ struct LightFit {
     float unitsPerMetre = 1.0f;
 };
 
-// Turns the human-facing settings and the camera into the GPU's per-frame block.
+// Turns the human-facing settings and the camera into the GPU's per-frame block, all but the hair
+// material (`hair`: the Renderer packs it when the look changes, not every frame).
 gpu::FrameParams pack(const RenderSettings& settings, const OrbitCamera& camera, VkExtent2D extent, float timeSeconds,
                       const LightFit& light);
 
@@ -105,6 +107,8 @@ private:
     glm::mat4 headTransform_{1.0f};
     bool showLightMarker_ = false;
     shading::HairParams lutParams_;  // what the hair pass's lookup tables were built for
+    std::optional<shading::HairParams> materialParams_;  // what `material_` was packed from
+    gpu::HairMaterial material_{};
 };
 
 }  // namespace wisp

@@ -9,11 +9,16 @@
 #include "core/error.h"
 #include "physics/hair_scene.h"
 #include "renderer/hair_look.h"
+#include "small_scene.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
 
 using namespace wisp;
+
+using test::renderHair;
+using test::smallHairScene;
+using test::smallRenderSettings;
 
 namespace {
 
@@ -27,24 +32,6 @@ glm::vec3 presetSigmaA(const std::string& name)
     HairLook look;
     EXPECT_TRUE(applyHairPreset(look, name));
     return hairParams(look).sigmaA;
-}
-
-HairScene scene150()
-{
-    GrowthSettings g;
-    g.guides = 150;
-    return buildGrownScene(defaultHeadPath(), g);
-}
-
-RenderSettings small()
-{
-    RenderSettings s;
-    s.width = 200;
-    s.height = 150;
-    s.shadows.mapSize = 512;
-    s.strands.strandsPerGuide = 8;
-    s.strands.divisions = 12;
-    return s;
 }
 
 // Mean luminance (0..255) over the pixels where the hair changed the bald picture.
@@ -63,12 +50,6 @@ double hairBrightness(const Picture& hair, const Picture& bald, size_t* count = 
     if (count)
         *count = n;
     return n ? sum / double(n) : 0.0;
-}
-
-Picture render(const vk::Context& ctx, const HairScene& scene, const RenderSettings& s)
-{
-    HairRun run{.scene = &scene};
-    return renderPicture(ctx, scene.head, s, &run);
 }
 
 }  // namespace
@@ -113,13 +94,13 @@ TEST(HairLook, BadLookSettingsAreRefusedNamingTheSetting)
 TEST(HairLook, EveryShadingModelRendersItsOwnPicture)
 {
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = scene150();
-    RenderSettings s = small();
+    HairScene scene = smallHairScene(150);
+    RenderSettings s = smallRenderSettings();
     Picture bald = renderPicture(ctx, scene.head, s);
     std::vector<Picture> pictures;
     for (ShadingModel m : {ShadingModel::Karis, ShadingModel::Kajiya, ShadingModel::Lut}) {
         s.hair.model = m;
-        pictures.push_back(render(ctx, scene, s));
+        pictures.push_back(renderHair(ctx, scene, s));
         size_t n = 0;
         double brightness = hairBrightness(pictures.back(), bald, &n);
         EXPECT_GT(n, 1000u);
@@ -133,13 +114,13 @@ TEST(HairLook, EveryShadingModelRendersItsOwnPicture)
 TEST(HairLook, BlondeRendersLighterThanBrownAndBrownThanBlack)
 {
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = scene150();
-    RenderSettings s = small();
+    HairScene scene = smallHairScene(150);
+    RenderSettings s = smallRenderSettings();
     Picture bald = renderPicture(ctx, scene.head, s);
     double previous = -1.0;
     for (const char* preset : {"black", "brown", "blonde"}) {
         ASSERT_TRUE(applyHairPreset(s.hair, preset));
-        double b = hairBrightness(render(ctx, scene, s), bald);
+        double b = hairBrightness(renderHair(ctx, scene, s), bald);
         EXPECT_GT(b, previous + 5.0) << preset;
         previous = b;
     }
@@ -151,15 +132,15 @@ TEST(HairLook, BacklitHairGlows)
     // With the light behind the head, what reaches the camera has passed through fibres (TT) or
     // scattered among them: lighter hair glows, compared with the same hair with the light off.
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = scene150();
-    RenderSettings s = small();
+    HairScene scene = smallHairScene(150);
+    RenderSettings s = smallRenderSettings();
     applyHairPreset(s.hair, "blonde");
     s.light.azimuthDeg = 180.0f;
     s.light.elevationDeg = 20.0f;
     Picture bald = renderPicture(ctx, scene.head, s);
-    Picture backlit = render(ctx, scene, s);
+    Picture backlit = renderHair(ctx, scene, s);
     s.light.intensity = 0.0f;
-    Picture dark = render(ctx, scene, s);
+    Picture dark = renderHair(ctx, scene, s);
     EXPECT_GT(hairBrightness(backlit, bald), hairBrightness(dark, bald) + 10.0);
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
@@ -169,8 +150,8 @@ TEST(HairLook, TheLookupTablesFollowTheLook)
     // In lut mode the tables are rebuilt when the look changes (the old image retired with the
     // frame): the same renderer draws darker hair after more melanin, validation clean.
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = scene150();
-    RenderSettings s = small();
+    HairScene scene = smallHairScene(150);
+    RenderSettings s = smallRenderSettings();
     s.hair.model = ShadingModel::Lut;
     applyHairPreset(s.hair, "blonde");
     Renderer renderer(ctx, s, 1);
@@ -188,6 +169,6 @@ TEST(HairLook, TheLookupTablesFollowTheLook)
     // Byte for byte what a renderer made black from the start draws: the tables were rebuilt.
     RenderSettings blackFromStart = s;
     applyHairPreset(blackFromStart.hair, "black");
-    EXPECT_EQ(render(ctx, scene, blackFromStart).rgba, black.rgba);
+    EXPECT_EQ(renderHair(ctx, scene, blackFromStart).rgba, black.rgba);
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }

@@ -10,6 +10,7 @@
 #include "renderer/vk/context.h"
 #include "renderer/vk/pipeline.h"
 #include "shaders/shared/shadows.h"
+#include "small_scene.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -71,33 +72,13 @@ TEST(ShadowMath, DeepOpacityGrowsWithDepthAndSumsTheLayers)
 
 namespace {
 
-HairScene smallScene(uint32_t guides)
-{
-    GrowthSettings g;
-    g.guides = guides;
-    return buildGrownScene(defaultHeadPath(), g);
-}
-
-RenderSettings smallSettings()
-{
-    RenderSettings s;
-    s.width = 200;
-    s.height = 150;
-    s.shadows.mapSize = 512;
-    s.strands.strandsPerGuide = 8;
-    s.strands.divisions = 12;
-    return s;
-}
+using test::renderHair;
+using test::smallHairScene;
+using test::smallRenderSettings;
 
 double luminance(const Picture& p, size_t pixel)
 {
     return 0.2126 * p.rgba[pixel * 4] + 0.7152 * p.rgba[pixel * 4 + 1] + 0.0722 * p.rgba[pixel * 4 + 2];
-}
-
-Picture render(const vk::Context& ctx, const HairScene& scene, const RenderSettings& s)
-{
-    HairRun run{.scene = &scene};
-    return renderPicture(ctx, scene.head, s, &run);
 }
 
 // Copies the light's hair depth and opacity layers to the host within the frame that made them.
@@ -158,11 +139,11 @@ private:
 TEST(Shadows, DarkenTheHeadAndNeverBrightenAnything)
 {
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = smallScene(150);
-    RenderSettings s = smallSettings();
+    HairScene scene = smallHairScene(150);
+    RenderSettings s = smallRenderSettings();
     s.transparency.mode = Transparency::Msaa;
-    Picture lit = [&] { RenderSettings o = s; o.shadows.enabled = false; return render(ctx, scene, o); }();
-    Picture shadowed = render(ctx, scene, s);
+    Picture lit = [&] { RenderSettings o = s; o.shadows.enabled = false; return renderHair(ctx, scene, o); }();
+    Picture shadowed = renderHair(ctx, scene, s);
     size_t darker = 0, brighter = 0;
     for (size_t i = 0; i < size_t(s.width) * s.height; ++i) {
         double d = luminance(shadowed, i) - luminance(lit, i);
@@ -177,13 +158,13 @@ TEST(Shadows, DarkenTheHeadAndNeverBrightenAnything)
 TEST(Shadows, TheSideAwayFromTheLightIsDarker)
 {
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = smallScene(150);
-    RenderSettings s = smallSettings();
+    HairScene scene = smallHairScene(150);
+    RenderSettings s = smallRenderSettings();
     s.light.elevationDeg = 10.0f;
     double side[2] = {0.0, 0.0};
     for (int k = 0; k < 2; ++k) {
         s.light.azimuthDeg = k == 0 ? 90.0f : -90.0f;  // from the image's right (+x), then its left
-        Picture p = render(ctx, scene, s);
+        Picture p = renderHair(ctx, scene, s);
         double right = 0.0, left = 0.0;
         for (uint32_t y = 0; y < s.height; ++y)
             for (uint32_t x = 0; x < s.width; ++x)
@@ -198,8 +179,8 @@ TEST(Shadows, TheSideAwayFromTheLightIsDarker)
 TEST(DeepOpacity, LayersHoldTheHairAndTransmittanceFallsWithDepth)
 {
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = smallScene(200);
-    RenderSettings s = smallSettings();
+    HairScene scene = smallHairScene(200);
+    RenderSettings s = smallRenderSettings();
     s.shadows.mapSize = 256;
     s.light.elevationDeg = 80.0f;  // from above: light crosses the whole thickness of the hair
     Renderer renderer(ctx, s, 1);
@@ -252,13 +233,13 @@ TEST(DeepOpacity, LayersHoldTheHairAndTransmittanceFallsWithDepth)
 TEST(Oit, TheResultDoesNotDependOnDrawOrder)
 {
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = smallScene(120);
-    RenderSettings s = smallSettings();
+    HairScene scene = smallHairScene(120);
+    RenderSettings s = smallRenderSettings();
     s.transparency.mode = Transparency::Oit;
     s.transparency.oitNodesPerPixel = 64;
-    Picture forward = render(ctx, scene, s);
+    Picture forward = renderHair(ctx, scene, s);
     s.strands.reverseOrder = true;
-    Picture reverse = render(ctx, scene, s);
+    Picture reverse = renderHair(ctx, scene, s);
     EXPECT_GT(forward.oit.fragments, 1000u);
     EXPECT_EQ(forward.oit.overflow, 0u);
     EXPECT_EQ(reverse.oit.fragments, forward.oit.fragments) << "the same strands, in the other order";
@@ -272,10 +253,10 @@ TEST(Oit, TheResultDoesNotDependOnDrawOrder)
 TEST(Oit, AFullPoolIsCountedAndTheFrameStillCompletes)
 {
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = smallScene(150);
-    RenderSettings s = smallSettings();
+    HairScene scene = smallHairScene(150);
+    RenderSettings s = smallRenderSettings();
     s.transparency.oitNodesPerPixel = 1;
-    Picture p = render(ctx, scene, s);
+    Picture p = renderHair(ctx, scene, s);
     EXPECT_EQ(p.oit.capacity, uint64_t(s.width) * s.height);
     EXPECT_GT(p.oit.fragments, p.oit.capacity);
     EXPECT_EQ(p.oit.overflow, p.oit.fragments - p.oit.capacity);
