@@ -115,10 +115,9 @@ GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const Sim
     // The fixed-point grid's kernels are separate SPIR-V (they need 64-bit integer atomics, the
     // float ones need float atomics); the splatting substep is a specialization of integrate.
     std::string variant = fixedGrid_ ? "_fixed" : "";
-    integrate_ = vk::createComputePipeline(ctx, layout_, "sim_integrate" + variant + ".comp", "sim.integrate",
-                                           {/*kSplatToGrid=*/false});
+    integrate_ = vk::createComputePipeline(ctx, layout_, "sim_integrate" + variant + ".comp", "sim.integrate", /*kSplatToGrid=*/false);
     integrateSplat_ = vk::createComputePipeline(ctx, layout_, "sim_integrate" + variant + ".comp", "sim.integrate+splat",
-                                                {/*kSplatToGrid=*/true});
+                                                /*kSplatToGrid=*/true);
     clear_ = vk::createComputePipeline(ctx, layout_, "grid_clear" + variant + ".comp", "grid.clear");
     normalize_ = vk::createComputePipeline(ctx, layout_, "grid_normalize" + variant + ".comp", "grid.normalize");
     gather_ = vk::createComputePipeline(ctx, layout_, "grid_gather.comp", "grid.gather");
@@ -205,17 +204,22 @@ void GpuSolver::recordStep(VkCommandBuffer cmd, const gpu::SimStep& step, vk::Gp
     dispatch(clear_, nodeGroups, step);
     vk::computeToComputeBarrier(cmd);
     end();
+    // The substeps before the last, then the last, which splats the grid (each timed on its own).
     gpu::SimStep sub = step;
-    for (uint32_t k = 0; k < setup_.substeps; ++k) {
-        bool last = k + 1 == setup_.substeps;
-        if (k == 0 || last)
-            begin(last ? "integrate+splat" : "integrate");  // the substeps before the last, then the last
+    auto substep = [&](uint32_t k, VkPipeline pipeline) {
         sub.time = step.time + float(k) * p.dt;
-        dispatch(last ? integrateSplat_ : integrate_, strandGroups, sub);
+        dispatch(pipeline, strandGroups, sub);
         vk::computeToComputeBarrier(cmd);
-        if (last || k + 2 == setup_.substeps)
-            end();
+    };
+    if (setup_.substeps > 1) {
+        begin("integrate");
+        for (uint32_t k = 0; k + 1 < setup_.substeps; ++k)
+            substep(k, integrate_);
+        end();
     }
+    begin("integrate+splat");
+    substep(setup_.substeps - 1, integrateSplat_);
+    end();
     begin("grid_normalize");
     dispatch(normalize_, nodeGroups, step);
     vk::computeToComputeBarrier(cmd);

@@ -8,9 +8,9 @@
 #ifdef GRID_FIXED
 layout(set = 0, binding = kSimBindingGrid, std430) buffer Grid { int64_t gridFixed[]; };  // 4 arrays of nodes
 
-// Adds density and momentum already scaled to integers (the splat rounds each run's sums).
-void gridAddSum(uint node, i64vec4 sum)
+void gridAdd(uint node, float density, vec3 momentum)
 {
+    i64vec4 sum = i64vec4(round(vec4(density, momentum) * params.gridFixedScale));
     for (uint w = 0u; w < kGridFixedWordsPerNode; ++w)
         atomicAdd(gridFixed[gridFixedWord(node, w, params.gridNodeCount)], sum[w]);
 }
@@ -34,13 +34,12 @@ GridNode gridRead(uint node)
 #else
 layout(set = 0, binding = kSimBindingGrid, std430) buffer Grid { GridNode grid[]; };
 
-// Adds (density, momentum).
-void gridAddSum(uint node, vec4 sum)
+void gridAdd(uint node, float density, vec3 momentum)
 {
-    atomicAdd(grid[node].density, sum.x);
-    atomicAdd(grid[node].momentum.x, sum.y);
-    atomicAdd(grid[node].momentum.y, sum.z);
-    atomicAdd(grid[node].momentum.z, sum.w);
+    atomicAdd(grid[node].density, density);
+    atomicAdd(grid[node].momentum.x, momentum.x);
+    atomicAdd(grid[node].momentum.y, momentum.y);
+    atomicAdd(grid[node].momentum.z, momentum.z);
 }
 
 void gridZero(uint node)

@@ -41,33 +41,20 @@ bool runOpen = false;
 float runDensity[8];
 vec3 runMomentum[8];
 
-// One run's share of a grid node, as the atomics add it: integers in fixed point, else floats.
-#ifdef GRID_FIXED
-i64vec4 toGridSum(vec4 densityMomentum)
+// Adds corner k of the run to the grid and empties it.
+void flushCorner(uint k)
 {
-    return i64vec4(round(densityMomentum * params.gridFixedScale));
+    gridAdd(gridIndex(runCell + cornerOffset(k), params.gridResolution), runDensity[k], runMomentum[k]);
+    runDensity[k] = 0.0;
+    runMomentum[k] = vec3(0.0);
 }
-#else
-vec4 toGridSum(vec4 densityMomentum)
-{
-    return densityMomentum;
-}
-#endif
 
 // Adds the whole run to the grid.
 void flushRun()
 {
     for (uint k = 0u; k < 8u; ++k)
-        gridAddSum(gridIndex(runCell + cornerOffset(k), params.gridResolution), toGridSum(vec4(runDensity[k], runMomentum[k])));
+        flushCorner(k);
     runOpen = false;
-}
-
-// Adds corner k of the run to the grid and empties it.
-void flushCorner(uint k)
-{
-    gridAddSum(gridIndex(runCell + cornerOffset(k), params.gridResolution), toGridSum(vec4(runDensity[k], runMomentum[k])));
-    runDensity[k] = 0.0;
-    runMomentum[k] = vec3(0.0);
 }
 
 // Slides the run one cell along the axis whose corner bit is `bit` (1 x, 2 y, 4 z), by `dir`

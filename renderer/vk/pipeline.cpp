@@ -185,25 +185,19 @@ Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& 
 }
 
 Pipeline createComputePipeline(const Context& ctx, VkPipelineLayout layout, const std::string& shader, const char* name,
-                               const std::vector<bool>& boolConstants)
+                               std::optional<bool> boolConstant0)
 {
     std::string file = shader + ".spv";
     ShaderModule module = loadShader(ctx, file);
-    std::vector<VkBool32> values;
-    std::vector<VkSpecializationMapEntry> entries;
-    for (bool b : boolConstants) {
-        entries.push_back({.constantID = uint32_t(values.size()), .offset = uint32_t(values.size() * sizeof(VkBool32)),
-                           .size = sizeof(VkBool32)});
-        values.push_back(b ? VK_TRUE : VK_FALSE);
-    }
-    VkSpecializationInfo specialization{.mapEntryCount = uint32_t(entries.size()), .pMapEntries = entries.data(),
-                                        .dataSize = values.size() * sizeof(VkBool32), .pData = values.data()};
+    VkBool32 value = boolConstant0.value_or(false) ? VK_TRUE : VK_FALSE;
+    VkSpecializationMapEntry entry{.constantID = 0, .offset = 0, .size = sizeof(VkBool32)};
+    VkSpecializationInfo specialization{.mapEntryCount = 1, .pMapEntries = &entry, .dataSize = sizeof(value), .pData = &value};
     VkComputePipelineCreateInfo info{.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
                                      .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
                                                .stage = stageOf(file),
                                                .module = module,
                                                .pName = "main",
-                                               .pSpecializationInfo = values.empty() ? nullptr : &specialization},
+                                               .pSpecializationInfo = boolConstant0 ? &specialization : nullptr},
                                      .layout = layout};
     VkPipeline pipeline = VK_NULL_HANDLE;
     VK_CHECK(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));

@@ -72,9 +72,9 @@ struct GraphicsPipelineDesc {
     const char* name = "unnamed pipeline";
 };
 Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& desc);
-// `boolConstants` are the shader's bool specialization constants 0, 1, ... (variant switches).
+// `boolConstant0`, when set, is the shader's specialization constant 0 (a bool variant switch).
 Pipeline createComputePipeline(const Context& ctx, VkPipelineLayout layout, const std::string& shader, const char* name,
-                               const std::vector<bool>& boolConstants = {});
+                               std::optional<bool> boolConstant0 = std::nullopt);
 
 // A clamp-to-edge sampler without mipmaps: `filter` for magnification and minification, and
 // with `compare` a depth comparison (LESS_OR_EQUAL: shadow maps).

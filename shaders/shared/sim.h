@@ -92,8 +92,9 @@ struct StrandInfo {
 };
 
 // Splat accumulators: float atomics add into these. The fixed-point grid (the GRID_FIXED shader
-// variants) keeps the same four sums as 64-bit integers scaled by SimParams.gridFixedScale, four
-// per node: integer adds commute, so its result does not depend on the order threads run in.
+// variants) keeps the same four sums as 64-bit integers scaled by SimParams.gridFixedScale, in
+// four arrays (gridFixedWord): integer adds commute, so its result does not depend on the order
+// threads run in.
 GPU_CONST uint kGridFixedWordsPerNode = 4u;
 // Where word w (0 density, 1..3 momentum) of a node lies: four arrays of `nodeCount` words.
 GPU_FN uint gridFixedWord(uint node, uint w, uint nodeCount)
