@@ -17,9 +17,9 @@
 #include "renderer/hair_pass.h"
 #include "core/error.h"
 #include "physics/hair_scene.h"
-#include "physics/head.h"
-#include "renderer/vk/check.h"
-#include "renderer/vk/context.h"
+#include "assets/head.h"
+#include "gpu/check.h"
+#include "gpu/context.h"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>

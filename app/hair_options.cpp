@@ -3,7 +3,7 @@
 #include "app/hair_options.h"
 
 #include "core/error.h"
-#include "physics/hair_asset.h"
+#include "assets/hair_asset.h"
 
 #include <cmath>
 #include <sstream>

@@ -4,7 +4,7 @@
 
 #include "core/host_memory.h"
 #include "physics/gpu_solver.h"
-#include "renderer/frame.h"
+#include "gpu/frame.h"
 #include "renderer/renderer.h"
 
 #include <algorithm>

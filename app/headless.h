@@ -8,7 +8,7 @@
 #include "renderer/camera.h"
 #include "renderer/oit.h"
 #include "renderer/settings.h"
-#include "renderer/vk/context.h"
+#include "gpu/context.h"
 
 #include <cstdint>
 #include <string>

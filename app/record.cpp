@@ -8,9 +8,9 @@
 #include "app/image_io.h"
 #include "core/error.h"
 #include "physics/gpu_solver.h"
-#include "renderer/frame.h"
+#include "gpu/frame.h"
 #include "renderer/renderer.h"
-#include "renderer/vk/check.h"
+#include "gpu/check.h"
 
 #include <chrono>
 #include <cmath>

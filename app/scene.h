@@ -8,7 +8,7 @@
 
 #include "app/hair_options.h"
 #include "app/settings_registry.h"
-#include "physics/head.h"
+#include "assets/head.h"
 #include "renderer/camera.h"
 #include "renderer/settings.h"
 

@@ -3,7 +3,7 @@
 #include "app/simulate.h"
 
 #include "physics/gpu_solver.h"
-#include "renderer/frame.h"
+#include "gpu/frame.h"
 #include "core/error.h"
 #include "renderer/physics_pass.h"
 

@@ -6,7 +6,7 @@
 #include "app/scene.h"
 #include "physics/hair_scene.h"
 #include "physics/simulation.h"
-#include "renderer/vk/context.h"
+#include "gpu/context.h"
 
 #include <functional>
 #include <optional>

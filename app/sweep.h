@@ -4,7 +4,7 @@
 
 #include "app/hair_options.h"
 #include "app/settings_registry.h"
-#include "renderer/vk/context.h"
+#include "gpu/context.h"
 
 #include <filesystem>
 #include <string>

@@ -4,10 +4,10 @@
 
 #include "app/settings_registry.h"
 #include "core/error.h"
-#include "renderer/frame.h"
+#include "gpu/frame.h"
 #include "renderer/render_target.h"
-#include "renderer/vk/check.h"
-#include "renderer/vk/context.h"
+#include "gpu/check.h"
+#include "gpu/context.h"
 
 #include <imgui.h>
 #include <imgui_impl_glfw.h>

@@ -6,8 +6,8 @@
 // and edits every setting of `wisp settings` live through the same registry as --set.
 #pragma once
 
-#include "renderer/pass.h"
-#include "renderer/vk/handle.h"
+#include "gpu/pass.h"
+#include "gpu/handle.h"
 
 #include <deque>
 #include <functional>

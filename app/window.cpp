@@ -8,10 +8,10 @@
 #include "app/viewer.h"
 #include "core/error.h"
 #include "physics/gpu_solver.h"
-#include "physics/head.h"
-#include "renderer/frame.h"
+#include "assets/head.h"
+#include "gpu/frame.h"
 #include "renderer/renderer.h"
-#include "renderer/vk/check.h"
+#include "gpu/check.h"
 
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>

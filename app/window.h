@@ -11,7 +11,7 @@
 #include "physics/hair_scene.h"
 #include "physics/simulation.h"
 #include "renderer/settings.h"
-#include "renderer/vk/context.h"
+#include "gpu/context.h"
 
 #include <cstdint>
 #include <string>

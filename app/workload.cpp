@@ -4,7 +4,7 @@
 #include "app/workload.h"
 
 #include "core/error.h"
-#include "renderer/vk/context.h"
+#include "gpu/context.h"
 #include "shaders/shared/hair_shading.h"
 #include "shaders/shared/shadows.h"
 

@@ -1,6 +1,6 @@
 // core/error.h: the kinds of failure Wisp reports, and the exit status of each. A UserError is
 // something the person can fix (a bad file, option or value, no suitable GPU): main prints its
-// one-line message and exits 2. A lost GPU device (vk::DeviceLost, renderer/vk/check.h) exits 3.
+// one-line message and exits 2. A lost GPU device (vk::DeviceLost, gpu/check.h) exits 3.
 // Anything else is an internal error: main prints it and exits 1.
 #pragma once
 

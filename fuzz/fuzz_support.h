@@ -5,8 +5,8 @@
 #pragma once
 
 #include "core/error.h"
-#include "physics/hair_asset.h"
-#include "physics/mesh.h"
+#include "assets/hair_asset.h"
+#include "assets/mesh.h"
 
 #include <cmath>
 #include <cstdio>

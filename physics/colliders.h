@@ -2,7 +2,7 @@
 // penetration of a point, and the automatic fit for meshes that come without any.
 #pragma once
 
-#include "physics/head.h"
+#include "assets/head.h"
 #include "physics/strands.h"
 #include "shaders/shared/sim.h"
 

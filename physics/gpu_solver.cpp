@@ -3,9 +3,9 @@
 
 #include "core/error.h"
 #include "physics/cpu_solver.h"
-#include "renderer/vk/check.h"
-#include "renderer/vk/context.h"
-#include "renderer/vk/pipeline.h"
+#include "gpu/check.h"
+#include "gpu/context.h"
+#include "gpu/pipeline.h"
 
 #include <array>
 #include <cstring>

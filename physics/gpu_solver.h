@@ -7,10 +7,10 @@
 #pragma once
 
 #include "physics/simulation.h"
-#include "renderer/pass.h"
-#include "renderer/vk/handle.h"
-#include "renderer/vk/resources.h"
-#include "renderer/vk/timestamps.h"
+#include "gpu/pass.h"
+#include "gpu/handle.h"
+#include "gpu/resources.h"
+#include "gpu/timestamps.h"
 
 namespace wisp {
 

@@ -4,7 +4,7 @@
 // outside the colliders as it grows, with optional curls.
 #pragma once
 
-#include "physics/head.h"
+#include "assets/head.h"
 #include "physics/strands.h"
 
 #include <vector>

@@ -4,8 +4,8 @@
 #pragma once
 
 #include "physics/growth.h"
-#include "physics/hair_asset.h"
-#include "physics/head.h"
+#include "assets/hair_asset.h"
+#include "assets/head.h"
 #include "physics/strands.h"
 
 #include <filesystem>

@@ -3,7 +3,7 @@
 // parts (one per hair source) with their own parameters.
 #pragma once
 
-#include "physics/mesh.h"
+#include "assets/mesh.h"
 #include "shaders/shared/sim.h"
 
 #include <string>

@@ -2,7 +2,7 @@
 // (y down in clip space, depth 0..1), and a default framing of a bounding box.
 #pragma once
 
-#include "physics/mesh.h"
+#include "core/bounds.h"
 
 #include <glm/glm.hpp>
 

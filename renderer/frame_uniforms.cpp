@@ -1,7 +1,7 @@
 // renderer/frame_uniforms.cpp: one persistently mapped uniform buffer per frame in flight.
 #include "renderer/frame_uniforms.h"
 
-#include "renderer/vk/context.h"
+#include "gpu/context.h"
 
 #include <cstring>
 

@@ -2,7 +2,7 @@
 // flight so the CPU never writes a block the GPU may still read.
 #pragma once
 
-#include "renderer/vk/resources.h"
+#include "gpu/resources.h"
 #include "shaders/shared/frame_params.h"
 
 #include <vector>

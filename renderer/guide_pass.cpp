@@ -2,11 +2,11 @@
 #include "renderer/guide_pass.h"
 
 #include "physics/gpu_solver.h"
-#include "renderer/frame.h"
+#include "gpu/frame.h"
 #include "renderer/frame_uniforms.h"
 #include "renderer/render_target.h"
-#include "renderer/vk/context.h"
-#include "renderer/vk/pipeline.h"
+#include "gpu/context.h"
+#include "gpu/pipeline.h"
 #include "shaders/shared/guide_params.h"
 #include "shaders/shared/sim.h"
 

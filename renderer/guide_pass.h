@@ -2,9 +2,9 @@
 // the solver's positions buffer (the physics' view until the strands renderer takes over).
 #pragma once
 
-#include "renderer/pass.h"
-#include "renderer/vk/handle.h"
-#include "renderer/vk/resources.h"
+#include "gpu/pass.h"
+#include "gpu/handle.h"
+#include "gpu/resources.h"
 
 namespace wisp {
 

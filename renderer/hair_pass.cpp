@@ -3,14 +3,14 @@
 #include "renderer/hair_pass.h"
 
 #include "physics/gpu_solver.h"
-#include "renderer/frame.h"
+#include "gpu/frame.h"
 #include "renderer/frame_uniforms.h"
 #include "renderer/light_maps.h"
 #include "renderer/oit.h"
 #include "renderer/render_target.h"
-#include "renderer/vk/check.h"
-#include "renderer/vk/context.h"
-#include "renderer/vk/pipeline.h"
+#include "gpu/check.h"
+#include "gpu/context.h"
+#include "gpu/pipeline.h"
 
 #include <algorithm>
 #include <array>

@@ -4,10 +4,10 @@
 #pragma once
 
 #include "physics/strands.h"
-#include "renderer/pass.h"
+#include "gpu/pass.h"
 #include "renderer/settings.h"
-#include "renderer/vk/handle.h"
-#include "renderer/vk/resources.h"
+#include "gpu/handle.h"
+#include "gpu/resources.h"
 #include "shaders/shared/strands.h"
 #include "shading/hair_lut.h"
 

@@ -1,12 +1,12 @@
 // renderer/light_maps.cpp: the light's maps, their samplers, and the shadow and opacity passes.
 #include "renderer/light_maps.h"
 
-#include "renderer/frame.h"
+#include "gpu/frame.h"
 #include "renderer/hair_pass.h"
 #include "renderer/mesh_pass.h"
-#include "renderer/vk/check.h"
-#include "renderer/vk/context.h"
-#include "renderer/vk/pipeline.h"
+#include "gpu/check.h"
+#include "gpu/context.h"
+#include "gpu/pipeline.h"
 #include "shaders/shared/shadows.h"
 
 namespace wisp {

@@ -7,9 +7,9 @@
 //                           depth falls in behind the texel's first hair depth (Yuksel & Keyser 2008)
 #pragma once
 
-#include "renderer/pass.h"
-#include "renderer/vk/handle.h"
-#include "renderer/vk/resources.h"
+#include "gpu/pass.h"
+#include "gpu/handle.h"
+#include "gpu/resources.h"
 
 #include <array>
 #include <vector>

@@ -1,12 +1,12 @@
 // renderer/mesh_pass.cpp: mesh upload, the mesh pipeline, and its draw.
 #include "renderer/mesh_pass.h"
 
-#include "renderer/frame.h"
+#include "gpu/frame.h"
 #include "renderer/frame_uniforms.h"
 #include "renderer/light_maps.h"
 #include "renderer/render_target.h"
-#include "renderer/vk/context.h"
-#include "renderer/vk/pipeline.h"
+#include "gpu/context.h"
+#include "gpu/pipeline.h"
 #include "shaders/shared/mesh_params.h"
 #include "shaders/shared/shadows.h"
 

@@ -3,10 +3,10 @@
 // the light's maps; and the same meshes' depth from the light for the shadow pass.
 #pragma once
 
-#include "physics/mesh.h"
-#include "renderer/pass.h"
-#include "renderer/vk/handle.h"
-#include "renderer/vk/resources.h"
+#include "assets/mesh.h"
+#include "gpu/pass.h"
+#include "gpu/handle.h"
+#include "gpu/resources.h"
 
 #include <glm/glm.hpp>
 

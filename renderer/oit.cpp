@@ -3,11 +3,11 @@
 #include "renderer/oit.h"
 
 #include "core/error.h"
-#include "renderer/frame.h"
+#include "gpu/frame.h"
 #include "renderer/render_target.h"
-#include "renderer/vk/check.h"
-#include "renderer/vk/context.h"
-#include "renderer/vk/pipeline.h"
+#include "gpu/check.h"
+#include "gpu/context.h"
+#include "gpu/pipeline.h"
 
 #include <algorithm>
 #include <array>

@@ -11,9 +11,9 @@
 // fragments (counted) but never writes out of bounds or loops.
 #pragma once
 
-#include "renderer/pass.h"
-#include "renderer/vk/handle.h"
-#include "renderer/vk/resources.h"
+#include "gpu/pass.h"
+#include "gpu/handle.h"
+#include "gpu/resources.h"
 #include "shaders/shared/shadows.h"
 
 #include <vector>

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "physics/gpu_solver.h"
-#include "renderer/pass.h"
+#include "gpu/pass.h"
 
 #include <vector>
 

@@ -1,8 +1,8 @@
 // renderer/render_target.cpp: attachment creation, dynamic rendering begin/end, readback.
 #include "renderer/render_target.h"
 
-#include "renderer/vk/context.h"
-#include "renderer/vk/pipeline.h"
+#include "gpu/context.h"
+#include "gpu/pipeline.h"
 
 #include <cstring>
 

@@ -3,8 +3,8 @@
 // window blits to its swapchain. Also the ReadbackPass that copies the result to a host buffer.
 #pragma once
 
-#include "renderer/pass.h"
-#include "renderer/vk/resources.h"
+#include "gpu/pass.h"
+#include "gpu/resources.h"
 
 #include <glm/glm.hpp>
 

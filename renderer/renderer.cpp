@@ -1,10 +1,10 @@
 // renderer/renderer.cpp: settings packing and the pass list.
 #include "renderer/renderer.h"
 
-#include "renderer/frame.h"
-#include "renderer/hair_look.h"
+#include "gpu/frame.h"
+#include "shading/hair_look.h"
 #include "shading/hair_models.h"
-#include "renderer/vk/context.h"
+#include "gpu/context.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 

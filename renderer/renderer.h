@@ -8,7 +8,7 @@
 // present), and submits.
 #pragma once
 
-#include "physics/head.h"
+#include "assets/head.h"
 #include "renderer/camera.h"
 #include "renderer/frame_uniforms.h"
 #include "renderer/guide_pass.h"

@@ -3,7 +3,9 @@
 // into the GPU's FrameParams.
 #pragma once
 
+#include "core/range.h"
 #include "shaders/shared/strands.h"
+#include "shading/hair_look.h"
 
 #include <glm/glm.hpp>
 
@@ -11,12 +13,6 @@
 #include <string>
 
 namespace wisp {
-
-struct Range {
-    double min;
-    double max;
-    bool contains(double v) const { return v >= min && v <= max; }
-};
 
 inline constexpr Range kImageSizeRange{16, 8192};        // pixels per side
 inline constexpr Range kLightElevationRange{-89, 89};    // degrees above the horizon
@@ -88,35 +84,6 @@ struct TransparencySettings {
     uint32_t oitNodesPerPixel = 0;    // fragment pool size per pixel of the target; 0: as the device allows, up to 24
     float hairOpacity = 0.85f;        // opacity of a strand that covers its pixel (oit, deep opacity)
 };
-
-enum class ShadingModel { Karis, Kajiya, Lut };
-
-inline constexpr Range kMelaninRange{0.0, 20.0};        // concentration (Chiang 2016: ~8 black, ~1.3 brown, ~0.3 blonde)
-inline constexpr Range kRoughnessRange{0.01, 1.0};      // beta_m, beta_n
-inline constexpr Range kCuticleTiltRange{-10.0, 10.0};  // degrees
-inline constexpr Range kEtaRange{1.0, 4.0};
-inline constexpr Range kVariationRange{0.0, 1.0};
-
-// What the hair is made of and how it is shaded (shading/, shaders/shared/hair_shading.h). Its
-// colour is absorption: from melanin concentrations (Chiang et al. 2016) or from an RGB colour
-// the hair should look (sigmaAFromColor); strands vary around it, with streaks along them.
-struct HairLook {
-    ShadingModel model = ShadingModel::Karis;
-    float eumelanin = 1.3f;          // brown
-    float pheomelanin = 0.2f;
-    bool useColor = false;           // colour below instead of melanin
-    glm::vec3 color{0.3f, 0.2f, 0.12f};
-    float betaM = 0.3f;              // longitudinal roughness
-    float betaN = 0.3f;              // azimuthal roughness
-    float cuticleTiltDeg = 2.0f;
-    float eta = 1.55f;
-    float variation = 0.3f;          // per-strand spread of absorption (0: every strand alike)
-    float streaks = 0.35f;           // strength of lighter and darker streaks along strands
-};
-
-// Named looks: black, brown, auburn, blonde (melanin pairs). Returns false for an unknown name.
-bool applyHairPreset(HairLook& look, const std::string& name);
-inline constexpr const char* kHairPresets = "black | brown | auburn | blonde";
 
 struct RenderSettings {
     uint32_t width = 1280;

@@ -4,7 +4,7 @@
 
 #include "app/headless.h"
 #include "physics/hair_scene.h"
-#include "physics/head.h"
+#include "assets/head.h"
 #include "renderer/settings.h"
 
 namespace wisp::test {

@@ -3,9 +3,9 @@
 // Frame's declared accesses produce the barriers that synchronization validation demands, and a
 // lost device (injected) is its own error that frames and the context survive.
 #include "core/error.h"
-#include "renderer/frame.h"
-#include "renderer/vk/check.h"
-#include "renderer/vk/context.h"
+#include "gpu/frame.h"
+#include "gpu/check.h"
+#include "gpu/context.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

@@ -2,8 +2,8 @@
 // small TressFX 3 / cyHair / tfx2 files built here per FORMATS.md; every broken-file path with
 // its byte offset or line; strand resampling, automatic placement and the inspect JSON.
 #include "core/error.h"
-#include "physics/hair_asset.h"
-#include "physics/mesh.h"
+#include "assets/hair_asset.h"
+#include "assets/mesh.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

@@ -4,11 +4,11 @@
 #include "app/headless.h"
 #include "app/settings_registry.h"
 #include "physics/gpu_solver.h"
-#include "renderer/frame.h"
+#include "gpu/frame.h"
 #include "renderer/renderer.h"
 #include "core/error.h"
 #include "physics/hair_scene.h"
-#include "renderer/hair_look.h"
+#include "shading/hair_look.h"
 #include "small_scene.h"
 #include "test_support.h"
 

@@ -6,7 +6,7 @@
 #include "physics/colliders.h"
 #include "physics/gpu_solver.h"
 #include "physics/hair_scene.h"
-#include "renderer/frame.h"
+#include "gpu/frame.h"
 #include "renderer/renderer.h"
 #include "shaders/shared/strands.h"
 #include "test_support.h"

@@ -3,7 +3,7 @@
 // the generator rebuilds the committed files byte for byte; bad descriptions are reported.
 #include "core/error.h"
 #include "physics/colliders.h"
-#include "physics/head.h"
+#include "assets/head.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

@@ -8,7 +8,7 @@
 #include "app/workload.h"
 #include "core/error.h"
 #include "physics/hair_scene.h"
-#include "renderer/vk/context.h"
+#include "gpu/context.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

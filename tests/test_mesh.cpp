@@ -1,7 +1,7 @@
 // tests/test_mesh.cpp: mesh loading: real files from ../shared/data, n-gon triangulation, CRLF,
 // generated normals, other formats through assimp, and every malformed-file path with its line.
 #include "core/error.h"
-#include "physics/mesh.h"
+#include "assets/mesh.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

@@ -6,7 +6,7 @@
 #include "physics/cpu_solver.h"
 #include "physics/gpu_solver.h"
 #include "physics/hair_scene.h"
-#include "renderer/frame.h"
+#include "gpu/frame.h"
 #include "renderer/physics_pass.h"
 #include "test_support.h"
 

@@ -2,7 +2,7 @@
 // deterministic, covering a plausible part of the frame, brighter on the light's side, and the
 // same through the single-sample path.
 #include "app/headless.h"
-#include "physics/head.h"
+#include "assets/head.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

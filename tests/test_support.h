@@ -2,7 +2,7 @@
 // binary run as a subprocess, temporary folders, and paths to ../shared/data.
 #pragma once
 
-#include "renderer/vk/context.h"
+#include "gpu/context.h"
 
 #include <filesystem>
 #include <string>

@@ -1,9 +1,9 @@
-// renderer/vk/pipeline.h: shader modules loaded from the build tree's SPIR-V, pipeline layouts
+// gpu/pipeline.h: shader modules loaded from the build tree's SPIR-V, pipeline layouts
 // with one push-descriptor set, and graphics pipelines for dynamic rendering described by a
 // struct of named fields.
 #pragma once
 
-#include "renderer/vk/handle.h"
+#include "gpu/handle.h"
 
 #include <filesystem>
 #include <optional>

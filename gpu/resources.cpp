@@ -1,6 +1,6 @@
-// renderer/vk/resources.cpp: moves and destruction of Buffer and Image (their creation is in
+// gpu/resources.cpp: moves and destruction of Buffer and Image (their creation is in
 // Context, which knows the memory types).
-#include "renderer/vk/resources.h"
+#include "gpu/resources.h"
 
 #include <mutex>
 #include <unordered_map>

@@ -1,8 +1,10 @@
-// physics/mesh.h: a triangle mesh as Wisp uses it (head, body, colliders): positions and unit
+// assets/mesh.h: a triangle mesh as Wisp uses it (head, body, colliders): positions and unit
 // normals per vertex, 32-bit triangle indices, in the file's own units. Loads .obj through
 // tinyobjloader (checked line by line first, so errors name the line) and every other format
 // through assimp; n-gons are triangulated and missing normals generated.
 #pragma once
+
+#include "core/bounds.h"
 
 #include <glm/glm.hpp>
 
@@ -13,14 +15,6 @@
 #include <vector>
 
 namespace wisp {
-
-struct Bounds {
-    glm::vec3 min{0.0f};
-    glm::vec3 max{0.0f};
-    glm::vec3 center() const { return 0.5f * (min + max); }
-    glm::vec3 size() const { return max - min; }
-    float diagonal() const { return glm::length(max - min); }
-};
 
 struct Mesh {
     std::vector<glm::vec3> positions;

@@ -1,10 +1,10 @@
-// physics/hair_asset.h: hair assets as files hold them: strands of points in the file's own units,
+// assets/hair_asset.h: hair assets as files hold them: strands of points in the file's own units,
 // read from TressFX 2 text, TressFX 3 and 4 binary and cyHair .hair files (see FORMATS.md), with
 // the format told by content. Also arc-length resampling of a strand, placing an asset on a head
 // (scale, axis fixes, offset) and the JSON summary `wisp inspect` prints.
 #pragma once
 
-#include "physics/mesh.h"
+#include "assets/mesh.h"
 
 #include <glm/glm.hpp>
 #include <nlohmann/json_fwd.hpp>

@@ -1,4 +1,4 @@
-// renderer/vk/handle.h: move-only owners of single Vulkan objects created from a VkDevice.
+// gpu/handle.h: move-only owners of single Vulkan objects created from a VkDevice.
 // DeviceHandle<T, Destroy> holds the device and the handle, defaults to VK_NULL_HANDLE, and
 // destroys the object when it goes out of scope. Buffers and images (which also own memory)
 // live in resources.h.

@@ -1,5 +1,5 @@
-// physics/head.cpp: head description parsing with errors that name the file and the key.
-#include "physics/head.h"
+// assets/head.cpp: head description parsing with errors that name the file and the key.
+#include "assets/head.h"
 
 #include "core/error.h"
 

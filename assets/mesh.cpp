@@ -1,7 +1,7 @@
-// physics/mesh.cpp: mesh loading. OBJ files are first checked line by line (numbers parse,
+// assets/mesh.cpp: mesh loading. OBJ files are first checked line by line (numbers parse,
 // face indices exist) so that a bad file is reported with its line; tinyobjloader then reads
 // them. Other formats go through assimp.
-#include "physics/mesh.h"
+#include "assets/mesh.h"
 
 #include "core/error.h"
 

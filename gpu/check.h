@@ -1,4 +1,4 @@
-// renderer/vk/check.h: VK_CHECK wraps every Vulkan call; a failure throws with the call's text,
+// gpu/check.h: VK_CHECK wraps every Vulkan call; a failure throws with the call's text,
 // the VkResult's name, and the file and line. VK_ERROR_DEVICE_LOST throws DeviceLost, which the
 // command line reports on its own. resultName() replaces vk_enum_string_helper.h, which Debian's
 // Vulkan headers do not ship.

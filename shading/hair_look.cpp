@@ -1,5 +1,5 @@
-// renderer/hair_look.cpp: looks to parameters, and the presets.
-#include "renderer/hair_look.h"
+// shading/hair_look.cpp: looks to parameters, and the presets.
+#include "shading/hair_look.h"
 
 #include <array>
 

@@ -1,9 +1,9 @@
-// renderer/vk/timestamps.h: GPU timestamps around named scopes (one per pass), read back once the
+// gpu/timestamps.h: GPU timestamps around named scopes (one per pass), read back once the
 // frame's fence has signalled, converted to milliseconds with timestampPeriod and masked to
 // timestampValidBits.
 #pragma once
 
-#include "renderer/vk/handle.h"
+#include "gpu/handle.h"
 
 #include <string>
 #include <vector>

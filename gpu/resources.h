@@ -1,4 +1,4 @@
-// renderer/vk/resources.h: move-only buffers and images that own their device memory (one
+// gpu/resources.h: move-only buffers and images that own their device memory (one
 // allocation each; Wisp has few, large resources), described with designated initializers:
 //   Buffer b = ctx.createBuffer({.size = bytes, .usage = kStorage, .name = "guide.positions"});
 #pragma once

@@ -1,8 +1,8 @@
-// renderer/vk/timestamps.cpp: a query pool of 2 timestamps per scope.
-#include "renderer/vk/timestamps.h"
+// gpu/timestamps.cpp: a query pool of 2 timestamps per scope.
+#include "gpu/timestamps.h"
 
-#include "renderer/vk/check.h"
-#include "renderer/vk/context.h"
+#include "gpu/check.h"
+#include "gpu/context.h"
 
 #include <stdexcept>
 

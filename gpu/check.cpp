@@ -1,6 +1,6 @@
-// renderer/vk/check.cpp: names for VkResult values and the failure path of VK_CHECK (DeviceLost
+// gpu/check.cpp: names for VkResult values and the failure path of VK_CHECK (DeviceLost
 // for a lost device, std::runtime_error for anything else).
-#include "renderer/vk/check.h"
+#include "gpu/check.h"
 
 #include <string>
 

@@ -1,10 +1,10 @@
-// renderer/vk/context.cpp: instance and device creation, the up-front feature check, device
+// gpu/context.cpp: instance and device creation, the up-front feature check, device
 // choice, the counting validation messenger, resource factories, and queue submission (with the
 // tests' fault injections: a lost device, a hidden feature).
-#include "renderer/vk/context.h"
+#include "gpu/context.h"
 
 #include "core/error.h"
-#include "renderer/vk/check.h"
+#include "gpu/check.h"
 
 #include <algorithm>
 #include <charconv>

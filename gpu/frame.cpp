@@ -1,9 +1,9 @@
-// renderer/frame.cpp: per-slot command buffers and fences, deferred deletion, and barriers
+// gpu/frame.cpp: per-slot command buffers and fences, deferred deletion, and barriers
 // derived from the passes' declarations.
-#include "renderer/frame.h"
+#include "gpu/frame.h"
 
-#include "renderer/vk/check.h"
-#include "renderer/vk/context.h"
+#include "gpu/check.h"
+#include "gpu/context.h"
 
 #include <string>
 

@@ -1,9 +1,9 @@
-// physics/head.h: a head as Wisp uses it: the mesh plus its description (models/head.json):
+// assets/head.h: a head as Wisp uses it: the mesh plus its description (models/head.json):
 // units, orientation, the scalp region rule and the collision ellipsoids. `--head` takes either
 // a description (.json, which names its mesh) or a bare mesh file.
 #pragma once
 
-#include "physics/mesh.h"
+#include "assets/mesh.h"
 
 #include <filesystem>
 #include <optional>

@@ -1,12 +1,12 @@
-// renderer/frame.h: the frame loop's per-slot state (command buffer, fence, deletion list, GPU
+// gpu/frame.h: the frame loop's per-slot state (command buffer, fence, deletion list, GPU
 // timer) and the pass runner. Frame::run calls each pass's declare(), emits one pipeline barrier
 // for the hazards those declarations imply, then brackets the pass's record() with timestamps.
 #pragma once
 
-#include "renderer/pass.h"
-#include "renderer/vk/handle.h"
-#include "renderer/vk/resources.h"
-#include "renderer/vk/timestamps.h"
+#include "gpu/pass.h"
+#include "gpu/handle.h"
+#include "gpu/resources.h"
+#include "gpu/timestamps.h"
 
 #include <cstdint>
 #include <span>

@@ -1,11 +1,11 @@
-// renderer/vk/context.h: the Vulkan instance, the validation messenger (which counts messages),
+// gpu/context.h: the Vulkan instance, the validation messenger (which counts messages),
 // the chosen physical device with the features Wisp needs checked up front, the logical device
 // and its one graphics+compute queue. Also the factory for buffers and images, debug names and
 // one-off command submission. Everything else in renderer/ borrows a Context&.
 #pragma once
 
-#include "renderer/vk/handle.h"
-#include "renderer/vk/resources.h"
+#include "gpu/handle.h"
+#include "gpu/resources.h"
 
 #include <atomic>
 #include <cstdint>

@@ -1,8 +1,8 @@
-// physics/hair_asset.cpp: the hair file readers (TressFX 2 text, TressFX 3/4 binary, cyHair),
+// assets/hair_asset.cpp: the hair file readers (TressFX 2 text, TressFX 3/4 binary, cyHair),
 // each checking every size and count against the file length before it reads, plus strand
 // resampling, automatic placement and the inspect summary. Binary errors name the byte offset,
 // text errors the line.
-#include "physics/hair_asset.h"
+#include "assets/hair_asset.h"
 
 #include "core/error.h"
 

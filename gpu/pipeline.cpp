@@ -1,8 +1,8 @@
-// renderer/vk/pipeline.cpp: SPIR-V loading, pipeline layouts and graphics pipelines.
-#include "renderer/vk/pipeline.h"
+// gpu/pipeline.cpp: SPIR-V loading, pipeline layouts and graphics pipelines.
+#include "gpu/pipeline.h"
 
-#include "renderer/vk/check.h"
-#include "renderer/vk/context.h"
+#include "gpu/check.h"
+#include "gpu/context.h"
 
 #include <array>
 #include <fstream>

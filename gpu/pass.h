@@ -1,5 +1,5 @@
-// renderer/pass.h: what a pass is. Each pass declares the images and buffers it reads and writes
-// (with the kind of access) and records its commands; renderer/frame.cpp runs passes in order and
+// gpu/pass.h: what a pass is. Each pass declares the images and buffers it reads and writes
+// (with the kind of access) and records its commands; gpu/frame.cpp runs passes in order and
 // inserts the barriers that the declarations call for.
 #pragma once
 
