@@ -1,12 +1,11 @@
-// app/image_io.cpp: PNG writing through Debian's stb_image_write, made atomic with rename().
+// app/image_io.cpp: PNG writing through Debian's stb_image_write, made atomic by core/atomic_file.h.
 #include "app/image_io.h"
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 #include <stb_image_write.h>
 
-#include <cstdio>
-#include <string>
 #include <unistd.h>
 
 namespace wisp {
@@ -28,19 +27,10 @@ void checkPngOutput(const std::filesystem::path& path)
 void writePng(const std::filesystem::path& path, uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba)
 {
     checkPngOutput(path);
-    std::filesystem::path temp = path;
-    temp += ".partial-" + std::to_string(getpid());
     int stride = static_cast<int>(width * 4);
-    if (!stbi_write_png(temp.c_str(), static_cast<int>(width), static_cast<int>(height), 4, rgba.data(), stride)) {
-        std::remove(temp.c_str());
-        throw UserError("cannot write " + path.string() + " (disk full or not writable?)");
-    }
-    std::error_code ec;
-    std::filesystem::rename(temp, path, ec);
-    if (ec) {
-        std::remove(temp.c_str());
-        throw UserError("cannot write " + path.string() + ": " + ec.message());
-    }
+    writeAtomically(path, [&](const std::filesystem::path& temp) {
+        return stbi_write_png(temp.c_str(), static_cast<int>(width), static_cast<int>(height), 4, rgba.data(), stride) != 0;
+    });
 }
 
 }  // namespace wisp

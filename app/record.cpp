@@ -6,6 +6,7 @@
 
 #include "app/headless.h"
 #include "app/image_io.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "physics/gpu_solver.h"
 #include "gpu/frame.h"
@@ -75,21 +76,18 @@ void writeContactSheet(const std::filesystem::path& path, const std::vector<Pict
 
 void encodeVideo(const std::filesystem::path& dir, const std::filesystem::path& video, float fps)
 {
-    std::filesystem::path temp = video;
-    temp += ".partial-" + std::to_string(getpid()) + video.extension().string();
-    std::string command = "ffmpeg -nostdin -hide_banner -loglevel error -y -framerate " + std::to_string(fps) + " -i '" +
-                          (dir / "frame_%05d.png").string() +
-                          "' -vf 'scale=trunc(iw/2)*2:trunc(ih/2)*2' -c:v libx264 -pix_fmt yuv420p -movflags +faststart '" +
-                          temp.string() + "'";
-    int status = std::system(command.c_str());
-    if (status != 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-        std::error_code ec;
-        std::filesystem::remove(temp, ec);
-        throw UserError("--video " + video.string() + ": ffmpeg failed (exit status " +
-                        std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + "); the PNG frames are in " +
-                        dir.string());
-    }
-    std::filesystem::rename(temp, video);
+    writeAtomically(video, [&](const std::filesystem::path& temp) {
+        std::string command = "ffmpeg -nostdin -hide_banner -loglevel error -y -framerate " + std::to_string(fps) + " -i '" +
+                              (dir / "frame_%05d.png").string() +
+                              "' -vf 'scale=trunc(iw/2)*2:trunc(ih/2)*2' -c:v libx264 -pix_fmt yuv420p -movflags +faststart '" +
+                              temp.string() + "'";
+        int status = std::system(command.c_str());
+        if (status != 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+            throw UserError("--video " + video.string() + ": ffmpeg failed (exit status " +
+                            std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + "); the PNG frames are in " +
+                            dir.string());
+        return true;
+    });
 }
 
 // What is left after the device was lost with `written` frames done: complete PNGs (each written

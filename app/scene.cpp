@@ -4,6 +4,7 @@
 #include "app/scene.h"
 
 #include "app/settings_registry.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "physics/strands.h"
 
@@ -18,7 +19,6 @@
 #include <initializer_list>
 #include <iomanip>
 #include <sstream>
-#include <unistd.h>
 
 #ifndef WISP_SOURCE_DIR
 #error "WISP_SOURCE_DIR must name the source tree (the shared data folder is beside it)"
@@ -668,29 +668,11 @@ std::string sceneJson(const Scene& scene)
 
 void saveScene(const std::filesystem::path& path, const Scene& scene)
 {
-    std::string content = sceneJson(scene);
     std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
     std::error_code ec;
     if (!std::filesystem::is_directory(folder, ec))
         throw UserError(path.string() + ": folder '" + folder.string() + "' does not exist");
-    std::filesystem::path temp = path;
-    temp += ".partial-" + std::to_string(getpid());
-    {
-        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-        out << content;
-        out.flush();
-        if (!out) {
-            out.close();
-            std::filesystem::remove(temp, ec);
-            throw UserError(path.string() + ": cannot write the scene file");
-        }
-    }
-    std::filesystem::rename(temp, path, ec);
-    if (ec) {
-        std::error_code ignored;
-        std::filesystem::remove(temp, ignored);
-        throw UserError(path.string() + ": cannot write the scene file (" + ec.message() + ")");
-    }
+    writeFileAtomically(path, sceneJson(scene));
 }
 
 std::filesystem::path sharedDataFolder()

@@ -3,11 +3,11 @@
 #include "app/sweep.h"
 
 #include "app/headless.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "renderer/hair_pass.h"
 
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -99,15 +99,7 @@ int runSweep(const vk::Context& ctx, const SweepOptions& o, const HairOptions& b
 
     // results.csv appears whole or not at all.
     std::filesystem::path csvPath = o.outDir / "results.csv";
-    std::filesystem::path temp = csvPath;
-    temp += ".partial";
-    {
-        std::ofstream out(temp);
-        out << csv.str();
-        if (!out)
-            throw UserError("cannot write " + csvPath.string());
-    }
-    std::filesystem::rename(temp, csvPath);
+    writeFileAtomically(csvPath, csv.str());
     std::printf("%s\n", csvPath.string().c_str());
 
     // The chart script: beside the executable (a bundle), else in the source tree.

@@ -26,6 +26,8 @@
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image_write.h>
 
+#include "core/atomic_file.h"
+
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
@@ -43,6 +45,7 @@
 #include <vector>
 
 namespace fs = std::filesystem;
+using wisp::writeFileAtomically;
 using glm::dvec3;
 
 namespace {
@@ -602,31 +605,8 @@ ColliderFit fitColliders(const Mesh& mesh, const Scalp& scalp)
 }
 
 // ---------------------------------------------------------------------------------------------
-// Output: every file is written to a temporary name beside its target, then renamed over it.
-
-void writeFileAtomically(const fs::path& target, const std::string& bytes)
-{
-    fs::path temp = target;
-    temp += ".tmp";
-    {
-        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-        if (!out)
-            throw std::runtime_error("cannot write " + temp.string());
-        out.write(bytes.data(), std::streamsize(bytes.size()));
-        out.close();
-        if (!out) {
-            std::error_code ignored;
-            fs::remove(temp, ignored);
-            throw std::runtime_error("cannot write " + temp.string());
-        }
-    }
-    std::error_code ec;
-    fs::rename(temp, target, ec);
-    if (ec) {
-        fs::remove(temp, ec);
-        throw std::runtime_error("cannot rename onto " + target.string());
-    }
-}
+// Output: every file is written to a temporary name beside its target, then renamed over it
+// (core/atomic_file.h).
 
 void appendFixed(std::string& out, double x)
 {
