@@ -42,7 +42,7 @@ glm::vec3 direction(const std::vector<float>& v, const char* option)
     return glm::normalize(d);
 }
 
-CLI::Validator range(shading::ParamRange r)
+CLI::Validator range(Range r)
 {
     return CLI::Range(r.min, r.max);
 }

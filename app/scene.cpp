@@ -3,7 +3,6 @@
 // timeline.
 #include "app/scene.h"
 
-#include "app/settings_registry.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "physics/strands.h"
@@ -158,58 +157,29 @@ struct Reader {
     glm::vec4 sphere(const Json& v, const std::string& pointer) const
     {
         expect(v, pointer, v.is_array() && v.size() == 4, "an array of 4 numbers x, y, z, radius");
-        glm::vec3 c(real(v[0], pointerTo(pointer, 0), kScenePositionRange, "head units"),
-                    real(v[1], pointerTo(pointer, 1), kScenePositionRange, "head units"),
-                    real(v[2], pointerTo(pointer, 2), kScenePositionRange, "head units"));
-        return {c, real(v[3], pointerTo(pointer, 3), kSceneRadiusRange, "head units")};
+        glm::vec3 c(real(v[0], pointerTo(pointer, 0), kPositionRange, "head units"),
+                    real(v[1], pointerTo(pointer, 1), kPositionRange, "head units"),
+                    real(v[2], pointerTo(pointer, 2), kPositionRange, "head units"));
+        return {c, real(v[3], pointerTo(pointer, 3), kRadiusRange, "head units")};
+    }
+    // A value of the setting `name`, checked by the settings table (its range, its words).
+    SettingValue setting(const Json& v, const std::string& pointer, const char* name) const
+    {
+        return settingFromJson(settingSpec(name), v, file.string() + ": " + pointer);
+    }
+    float settingReal(const Json& v, const std::string& pointer, const char* name) const
+    {
+        return float(setting(v, pointer, name).number);
+    }
+    uint32_t settingWhole(const Json& v, const std::string& pointer, const char* name) const
+    {
+        return uint32_t(setting(v, pointer, name).number);
+    }
+    glm::vec3 settingVector(const Json& v, const std::string& pointer, const char* name) const
+    {
+        return glm::vec3(setting(v, pointer, name).vector);
     }
 };
-
-// A value of "settings" as the text `--set NAME=VALUE` takes.
-std::string settingText(const Reader& r, const Json& v, const std::string& pointer)
-{
-    if (v.is_string())
-        return v.get<std::string>();
-    if (v.is_boolean())
-        return v.get<bool>() ? "on" : "off";
-    if (v.is_number()) {
-        r.number(v, pointer, Range{-1e300, 1e300});  // finite
-        return v.dump();
-    }
-    if (v.is_array()) {  // R,G,B
-        std::string joined;
-        for (size_t i = 0; i < v.size(); ++i) {
-            r.expect(v[i], pointerTo(pointer, i), v[i].is_number(), "a number");
-            r.number(v[i], pointerTo(pointer, i), Range{-1e300, 1e300});
-            joined += (i ? "," : "") + v[i].dump();
-        }
-        return joined;
-    }
-    r.fail(pointer, "must be a number, a string, true or false, or an array of numbers, got " + typeName(v));
-}
-
-// Applies NAME=VALUE, naming the scene file and the setting's pointer when it is refused.
-void applySceneSetting(const std::filesystem::path& file, const SettingsRefs& refs, const std::string& name,
-                       const std::string& value)
-{
-    try {
-        applySetting(refs, name + "=" + value);
-    } catch (const UserError& e) {
-        std::string why = e.what();
-        std::string prefix = "--set " + name + "=" + value + ": ";
-        if (why.rfind(prefix, 0) == 0)
-            why = why.substr(prefix.size());
-        else if (why.rfind("--set " + name + ": ", 0) == 0)
-            why = why.substr(std::string("--set " + name + ": ").size());
-        if (why.rfind("unknown setting", 0) == 0) {
-            std::string names;
-            for (const SettingSpec& s : settingSpecs())
-                names += (names.empty() ? "" : ", ") + s.name;
-            why = "unknown setting (known: " + names + ")";
-        }
-        throw UserError(file.string() + ": " + pointerTo("/settings", name) + ": " + value + ": " + why);
-    }
-}
 
 void readHair(const Reader& r, const Json& v, SceneHair& hair)
 {
@@ -219,39 +189,42 @@ void readHair(const Reader& r, const Json& v, SceneHair& hair)
               "offset", "z_up", "mirror_z", "global_stiffness", "local_stiffness", "damping", "drag"});
     auto has = [&](const char* key) { return v.contains(key); };
     auto p = [&](const char* key) { return pointerTo(at, key); };
+    // The growth keys are the growth settings' ("vertices" is vertices_per_strand).
     if (has("guides"))
-        hair.guides = r.whole(v["guides"], p("guides"), kGuidesRange);
+        hair.guides = r.settingWhole(v["guides"], p("guides"), "guides");
     if (has("vertices"))
-        hair.vertices =
-            r.whole(v["vertices"], p("vertices"), Range{double(kMinVerticesPerStrand), double(kMaxVerticesPerStrand)});
+        hair.vertices = r.settingWhole(v["vertices"], p("vertices"), "vertices_per_strand");
     if (has("hair_length"))
-        hair.hairLength = r.real(v["hair_length"], p("hair_length"), kHairLengthRange, "m");
+        hair.hairLength = r.settingReal(v["hair_length"], p("hair_length"), "hair_length");
     if (has("length_variation"))
-        hair.lengthVariation = r.real(v["length_variation"], p("length_variation"), kLengthVariationRange);
+        hair.lengthVariation = r.settingReal(v["length_variation"], p("length_variation"), "length_variation");
     if (has("curl"))
-        hair.curl = r.real(v["curl"], p("curl"), kCurlRange, "m");
+        hair.curl = r.settingReal(v["curl"], p("curl"), "curl");
     if (has("poisson"))
         hair.poisson = r.boolean(v["poisson"], p("poisson"));
     if (has("seed"))
-        hair.seed = r.whole(v["seed"], p("seed"), Range{0.0, 4294967295.0});
+        hair.seed = r.settingWhole(v["seed"], p("seed"), "seed");
     if (has("scale"))
         hair.scale = r.real(v["scale"], p("scale"), kHairScaleRange);
     if (has("offset"))
-        hair.offset = r.vec3(v["offset"], p("offset"), kScenePositionRange, "head units");
+        hair.offset = r.vec3(v["offset"], p("offset"), kPositionRange, "head units");
     if (has("z_up"))
         hair.zUp = r.boolean(v["z_up"], p("z_up"));
     if (has("mirror_z"))
         hair.mirrorZ = r.boolean(v["mirror_z"], p("mirror_z"));
     auto partValues = [&](const Json& o, const std::string& where, std::optional<float>& global,
                           std::optional<float>& local, std::optional<float>& damping, std::optional<float>& drag) {
-        if (o.contains("global_stiffness"))
-            global = r.real(o["global_stiffness"], pointerTo(where, "global_stiffness"), kStiffnessRange);
-        if (o.contains("local_stiffness"))
-            local = r.real(o["local_stiffness"], pointerTo(where, "local_stiffness"), kStiffnessRange);
-        if (o.contains("damping"))
-            damping = r.real(o["damping"], pointerTo(where, "damping"), kStiffnessRange);
-        if (o.contains("drag"))
-            drag = r.real(o["drag"], pointerTo(where, "drag"), kDragRange, "1/s");
+        // Numbers only: "part" (each part's own) is what leaving the key out says.
+        auto value = [&](const char* key, std::optional<float>& out) {
+            if (!o.contains(key))
+                return;
+            r.expect(o[key], pointerTo(where, key), o[key].is_number(), "a number");
+            out = r.settingReal(o[key], pointerTo(where, key), key);
+        };
+        value("global_stiffness", global);
+        value("local_stiffness", local);
+        value("damping", damping);
+        value("drag", drag);
     };
     partValues(v, at, hair.globalStiffness, hair.localStiffness, hair.damping, hair.drag);
     if (has("files")) {
@@ -301,8 +274,8 @@ std::vector<Ellipsoid> readColliders(const Reader& r, const Json& v)
                 r.fail(pointerTo(where, required), "is missing");
         Ellipsoid e;
         e.name = c.contains("name") ? r.string(c["name"], pointerTo(where, "name")) : "collider" + std::to_string(i);
-        e.center = r.vec3(c["center"], pointerTo(where, "center"), kScenePositionRange, "head units");
-        e.radii = r.vec3(c["radii"], pointerTo(where, "radii"), kSceneRadiusRange, "head units");
+        e.center = r.vec3(c["center"], pointerTo(where, "center"), kPositionRange, "head units");
+        e.radii = r.vec3(c["radii"], pointerTo(where, "radii"), kRadiusRange, "head units");
         if (e.radii.x <= 0.0f || e.radii.y <= 0.0f || e.radii.z <= 0.0f)
             r.fail(pointerTo(where, "radii"), "must all be > 0");
         if (c.contains("rotation_deg"))
@@ -323,20 +296,20 @@ void readPhysics(const Reader& r, const Json& v, Scene& scene)
         if (v.contains(setting))
             r.fail(pointerTo(at, setting), "is a setting: put it under /settings");
     r.object(v, at, {"wind", "sphere", "repulsion", "grid_atomics"});
-    if (v.contains("wind"))
-        scene.wind = r.vec3(v["wind"], pointerTo(at, "wind"), kSceneWindRange, "m/s^2");
+    if (v.contains("wind")) {
+        r.expect(v["wind"], pointerTo(at, "wind"), v["wind"].is_array(), "an array of 3 numbers");
+        scene.wind = r.settingVector(v["wind"], pointerTo(at, "wind"), "wind");
+    }
     if (v.contains("sphere"))
         scene.sphere = r.sphere(v["sphere"], pointerTo(at, "sphere"));
-    if (v.contains("repulsion"))
-        scene.repulsion = r.real(v["repulsion"], pointerTo(at, "repulsion"), kRepulsionRange);
+    if (v.contains("repulsion")) {
+        r.expect(v["repulsion"], pointerTo(at, "repulsion"), v["repulsion"].is_number(), "a number");
+        scene.repulsion = r.settingReal(v["repulsion"], pointerTo(at, "repulsion"), "repulsion");
+    }
     if (v.contains("grid_atomics")) {
-        std::string a = r.string(v["grid_atomics"], pointerTo(at, "grid_atomics"));
-        if (a == "fixed")
-            scene.gridAtomics = SimSettings::GridAtomics::Fixed;
-        else if (a == "float")
-            scene.gridAtomics = SimSettings::GridAtomics::Float;
-        else
-            r.fail(pointerTo(at, "grid_atomics"), "'" + a + "' is not allowed: fixed | float");
+        r.expect(v["grid_atomics"], pointerTo(at, "grid_atomics"), v["grid_atomics"].is_string(), "a string");
+        scene.gridAtomics =
+            SimSettings::GridAtomics(int(r.setting(v["grid_atomics"], pointerTo(at, "grid_atomics"), "grid_atomics").number));
     }
 }
 
@@ -359,7 +332,7 @@ SceneKey readKey(const Reader& r, const Json& v, const std::string& at)
             k.cameraDistance = r.real(cam["distance"], pointerTo(c, "distance"), kSceneCameraDistanceRange,
                                       "times the default framing's");
         if (cam.contains("target"))
-            k.cameraTarget = r.vec3(cam["target"], pointerTo(c, "target"), kScenePositionRange, "head units");
+            k.cameraTarget = r.vec3(cam["target"], pointerTo(c, "target"), kPositionRange, "head units");
     }
     if (v.contains("sphere"))
         k.sphere = r.sphere(v["sphere"], pointerTo(at, "sphere"));
@@ -367,16 +340,21 @@ SceneKey readKey(const Reader& r, const Json& v, const std::string& at)
         std::string l = pointerTo(at, "light");
         const Json& light = v["light"];
         r.object(light, l, {"azimuth", "elevation", "intensity"});
-        if (light.contains("azimuth"))
-            k.lightAzimuthDeg = r.real(light["azimuth"], pointerTo(l, "azimuth"), kSceneLightAzimuthRange, "degrees");
-        if (light.contains("elevation"))
-            k.lightElevationDeg =
-                r.real(light["elevation"], pointerTo(l, "elevation"), kLightElevationRange, "degrees");
-        if (light.contains("intensity"))
-            k.lightIntensity = r.real(light["intensity"], pointerTo(l, "intensity"), kLightIntensityRange);
+        // The light's channels are its settings, each a number here.
+        auto channel = [&](const char* key, const char* setting, std::optional<float>& out) {
+            if (!light.contains(key))
+                return;
+            r.expect(light[key], pointerTo(l, key), light[key].is_number(), "a number");
+            out = r.settingReal(light[key], pointerTo(l, key), setting);
+        };
+        channel("azimuth", "light_azimuth", k.lightAzimuthDeg);
+        channel("elevation", "light_elevation", k.lightElevationDeg);
+        channel("intensity", "light_intensity", k.lightIntensity);
     }
-    if (v.contains("wind"))
-        k.wind = r.vec3(v["wind"], pointerTo(at, "wind"), kSceneWindRange, "m/s^2");
+    if (v.contains("wind")) {
+        r.expect(v["wind"], pointerTo(at, "wind"), v["wind"].is_array(), "an array of 3 numbers");
+        k.wind = r.settingVector(v["wind"], pointerTo(at, "wind"), "wind");
+    }
     if (v.contains("head_yaw"))
         k.headYawDeg = r.real(v["head_yaw"], pointerTo(at, "head_yaw"), kSceneHeadYawRange, "degrees");
     return k;
@@ -412,17 +390,6 @@ Json vecJson(const float* v, size_t n)
     for (size_t i = 0; i < n; ++i)
         a.push_back(num(v[i]));
     return a;
-}
-
-// A setting's text as JSON: a number when it reads back as the same text, else the string.
-Json settingJson(const std::string& value)
-{
-    if (value == "on" || value == "off")
-        return value == "on";
-    Json parsed = Json::parse(value, nullptr, false);
-    if (!parsed.is_discarded() && parsed.is_number() && parsed.dump() == value)
-        return parsed;
-    return value;
 }
 
 }  // namespace
@@ -500,14 +467,13 @@ Scene parseScene(const std::string& content, const std::filesystem::path& path)
     if (doc.contains("settings")) {
         const Json& settings = doc["settings"];
         r.expect(settings, "/settings", settings.is_object(), "an object of settings from 'wisp settings'");
-        // Checked here, against default structs, so a bad value fails before anything runs.
-        GrowthSettings growth;
-        SimSettings sim;
-        RenderSettings render;
-        for (const auto& [name, value] : settings.items()) {
-            std::string v = settingText(r, value, pointerTo("/settings", name));
-            applySceneSetting(path, {&growth, &sim, &render}, name, v);
-            scene.settings.emplace_back(name, v);
+        // Checked here, so a bad value fails before anything runs.
+        for (const auto& item : settings.items()) {
+            std::string pointer = pointerTo("/settings", item.key());
+            const SettingSpec* spec = findSetting(item.key());
+            if (!spec)
+                r.fail(pointer, "unknown setting (known: " + settingNames() + ")");
+            scene.settings.emplace_back(spec->name, settingText(*spec, r.setting(item.value(), pointer, spec->name.c_str())));
         }
     }
     if (doc.contains("interpolation")) {
@@ -622,8 +588,10 @@ std::string sceneJson(const Scene& scene)
         doc["physics"] = physics;
     if (!scene.settings.empty()) {
         Json settings = Json::object();
-        for (const auto& [name, value] : scene.settings)
-            settings[name] = settingJson(value);
+        for (const auto& [name, value] : scene.settings) {
+            const SettingSpec& spec = settingSpec(name);
+            settings[name] = settingJson(spec, parseSetting(spec, value, "/settings/" + name));
+        }
         doc["settings"] = settings;
     }
     doc["interpolation"] = scene.interpolation == SceneInterpolation::Linear ? "linear" : "smooth";
@@ -718,32 +686,36 @@ std::string scenePathText(const std::filesystem::path& sceneFile, const std::fil
     return relative.empty() ? absolute.generic_string() : relative.generic_string();
 }
 
-void applyScene(const Scene& scene, const std::filesystem::path& sceneFile, const SceneTargets& t)
+void applyScene(const Scene& scene, const std::filesystem::path& sceneFile, Settings& settings, HairSource& source)
 {
-    HairOptions& hair = *t.hair;
-    if (!scene.head.empty() && t.headFile)
-        *t.headFile = resolveScenePath(sceneFile, scene.head, "/head").string();
+    if (!scene.head.empty())
+        source.headFile = resolveScenePath(sceneFile, scene.head, "/head");
     const SceneHair& h = scene.hair;
+    auto set = [&](const char* name, const SettingValue& v, const std::string& pointer) {
+        setSetting(settings, settingSpec(name), v, sceneFile.string() + ": " + pointer);
+    };
+    auto number = [](double v) { return SettingValue{.number = v}; };
+    auto optionalNumber = [&](const char* name, const std::optional<float>& v, const std::string& pointer) {
+        if (v)
+            set(name, number(double(*v)), pointer);
+    };
     if (h.guides)
-        hair.growth.guides = *h.guides;
+        set("guides", number(*h.guides), "/hair/guides");
     if (h.vertices)
-        hair.growth.verticesPerStrand = *h.vertices;
-    if (h.hairLength)
-        hair.growth.lengthMetres = *h.hairLength;
-    if (h.lengthVariation)
-        hair.growth.lengthVariation = *h.lengthVariation;
-    if (h.curl)
-        hair.growth.curlRadiusMetres = *h.curl;
+        set("vertices_per_strand", number(*h.vertices), "/hair/vertices");
+    optionalNumber("hair_length", h.hairLength, "/hair/hair_length");
+    optionalNumber("length_variation", h.lengthVariation, "/hair/length_variation");
+    optionalNumber("curl", h.curl, "/hair/curl");
     if (h.poisson)
-        hair.growth.poissonDisk = *h.poisson;
+        set("poisson", number(*h.poisson ? 1.0 : 0.0), "/hair/poisson");
     if (h.seed)
-        hair.growth.seed = *h.seed;
-    hair.hairFiles.clear();
-    hair.scenePartOverrides.clear();
+        set("seed", number(*h.seed), "/hair/seed");
+    source.hairFiles.clear();
+    source.scenePartOverrides.clear();
     for (size_t i = 0; i < h.files.size(); ++i) {
         const SceneHairFile& f = h.files[i];
         std::string pointer = "/hair/files/" + std::to_string(i);
-        hair.hairFiles.push_back(resolveScenePath(sceneFile, f.path, pointer).string());
+        source.hairFiles.push_back(resolveScenePath(sceneFile, f.path, pointer).string());
         std::string values;
         auto add = [&](const char* key, const std::optional<float>& v) {
             if (v)
@@ -754,47 +726,34 @@ void applyScene(const Scene& scene, const std::filesystem::path& sceneFile, cons
         add("damping", f.damping);
         add("drag", f.drag);
         if (!values.empty())
-            hair.scenePartOverrides.push_back(std::to_string(i) + ":" + values);
+            source.scenePartOverrides.push_back(std::to_string(i) + ":" + values);
     }
     if (h.scale)
-        hair.hairScale = *h.scale;
+        source.hairScale = *h.scale;
     if (h.offset)
-        hair.hairOffset = {h.offset->x, h.offset->y, h.offset->z};
+        source.hairOffset = *h.offset;
     if (h.zUp)
-        hair.zUp = h.zUp;
+        source.zUp = h.zUp;
     if (h.mirrorZ)
-        hair.mirrorZ = h.mirrorZ;
-    if (h.globalStiffness)
-        hair.globalStiffness = h.globalStiffness;
-    if (h.localStiffness)
-        hair.localStiffness = h.localStiffness;
-    if (h.damping)
-        hair.damping = h.damping;
-    if (h.drag)
-        hair.drag = h.drag;
+        source.mirrorZ = h.mirrorZ;
+    optionalNumber("global_stiffness", h.globalStiffness, "/hair/global_stiffness");
+    optionalNumber("local_stiffness", h.localStiffness, "/hair/local_stiffness");
+    optionalNumber("damping", h.damping, "/hair/damping");
+    optionalNumber("drag", h.drag, "/hair/drag");
     if (scene.colliders)
-        hair.colliders = scene.colliders;
+        source.colliders = scene.colliders;
     if (scene.wind)
-        hair.wind = {scene.wind->x, scene.wind->y, scene.wind->z};
+        set("wind", SettingValue{.vector = glm::dvec3(*scene.wind)}, "/physics/wind");
     if (scene.sphere && scene.sphere->w > 0.0f)
-        hair.sphere = {scene.sphere->x, scene.sphere->y, scene.sphere->z, scene.sphere->w};
-    if (scene.repulsion)
-        hair.sim.gridRepulsion = *scene.repulsion;
+        source.sphere = *scene.sphere;
+    optionalNumber("repulsion", scene.repulsion, "/physics/repulsion");
     if (scene.gridAtomics)
-        hair.sim.gridAtomics = *scene.gridAtomics;
-    for (const auto& [name, value] : scene.settings)
-        applySceneSetting(sceneFile, {&hair.growth, &hair.sim, t.render}, name, value);
-}
-
-std::vector<std::pair<std::string, std::string>> currentSettings(const SettingsRefs& refs)
-{
-    std::vector<std::pair<std::string, std::string>> out;
-    for (const SettingSpec& spec : settingSpecs()) {
-        std::string value = spec.get(refs);
-        if (value != "-")
-            out.emplace_back(spec.name, value);
+        set("grid_atomics", number(double(int(*scene.gridAtomics))), "/physics/grid_atomics");
+    for (const auto& [name, value] : scene.settings) {
+        std::string where = sceneFile.string() + ": " + pointerTo("/settings", name);
+        const SettingSpec& spec = settingSpec(name, where);
+        setSetting(settings, spec, parseSetting(spec, value, where), where);
     }
-    return out;
 }
 
 OrbitCamera poseCamera(const OrbitCamera& framing, const CameraPose& pose)

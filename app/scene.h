@@ -6,8 +6,8 @@
 // `view` take `--scene`.
 #pragma once
 
-#include "app/hair_options.h"
-#include "app/settings_registry.h"
+#include "app/hair_source.h"
+#include "app/settings_table.h"
 #include "assets/head.h"
 #include "renderer/camera.h"
 #include "renderer/settings.h"
@@ -22,16 +22,13 @@
 
 namespace wisp {
 
-// Allowed values of the animated channels (the light's elevation and intensity use
-// kLightElevationRange and kLightIntensityRange from renderer/settings.h).
+// Allowed values of the channels that are not settings (the light's and the wind's are the
+// settings table's light_azimuth, light_elevation, light_intensity and wind; positions and radii
+// are kPositionRange and kRadiusRange of app/hair_source.h).
 inline constexpr Range kSceneTimeRange{0.0, 3600.0};            // seconds
 inline constexpr Range kSceneCameraYawRange{-3600.0, 3600.0};   // degrees (no wrapping: 0 -> 360 is one turn)
 inline constexpr Range kSceneCameraPitchRange{-85.0, 85.0};     // degrees, OrbitCamera's limits
 inline constexpr Range kSceneCameraDistanceRange{0.1, 10.0};    // times the default framing's distance
-inline constexpr Range kScenePositionRange{-1e4, 1e4};          // head units, every coordinate
-inline constexpr Range kSceneRadiusRange{0.0, 1e4};             // head units; 0: no sphere
-inline constexpr Range kSceneWindRange{-100.0, 100.0};          // m/s², every component
-inline constexpr Range kSceneLightAzimuthRange{-360.0, 360.0};  // degrees, as --light-azimuth
 inline constexpr Range kSceneHeadYawRange{-80.0, 80.0};         // degrees, as far as the window turns it
 
 // How a channel moves between two keys that set it: straight (linear) or easing out of one key
@@ -80,13 +77,14 @@ struct Scene {
     std::string head;  // as written; empty: the default head
     SceneHair hair;
     std::optional<std::vector<Ellipsoid>> colliders;  // head space; absent: the head's (or fitted)
-    // Physics options the settings table does not hold. wind and sphere are the values while no
-    // key sets those channels (as --wind and --sphere).
+    // "physics": the sphere, and three settings written here by older scenes (as "settings" would
+    // hold them). wind and sphere are the values while no key sets those channels (as --wind and
+    // --sphere).
     std::optional<glm::vec3> wind;    // m/s²
     std::optional<glm::vec4> sphere;  // head units
     std::optional<float> repulsion;
     std::optional<SimSettings::GridAtomics> gridAtomics;
-    // NAME=VALUE pairs for applySetting, in the file's order (a later one wins).
+    // Settings as NAME=VALUE (the text --set takes), in the file's order (a later one wins).
     std::vector<std::pair<std::string, std::string>> settings;
     SceneInterpolation interpolation = SceneInterpolation::Smooth;
     std::optional<double> duration;  // seconds; absent: the last key's time
@@ -121,17 +119,9 @@ std::filesystem::path resolveScenePath(const std::filesystem::path& sceneFile, c
 // folder, else relative to the scene's folder (absolute when on another root).
 std::string scenePathText(const std::filesystem::path& sceneFile, const std::filesystem::path& file);
 
-// Everything the command line holds that a scene sets: applyScene() writes the scene's values
-// into these (before the command line's own options are applied over them).
-struct SceneTargets {
-    HairOptions* hair = nullptr;
-    RenderSettings* render = nullptr;  // may be null
-    std::string* headFile = nullptr;
-};
-void applyScene(const Scene& scene, const std::filesystem::path& sceneFile, const SceneTargets& targets);
-// The scene's settings as NAME=VALUE for applySetting, or every current setting of `refs` (for
-// saving what the window shows).
-std::vector<std::pair<std::string, std::string>> currentSettings(const SettingsRefs& refs);
+// Writes the scene's values into the settings and the hair's source (before the command line's own
+// options are applied over them); files it names are resolved against `sceneFile`.
+void applyScene(const Scene& scene, const std::filesystem::path& sceneFile, Settings& settings, HairSource& source);
 
 // A camera relative to the default framing (absent values: the framing's).
 struct CameraPose {

@@ -145,7 +145,8 @@ int runSimulate(const SimulateOptions& o, const HairScene& scene)
                               {"substeps", o.sim.substeps},
                               {"warmup_steps", o.warmup},
                               {"timed_steps", o.steps},
-                              {"device", ctx.report().name}};
+                              {"device", ctx.report().name},
+                              {"settings", settingsJson(o.settings)}};
         for (const DispatchTiming& t : timings)
             out["ms"][t.name] = {{"median", t.medianMs}, {"p95", t.p95Ms}};
         if (o.json) {
@@ -212,7 +213,8 @@ int runSimulate(const SimulateOptions& o, const HairScene& scene)
                           {"grid_resolution", o.sim.gridResolution},
                           {"colliders", scene.colliders.size()},
                           {"colliders_fitted", scene.collidersFitted},
-                          {"device", ctx.report().name}};
+                          {"device", ctx.report().name},
+                          {"settings", settingsJson(o.settings)}};
     if (o.json) {
         std::cout << out.dump() << "\n";
     } else {

@@ -4,6 +4,7 @@
 
 #include "app/headless.h"
 #include "app/scene.h"
+#include "app/settings_table.h"
 #include "physics/hair_scene.h"
 #include "physics/simulation.h"
 #include "gpu/context.h"
@@ -49,6 +50,7 @@ std::vector<DispatchTiming> profilePhysics(const vk::Context& ctx, const HairSce
 
 struct SimulateOptions {
     vk::ContextOptions context;
+    Settings settings;  // every setting, for the JSON output
     SimSettings sim;
     uint32_t steps = 1000;
     std::optional<glm::vec4> sphere;  // centre xyz and radius, asset units

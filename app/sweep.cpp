@@ -18,28 +18,25 @@
 
 namespace wisp {
 
-SweepAxis parseSweepAxis(const std::string& spec, const SettingsRefs& probe)
+SweepAxis parseSweepAxis(const std::string& spec, const Settings& base)
 {
     size_t eq = spec.find('=');
     if (eq == std::string::npos || eq == 0 || eq + 1 == spec.size())
         throw UserError("--vary " + spec + ": expected NAME=V1,V2,... (names from 'wisp settings')");
     SweepAxis axis{spec.substr(0, eq), {}};
+    const SettingSpec& setting = settingSpec(axis.name, "--vary " + spec);
     std::stringstream list(spec.substr(eq + 1));
     for (std::string value; std::getline(list, value, ',');) {
         if (value.empty())
             throw UserError("--vary " + spec + ": an empty value");
-        try {
-            applySetting(probe, axis.name + "=" + value);  // checks the name and the range now
-        } catch (const UserError& e) {
-            std::string why = e.what();
-            throw UserError("--vary " + spec + ": " + why.substr(why.find(':') + 2));
-        }
+        Settings probe = base;
+        setSetting(probe, setting, parseSetting(setting, value, "--vary " + spec), "--vary " + spec);  // checked now
         axis.values.push_back(value);
     }
     return axis;
 }
 
-int runSweep(const vk::Context& ctx, const SweepOptions& o, const HairOptions& baseHair, const RenderSettings& baseRender)
+int runSweep(const vk::Context& ctx, const SweepOptions& o, const SessionOptions& base)
 {
     std::error_code ec;
     std::filesystem::create_directories(o.outDir, ec);
@@ -60,23 +57,22 @@ int runSweep(const vk::Context& ctx, const SweepOptions& o, const HairOptions& b
     csv << "fps,strands,segments,oit_fragments,oit_overflow,width,height,device,driver\n";
 
     for (size_t index = 0; index < points; ++index) {
-        HairOptions hair = baseHair;
-        RenderSettings render = baseRender;
-        SettingsRefs refs{&hair.growth, &hair.sim, &render};
+        Settings settings = base.settings;
+        const RenderSettings& render = settings.render;
         std::vector<std::string> values;
         size_t rest = index;
         for (const SweepAxis& a : o.axes) {
             values.push_back(a.values[rest % a.values.size()]);
             rest /= a.values.size();
-            applySetting(refs, a.name + "=" + values.back());
+            applySetting(settings, a.name + "=" + values.back());
         }
         std::fprintf(stderr, "sweep: point %zu/%zu:", index + 1, points);
         for (size_t i = 0; i < o.axes.size(); ++i)
             std::fprintf(stderr, " %s=%s", o.axes[i].name.c_str(), values[i].c_str());
         std::fprintf(stderr, "\n");
 
-        HairScene scene = hair.buildScene(o.headFile);
-        HairRun run{.scene = &scene, .sim = hair.sim, .frames = 0, .framesPerSecond = 30.0f, .sphere = hair.sphereOrNone()};
+        HairScene scene = base.source.buildScene(settings);
+        HairRun run{.scene = &scene, .sim = settings.sim, .frames = 0, .framesPerSecond = 30.0f, .sphere = base.source.sphere};
         OitStats oit;
         std::vector<PassTiming> timings = profileFrames(ctx, scene.head, render, run, o.warmup, o.frames, &oit);
         HairDrawCounts counts = hairDrawCounts(uint32_t(scene.strands.strandCount()), render.strands);

@@ -2,8 +2,8 @@
 // `wisp settings`), written as results.csv and drawn as charts by scripts/plot_sweep.py.
 #pragma once
 
-#include "app/hair_options.h"
-#include "app/settings_registry.h"
+#include "app/session_options.h"
+#include "app/settings_table.h"
 #include "gpu/context.h"
 
 #include <filesystem>
@@ -17,18 +17,18 @@ struct SweepAxis {
     std::vector<std::string> values;
 };
 
-// Parses "NAME=V1,V2,..."; every value is checked against the setting's range up front.
-SweepAxis parseSweepAxis(const std::string& spec, const SettingsRefs& probe);
+// Parses "NAME=V1,V2,..."; every value is checked as --set checks it, on a copy of `base`.
+SweepAxis parseSweepAxis(const std::string& spec, const Settings& base);
 
 struct SweepOptions {
     std::filesystem::path outDir;
     std::vector<SweepAxis> axes;
     uint32_t warmup = 60;
     uint32_t frames = 300;
-    std::string headFile;
 };
 
-// Runs every point of the grid; `base` holds the settings every point starts from.
-int runSweep(const vk::Context& ctx, const SweepOptions& options, const HairOptions& baseHair, const RenderSettings& baseRender);
+// Runs every point of the grid; `base` holds the head, the hair and the settings every point
+// starts from.
+int runSweep(const vk::Context& ctx, const SweepOptions& options, const SessionOptions& base);
 
 }  // namespace wisp

@@ -2,7 +2,6 @@
 // the panel.
 #include "app/ui.h"
 
-#include "app/settings_registry.h"
 #include "core/error.h"
 #include "gpu/frame.h"
 #include "renderer/render_target.h"
@@ -137,9 +136,113 @@ bool UiOverlay::wantsKeyboard() const
     return ImGui::GetIO().WantCaptureKeyboard;
 }
 
-void UiOverlay::build(const PanelData& data,
-                      const std::function<std::string(const std::string&, const std::string&)>& apply,
-                      const std::function<std::string(const std::string&)>& value, bool visible)
+namespace {
+
+// One setting's control. Returns true with `value` changed when the edit is to be applied now:
+// live settings while a slider moves, the others (which rebuild the renderer or the solver) when
+// it is let go.
+bool settingControl(const SettingSpec& spec, SettingValue& value, std::map<std::string, SettingValue>& edits)
+{
+    PanelControl c = panelControl(spec);
+    const char* label = spec.name.c_str();
+    bool changed = false;
+    bool held = edits.count(spec.name) > 0;
+    if (held)
+        value = edits[spec.name];
+    ImGui::BeginDisabled(!c.enabled);
+    if (spec.optional()) {  // a box for "its own default" beside the value's control
+        bool own = !value.unset;
+        ImGui::PushID(label);
+        if (ImGui::Checkbox("##set", &own)) {
+            value.unset = !own;
+            changed = true;
+        }
+        ImGui::PopID();
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("off: %s", spec.unsetText.c_str());
+        ImGui::SameLine();
+    }
+    ImGui::BeginDisabled(value.unset);
+    ImGui::SetNextItemWidth(spec.type == SettingType::Vector || spec.type == SettingType::Color ? 200.0f : 150.0f);
+    ImGuiSliderFlags flags = (c.logarithmic ? ImGuiSliderFlags_Logarithmic : 0) | ImGuiSliderFlags_AlwaysClamp;
+    switch (c.kind) {
+    case PanelControl::Kind::Slider: {
+        float v = float(value.number);
+        if (ImGui::SliderFloat(label, &v, float(c.min), float(c.max), "%.4g", flags)) {
+            value.number = double(v);
+            changed = true;
+        }
+        break;
+    }
+    case PanelControl::Kind::IntegerSlider: {
+        // ImGui's sliders take ints: ranges past them (the seed) are clamped to what an int holds.
+        int lo = int(std::max(c.min, -2147483647.0)), hi = int(std::min(c.max, 2147483647.0));
+        int v = int(std::clamp(value.number, double(lo), double(hi)));
+        if (ImGui::SliderInt(label, &v, lo, hi, "%d", flags)) {
+            value.number = double(v);
+            changed = true;
+        }
+        break;
+    }
+    case PanelControl::Kind::Checkbox: {
+        bool v = value.number != 0.0;
+        if (ImGui::Checkbox(label, &v)) {
+            value.number = v ? 1.0 : 0.0;
+            changed = true;
+        }
+        break;
+    }
+    case PanelControl::Kind::Combo: {
+        int v = int(value.number);
+        std::string items;
+        for (const std::string& choice : spec.choices)
+            items += choice + '\0';
+        if (ImGui::Combo(label, &v, items.c_str())) {
+            value.number = double(v);
+            changed = true;
+        }
+        break;
+    }
+    case PanelControl::Kind::Color:
+    case PanelControl::Kind::Vector: {
+        float v[3] = {float(value.vector.x), float(value.vector.y), float(value.vector.z)};
+        bool edited = c.kind == PanelControl::Kind::Color
+                          ? ImGui::ColorEdit3(label, v, ImGuiColorEditFlags_Float)
+                          : ImGui::SliderFloat3(label, v, float(c.min), float(c.max), "%.3g", flags);
+        if (edited) {
+            value.vector = glm::dvec3(v[0], v[1], v[2]);
+            changed = true;
+        }
+        break;
+    }
+    }
+    bool active = ImGui::IsItemActive();
+    ImGui::EndDisabled();
+    ImGui::EndDisabled();
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+        std::string when = !c.enabled ? "needs a restart: --set " + spec.name + "=..."
+                           : spec.change == SettingChange::Live ? std::string("applies at once")
+                                                                : "applies when let go: rebuilds the " + std::string(changeName(spec.change));
+        ImGui::SetTooltip("%s\n%s\n%s", spec.help.c_str(), spec.allowed().c_str(), when.c_str());
+    }
+    if (spec.change == SettingChange::Live)
+        return changed;
+    // Settings that rebuild something wait for the control to be let go.
+    if (active) {
+        if (changed)
+            edits[spec.name] = value;
+        return false;
+    }
+    if (held) {
+        edits.erase(spec.name);
+        return true;
+    }
+    return changed;  // a click: a checkbox, a list
+}
+
+}  // namespace
+
+void UiOverlay::build(const PanelData& data, const Settings& shown, const ApplySetting& apply, bool visible)
 {
     ImGui_ImplVulkan_NewFrame();
     ImGui_ImplGlfw_NewFrame();
@@ -152,7 +255,7 @@ void UiOverlay::build(const PanelData& data,
         frameHistory_.pop_front();
     if (visible) {
         ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-        ImGui::SetNextWindowSize(ImVec2(380, 520), ImGuiCond_FirstUseEver);
+        ImGui::SetNextWindowSize(ImVec2(400, 520), ImGuiCond_FirstUseEver);
         ImGui::SetNextWindowBgAlpha(0.8f);
         ImGui::Begin("Wisp (H hides)");
         ImGui::TextWrapped("%s", data.status.c_str());
@@ -173,30 +276,22 @@ void UiOverlay::build(const PanelData& data,
                 ImGui::ProgressBar(total > 0.0 ? float(ms / total) : 0.0f, ImVec2(-1, 0), "");
             }
         }
-        if (ImGui::CollapsingHeader("Settings")) {
-            ImGui::TextWrapped("Every setting of 'wisp settings': Enter applies it, with the ranges of --set.");
-            for (const SettingSpec& spec : settingSpecs()) {
-                std::string& text = edits_[spec.name];
-                if (!editing_.count(spec.name))
-                    text = value(spec.name);
-                char buffer[128];
-                std::snprintf(buffer, sizeof(buffer), "%s", text.c_str());
-                ImGui::SetNextItemWidth(140.0f);
-                bool enter = ImGui::InputText(spec.name.c_str(), buffer, sizeof(buffer), ImGuiInputTextFlags_EnterReturnsTrue);
-                text = buffer;
-                if (ImGui::IsItemHovered())
-                    ImGui::SetTooltip("%s\n%s %s", spec.description.c_str(), spec.range.c_str(), spec.unit.c_str());
-                if (ImGui::IsItemActive())
-                    editing_.insert(spec.name);
-                else
-                    editing_.erase(spec.name);
-                if (enter) {
-                    errors_[spec.name] = apply(spec.name, text);
-                    editing_.erase(spec.name);
-                }
-                if (auto e = errors_.find(spec.name); e != errors_.end() && !e->second.empty())
-                    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", e->second.c_str());
+        // Every setting, section by section (the table's groups, in its order).
+        std::string section;
+        bool open = false;
+        for (const SettingSpec& spec : settingSpecs()) {
+            if (section != groupName(spec.group)) {
+                section = groupName(spec.group);
+                std::string title = "Settings: " + section;
+                open = ImGui::CollapsingHeader(title.c_str());
             }
+            if (!open)
+                continue;
+            SettingValue value = spec.get(shown);
+            if (settingControl(spec, value, edits_))
+                errors_[spec.name] = apply(spec, value);
+            if (auto e = errors_.find(spec.name); e != errors_.end() && !e->second.empty())
+                ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", e->second.c_str());
         }
         ImGui::End();
     }

@@ -3,11 +3,13 @@
 // pass: one render pass and framebuffer over the render target's resolved image), and is a Pass
 // that draws the panel last, over the scene. The panel shows the state, the help line, the counts
 // (guides, strands drawn, segments, OIT fragments and overflow), per-pass GPU times with a graph,
-// and edits every setting of `wisp settings` live through the same registry as --set.
+// and every setting of `wisp settings` as the control its type calls for (app/settings_table.h's
+// panelControl: sliders, checkboxes, lists, colours), section by section.
 #pragma once
 
-#include "gpu/pass.h"
+#include "app/settings_table.h"
 #include "gpu/handle.h"
+#include "gpu/pass.h"
 
 #include <deque>
 #include <functional>
@@ -44,10 +46,10 @@ public:
     // Draws into `target` (its resolved image); call again after the target is recreated (the
     // device idle).
     void setTarget(RenderTarget& target);
-    // Builds this frame's panel. `apply(name, value)` applies a setting and returns "" or the
-    // error to show under it; `value(name)` gives a setting's current value as text.
-    void build(const PanelData& data, const std::function<std::string(const std::string&, const std::string&)>& apply,
-               const std::function<std::string(const std::string&)>& value, bool visible);
+    // Builds this frame's panel over the settings as they are (`shown`). `apply(spec, value)`
+    // applies an edited setting and returns "" or the error to show under it.
+    using ApplySetting = std::function<std::string(const SettingSpec&, const SettingValue&)>;
+    void build(const PanelData& data, const Settings& shown, const ApplySetting& apply, bool visible);
     bool wantsMouse() const;
     bool wantsKeyboard() const;
 
@@ -62,9 +64,8 @@ private:
     vk::Framebuffer framebuffer_;
     vk::DescriptorPool pool_;
     std::deque<float> frameHistory_;  // GPU ms of recent frames, for the graph
-    std::map<std::string, std::string> edits_;   // the text being edited per setting
+    std::map<std::string, SettingValue> edits_;  // a control being dragged: its value until released
     std::map<std::string, std::string> errors_;  // the last error per setting
-    std::set<std::string> editing_;              // settings whose field has the keyboard
     bool drawn_ = false;                         // build() made draw data this frame
 };
 

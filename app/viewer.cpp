@@ -2,6 +2,7 @@
 #include "app/viewer.h"
 
 #include "app/scene.h"
+#include "app/settings_table.h"
 #include "core/error.h"
 
 
@@ -23,6 +24,13 @@ constexpr float kHeadTurnLimitDeg = 80.0f;
 constexpr float kHeadSpring = 5.0f;          // rad/s: the head's turn settles in about a second
 constexpr float kWindDefault = 4.0f;         // m/s²
 constexpr float kWindStep = 1.25f;
+
+// How high and low the light goes: the light_elevation setting's range.
+const Range& elevationRange()
+{
+    static const Range range = settingSpec("light_elevation").range;
+    return range;
+}
 
 // The camera's right, up and forward directions in world space.
 void cameraAxes(const OrbitCamera& camera, glm::vec3& right, glm::vec3& up, glm::vec3& forward)
@@ -146,7 +154,7 @@ void Viewer::update(float seconds)
     light_.azimuthDeg += (heldKey(ViewerKey::LightRight) - heldKey(ViewerKey::LightLeft)) * kLightDegreesPerSecond * seconds;
     light_.azimuthDeg = std::remainder(light_.azimuthDeg, 360.0f);
     light_.elevationDeg += (heldKey(ViewerKey::LightUp) - heldKey(ViewerKey::LightDown)) * kLightDegreesPerSecond * seconds;
-    light_.elevationDeg = std::clamp(light_.elevationDeg, float(kLightElevationRange.min), float(kLightElevationRange.max));
+    light_.elevationDeg = std::clamp(light_.elevationDeg, float(elevationRange().min), float(elevationRange().max));
 
     // The head turns toward its target like a critically damped spring: a smooth start and stop,
     // so the hair swings after it.
@@ -169,7 +177,7 @@ void Viewer::dragLight(float dx, float dy)
 {
     light_.azimuthDeg = std::remainder(light_.azimuthDeg + 0.4f * dx, 360.0f);
     light_.elevationDeg =
-        std::clamp(light_.elevationDeg - 0.4f * dy, float(kLightElevationRange.min), float(kLightElevationRange.max));
+        std::clamp(light_.elevationDeg - 0.4f * dy, float(elevationRange().min), float(elevationRange().max));
 }
 
 void Viewer::pose(const OrbitCamera& camera, const glm::vec4& sphere, const LightSettings& light, const glm::vec3& wind,
@@ -189,6 +197,15 @@ void Viewer::pose(const OrbitCamera& camera, const glm::vec4& sphere, const Ligh
     }
     headYaw_ = headYawTarget_ = headYawDeg;
     headYawRate_ = 0.0f;
+}
+
+void Viewer::setWind(const glm::vec3& wind)
+{
+    windOn_ = glm::length(wind) > 0.0f;
+    if (windOn_) {
+        windStrength_ = glm::length(wind);
+        windDirection_ = wind / windStrength_;
+    }
 }
 
 glm::vec4 Viewer::sphere() const

@@ -55,6 +55,9 @@ public:
     // Puts every animated thing where a scene's timeline has it (the head's turn at once).
     void pose(const OrbitCamera& camera, const glm::vec4& sphere, const LightSettings& light, const glm::vec3& wind,
               float headYawDeg);
+    // The light and the wind as the panel sets them.
+    void setLight(const LightSettings& light) { light_ = light; }
+    void setWind(const glm::vec3& wind);
     bool playing() const { return playing_; }
     void setPlaying(bool playing) { playing_ = playing; }
 

@@ -3,7 +3,7 @@
 #include "app/window.h"
 
 #include "app/image_io.h"
-#include "app/settings_registry.h"
+#include "app/settings_table.h"
 #include "app/ui.h"
 #include "app/viewer.h"
 #include "core/error.h"
@@ -20,7 +20,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
-#include <set>
+#include <optional>
 #include <cstdio>
 #include <cstdlib>
 
@@ -231,11 +231,11 @@ int runWindow(const WindowOptions& options)
     vk::Context ctx(contextOptions);
 
     glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
-    GLFWwindow* window = glfwCreateWindow(int(options.settings.width), int(options.settings.height),
+    GLFWwindow* window = glfwCreateWindow(int(options.settings.render.width), int(options.settings.render.height),
                                           ("Wisp - " + head.description.name).c_str(), nullptr, nullptr);
     if (!window)
-        throw UserError("cannot open a window of " + std::to_string(options.settings.width) + "x" +
-                        std::to_string(options.settings.height));
+        throw UserError("cannot open a window of " + std::to_string(options.settings.render.width) + "x" +
+                        std::to_string(options.settings.render.height));
     struct WindowGuard {
         GLFWwindow* w;
         ~WindowGuard() { glfwDestroyWindow(w); }
@@ -256,7 +256,7 @@ int runWindow(const WindowOptions& options)
     constexpr uint32_t kFramesInFlight = 2;
     int fbWidth = 0, fbHeight = 0;
     glfwGetFramebufferSize(window, &fbWidth, &fbHeight);
-    RenderSettings settings = options.settings;
+    RenderSettings settings = options.settings.render;
     settings.width = uint32_t(std::max(fbWidth, 1));
     settings.height = uint32_t(std::max(fbHeight, 1));
 
@@ -267,7 +267,7 @@ int runWindow(const WindowOptions& options)
     std::unique_ptr<GpuSolver> solver;
     SimSetup setup;
     if (options.scene->strands.strandCount() > 0) {
-        setup = makeSimSetup(options.sim, options.scene->strands, options.scene->gpuColliders, options.scene->unitsPerMetre);
+        setup = makeSimSetup(options.settings.sim, options.scene->strands, options.scene->gpuColliders, options.scene->unitsPerMetre);
         solver = std::make_unique<GpuSolver>(ctx, options.scene->strands, setup, glm::mat4(1.0f));
     }
     // The renderer is remade, pipelines and all, when the shaders are reloaded.
@@ -286,8 +286,8 @@ int runWindow(const WindowOptions& options)
     if (!options.script.empty())
         script = loadScript(options.script);
     constexpr uint32_t kMaxStepsPerFrame = 8;  // beyond this the simulation slows down instead of spiralling
-    const float stepSeconds = 1.0f / options.sim.stepHz;
-    const uint32_t scriptedStepsPerFrame = std::max(1u, uint32_t(std::lround(options.sim.stepHz / 60.0f)));
+    const float stepSeconds = 1.0f / options.settings.sim.stepHz;
+    const uint32_t scriptedStepsPerFrame = std::max(1u, uint32_t(std::lround(options.settings.sim.stepHz / 60.0f)));
     uint64_t stepsDone = 0;
     double pendingSeconds = 0.0;
     bool paused = false;
@@ -300,7 +300,7 @@ int runWindow(const WindowOptions& options)
         acquired.push_back(ctx.createSemaphore("window.acquired"));
 
     Viewer viewer(OrbitCamera::framing(renderer->sceneBounds(), float(settings.width) / float(settings.height)),
-                  renderer->sceneBounds(), options.sphere, settings.light, options.sim.wind);
+                  renderer->sceneBounds(), options.sphere, settings.light, options.settings.sim.wind);
     Input input{.viewer = &viewer};
     glfwSetWindowUserPointer(window, &input);
     glfwSetScrollCallback(window, [](GLFWwindow* w, double, double dy) {
@@ -320,7 +320,7 @@ int runWindow(const WindowOptions& options)
         else if (action == GLFW_RELEASE)
             in->viewer->release(key);
     });
-    glm::vec3 windApplied = options.sim.wind;
+    glm::vec3 windApplied = options.settings.sim.wind;
     std::string title;
     const OrbitCamera framing = OrbitCamera::framing(renderer->sceneBounds(), float(settings.width) / float(settings.height));
     SceneTimeline timeline = options.timeline;
@@ -331,11 +331,10 @@ int runWindow(const WindowOptions& options)
     UiOverlay ui(ctx, window, kFramesInFlight);
     ui.setTarget(renderer->target());
     input.ui = &ui;
-    SimSettings sim = options.sim;
+    SimSettings sim = options.settings.sim;
     // Settings edited in the panel: most apply in the next frame; a few rebuild what they size.
-    RenderSettings pendingRender;
-    SimSettings pendingSim;
-    enum class Change { None, Live, Renderer, Solver } change = Change::None;
+    Settings pending;
+    std::optional<SettingChange> change;
     auto rebuildRenderer = [&](const RenderSettings& s) {
         frame.waitIdle();
         present.reset();
@@ -424,36 +423,32 @@ int runWindow(const WindowOptions& options)
         }
         for (const vk::ScopeTime& t : frame.timings())
             panel.passes.emplace_back(t.name, t.milliseconds);
-        pendingRender = renderer->settings();
-        pendingSim = sim;
-        change = Change::None;
-        auto applyFromPanel = [&](const std::string& name, const std::string& text) -> std::string {
-            static const std::set<std::string> solverSettings = {"step_hz", "substeps", "friction", "grid"};
-            static const std::set<std::string> sizingSettings = {"shadow_size", "transparency", "oit_nodes_per_pixel", "samples"};
-            try {
-                applySetting({nullptr, &pendingSim, &pendingRender}, name + "=" + text);
-            } catch (const UserError& e) {
-                std::string why = e.what();
-                if (why.find("does not use it") != std::string::npos)
-                    return "the hair is grown at start: restart 'wisp view' with --set " + name + "=" + text;
-                return why;
-            }
-            Change c = solverSettings.count(name) ? Change::Solver : sizingSettings.count(name) ? Change::Renderer : Change::Live;
-            change = std::max(change, c);
-            return "";
+        // What the panel shows: the settings as they are now (the viewer's light and wind included).
+        pending = Settings{.growth = options.settings.growth, .sim = sim, .render = renderer->settings()};
+        pending.render.light = viewer.light();
+        pending.sim.wind = viewer.wind();
+        const Settings shown = pending;
+        change.reset();
+        auto applyFromPanel = [&](const SettingSpec& spec, const SettingValue& value) -> std::string {
+            SettingEdit edit = editSetting(pending, spec, value);
+            if (edit.error.empty())
+                change = std::max(change.value_or(SettingChange::Live), edit.change);
+            return edit.error;
         };
-        auto valueForPanel = [&](const std::string& name) -> std::string {
-            RenderSettings r = renderer->settings();
-            SimSettings m = sim;
-            for (const SettingSpec& spec : settingSpecs())
-                if (spec.name == name)
-                    return spec.get({nullptr, &m, &r});
-            return "";
-        };
-        ui.build(panel, applyFromPanel, valueForPanel, viewer.helpShown());
-        for (const std::string& assignment : scriptedSets) {  // as if typed into the panel
+        ui.build(panel, shown, applyFromPanel, viewer.helpShown());
+        for (const std::string& assignment : scriptedSets) {  // as if set in the panel
             size_t eq = assignment.find('=');
-            std::string error = applyFromPanel(assignment.substr(0, eq), assignment.substr(eq + 1));
+            std::string name = assignment.substr(0, eq);
+            std::string error;
+            if (const SettingSpec* spec = findSetting(name)) {
+                try {
+                    error = applyFromPanel(*spec, parseSetting(*spec, assignment.substr(eq + 1), name));
+                } catch (const UserError& e) {
+                    error = e.what();
+                }
+            } else {
+                error = "unknown setting '" + name + "' (see 'wisp settings')";
+            }
             if (!error.empty())
                 throw UserError("--script: " + assignment + ": " + error);
         }
@@ -463,23 +458,27 @@ int runWindow(const WindowOptions& options)
             std::filesystem::path out = std::filesystem::absolute(name);
             Scene saved;
             saved.description = "saved by wisp view";
-            if (!options.headFile.empty())
-                saved.head = scenePathText(out, std::filesystem::absolute(options.headFile));
-            const HairOptions& h = options.hair;
+            if (!options.source.headFile.empty())
+                saved.head = scenePathText(out, std::filesystem::absolute(options.source.headFile));
+            const HairSource& h = options.source;
+            const GrowthSettings& growth = options.settings.growth;
             if (h.hairFiles.empty()) {
-                saved.hair.guides = h.growth.guides;
-                saved.hair.vertices = h.growth.verticesPerStrand;
-                saved.hair.seed = h.growth.seed;
-                saved.hair.hairLength = h.growth.lengthMetres;
-                saved.hair.lengthVariation = h.growth.lengthVariation;
-                saved.hair.curl = h.growth.curlRadiusMetres;
-                saved.hair.poisson = h.growth.poissonDisk;
+                saved.hair.guides = growth.guides;
+                saved.hair.vertices = growth.verticesPerStrand;
+                saved.hair.seed = growth.seed;
+                saved.hair.hairLength = growth.lengthMetres;
+                saved.hair.lengthVariation = growth.lengthVariation;
+                saved.hair.curl = growth.curlRadiusMetres;
+                saved.hair.poisson = growth.poissonDisk;
             } else {
                 for (const std::string& f : h.hairFiles)
                     saved.hair.files.push_back({.path = scenePathText(out, std::filesystem::absolute(f))});
             }
-            RenderSettings current = renderer->settings();
-            saved.settings = currentSettings({nullptr, &sim, &current});
+            // Every setting but the growth ones, which the hair above holds.
+            Settings current{.growth = growth, .sim = sim, .render = renderer->settings()};
+            for (const auto& setting : currentSettings(current))
+                if (settingSpec(setting.first).change != SettingChange::Restart)
+                    saved.settings.push_back(setting);
             SceneState state{.camera = cameraPoseOf(framing, viewer.camera()),
                              .sphere = viewer.sphere(),
                              .light = viewer.light(),
@@ -495,10 +494,14 @@ int runWindow(const WindowOptions& options)
                 std::fprintf(stderr, "wisp: no scene saved yet (F2 saves one; 'wisp view --scene FILE' opens any)\n");
             } else {
                 Scene loaded = loadScene(lastSaved);
-                for (const auto& [name, value] : loaded.settings)
-                    if (std::string error = applyFromPanel(name, value); !error.empty())
+                for (const auto& [name, value] : loaded.settings) {
+                    const SettingSpec& spec = settingSpec(name);
+                    if (spec.change == SettingChange::Restart)
+                        continue;  // the hair stays
+                    if (std::string error = applyFromPanel(spec, parseSetting(spec, value, name)); !error.empty())
                         std::fprintf(stderr, "wisp: %s: %s=%s: %s\n", lastSaved.string().c_str(), name.c_str(), value.c_str(),
                                      error.c_str());
+                }
                 SceneState base{.camera = cameraPoseOf(framing, viewer.camera()),
                                 .sphere = viewer.sphere(),
                                 .light = viewer.light(),
@@ -510,18 +513,22 @@ int runWindow(const WindowOptions& options)
                 std::printf("wisp: loaded the scene %s (its head and hair are not reloaded)\n", lastSaved.string().c_str());
             }
         }
-        if (change == Change::Live) {
-            renderer->settings() = pendingRender;
-        } else if (change == Change::Renderer) {
-            rebuildRenderer(pendingRender);
-        } else if (change == Change::Solver && solver) {
+        if (change) {  // the light and the wind are the viewer's, which the frame below takes them from
+            viewer.setLight(pending.render.light);
+            viewer.setWind(pending.sim.wind);
+        }
+        if (change == SettingChange::Live) {
+            renderer->settings() = pending.render;
+        } else if (change == SettingChange::Renderer) {
+            rebuildRenderer(pending.render);
+        } else if (change == SettingChange::Solver && solver) {
             frame.waitIdle();
-            sim = pendingSim;
+            sim = pending.sim;
             setup = makeSimSetup(sim, options.scene->strands, options.scene->gpuColliders, options.scene->unitsPerMetre);
             rendererOwner.reset();  // it holds the old solver
             solver = std::make_unique<GpuSolver>(ctx, options.scene->strands, setup, viewer.headTransform());
             windApplied = sim.wind;
-            rebuildRenderer(pendingRender);
+            rebuildRenderer(pending.render);
         }
 
         std::vector<TrackedImage*> transient = renderer->transientImages();

@@ -6,8 +6,9 @@
 // it says so and points to `wisp render`.
 #pragma once
 
-#include "app/hair_options.h"
+#include "app/hair_source.h"
 #include "app/scene.h"
+#include "app/settings_table.h"
 #include "physics/hair_scene.h"
 #include "physics/simulation.h"
 #include "renderer/settings.h"
@@ -20,9 +21,8 @@ namespace wisp {
 
 struct WindowOptions {
     vk::ContextOptions context;
-    RenderSettings settings;
+    Settings settings;                 // every setting, edited live in the panel
     const HairScene* scene = nullptr;  // the head and its hair (no strands: the head alone)
-    SimSettings sim;
     glm::vec4 sphere{0.0f};            // the user's sphere (xyz, radius; 0 = none)
     uint32_t maxFrames = 0;  // 0 = until the window is closed
     std::string screenshot;  // PNG of the last frame, written on exit when set
@@ -32,8 +32,7 @@ struct WindowOptions {
     // is stopped), and what F2 saves the window's state with.
     SceneTimeline timeline;
     double sceneLength = 0.0;         // seconds; 0: nothing to play
-    std::filesystem::path headFile;   // the head as given (empty: the default)
-    HairOptions hair;                 // the hair as given
+    HairSource source;                // the head and hair as given (what F2 saves)
 };
 
 // Throws UserError, pointing to `wisp render`, when there is no display to open a window on.

@@ -5,7 +5,7 @@
 #include "fuzz_support.h"
 
 #include "app/scene.h"
-#include "app/settings_registry.h"
+#include "app/settings_table.h"
 #include "physics/strands.h"
 
 #include <cstddef>
@@ -17,6 +17,12 @@ namespace {
 
 using wisp::Range;
 using wisp::fuzz::broken;
+
+// The range of a setting in the settings table.
+const Range& range(const char* setting)
+{
+    return wisp::settingSpec(setting).range;
+}
 
 // A value read from a checked double: finite and within `r` (a float's bounds rounded to float,
 // as the value itself was).
@@ -51,33 +57,32 @@ void inRange(const std::optional<T>& v, const Range& r, const std::string& what)
 
 void checkSphere(const glm::vec4& s, const std::string& what)
 {
-    inRange(glm::vec3(s), wisp::kScenePositionRange, what + ".xyz");
-    inRange(s.w, wisp::kSceneRadiusRange, what + ".radius");
+    inRange(glm::vec3(s), wisp::kPositionRange, what + ".xyz");
+    inRange(s.w, wisp::kRadiusRange, what + ".radius");
 }
 
 void checkHair(const wisp::SceneHair& h)
 {
-    inRange(h.guides, wisp::kGuidesRange, "hair.guides");
-    inRange(h.vertices, Range{double(wisp::kMinVerticesPerStrand), double(wisp::kMaxVerticesPerStrand)},
-            "hair.vertices");
-    inRange(h.hairLength, wisp::kHairLengthRange, "hair.hair_length");
-    inRange(h.lengthVariation, wisp::kLengthVariationRange, "hair.length_variation");
-    inRange(h.curl, wisp::kCurlRange, "hair.curl");
+    inRange(h.guides, range("guides"), "hair.guides");
+    inRange(h.vertices, range("vertices_per_strand"), "hair.vertices");
+    inRange(h.hairLength, range("hair_length"), "hair.hair_length");
+    inRange(h.lengthVariation, range("length_variation"), "hair.length_variation");
+    inRange(h.curl, range("curl"), "hair.curl");
     inRange(h.scale, wisp::kHairScaleRange, "hair.scale");
-    inRange(h.offset, wisp::kScenePositionRange, "hair.offset");
-    inRange(h.globalStiffness, wisp::kStiffnessRange, "hair.global_stiffness");
-    inRange(h.localStiffness, wisp::kStiffnessRange, "hair.local_stiffness");
-    inRange(h.damping, wisp::kStiffnessRange, "hair.damping");
-    inRange(h.drag, wisp::kDragRange, "hair.drag");
+    inRange(h.offset, wisp::kPositionRange, "hair.offset");
+    inRange(h.globalStiffness, range("global_stiffness"), "hair.global_stiffness");
+    inRange(h.localStiffness, range("global_stiffness"), "hair.local_stiffness");
+    inRange(h.damping, range("global_stiffness"), "hair.damping");
+    inRange(h.drag, range("drag"), "hair.drag");
     if (h.files.size() > gpu::kSimMaxParts)
         broken(std::to_string(h.files.size()) + " hair files");
     for (const wisp::SceneHairFile& f : h.files) {
         if (f.path.empty())
             broken("an empty hair file name");
-        inRange(f.globalStiffness, wisp::kStiffnessRange, "hair file global_stiffness");
-        inRange(f.localStiffness, wisp::kStiffnessRange, "hair file local_stiffness");
-        inRange(f.damping, wisp::kStiffnessRange, "hair file damping");
-        inRange(f.drag, wisp::kDragRange, "hair file drag");
+        inRange(f.globalStiffness, range("global_stiffness"), "hair file global_stiffness");
+        inRange(f.localStiffness, range("global_stiffness"), "hair file local_stiffness");
+        inRange(f.damping, range("global_stiffness"), "hair file damping");
+        inRange(f.drag, range("drag"), "hair file drag");
     }
     bool grown = h.guides || h.hairLength || h.lengthVariation || h.curl || h.poisson || h.seed;
     bool placed = h.scale || h.offset || h.zUp || h.mirrorZ;
@@ -93,13 +98,13 @@ void checkKey(const wisp::SceneKey& k, const std::string& at)
     inRange(k.cameraYawDeg, wisp::kSceneCameraYawRange, at + ".camera.yaw");
     inRange(k.cameraPitchDeg, wisp::kSceneCameraPitchRange, at + ".camera.pitch");
     inRange(k.cameraDistance, wisp::kSceneCameraDistanceRange, at + ".camera.distance");
-    inRange(k.cameraTarget, wisp::kScenePositionRange, at + ".camera.target");
+    inRange(k.cameraTarget, wisp::kPositionRange, at + ".camera.target");
     if (k.sphere)
         checkSphere(*k.sphere, at + ".sphere");
-    inRange(k.lightAzimuthDeg, wisp::kSceneLightAzimuthRange, at + ".light.azimuth");
-    inRange(k.lightElevationDeg, wisp::kLightElevationRange, at + ".light.elevation");
-    inRange(k.lightIntensity, wisp::kLightIntensityRange, at + ".light.intensity");
-    inRange(k.wind, wisp::kSceneWindRange, at + ".wind");
+    inRange(k.lightAzimuthDeg, range("light_azimuth"), at + ".light.azimuth");
+    inRange(k.lightElevationDeg, range("light_elevation"), at + ".light.elevation");
+    inRange(k.lightIntensity, range("light_intensity"), at + ".light.intensity");
+    inRange(k.wind, range("wind"), at + ".wind");
     inRange(k.headYawDeg, wisp::kSceneHeadYawRange, at + ".head_yaw");
 }
 
@@ -123,17 +128,17 @@ void checkScene(const wisp::Scene& s)
         if (s.colliders->empty())
             broken("an empty collider list");
         for (const wisp::Ellipsoid& e : *s.colliders) {
-            inRange(e.center, wisp::kScenePositionRange, "collider center");
-            inRange(e.radii, wisp::kSceneRadiusRange, "collider radii");
+            inRange(e.center, wisp::kPositionRange, "collider center");
+            inRange(e.radii, wisp::kRadiusRange, "collider radii");
             if (!(e.radii.x > 0.0f && e.radii.y > 0.0f && e.radii.z > 0.0f))
                 broken("a collider radius is not > 0");
             inRange(e.rotationDeg, Range{-360.0, 360.0}, "collider rotation");
         }
     }
-    inRange(s.wind, wisp::kSceneWindRange, "physics.wind");
+    inRange(s.wind, range("wind"), "physics.wind");
     if (s.sphere)
         checkSphere(*s.sphere, "physics.sphere");
-    inRange(s.repulsion, wisp::kRepulsionRange, "physics.repulsion");
+    inRange(s.repulsion, range("repulsion"), "physics.repulsion");
     inRange(s.duration, wisp::kSceneTimeRange, "duration");
     for (size_t i = 0; i < s.keys.size(); ++i) {
         checkKey(s.keys[i], "keys[" + std::to_string(i) + "]");
@@ -154,11 +159,9 @@ void checkScene(const wisp::Scene& s)
 
     // What the parser accepted, the settings table and the saved file accept as well.
     try {
-        wisp::GrowthSettings growth;
-        wisp::SimSettings sim;
-        wisp::RenderSettings render;
+        wisp::Settings settings;
         for (const auto& [name, value] : s.settings)
-            wisp::applySetting({&growth, &sim, &render}, name + "=" + value);
+            wisp::applySetting(settings, name + "=" + value);
         if (!(wisp::parseScene(wisp::sceneJson(s), "saved.json") == s))
             broken("the scene saved and read back differs");
     } catch (const wisp::UserError& e) {

@@ -1,29 +1,31 @@
-// physics/simulation.h: what a simulation run is configured with (human-facing settings with
-// units and ranges), how it packs into the GPU's SimParams and per-step SimStep, the state both
-// solvers advance, and the quality metrics `wisp simulate` reports.
+// physics/simulation.h: what a simulation run is configured with (the settings, with units and
+// defaults; their ranges are the settings table's, app/settings_table.cpp), how it packs into the
+// GPU's SimParams and per-step SimStep, the state both solvers advance, and the quality metrics
+// `wisp simulate` reports.
 #pragma once
 
 #include "physics/strands.h"
 #include "shaders/shared/sim.h"
 
+#include <optional>
 #include <vector>
 
 namespace wisp {
 
-// Wind beyond this (m/s², per component; gravity is 9.81) is refused rather than simulated.
-inline constexpr float kMaxWind = 1000.0f;
-
 struct SimSettings {
-    float stepHz = 120.0f;                  // fixed steps per simulated second, 30 .. 1000
-    uint32_t substeps = 2;                  // integrate/FTL substeps per step, 1 .. 16
+    float stepHz = 120.0f;                  // fixed steps per simulated second
+    uint32_t substeps = 2;                  // integrate/FTL substeps per step
     float gravity = 9.81f;                  // m/s², downward (scaled to the head's units)
     glm::vec3 wind{0.0f};                   // m/s² (scaled to the head's units)
     float windFrequency = 0.35f;            // Hz of gusts
-    uint32_t gridResolution = 32;           // hair-hair grid nodes per axis, 8 .. 256
-    float gridFriction = 0.05f;             // Petrovic blend, 0 .. 1
-    float gridRepulsion = 0.0f;             // volume-keeping push, 0 .. 1
-    float penaltyStiffness = 4000.0f;       // 1/s², 0 .. 100000
+    uint32_t gridResolution = 32;           // hair-hair grid nodes per axis
+    float gridFriction = 0.05f;             // Petrovic blend toward the grid velocity
+    float gridRepulsion = 0.0f;             // volume-keeping push along the density gradient
+    float penaltyStiffness = 4000.0f;       // 1/s²
     float collisionMarginMetres = 0.003f;   // colliders act this far outside their surface
+    // Every part's parameters when set, over each part's own (PartSettings: grown hair's, or a
+    // loaded groom's styled defaults); a part's own override (--part) still wins.
+    std::optional<float> globalStiffness, localStiffness, ftlDamping, drag;
     // The hair-hair grid's sums: 64-bit fixed point (deterministic: the same run gives the same
     // bits) or float atomics (order-dependent in the last bits). Each falls back to the other on a
     // device that lacks it.

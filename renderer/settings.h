@@ -1,6 +1,6 @@
-// renderer/settings.h: human-facing render settings with units, defaults and ranges as named
-// constants; the CLI validates against the same constants, and pack() in renderer.cpp turns them
-// into the GPU's FrameParams.
+// renderer/settings.h: the render settings as plain structs with units and defaults; their names,
+// ranges and help for people are the settings table's (app/settings_table.cpp), and pack() in
+// renderer.cpp turns them into the GPU's FrameParams.
 #pragma once
 
 #include "core/range.h"
@@ -14,9 +14,7 @@
 
 namespace wisp {
 
-inline constexpr Range kImageSizeRange{16, 8192};        // pixels per side
-inline constexpr Range kLightElevationRange{-89, 89};    // degrees above the horizon
-inline constexpr Range kLightIntensityRange{0, 20};      // radiance scale
+inline constexpr Range kImageSizeRange{16, 8192};        // pixels per side of the image (--width, --height)
 
 struct LightSettings {
     float azimuthDeg = 40.0f;    // around the up axis, 0 = in front of the face, + toward the head's left (+x)
@@ -28,13 +26,6 @@ struct LightSettings {
 };
 
 enum class Interpolation { Single, Multi, Mixed };
-
-inline constexpr Range kStrandsPerGuideRange{1, 4096};
-inline constexpr Range kDivisionsRange{1, 1024};
-inline constexpr Range kStrandWidthRange{0.00001, 0.01};   // metres
-inline constexpr Range kClumpRadiusRange{0.0, 0.1};        // metres
-inline constexpr Range kDeviationRange{0.0, 0.1};          // metres
-inline constexpr Range kPatchVerticesRange{2, 4160};        // 64 lines x 65 vertices at most
 
 // How the simulated guides become drawn strands (renderer/hair_pass.cpp, shaders/hair.*).
 struct StrandSettings {
@@ -48,20 +39,11 @@ struct StrandSettings {
     float lodMinFraction = 0.2f;                   // LOD never draws fewer than this share of strands
     float minPixelWidth = 1.0f;                    // narrower ribbons are widened, alpha = coverage
     bool showGuides = false;                       // also draw the guides as lines
-    bool reverseOrder = false;                     // draw the strands last to first (OIT order tests)
-    uint32_t maxPatchVertices = gpu::kMaxPatchVertices;  // vertices one patch may emit (shaders/shared/strands.h)
+    // Test knobs, not settings: draw the strands last to first (OIT order tests), and how many
+    // vertices one patch may emit (shaders/shared/strands.h; lavapipe needs <= ~128).
+    bool reverseOrder = false;
+    uint32_t maxPatchVertices = gpu::kMaxPatchVertices;
 };
-
-inline constexpr Range kShadowMapSizeRange{64, 8192};     // texels per side
-inline constexpr Range kPcfSamplesRange{1, 64};           // shared/shadows.h kMaxPcfSamples
-inline constexpr Range kPcfRadiusRange{0.0, 16.0};        // texels
-inline constexpr Range kDomLayersRange{0, 4};             // 0 = off; shared/shadows.h kMaxDomLayers
-inline constexpr Range kDomSpacingRange{0.0005, 0.2};     // metres
-inline constexpr Range kDomKappaRange{0.0, 20.0};
-inline constexpr Range kOpacityRange{0.01, 1.0};
-inline constexpr Range kShadowStrandsRange{0.01, 1.0};
-inline constexpr Range kOitKRange{1, 16};                 // shared/shadows.h kMaxOitK
-inline constexpr Range kOitNodesPerPixelRange{0, 256};   // 0 = automatic
 
 // The key light's shadows (renderer/light_maps.cpp, shaders/light_visibility.glsl).
 struct ShadowSettings {
@@ -77,7 +59,7 @@ struct ShadowSettings {
 
 enum class Transparency { Oit, Msaa };
 
-// How hair fragments become pixels (renderer/oit.cpp, shaders/oit_resolve.frag).
+// How hair fragments become pixels (renderer/oit.cpp, shaders/oit_resolve.comp).
 struct TransparencySettings {
     Transparency mode = Transparency::Oit;
     uint32_t oitK = 8;                // nearest fragments sorted per pixel; the rest blended unsorted

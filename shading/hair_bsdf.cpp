@@ -56,9 +56,10 @@ float colorPolynomial(float bn)
     return 5.969f - 0.215f * bn + 2.532f * b2 - 10.73f * b3 + 5.574f * b4 + 0.245f * b5;
 }
 
-void checkRange(const char* name, float value, ParamRange r)
+// Compared as floats: 0.01f is a little below the double 0.01, and must pass as the range's end.
+void checkRange(const char* name, float value, Range r)
 {
-    if (!(value >= r.min && value <= r.max)) {  // also rejects NaN
+    if (!(value >= float(r.min) && value <= float(r.max))) {  // also rejects NaN
         char buf[160];
         std::snprintf(buf, sizeof buf, "hair parameter %s = %g is outside [%g, %g]", name, double(value), double(r.min),
                       double(r.max));

@@ -9,6 +9,8 @@
 // sin(theta) = w.x, phi = atan2(w.z, w.y). Both directions point away from the shading point.
 #pragma once
 
+#include "core/range.h"
+
 #include <glm/glm.hpp>
 
 #include <array>
@@ -19,20 +21,17 @@ namespace wisp::shading {
 inline constexpr int kPMax = 3;  // lobes R, TT, TRT, then one residual lobe for p >= 3
 using Attenuations = std::array<glm::vec3, kPMax + 1>;
 
-struct ParamRange {
-    float min;
-    float max;
-};
 // What the parameters may be (anything else throws UserError naming the parameter and range).
 // beta_m and beta_n stop at 0.01: at 0 the longitudinal variance and the logistic scale are 0
 // and the lobes become Dirac deltas, which this (non-delta) BSDF cannot represent.
-inline constexpr ParamRange kHRange{-1.0f, 1.0f};
-inline constexpr ParamRange kEtaRange{1.0f, 4.0f};
-inline constexpr ParamRange kBetaRange{0.01f, 1.0f};
-inline constexpr ParamRange kAlphaDegRange{-10.0f, 10.0f};
-inline constexpr ParamRange kSigmaARange{0.0f, 1000.0f};  // per component, per unit fibre radius
-inline constexpr ParamRange kMelaninRange{0.0f, 50.0f};   // concentrations (pbrt: 1.3 brown, 8 black)
-inline constexpr ParamRange kColorRange{1e-4f, 1.0f};     // per component, for sigmaAFromColor
+// The look's settings (app/settings_table.cpp) take the same ranges.
+inline constexpr Range kHRange{-1.0, 1.0};
+inline constexpr Range kEtaRange{1.0, 4.0};
+inline constexpr Range kBetaRange{0.01, 1.0};
+inline constexpr Range kAlphaDegRange{-10.0, 10.0};
+inline constexpr Range kSigmaARange{0.0, 1000.0};  // per component, per unit fibre radius
+inline constexpr Range kMelaninRange{0.0, 50.0};   // concentrations (pbrt: 1.3 brown, 8 black)
+inline constexpr Range kColorRange{1e-4, 1.0};     // per component, for sigmaAFromColor
 
 // Chiang 2016 (after d'Eon et al. 2011): absorption per unit concentration of the two melanins.
 inline constexpr glm::vec3 kEumelaninSigmaA{0.419f, 0.697f, 1.37f};

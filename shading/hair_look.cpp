@@ -1,8 +1,6 @@
 // shading/hair_look.cpp: looks to parameters, and the presets.
 #include "shading/hair_look.h"
 
-#include <array>
-
 namespace wisp {
 
 shading::HairParams hairParams(const HairLook& look)
@@ -19,18 +17,7 @@ shading::HairParams hairParams(const HairLook& look)
 
 bool applyHairPreset(HairLook& look, const std::string& name)
 {
-    // Melanin concentrations in the range Chiang et al. 2016 show for these colours (their figure
-    // of eumelanin 0..8 and pheomelanin mixes), chosen by looking at Wisp's own renders.
-    struct Preset {
-        const char* name;
-        float eumelanin;
-        float pheomelanin;
-    };
-    constexpr std::array<Preset, 4> kPresets = {{{"black", 8.0f, 0.0f},
-                                                 {"brown", 1.3f, 0.2f},
-                                                 {"auburn", 0.35f, 2.2f},
-                                                 {"blonde", 0.15f, 0.12f}}};
-    for (const Preset& p : kPresets) {
+    for (const HairPreset& p : kHairPresets) {
         if (name == p.name) {
             look.useColor = false;
             look.eumelanin = p.eumelanin;

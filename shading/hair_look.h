@@ -3,22 +3,16 @@
 // (the GPU material and the lookup tables are both made from those), and the named presets.
 #pragma once
 
-#include "core/range.h"
 #include "shading/hair_bsdf.h"
 
 #include <glm/glm.hpp>
 
+#include <array>
 #include <string>
 
 namespace wisp {
 
 enum class ShadingModel { Karis, Kajiya, Lut };
-
-inline constexpr Range kMelaninRange{0.0, 20.0};        // concentration (Chiang 2016: ~8 black, ~1.3 brown, ~0.3 blonde)
-inline constexpr Range kRoughnessRange{0.01, 1.0};      // beta_m, beta_n
-inline constexpr Range kCuticleTiltRange{-10.0, 10.0};  // degrees
-inline constexpr Range kEtaRange{1.0, 4.0};
-inline constexpr Range kVariationRange{0.0, 1.0};
 
 // What the hair is made of and how it is shaded (shading/, shaders/shared/hair_shading.h). Its
 // colour is absorption: from melanin concentrations (Chiang et al. 2016) or from an RGB colour
@@ -37,9 +31,19 @@ struct HairLook {
     float streaks = 0.35f;           // strength of lighter and darker streaks along strands
 };
 
-// Named looks: black, brown, auburn, blonde (melanin pairs). Returns false for an unknown name.
+// Named looks: melanin pairs in the range Chiang et al. 2016 show for these colours (their figure
+// of eumelanin 0..8 and pheomelanin mixes), chosen by looking at Wisp's own renders.
+struct HairPreset {
+    const char* name;
+    float eumelanin;
+    float pheomelanin;
+};
+inline constexpr std::array<HairPreset, 4> kHairPresets = {{{"black", 8.0f, 0.0f},
+                                                            {"brown", 1.3f, 0.2f},
+                                                            {"auburn", 0.35f, 2.2f},
+                                                            {"blonde", 0.15f, 0.12f}}};
+// Sets the look's melanin to the preset `name` (and drops a colour); false for an unknown name.
 bool applyHairPreset(HairLook& look, const std::string& name);
-inline constexpr const char* kHairPresets = "black | brown | auburn | blonde";
 
 // The reference BSDF's parameters for a look (h = 0; the models average across the fibre).
 shading::HairParams hairParams(const HairLook& look);

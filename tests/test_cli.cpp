@@ -338,9 +338,9 @@ TEST(BadInput, NonFiniteAndAbsurdNumbersAreRangeErrors)
 
 TEST(BadInput, SphereWindAndOffsetMustBeFinite)
 {
-    expectUserError(runWisp("simulate --steps 1 --sphere nan,0,0,1"), "--sphere: value 1 is not a finite number");
-    expectUserError(runWisp("simulate --steps 1 --sphere 0,0,0,inf"), "--sphere: value 4 is not a finite number");
-    expectUserError(runWisp("simulate --steps 1 --wind nan,0,0"), "--wind: value 1 is not a finite number");
+    expectUserError(runWisp("simulate --steps 1 --sphere nan,0,0,1"), "--sphere: value 1: 'nan' is not a finite number");
+    expectUserError(runWisp("simulate --steps 1 --sphere 0,0,0,inf"), "--sphere: value 4: 'inf' is not a finite number");
+    expectUserError(runWisp("simulate --steps 1 --wind nan,0,0"), "--wind: value 1: 'nan' is not a finite number");
     expectUserError(runWisp("simulate --steps 1 --wind 1e9,0,0"), "--wind");
     expectUserError(runWisp("simulate --steps 1 --hair-offset 0,nan,0"), "--hair-offset: value 2");
 }
@@ -400,7 +400,7 @@ TEST(Cli, EachPartTakesItsOwnParameters)
 TEST(BadInput, BadPartSettings)
 {
     expectUserError(runWisp("simulate --steps 1 --part 3:global=0.1"), "no part '3'");
-    expectUserError(runWisp("simulate --steps 1 --part 0:global=2"), "global must be in [0, 1]");
+    expectUserError(runWisp("simulate --steps 1 --part 0:global=2"), "global: 2 is out of range: allowed 0 .. 1");
     expectUserError(runWisp("simulate --steps 1 --part 0:stiff=0.1"), "unknown key 'stiff'");
     expectUserError(runWisp("simulate --steps 1 --part 0:global=abc"), "not a number");
     expectUserError(runWisp("simulate --steps 1 --part global=0.1"), "PART:key=value");
@@ -878,7 +878,7 @@ TEST(SceneCli, BadScenesAreOneLineAndWriteNothing)
     EXPECT_FALSE(std::filesystem::exists(dir / "frames"));
     writeFile(dir / "setting.json", R"({"settings": {"shadow_size": 10}})");
     auto s = runWisp("render --scene '" + (dir / "setting.json").string() + "' --out '" + (dir / "a.png").string() + "'");
-    expectUserError(s, "setting.json: /settings/shadow_size: 10: out of range: allowed 64 .. 8192");
+    expectUserError(s, "setting.json: /settings/shadow_size: 10 is out of range: allowed 64 .. 8192 texels");
     writeFile(dir / "head.json", R"({"head": "missing-head.obj"})");
     auto h = runWisp("render --scene '" + (dir / "head.json").string() + "' --out '" + (dir / "a.png").string() + "'");
     expectUserError(h, "head.json: /head: 'missing-head.obj': no such file");

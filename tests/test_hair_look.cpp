@@ -2,7 +2,7 @@
 // shading model renders (and differently), blonde renders lighter than black, backlit hair glows
 // (light transmitted through the fibres, TT), bad look settings are refused.
 #include "app/headless.h"
-#include "app/settings_registry.h"
+#include "app/settings_table.h"
 #include "physics/gpu_solver.h"
 #include "gpu/frame.h"
 #include "renderer/renderer.h"
@@ -69,11 +69,11 @@ TEST(HairLook, PresetsGoFromDarkToLightAndAuburnIsRed)
 
 TEST(HairLook, BadLookSettingsAreRefusedNamingTheSetting)
 {
-    RenderSettings s;
-    SettingsRefs refs{.render = &s};
+    Settings settings;
+    const RenderSettings& s = settings.render;
     auto message = [&](const std::string& assignment) {
         try {
-            applySetting(refs, assignment);
+            applySetting(settings, assignment);
         } catch (const UserError& e) {
             return std::string(e.what());
         }

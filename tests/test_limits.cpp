@@ -1,10 +1,10 @@
 // tests/test_limits.cpp: absurd values are range errors, not undefined behaviour: every setting
-// `--set` takes against NaN, infinities and huge numbers; the sphere, wind, offset and per-part
-// values; loaded hair too large for floats once placed; the workload's 32-bit counts, and its GPU
+// `--set` takes against NaN, infinities and huge numbers, and each range's ends; the sphere,
+// wind, offset and per-part values; loaded hair too large for floats once placed; the workload's 32-bit counts, and its GPU
 // memory estimated and checked against a device before anything is allocated. (The same through
 // the real binary: test_cli.cpp, BadInput.*.)
-#include "app/hair_options.h"
-#include "app/settings_registry.h"
+#include "app/hair_source.h"
+#include "app/settings_table.h"
 #include "app/workload.h"
 #include "core/error.h"
 #include "physics/hair_scene.h"
@@ -40,72 +40,68 @@ TEST(Limits, EverySettingRefusesNonFiniteAndAbsurdValues)
 {
     for (const SettingSpec& spec : settingSpecs()) {
         for (const char* value : {"nan", "-nan", "inf", "-inf", "1e309", "1e30", "-1e30", "", "1,2", "0x10"}) {
-            GrowthSettings growth;
-            SimSettings sim;
-            RenderSettings render;
-            std::string what = errorOf([&] { applySetting({&growth, &sim, &render}, spec.name + "=" + value); });
-            EXPECT_NE(what.find("--set " + spec.name + "="), std::string::npos) << spec.name << "=" << value << ": " << what;
+            Settings settings;
+            std::string what = errorOf([&] { applySetting(settings, spec.name + "=" + value); });
+            EXPECT_EQ(what.rfind("--set " + spec.name + ": ", 0), 0u) << spec.name << "=" << value << ": " << what;
         }
     }
 }
 
 TEST(Limits, NumericSettingsStayInsideTheirRange)
 {
-    // Each range's ends are accepted and just past them refused, for every numeric setting whose
-    // range reads "lo .. hi".
+    // Each range's ends are accepted and just past them refused, for every numeric setting (and
+    // every component of the vectors and colours).
     int checked = 0;
     for (const SettingSpec& spec : settingSpecs()) {
-        size_t dots = spec.range.find(" .. ");
-        if (dots == std::string::npos || spec.range.find_first_not_of("0123456789.-e") < dots)
-            continue;  // choices, and lists such as hair_color's R,G,B
-        double lo = std::stod(spec.range.substr(0, dots)), hi = std::stod(spec.range.substr(dots + 4));
-        GrowthSettings growth;
-        SimSettings sim;
-        RenderSettings render;
-        SettingsRefs refs{&growth, &sim, &render};
+        if (spec.type == SettingType::OnOff || spec.type == SettingType::Choice)
+            continue;
+        bool vector = spec.type == SettingType::Vector || spec.type == SettingType::Color;
         auto set = [&](double v) {
             std::ostringstream s;
             s.precision(17);
             s << v;
-            return errorOf([&] { applySetting(refs, spec.name + "=" + s.str()); });
+            std::string text = vector ? s.str() + "," + s.str() + "," + s.str() : s.str();
+            Settings settings;
+            return errorOf([&] { applySetting(settings, spec.name + "=" + text); });
         };
+        double lo = spec.range.min, hi = spec.range.max;
         EXPECT_EQ(set(lo), "") << spec.name;
         EXPECT_EQ(set(hi), "") << spec.name;
-        EXPECT_NE(set(lo - std::max(1.0, std::abs(lo))), "") << spec.name;
-        EXPECT_NE(set(hi + std::max(1.0, std::abs(hi))), "") << spec.name;
+        std::string below = set(lo - std::max(1.0, std::abs(lo))), above = set(hi + std::max(1.0, std::abs(hi)));
+        std::string range = spec.allowed().substr(vector ? 9 : 0);  // "lo .. hi unit", without "x,y,z in "
+        range = range.substr(0, range.find(" | "));                    // and without " | part"
+        EXPECT_NE(below.find("is out of range: allowed " + range), std::string::npos) << spec.name << ": " << below;
+        EXPECT_NE(above.find("is out of range"), std::string::npos) << spec.name << ": " << above;
         ++checked;
     }
-    EXPECT_GT(checked, 20);
+    EXPECT_GT(checked, 40);
 }
 
-TEST(Limits, SphereWindAndOffsetMustBeFinite)
+TEST(Limits, SphereAndOffsetMustBeFiniteAndInRange)
 {
-    auto applied = [](auto edit) {
-        HairOptions h;
-        edit(h);
-        return errorOf([&] { h.apply(); });
+    auto error = [](const std::string& text, size_t n) {
+        return errorOf([&] { parseNumbers(text, n, "x,y,z,r", kPositionRange, "head units", "--sphere"); });
     };
-    float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
-    EXPECT_NE(applied([&](HairOptions& h) { h.sphere = {nan, 0, 0, 1}; }).find("--sphere: value 1"), std::string::npos);
-    EXPECT_NE(applied([&](HairOptions& h) { h.sphere = {0, 0, 0, inf}; }).find("--sphere: value 4"), std::string::npos);
-    EXPECT_NE(applied([&](HairOptions& h) { h.sphere = {0, 0, 0, -1}; }).find("radius"), std::string::npos);
-    EXPECT_NE(applied([&](HairOptions& h) { h.sphere = {0, 0, 0, 0}; }).find("radius"), std::string::npos);
-    EXPECT_NE(applied([&](HairOptions& h) { h.wind = {nan, 0, 0}; }).find("--wind: value 1"), std::string::npos);
-    EXPECT_NE(applied([&](HairOptions& h) { h.wind = {0, -inf, 0}; }).find("--wind: value 2"), std::string::npos);
-    EXPECT_NE(applied([&](HairOptions& h) { h.wind = {0, 0, 1e9f}; }).find("out of range"), std::string::npos);
-    EXPECT_NE(applied([&](HairOptions& h) { h.hairOffset = {0, 0, nan}; }).find("--hair-offset: value 3"), std::string::npos);
-    EXPECT_EQ(applied([&](HairOptions& h) {
-                  h.sphere = {0, 1, 0, 0.5f};
-                  h.wind = {-kMaxWind, 0, kMaxWind};
-              }),
-              "");
+    EXPECT_NE(error("nan,0,0,1", 4).find("--sphere: value 1: 'nan' is not a finite number"), std::string::npos);
+    EXPECT_NE(error("0,0,0,inf", 4).find("--sphere: value 4"), std::string::npos);
+    EXPECT_NE(error("0,0,1e9,1", 4).find("--sphere: value 3: 1000000000 is out of range: allowed -10000 .. 10000 head units"),
+              std::string::npos);
+    EXPECT_NE(error("0,0,1", 4).find("is not 4 numbers x,y,z,r"), std::string::npos);
+    EXPECT_EQ(error("0,1,0,0.5", 4), "");
+    Settings settings;
+    EXPECT_NE(errorOf([&] { applySetting(settings, "wind=nan,0,0"); }).find("--set wind: value 1: 'nan' is not a finite number"),
+              std::string::npos);
+    EXPECT_NE(errorOf([&] { applySetting(settings, "wind=0,0,1e9"); }).find("out of range"), std::string::npos);
+    EXPECT_EQ(errorOf([&] { applySetting(settings, "wind=-100,0,100"); }), "");
+    EXPECT_EQ(settings.sim.wind, glm::vec3(-100.0f, 0.0f, 100.0f));
 }
 
 TEST(Limits, PartValuesRefuseNonFiniteAndOutOfRange)
 {
-    for (const char* spec : {"0:global=nan", "0:local=inf", "0:damping=-0.1", "0:drag=1e40", "0:drag=-inf", "0:global=1e-50x"}) {
+    for (const char* spec : {"0:global=nan", "0:local=inf", "0:damping=-0.1", "0:drag=1e40", "0:drag=-inf", "0:global=1e-50x",
+                             "0:global=part"}) {
         std::vector<PartSettings> parts(1);
-        std::string what = errorOf([&] { HairOptions::applyPartOverride(parts, spec); });
+        std::string what = errorOf([&] { HairSource::applyPartOverride(parts, spec); });
         EXPECT_NE(what.find(std::string("--part ") + spec), std::string::npos) << spec << ": " << what;
     }
 }

@@ -424,7 +424,7 @@ TEST(SceneErrors, WrongTypesNameTheJsonPointer)
     EXPECT_NE(loadError(R"({"hair": {"guides": 2.5}})").find("/hair/guides: 2.5 is not a whole number"),
               std::string::npos);
     EXPECT_NE(loadError(R"({"settings": {"shading": {"model": "karis"}}})")
-                  .find("/settings/shading: must be a number, a string"),
+                  .find("/settings/shading: must be a string (karis | kajiya | lut), got an object"),
               std::string::npos);
     EXPECT_NE(loadError("[1, 2]").find("must be an object, got an array"), std::string::npos);
 }
@@ -447,7 +447,7 @@ TEST(SceneErrors, UnknownKeysListTheKnownOnes)
                   .find("/hair/lenght: unknown key (known: guides, vertices, hair_length"),
               std::string::npos);
     std::string setting = loadError(R"({"settings": {"sparkle": 3}})");
-    EXPECT_NE(setting.find("/settings/sparkle: 3: unknown setting (known: guides,"), std::string::npos) << setting;
+    EXPECT_NE(setting.find("/settings/sparkle: unknown setting (known: guides,"), std::string::npos) << setting;
     EXPECT_NE(
         loadError(R"({"physics": {"step_hz": 240}})").find("/physics/step_hz: is a setting: put it under /settings"),
         std::string::npos);
@@ -493,9 +493,9 @@ TEST(SceneErrors, OutOfRangeValuesNameTheRange)
     expect(R"({"physics": {"sphere": [0, 0, 0, 1e5]}})", "/physics/sphere/3: 100000 is out of range");
     expect(R"({"colliders": [{"center": [0, 0, 0], "radii": [0.1, 0, 0.1]}]})", "/colliders/0/radii: must all be > 0");
     expect(R"({"settings": {"strands_per_guide": 0}})",
-           "/settings/strands_per_guide: 0: out of range: allowed 1 .. 4096");
+           "/settings/strands_per_guide: 0 is out of range: allowed 1 .. 4096");
     expect(R"({"settings": {"interpolation": "cubic"}})",
-           "/settings/interpolation: cubic: allowed: single | multi | mixed");
+           "/settings/interpolation: 'cubic' is not allowed: single | multi | mixed");
     expect(R"({"interpolation": "cubic"})", "/interpolation: 'cubic' is not allowed: linear | smooth");
     expect(R"({"version": 2})", "/version: 2 is not a version this Wisp reads (it reads 1)");
 }

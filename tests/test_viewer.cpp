@@ -1,6 +1,7 @@
 // tests/test_viewer.cpp: the window's interactive state without a window: keys move the sphere
 // relative to the camera and the light around the head, the head's turn settles on its target,
 // wind and one-shot requests behave, scripts parse.
+#include "app/settings_table.h"
 #include "app/viewer.h"
 #include "core/error.h"
 #include "test_support.h"
@@ -54,7 +55,7 @@ TEST(Viewer, TheHeadTurnSettlesOnItsTargetAndTheLightStaysInRange)
     v.press(ViewerKey::LightUp);
     for (int i = 0; i < 600; ++i)
         v.update(1.0f / 60.0f);
-    EXPECT_LE(v.light().elevationDeg, float(kLightElevationRange.max));
+    EXPECT_LE(v.light().elevationDeg, float(settingSpec("light_elevation").range.max));
 }
 
 TEST(Viewer, WindPauseStepAndOneShotRequests)
