@@ -46,15 +46,14 @@ Picture renderFrame(const vk::Context& ctx, Renderer& renderer, Frame& frame, co
     return {e.width, e.height, readback.pixels(), "", renderer.oitStats(fc.slot)};
 }
 
-TimedSteps timedSteps(const SceneTimeline& timeline, const SimSetup& setup, const Bounds& head, float unitsPerMetre,
-                      float stepHz, uint64_t first, uint32_t count)
+std::vector<gpu::SimStep> timedSteps(const SceneTimeline& timeline, const SimSetup& setup, const Bounds& head,
+                                     float stepHz, uint64_t first, uint32_t count)
 {
-    TimedSteps out;
+    std::vector<gpu::SimStep> out;
     float stepSeconds = 1.0f / stepHz;
     for (uint64_t k = first; k < first + count; ++k) {
         SceneState s = timeline.at(double(k + 1) / double(stepHz));
-        out.steps.push_back(makeStep(setup, headYawTransform(head, s.headYawDeg), s.sphere, float(k) * stepSeconds));
-        out.winds.push_back(s.wind * unitsPerMetre);
+        out.push_back(makeStep(setup, headYawTransform(head, s.headYawDeg), s.sphere, float(k) * stepSeconds, s.wind));
     }
     return out;
 }
@@ -99,8 +98,7 @@ Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSett
         constexpr uint32_t kBatch = 32;
         for (uint32_t done = 0; done < totalSteps;) {
             uint32_t n = std::min(kBatch, totalSteps - done);
-            TimedSteps steps = timedSteps(poses, setup, headBounds, hair->scene->unitsPerMetre, hair->sim.stepHz, done, n);
-            renderer.setSteps(std::move(steps.steps), std::move(steps.winds));
+            renderer.setSteps(timedSteps(poses, setup, headBounds, hair->sim.stepHz, done, n));
             FrameContext& fc = frame.begin({});
             std::vector<Pass*> passes = {renderer.physics()};
             frame.run(fc, passes);

@@ -52,12 +52,8 @@ Picture renderFrame(const vk::Context& ctx, Renderer& renderer, Frame& frame, co
 // The fixed steps [first, first + count) of a run at `stepHz`, posed by `timeline`: step k runs
 // from k / stepHz to (k + 1) / stepHz and takes the head turn, sphere and wind the timeline has
 // at its end (so the frame drawn after it shows one moment). `head`: the head mesh's bounds.
-struct TimedSteps {
-    std::vector<gpu::SimStep> steps;
-    std::vector<glm::vec3> winds;  // head units / s², one per step
-};
-TimedSteps timedSteps(const SceneTimeline& timeline, const SimSetup& setup, const Bounds& head, float unitsPerMetre,
-                      float stepHz, uint64_t first, uint32_t count);
+std::vector<gpu::SimStep> timedSteps(const SceneTimeline& timeline, const SimSetup& setup, const Bounds& head,
+                                     float stepHz, uint64_t first, uint32_t count);
 // Poses `renderer` as `timeline` has it at `seconds` (head turn, sphere, light) and returns the
 // camera there (`framing` moved by the timeline's camera).
 OrbitCamera poseFrame(Renderer& renderer, const SceneTimeline& timeline, double seconds, const OrbitCamera& framing);

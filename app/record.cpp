@@ -135,8 +135,7 @@ std::vector<Picture> recordFrames(const vk::Context& ctx, const HairScene& scene
     uint64_t step = 0;
     for (uint32_t f = 0; f < o.frames; ++f) {
         if (solver) {
-            TimedSteps steps = timedSteps(o.timeline, setup, head, scene.unitsPerMetre, o.sim.stepHz, step, stepsPerFrame);
-            renderer.setSteps(std::move(steps.steps), std::move(steps.winds));
+            renderer.setSteps(timedSteps(o.timeline, setup, head, o.sim.stepHz, step, stepsPerFrame));
         }
         step += stepsPerFrame;  // time passes for the camera and light without hair too
         OrbitCamera camera = poseFrame(renderer, o.timeline, double(step) / double(o.sim.stepHz), framing);

@@ -29,7 +29,8 @@ SimulationReport simulateHeadless(const vk::Context& ctx, const HairScene& scene
     float stepSeconds = 1.0f / sim.stepHz;
     auto stepAt = [&](uint32_t n) {
         float t = float(n) * stepSeconds;
-        return makeStep(setup, motion.head(t), motion.sphere(t), t);
+        return motion.wind ? makeStep(setup, motion.head(t), motion.sphere(t), t, motion.wind(t))
+                           : makeStep(setup, motion.head(t), motion.sphere(t), t);
     };
 
     SimulationReport report;
@@ -37,13 +38,9 @@ SimulationReport simulateHeadless(const vk::Context& ctx, const HairScene& scene
     uint32_t done = 0;
     auto submit = [&](uint32_t count) {
         std::vector<gpu::SimStep> list;
-        std::vector<glm::vec3> winds;
-        for (uint32_t k = 0; k < count; ++k) {
+        for (uint32_t k = 0; k < count; ++k)
             list.push_back(stepAt(done + k));
-            if (motion.wind)
-                winds.push_back(motion.wind(float(done + k) * stepSeconds) * scene.unitsPerMetre);
-        }
-        physics.setSteps(std::move(list), std::move(winds));
+        physics.setSteps(std::move(list));
         FrameContext& fc = frame.begin({});
         std::vector<Pass*> passes = {&physics};
         frame.run(fc, passes);

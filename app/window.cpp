@@ -281,7 +281,6 @@ int runWindow(const WindowOptions& options)
     };
     std::unique_ptr<Renderer> rendererOwner = makeRenderer(settings);
     Renderer* renderer = rendererOwner.get();
-    const float unitsPerMetre = options.scene->unitsPerMetre;
     std::vector<ScriptEvent> script;
     if (!options.script.empty())
         script = loadScript(options.script);
@@ -320,7 +319,6 @@ int runWindow(const WindowOptions& options)
         else if (action == GLFW_RELEASE)
             in->viewer->release(key);
     });
-    glm::vec3 windApplied = options.settings.sim.wind;
     std::string title;
     const OrbitCamera framing = OrbitCamera::framing(renderer->sceneBounds(), float(settings.width) / float(settings.height));
     SceneTimeline timeline = options.timeline;
@@ -527,7 +525,6 @@ int runWindow(const WindowOptions& options)
             setup = makeSimSetup(sim, options.scene->strands, options.scene->gpuColliders, options.scene->unitsPerMetre);
             rendererOwner.reset();  // it holds the old solver
             solver = std::make_unique<GpuSolver>(ctx, options.scene->strands, setup, viewer.headTransform());
-            windApplied = sim.wind;
             rebuildRenderer(pending.render);
         }
 
@@ -571,17 +568,12 @@ int runWindow(const WindowOptions& options)
                     pendingSeconds = 0.0;
                 }
             }
-            glm::vec3 wind = viewer.wind() * unitsPerMetre;
-            if (wind != windApplied) {
-                solver->setWind(wind);
-                windApplied = wind;
-            }
         }
         glm::mat4 headTransform = viewer.headTransform();
         glm::vec4 sphere = viewer.sphere();
         std::vector<gpu::SimStep> steps;
         for (uint32_t k = 0; k < due; ++k)
-            steps.push_back(makeStep(setup, headTransform, sphere, float(stepsDone + k) * stepSeconds));
+            steps.push_back(makeStep(setup, headTransform, sphere, float(stepsDone + k) * stepSeconds, viewer.wind()));
         stepsDone += due;
         renderer->setSteps(std::move(steps));
         renderer->settings().light = viewer.light();

@@ -12,10 +12,11 @@
 
 namespace wisp {
 
-static_assert(sizeof(gpu::SimParams) == 1760, "SimParams must match its std140 layout");
-static_assert(sizeof(gpu::SimStep) == 96, "SimStep must match its push-constant layout");
+static_assert(sizeof(gpu::SimParams) == 1744, "SimParams must match its std140 layout");
+static_assert(sizeof(gpu::SimStep) == 112 && sizeof(gpu::SimStep) <= 128, "SimStep must match its push-constant layout");
+static_assert(offsetof(gpu::SimStep, wind) == 96);
 static_assert(sizeof(gpu::RestVertex) == 16 && sizeof(gpu::StrandInfo) == 16 && sizeof(gpu::GridNode) == 16);
-static_assert(offsetof(gpu::SimParams, parts) == 96 && offsetof(gpu::SimParams, colliders) == 224);
+static_assert(offsetof(gpu::SimParams, parts) == 80 && offsetof(gpu::SimParams, colliders) == 208);
 
 namespace {
 
@@ -123,12 +124,6 @@ GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const Sim
     gather_ = vk::createComputePipeline(ctx, layout_, "grid_gather.comp", "grid.gather");
 }
 
-void GpuSolver::setWind(const glm::vec3& wind)
-{
-    setup_.params.wind = wind;
-    paramsChanged_ = true;
-}
-
 void GpuSolver::reset(const glm::mat4& headTransform)
 {
     uint32_t count = uint32_t(model_.strandCount());
@@ -156,15 +151,6 @@ void GpuSolver::reset(const glm::mat4& headTransform)
 
 void GpuSolver::recordStep(VkCommandBuffer cmd, const gpu::SimStep& step, vk::GpuTimer* timer)
 {
-    if (paramsChanged_) {
-        // Every earlier reader of the block (kernels, the hair pass's tessellation) is done first.
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
-                          VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-        vkCmdUpdateBuffer(cmd, params_, 0, sizeof(gpu::SimParams), &setup_.params);
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                          VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_UNIFORM_READ_BIT);
-        paramsChanged_ = false;
-    }
     std::array<VkDescriptorBufferInfo, 9> infos = {
         VkDescriptorBufferInfo{params_, 0, VK_WHOLE_SIZE}, {positions_, 0, VK_WHOLE_SIZE}, {velocities_, 0, VK_WHOLE_SIZE},
         {rest_, 0, VK_WHOLE_SIZE}, {strands_, 0, VK_WHOLE_SIZE}, {tangents_, 0, VK_WHOLE_SIZE},

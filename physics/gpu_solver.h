@@ -27,9 +27,6 @@ public:
     // substeps), grid_normalize, grid_gather.
     void recordStep(VkCommandBuffer cmd, const gpu::SimStep& step, vk::GpuTimer* timer = nullptr);
 
-    // The wind (head units / s², SimParams.wind) from the next recorded step on.
-    void setWind(const glm::vec3& wind);
-    glm::vec3 wind() const { return setup_.params.wind; }
     // Puts every strand back in its rest pose around `headTransform`, at rest. The device must be
     // idle (the window waits for it).
     void reset(const glm::mat4& headTransform);
@@ -56,7 +53,6 @@ private:
     const vk::Context& ctx_;
     SimSetup setup_;
     StrandSet model_;          // the strands as given, kept for reset()
-    bool paramsChanged_ = false;  // setWind(): the next step updates the uniform block first
     uint32_t vertexCount_ = 0;
     uint32_t slotCount_ = 0;  // vertices in the interleaved buffers, padding included
     bool fixedGrid_ = false;

@@ -29,8 +29,9 @@ SimSetup makeSimSetup(const SimSettings& s, const StrandSet& strands, const std:
     setup.substeps = s.substeps;
     p.gravity = glm::vec3(0.0f, -s.gravity * unitsPerMetre, 0.0f);
     p.dt = 1.0f / (s.stepHz * float(s.substeps));
-    p.wind = s.wind * unitsPerMetre;
-    p.windFrequency = s.windFrequency;
+    setup.wind = s.wind * unitsPerMetre;
+    setup.windFrequency = s.windFrequency;
+    setup.unitsPerMetre = unitsPerMetre;
     p.strandCount = uint32_t(strands.strandCount());
     p.verticesPerStrand = strands.verticesPerStrand;
     p.colliderCount = uint32_t(colliders.size());
@@ -76,6 +77,16 @@ gpu::SimStep makeStep(const SimSetup& setup, const glm::mat4& headTransform, con
     step.sphereRadius = sphere.w;
     step.gridOrigin = glm::vec3(headTransform * glm::vec4(setup.gridCenterHead, 1.0f)) - glm::vec3(0.5f * setup.gridSide);
     step.time = time;
+    step.wind = setup.wind;
+    step.windFrequency = setup.windFrequency;
+    return step;
+}
+
+gpu::SimStep makeStep(const SimSetup& setup, const glm::mat4& headTransform, const glm::vec4& sphere, float time,
+                      const glm::vec3& windMetres)
+{
+    gpu::SimStep step = makeStep(setup, headTransform, sphere, time);
+    step.wind = windMetres * setup.unitsPerMetre;
     return step;
 }
 

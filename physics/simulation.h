@@ -36,6 +36,9 @@ struct SimSettings {
 struct SimSetup {
     gpu::SimParams params{};
     uint32_t substeps = 1;           // integrate/FTL passes per step (each params.dt long)
+    glm::vec3 wind{0.0f};            // the settings' wind, asset units / s² (a step may have its own)
+    float windFrequency = 0.0f;      // Hz of the gusts
+    float unitsPerMetre = 1.0f;      // the head's units
     glm::vec3 gridCenterHead{0.0f};  // grid centre in head space (the grid follows the head)
     float gridSide = 0.0f;           // asset units
 };
@@ -51,7 +54,11 @@ float gridFixedScale(uint64_t vertexCount, float maxSplatSpeed);
 // of 32), the per-strand info, the grid's sums and velocities, the parameters and counters. The
 // solver checks it against the device before allocating, and the command line before building.
 uint64_t solverDeviceBytes(uint64_t strands, uint32_t verticesPerStrand, uint64_t gridNodes, bool fixedPointGrid);
+// One step: the head's pose, the user's sphere (xyz, radius; 0: none), the time at its start, and
+// the wind (m/s², scaled here to the head's units; the setup's when not given).
 gpu::SimStep makeStep(const SimSetup& setup, const glm::mat4& headTransform, const glm::vec4& sphere, float time);
+gpu::SimStep makeStep(const SimSetup& setup, const glm::mat4& headTransform, const glm::vec4& sphere, float time,
+                      const glm::vec3& windMetres);
 
 // The simulated state, one entry per vertex (world space).
 struct SimState {

@@ -14,12 +14,8 @@ class PhysicsPass : public Pass {
 public:
     explicit PhysicsPass(GpuSolver& solver) : solver_(solver) {}
     const char* name() const override { return "physics"; }
-    // `winds` (head units / s², empty: the solver's stays) gives each step its own wind.
-    void setSteps(std::vector<gpu::SimStep> steps, std::vector<glm::vec3> winds = {})
-    {
-        steps_ = std::move(steps);
-        winds_ = std::move(winds);
-    }
+    // Each step carries its pose and its wind (gpu::SimStep).
+    void setSteps(std::vector<gpu::SimStep> steps) { steps_ = std::move(steps); }
     size_t stepCount() const { return steps_.size(); }
     void declare(PassIo& io) override
     {
@@ -28,17 +24,13 @@ public:
     }
     void record(VkCommandBuffer cmd, FrameContext&) override
     {
-        for (size_t i = 0; i < steps_.size(); ++i) {
-            if (i < winds_.size() && winds_[i] != solver_.wind())
-                solver_.setWind(winds_[i]);
-            solver_.recordStep(cmd, steps_[i]);
-        }
+        for (const gpu::SimStep& step : steps_)
+            solver_.recordStep(cmd, step);
     }
 
 private:
     GpuSolver& solver_;
     std::vector<gpu::SimStep> steps_;
-    std::vector<glm::vec3> winds_;
 };
 
 }  // namespace wisp

@@ -239,10 +239,10 @@ HairDrawCounts Renderer::hairCounts() const
     return hairDrawCounts(guideCount_, settings_.strands);
 }
 
-void Renderer::setSteps(std::vector<gpu::SimStep> steps, std::vector<glm::vec3> winds)
+void Renderer::setSteps(std::vector<gpu::SimStep> steps)
 {
     if (physicsPass_)
-        physicsPass_->setSteps(std::move(steps), std::move(winds));
+        physicsPass_->setSteps(std::move(steps));
 }
 
 std::vector<Pass*> Renderer::passes()

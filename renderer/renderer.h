@@ -60,9 +60,8 @@ public:
     void setHeadTransform(const glm::mat4& transform);
     void setSphere(const glm::vec4& sphere) { meshPass_->setSphere(sphere); }
     void showLightMarker(bool show) { showLightMarker_ = show; }
-    // The simulation steps to record in the next frame (none: the hair holds still), each with
-    // its own wind when `winds` (head units / s²) is given.
-    void setSteps(std::vector<gpu::SimStep> steps, std::vector<glm::vec3> winds = {});
+    // The simulation steps to record in the next frame (none: the hair holds still).
+    void setSteps(std::vector<gpu::SimStep> steps);
     PhysicsPass* physics() { return physicsPass_.get(); }
     HairPass* hair() { return hairPass_.get(); }
     // Recreates the size-dependent images; call while the device is idle.

@@ -176,7 +176,7 @@ void main()
     SimPart part = params.parts[info.part];
     float dt = params.dt;
     mat3 R = mat3(step.headTransform);
-    vec3 wind = strandWind(params.wind, params.windFrequency, step.time, info.seed);
+    vec3 wind = strandWind(step.wind, step.windFrequency, step.time, info.seed);
     bool finite = true;
     vec3 lastTangent = vec3(0.0);
 

@@ -44,12 +44,11 @@ struct SimPart {
     float drag;             // velocity damping, 1/s
 };
 
-// Fixed for a run (a uniform block): forces, the grid's size, the parts and colliders.
+// Fixed for a run (a uniform block, written once when the solver is made): forces, the grid's size,
+// the parts and colliders. What changes while it runs is SimStep's.
 struct SimParams {
     vec3  gravity;            // world acceleration, asset units / s²
     float dt;                 // one substep, seconds (fixed)
-    vec3  wind;               // direction * strength, asset units / s²
-    float windFrequency;      // Hz of the gust modulation
     uint  strandCount;        // real strands; threads past them return
     uint  verticesPerStrand;  // V, 4..64
     uint  colliderCount;      // ellipsoids in use, <= kSimMaxColliders
@@ -70,13 +69,15 @@ struct SimParams {
     Ellipsoid colliders[kSimMaxColliders];  // in head space: they move with the head
 };
 
-// What changes from step to step (push constants): the head's pose, the user's sphere, time.
+// What changes from step to step (push constants): the head's pose, the user's sphere, time, wind.
 struct SimStep {
     mat4  headTransform;  // head space -> world (rigid): roots, rest pose and colliders follow it
     vec3  sphereCenter;   // the user's collision sphere, world space
     float sphereRadius;   // 0 disables it
     vec3  gridOrigin;     // world position of grid node (0, 0, 0)
     float time;           // simulated seconds at the start of this substep
+    vec3  wind;           // direction * strength, asset units / s² (before the gusts, strandWind)
+    float windFrequency;  // Hz of the gust modulation
 };
 
 struct RestVertex {
