@@ -1,6 +1,12 @@
-// physics/cpu_solver.cpp: the reference solver. integrateStrand mirrors sim_integrate.comp line
-// for line; the grid functions mirror grid_clear/splat/normalize/gather.comp.
+// physics/cpu_solver.cpp: the reference solver. integrateStrand walks each strand with the
+// shared algorithm (shaders/shared/sim_strand.h, as sim_integrate.comp does) in the CPU's
+// strand-major order; the grid functions mirror grid_clear/splat/normalize/gather.comp over the
+// shared grid math (shaders/shared/sim.h).
 #include "physics/cpu_solver.h"
+
+#include "shaders/shared/sim_strand.h"
+
+#include <algorithm>
 
 namespace wisp {
 
@@ -43,112 +49,25 @@ void CpuSolver::integrateStrand(uint32_t s, const SimStep& step)
     std::vector<vec4>& positions = state_.positions;
     std::vector<vec4>& velocities = state_.velocities;
     std::vector<vec4>& tangents = state_.tangents;
-
-    auto penalty = [&](vec3 x) {
-        vec3 a(0.0f);
-        vec3 local = toHeadSpace(step.headTransform, x);
-        for (uint32_t c = 0; c < params.colliderCount; ++c) {
-            Contact k = ellipsoidContact(params.colliders[c], local, params.collisionMargin);
-            if (k.depth > 0.0f)
-                a += params.penaltyStiffness * k.depth * (glm::mat3(step.headTransform) * k.normal);
-        }
-        if (step.sphereRadius > 0.0f) {
-            Contact k = sphereContact(step.sphereCenter, step.sphereRadius, x, params.collisionMargin);
-            if (k.depth > 0.0f)
-                a += params.penaltyStiffness * k.depth * k.normal;
-        }
-        return a;
-    };
-    auto pushOut = [&](vec3 p) {
-        vec3 local = toHeadSpace(step.headTransform, p);
-        for (uint32_t c = 0; c < params.colliderCount; ++c) {
-            Contact k = ellipsoidContact(params.colliders[c], local, 0.0f);
-            if (k.depth > 0.0f) {
-                p += k.depth * (glm::mat3(step.headTransform) * k.normal);
-                local = toHeadSpace(step.headTransform, p);
-            }
-        }
-        if (step.sphereRadius > 0.0f) {
-            Contact k = sphereContact(step.sphereCenter, step.sphereRadius, p, 0.0f);
-            if (k.depth > 0.0f)
-                p += k.depth * k.normal;
-        }
-        return p;
-    };
-
     uint32_t V = params.verticesPerStrand;
-    uint32_t base = s * V;
-    StrandInfo info = strands_.strands[s];
-    SimPart part = params.parts[info.part];
-    float dt = params.dt;
-    mat3 R = mat3(step.headTransform);
-    vec3 wind = strandWind(step.wind, step.windFrequency, step.time, info.seed);
-    bool finite = true;
-    vec3 lastTangent(0.0f);
-
-    vec3 prevX = vec3(positions[base]);
-    vec3 prevP = vec3(step.headTransform * vec4(rest_[base].position, 1.0f));
-    bool prevPinned = true;
-    vec3 prevShift(0.0f);  // see sim_integrate.comp: local shape stays out of the velocity
-    mat3 frame = R;
-
+    uint32_t base = s * V;  // strand-major: vertex i is at base + i
+    auto write = [&](uint32_t g, const WalkedVertex& v) {
+        positions[g] = vec4(v.position, positions[g].w);
+        velocities[g] = vec4(v.velocity, 0.0f);
+        tangents[g] = vec4(v.tangent, 0.0f);
+    };
+    StrandWalk walk = strandWalkBegin(params, step, strands_.strands[s], vec3(positions[base]), rest_[base].position);
     for (uint32_t i = 1; i < V; ++i) {
         uint32_t g = base + i;
-        vec3 x = vec3(positions[g]);
-        vec3 v = vec3(velocities[g]);
-        RestVertex r = rest_[g];
-        vec3 restWorld = vec3(step.headTransform * vec4(r.position, 1.0f));
-        vec3 restDir = (r.position - rest_[g - 1].position) / r.segmentLength;
-        vec3 targetDir = frame * restDir;
-        bool pinned = i < info.pinnedRoot || (info.pinnedTip != 0u && i == V - 1u);
-
-        vec3 p;
-        vec3 d(0.0f);
-        vec3 shift(0.0f);
-        if (pinned) {
-            p = restWorld;
-        } else {
-            vec3 segment = x - prevX;
-            float segLen = length(segment);
-            vec3 t = segLen > 1e-12f ? segment / segLen : targetDir;
-            vec3 a = params.gravity - part.drag * v + windAcceleration(t, wind) + penalty(x);
-            p = x + dt * v + dt * dt * a;
-            p = mix(p, restWorld, globalShapeWeight(part.globalStiffness, i, V));
-            vec3 beforeShape = p;
-            p = mix(p, prevP + r.segmentLength * targetDir, part.localStiffness);
-            shift = p - beforeShape;
-            p = pushOut(p);
-            vec3 before = p;
-            p = ftlProject(prevP, p, r.segmentLength);
-            d = p - before;
-        }
-        finite = finite && isFinite3(p);
-
-        vec3 prevV = (prevP - prevX - prevShift) / dt;
-        if (!prevPinned)
-            prevV -= part.ftlDamping * d / dt;
-        positions[g - 1] = vec4(prevP, positions[g - 1].w);
-        velocities[g - 1] = vec4(prevV, 0.0f);
-        vec3 actualDir = normalize(p - prevP);
-        tangents[g - 1] = vec4(actualDir, 0.0f);
-        lastTangent = actualDir;
-
-        frame = transportFrame(frame, targetDir, actualDir);
-        prevX = x;
-        prevP = p;
-        prevPinned = pinned;
-        prevShift = shift;
+        write(g - 1, strandWalkStep(params, step, walk, i, V, vec3(positions[g]), vec3(velocities[g]), rest_[g],
+                                    rest_[g - 1].position));
     }
-    positions[base + V - 1] = vec4(prevP, positions[base + V - 1].w);
-    velocities[base + V - 1] = vec4((prevP - prevX - prevShift) / dt, 0.0f);
-    tangents[base + V - 1] = vec4(lastTangent, 0.0f);
+    write(base + V - 1, strandWalkTip(params, step, walk));
 
-    if (!finite) {
+    if (!walk.finite) {
         for (uint32_t i = 0; i < V; ++i) {
-            positions[base + i] = vec4(vec3(step.headTransform * vec4(rest_[base + i].position, 1.0f)), positions[base + i].w);
-            velocities[base + i] = vec4(0.0f);
-            uint32_t j = std::min(i + 1u, V - 1u);
-            tangents[base + i] = vec4(R * normalize(rest_[base + j].position - rest_[base + j - 1].position), 0.0f);
+            uint32_t j = base + std::min(i + 1u, V - 1u);  // the segment ending at vertex j
+            write(base + i, restVertex(params, step, rest_[base + i].position, rest_[j - 1].position, rest_[j].position));
         }
         state_.nonfiniteResets += 1;
     }

@@ -1,6 +1,6 @@
 // physics/cpu_solver.h: the CPU reference solver: the same steps as the compute kernels
-// (shaders/sim_integrate.comp, grid_*.comp), over the same shared math (shaders/shared/sim.h),
-// in plain C++. Tests run both on the same input and compare; it is also a readable statement of
+// (shaders/sim_integrate.comp, grid_*.comp), over the same shared algorithm and math
+// (shaders/shared/sim_strand.h, sim.h), in plain C++. Tests run both on the same input and compare; it is also a readable statement of
 // the algorithm. Single-threaded and meant for small workloads.
 #pragma once
 
