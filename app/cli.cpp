@@ -216,16 +216,15 @@ int runRenderProfile(const GlobalOptions& g, RenderOptions& o)
     o.session.source.noHair = false;
     HairScene scene = buildCheckedScene(g, o.session, &settings);
     vk::Context ctx(contextOptions(g));
-    HairRun run{.scene = &scene, .sim = o.session.settings.sim, .frames = 0, .framesPerSecond = o.fps,
-                .sphere = o.session.source.sphere};
+    HairSession session(ctx, std::move(scene), o.session.settings.sim, o.session.timeline, o.session.source);
     OitStats oit;
-    std::vector<PassTiming> timings = profileFrames(ctx, scene.head, settings, run, o.profileWarmup, o.profileFrames, &oit);
-    HairDrawCounts c = hairDrawCounts(uint32_t(scene.strands.strandCount()), settings.strands);
+    std::vector<PassTiming> timings = profileFrames(ctx, session, settings, o.fps, o.profileWarmup, o.profileFrames, &oit);
+    HairDrawCounts c = hairDrawCounts(uint32_t(session.scene().strands.strandCount()), settings.strands);
     nlohmann::json out = {{"device", ctx.report().name},
                           {"width", settings.width},
                           {"height", settings.height},
                           {"guides", c.guides},
-                          {"vertices_per_strand", scene.strands.verticesPerStrand},
+                          {"vertices_per_strand", session.scene().strands.verticesPerStrand},
                           {"strands_per_guide", c.strandsPerGuide},
                           {"divisions", c.divisions},
                           {"strands", c.strands()},
@@ -253,11 +252,10 @@ int runRender(const GlobalOptions& g, RenderOptions& o)
     const RenderSettings& settings = o.session.settings.render;
     HairScene scene = buildCheckedScene(g, o.session, &settings);
     vk::Context ctx(contextOptions(g));
-    HairRun run{.scene = &scene, .sim = o.session.settings.sim, .frames = o.frames, .framesPerSecond = o.fps,
-                .sphere = o.session.source.sphere};
     Picture picture;
     try {
-        picture = renderPicture(ctx, scene.head, settings, o.session.source.noHair ? nullptr : &run, &o.session.timeline);
+        HairSession session(ctx, std::move(scene), o.session.settings.sim, o.session.timeline, o.session.source);
+        picture = renderPicture(ctx, session, settings, o.frames, o.fps);
     } catch (const vk::DeviceLost& e) {
         throw vk::DeviceLost(e.what() + std::string("; ") + o.out + " was not written");
     }
@@ -425,14 +423,13 @@ int runCli(int argc, char** argv)
             rec.outDir = recOut;
             rec.video = recVideo;
             rec.settings = session.settings.render;
-            rec.sim = session.settings.sim;
-            rec.timeline = session.timeline;
             if (session.scene && record->get_option("--frames")->count() == 0 && session.sceneLength() > 0.0)
                 rec.frames = std::max(1u, uint32_t(std::ceil(session.sceneLength() * double(rec.fps) - 1e-6)));
             checkRecordOutputs(rec);  // before any loading
             HairScene scene = buildCheckedScene(g, session, &rec.settings);
             vk::Context ctx(contextOptions(g));
-            return runRecord(ctx, scene, rec);
+            HairSession hair(ctx, std::move(scene), session.settings.sim, session.timeline, session.source);
+            return runRecord(ctx, hair, rec);
         }
         if (*sweep) {
             SessionOptions base = sweepSession.resolve();
@@ -462,8 +459,7 @@ int runCli(int argc, char** argv)
             windowOptions.context = contextOptions(g);
             // The window starts from the scene's state at time 0 (its sphere, wind and light).
             SceneState initial = session.timeline.at(0.0);
-            HairScene scene = buildCheckedScene(g, session, &session.settings.render, /*window=*/true);
-            windowOptions.scene = &scene;
+            windowOptions.scene = buildCheckedScene(g, session, &session.settings.render, /*window=*/true);
             windowOptions.timeline = session.timeline;
             windowOptions.sceneLength = session.sceneLength();
             windowOptions.source = session.source;
@@ -471,19 +467,16 @@ int runCli(int argc, char** argv)
             windowOptions.settings.sim.wind = initial.wind;
             windowOptions.sphere = initial.sphere;
             windowOptions.settings.render.light = initial.light;
-            return runWindow(windowOptions);
+            return runWindow(std::move(windowOptions));
         }
         if (*simulate) {
             SessionOptions session = simulateSession.resolve();
-            sim.context = contextOptions(g);
-            sim.sim = session.settings.sim;
+            session.source.noHair = false;
             sim.settings = session.settings;
-            if (simulateSession.given("--sphere"))
-                sim.sphere = session.source.sphere;
-            if (session.scene)
-                sim.timeline = session.timeline;
             HairScene scene = buildCheckedScene(g, session, nullptr);
-            return runSimulate(sim, scene);
+            vk::Context ctx(contextOptions(g));
+            HairSession hair(ctx, std::move(scene), session.settings.sim, session.timeline, session.source);
+            return runSimulate(ctx, hair, sim);
         }
         if (*info)
             return runInfo(infoJson);

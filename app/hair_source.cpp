@@ -26,9 +26,7 @@ HairScene HairSource::buildScene(const Settings& settings) const
         return scene;
     }
     if (hairFiles.empty()) {
-        HairScene scene = buildGrownScene(std::move(head), settings.growth);
-        scene.strands.parts = partsFor(scene.strands.parts, settings.sim);
-        return scene;
+        return buildGrownScene(std::move(head), settings.growth);
     }
     std::vector<HairPartSource> parts;
     for (const std::string& file : hairFiles) {
@@ -47,9 +45,7 @@ HairScene HairSource::buildScene(const Settings& settings) const
         }
         parts.push_back(part);
     }
-    HairScene scene = buildLoadedScene(std::move(head), parts, settings.growth.verticesPerStrand);
-    scene.strands.parts = partsFor(scene.strands.parts, settings.sim);
-    return scene;
+    return buildLoadedScene(std::move(head), parts, settings.growth.verticesPerStrand);
 }
 
 std::vector<PartSettings> HairSource::partsFor(const std::vector<PartSettings>& asBuilt, const SimSettings& sim) const

@@ -36,7 +36,7 @@ struct HairSource {
 
     std::filesystem::path headPath() const;  // headFile, or the default head
     // The head with grown guides (or none with noHair), or with the hair files as parts, each
-    // placed, and each part's parameters partsFor() the settings.
+    // placed; each part's parameters as grown or loaded (a HairSession applies partsFor()).
     HairScene buildScene(const Settings& settings) const;
     // Each part's simulation parameters: as grown or loaded (`asBuilt`), then every part's values
     // from the settings (global_stiffness ...), then the per-part overrides.

@@ -1,9 +1,8 @@
 // app/headless.cpp: offscreen frames: the simulated frames run the physics pass alone (one submit
-// per batch), then one full frame renders and reads back the picture.
+// per batch), then one full frame renders and reads back the picture; profiles time whole frames.
 #include "app/headless.h"
 
 #include "core/host_memory.h"
-#include "physics/gpu_solver.h"
 #include "gpu/frame.h"
 #include "renderer/renderer.h"
 
@@ -46,18 +45,6 @@ Picture renderFrame(const vk::Context& ctx, Renderer& renderer, Frame& frame, co
     return {e.width, e.height, readback.pixels(), "", renderer.oitStats(fc.slot)};
 }
 
-std::vector<gpu::SimStep> timedSteps(const SceneTimeline& timeline, const SimSetup& setup, const Bounds& head,
-                                     float stepHz, uint64_t first, uint32_t count)
-{
-    std::vector<gpu::SimStep> out;
-    float stepSeconds = 1.0f / stepHz;
-    for (uint64_t k = first; k < first + count; ++k) {
-        SceneState s = timeline.at(double(k + 1) / double(stepHz));
-        out.push_back(makeStep(setup, headYawTransform(head, s.headYawDeg), s.sphere, float(k) * stepSeconds, s.wind));
-    }
-    return out;
-}
-
 OrbitCamera poseFrame(Renderer& renderer, const SceneTimeline& timeline, double seconds, const OrbitCamera& framing)
 {
     SceneState s = timeline.at(seconds);
@@ -67,88 +54,73 @@ OrbitCamera poseFrame(Renderer& renderer, const SceneTimeline& timeline, double 
     return poseCamera(framing, s.camera);
 }
 
-Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSettings& settings, const HairRun* hair,
-                      const SceneTimeline* timeline)
+void runSteps(Frame& frame, Renderer& renderer, HairSession& session, uint32_t steps)
+{
+    constexpr uint32_t kBatch = 32;
+    for (uint32_t done = 0; done < steps;) {
+        uint32_t n = std::min(kBatch, steps - done);
+        renderer.setSteps(session.nextSteps(n));
+        FrameContext& fc = frame.begin({});
+        std::vector<Pass*> passes = {renderer.physics()};
+        frame.run(fc, passes);
+        frame.submit(fc);
+        frame.waitIdle();
+        done += n;
+    }
+    renderer.setSteps({});
+}
+
+std::string describeHairCounts(const HairDrawCounts& c)
+{
+    return "hair: " + std::to_string(c.guides) + " guides x " + std::to_string(c.strandsPerGuide) + " strands x " +
+           std::to_string(c.divisions) + " divisions = " + std::to_string(c.segments()) + " segments, drawn as " +
+           std::to_string(uint64_t(c.guides) * c.lengthChunks * c.strandChunks) + " patches of up to " +
+           std::to_string(c.strandsPerPatch) + " strands x " + std::to_string((c.divisions + c.lengthChunks - 1) / c.lengthChunks) +
+           " divisions (" + std::to_string(c.strandChunks) + " instances)";
+}
+
+Picture renderPicture(const vk::Context& ctx, HairSession& session, const RenderSettings& settings, uint32_t frames, float fps)
 {
     Renderer renderer(ctx, settings, 1);
-    renderer.setHead(head);
+    renderer.setHead(session.scene().head);
+    session.attachTo(renderer);
     Frame frame(ctx, 1);
-    SceneState still;
-    still.light = settings.light;
-    if (hair) {
-        still.sphere = hair->sphere;
-        still.wind = hair->sim.wind;
-    }
-    SceneTimeline held({}, SceneInterpolation::Linear, still);
-    const SceneTimeline& poses = timeline ? *timeline : held;
-    const Bounds headBounds = renderer.sceneBounds();
-
-    std::unique_ptr<GpuSolver> solver;
-    double seconds = 0.0;
-    if (hair) {
-        SceneState start = poses.at(0.0);
-        SimSettings sim = hair->sim;
-        sim.wind = start.wind;
-        SimSetup setup = makeSimSetup(sim, hair->scene->strands, hair->scene->gpuColliders, hair->scene->unitsPerMetre);
-        solver = std::make_unique<GpuSolver>(ctx, hair->scene->strands, setup, headYawTransform(headBounds, start.headYawDeg));
-        renderer.attachHair(*solver, hair->scene->strands, hair->scene->unitsPerMetre);
-        // Fixed steps only: each frame advances exactly round(stepHz / fps) steps of 1 / stepHz.
-        uint32_t stepsPerFrame = std::max(1u, uint32_t(std::lround(hair->sim.stepHz / hair->framesPerSecond)));
-        uint32_t totalSteps = hair->frames * stepsPerFrame;
-        constexpr uint32_t kBatch = 32;
-        for (uint32_t done = 0; done < totalSteps;) {
-            uint32_t n = std::min(kBatch, totalSteps - done);
-            renderer.setSteps(timedSteps(poses, setup, headBounds, hair->sim.stepHz, done, n));
-            FrameContext& fc = frame.begin({});
-            std::vector<Pass*> passes = {renderer.physics()};
-            frame.run(fc, passes);
-            frame.submit(fc);
-            frame.waitIdle();
-            done += n;
-        }
-        renderer.setSteps({});
-        seconds = double(totalSteps) / double(hair->sim.stepHz);
-    }
-
+    if (session.hasHair())
+        runSteps(frame, renderer, session, frames * session.clock().stepsPerFrame(fps));
     float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
-    OrbitCamera camera = poseFrame(renderer, poses, seconds, OrbitCamera::framing(headBounds, aspect));
-
+    OrbitCamera camera =
+        poseFrame(renderer, session.timeline(), session.clock().seconds(), OrbitCamera::framing(renderer.sceneBounds(), aspect));
     Picture picture = renderFrame(ctx, renderer, frame, camera);
-    if (hair) {
-        HairDrawCounts c = renderer.hairCounts();
-        picture.hairCounts = "hair: " + std::to_string(c.guides) + " guides x " + std::to_string(c.strandsPerGuide) + " strands x " +
-                 std::to_string(c.divisions) + " divisions = " + std::to_string(c.segments()) + " segments, drawn as " +
-                 std::to_string(uint64_t(c.guides) * c.lengthChunks * c.strandChunks) + " patches of up to " +
-                 std::to_string(c.strandsPerPatch) + " strands x " + std::to_string((c.divisions + c.lengthChunks - 1) / c.lengthChunks) +
-                 " divisions (" + std::to_string(c.strandChunks) + " instances)";
-    }
+    if (session.hasHair())
+        picture.hairCounts = describeHairCounts(renderer.hairCounts());
     return picture;
 }
 
-std::vector<PassTiming> profileFrames(const vk::Context& ctx, const Head& head, const RenderSettings& settings,
-                                      const HairRun& hair, uint32_t warmup, uint32_t frames, OitStats* oit)
+Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSettings& settings)
+{
+    HairScene bald;
+    bald.head = head;
+    HairSession session(ctx, std::move(bald), SimSettings{}, stillTimeline(glm::vec4(0.0f), glm::vec3(0.0f), settings.light));
+    return renderPicture(ctx, session, settings);
+}
+
+std::vector<PassTiming> profileFrames(const vk::Context& ctx, HairSession& session, const RenderSettings& settings,
+                                      float fps, uint32_t warmup, uint32_t frames, OitStats* oit)
 {
     Renderer renderer(ctx, settings, 1);
-    renderer.setHead(head);
+    renderer.setHead(session.scene().head);
+    session.attachTo(renderer);
     Frame frame(ctx, 1);
-    SimSetup setup = makeSimSetup(hair.sim, hair.scene->strands, hair.scene->gpuColliders, hair.scene->unitsPerMetre);
-    GpuSolver solver(ctx, hair.scene->strands, setup, glm::mat4(1.0f));
-    renderer.attachHair(solver, hair.scene->strands, hair.scene->unitsPerMetre);
-    uint32_t stepsPerFrame = std::max(1u, uint32_t(std::lround(hair.sim.stepHz / hair.framesPerSecond)));
-    float stepSeconds = 1.0f / hair.sim.stepHz;
+    uint32_t stepsPerFrame = session.clock().stepsPerFrame(fps);
     OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(settings.width) / float(settings.height));
     std::map<std::string, std::vector<double>> samples;
     std::vector<std::string> order;
     std::vector<double> totals;
-    uint64_t step = 0;
     for (uint32_t n = 0; n < warmup + frames; ++n) {
-        std::vector<gpu::SimStep> steps;
-        for (uint32_t k = 0; k < stepsPerFrame; ++k, ++step)
-            steps.push_back(makeStep(setup, glm::mat4(1.0f), hair.sphere, float(step) * stepSeconds));
-        renderer.setSteps(std::move(steps));
+        renderer.setSteps(session.nextSteps(stepsPerFrame));
         std::vector<TrackedImage*> transient = renderer.transientImages();
         FrameContext& fc = frame.begin(transient);
-        renderer.prepare(fc, camera, float(step) * stepSeconds);
+        renderer.prepare(fc, camera, session.clock().stepStart(session.clock().stepsDone()));
         std::vector<Pass*> passes = renderer.passes();
         frame.run(fc, passes);
         frame.submit(fc);

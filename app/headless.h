@@ -1,10 +1,13 @@
-// app/headless.h: the headless front end: renders frames into the offscreen target and reads
-// them back. Used by `wisp render` (and later `record` and `sweep`), and by the rendering tests.
+// app/headless.h: the headless front end: renders a hair session's frames into the offscreen
+// target and reads them back, or times them pass by pass. Used by `wisp render`, `record` and
+// `sweep`, and by the rendering tests.
 #pragma once
 
+#include "app/hair_session.h"
 #include "app/scene.h"
 #include "physics/hair_scene.h"
 #include "physics/simulation.h"
+#include "renderer/hair_pass.h"
 #include "renderer/camera.h"
 #include "renderer/oit.h"
 #include "renderer/settings.h"
@@ -27,15 +30,6 @@ struct Picture {
     OitStats oit;               // the OIT lists of this frame (zeros in MSAA mode or without hair)
 };
 
-// Hair to simulate and draw with the head.
-struct HairRun {
-    const HairScene* scene = nullptr;
-    SimSettings sim;
-    uint32_t frames = 0;               // simulated frames before the picture
-    float framesPerSecond = 30.0f;     // simulated time per frame = 1 / fps
-    glm::vec4 sphere{0.0f};            // the user's sphere (xyz, radius; 0 = none)
-};
-
 // Host and device memory at one moment: long runs report it at their start and end (a soak's
 // memory must stay flat).
 struct MemorySample {
@@ -49,21 +43,23 @@ std::string describeMemory(const MemorySample& start, const MemorySample& end);
 // One full frame of `renderer` (all its passes) seen by `camera`, read back.
 Picture renderFrame(const vk::Context& ctx, Renderer& renderer, Frame& frame, const OrbitCamera& camera);
 
-// The fixed steps [first, first + count) of a run at `stepHz`, posed by `timeline`: step k runs
-// from k / stepHz to (k + 1) / stepHz and takes the head turn, sphere and wind the timeline has
-// at its end (so the frame drawn after it shows one moment). `head`: the head mesh's bounds.
-std::vector<gpu::SimStep> timedSteps(const SceneTimeline& timeline, const SimSetup& setup, const Bounds& head,
-                                     float stepHz, uint64_t first, uint32_t count);
 // Poses `renderer` as `timeline` has it at `seconds` (head turn, sphere, light) and returns the
 // camera there (`framing` moved by the timeline's camera).
 OrbitCamera poseFrame(Renderer& renderer, const SceneTimeline& timeline, double seconds, const OrbitCamera& framing);
 
-// Renders one frame of `head` (with `hair` when given) as the default camera frames it, or as
-// `timeline` poses it (camera, light, head turn, sphere and wind over the simulated frames; the
-// picture shows the moment after them, time 0 without hair). Without a timeline the hair's
-// sphere and wind hold still. Deterministic for a device.
-Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSettings& settings,
-                      const HairRun* hair = nullptr, const SceneTimeline* timeline = nullptr);
+// Runs `session`'s next `steps` fixed steps alone (the physics pass of `renderer`, 32 steps a
+// submission), drawing nothing.
+void runSteps(Frame& frame, Renderer& renderer, HairSession& session, uint32_t steps);
+
+// Renders one frame of `session`'s head and hair after `frames` simulated frames of `fps` (each
+// exactly round(step_hz / fps) fixed steps), posed by its timeline (camera, light, head turn,
+// sphere and wind; the picture shows the moment after them). Deterministic for a device.
+Picture renderPicture(const vk::Context& ctx, HairSession& session, const RenderSettings& settings, uint32_t frames = 0,
+                      float fps = 30.0f);
+// The head alone, as the default camera frames it, lit by the settings' light.
+Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSettings& settings);
+// The picture's hair counts as `wisp render` prints them.
+std::string describeHairCounts(const HairDrawCounts& counts);
 
 // Per-pass GPU time of whole frames (physics stepping one frame's worth each frame, as the window
 // does): `warmup` frames, then `frames` timed; medians and p95 in milliseconds, per pass and for
@@ -74,7 +70,7 @@ struct PassTiming {
     double p95Ms = 0.0;
 };
 // `oit`, when given, receives the last frame's OIT counts.
-std::vector<PassTiming> profileFrames(const vk::Context& ctx, const Head& head, const RenderSettings& settings,
-                                      const HairRun& hair, uint32_t warmup, uint32_t frames, OitStats* oit = nullptr);
+std::vector<PassTiming> profileFrames(const vk::Context& ctx, HairSession& session, const RenderSettings& settings,
+                                      float fps, uint32_t warmup, uint32_t frames, OitStats* oit = nullptr);
 
 }  // namespace wisp

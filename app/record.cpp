@@ -8,7 +8,6 @@
 #include "app/image_io.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "physics/gpu_solver.h"
 #include "gpu/frame.h"
 #include "renderer/renderer.h"
 #include "gpu/check.h"
@@ -109,36 +108,21 @@ std::string leftAfterLoss(const RecordOptions& o, uint32_t written)
 
 // Simulates, renders and writes the frames, counting in `written` those on disk; returns the
 // contact sheet's pictures.
-std::vector<Picture> recordFrames(const vk::Context& ctx, const HairScene& scene, const RecordOptions& o,
-                                  uint32_t& written)
+std::vector<Picture> recordFrames(const vk::Context& ctx, HairSession& session, const RecordOptions& o, uint32_t& written)
 {
     Renderer renderer(ctx, o.settings, 1);
-    renderer.setHead(scene.head);
+    renderer.setHead(session.scene().head);
+    session.attachTo(renderer);
     Frame frame(ctx, 1);
-    std::unique_ptr<GpuSolver> solver;
-    SimSetup setup;
-    const Bounds head = renderer.sceneBounds();
-    SceneState initial = o.timeline.at(0.0);
-    if (scene.strands.strandCount() > 0) {
-        SimSettings sim = o.sim;
-        sim.wind = initial.wind;
-        setup = makeSimSetup(sim, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
-        solver = std::make_unique<GpuSolver>(ctx, scene.strands, setup, headYawTransform(head, initial.headYawDeg));
-        renderer.attachHair(*solver, scene.strands, scene.unitsPerMetre);
-    }
-    OrbitCamera framing = OrbitCamera::framing(head, float(o.settings.width) / float(o.settings.height));
-    uint32_t stepsPerFrame = std::max(1u, uint32_t(std::lround(o.sim.stepHz / o.fps)));
+    OrbitCamera framing = OrbitCamera::framing(renderer.sceneBounds(), float(o.settings.width) / float(o.settings.height));
+    uint32_t stepsPerFrame = session.clock().stepsPerFrame(o.fps);
     std::vector<Picture> sheet;
     uint32_t sheetEvery = std::max(1u, (o.frames + 11) / 12);
     auto start = std::chrono::steady_clock::now();
     MemorySample memoryStart;
-    uint64_t step = 0;
     for (uint32_t f = 0; f < o.frames; ++f) {
-        if (solver) {
-            renderer.setSteps(timedSteps(o.timeline, setup, head, o.sim.stepHz, step, stepsPerFrame));
-        }
-        step += stepsPerFrame;  // time passes for the camera and light without hair too
-        OrbitCamera camera = poseFrame(renderer, o.timeline, double(step) / double(o.sim.stepHz), framing);
+        renderer.setSteps(session.nextSteps(stepsPerFrame));  // without hair, time passes for the camera and light
+        OrbitCamera camera = poseFrame(renderer, session.timeline(), session.clock().seconds(), framing);
         Picture picture = renderFrame(ctx, renderer, frame, camera);
         writePng(framePath(o.outDir, f), picture.width, picture.height, picture.rgba);
         written = f + 1;
@@ -174,14 +158,14 @@ void checkRecordOutputs(const RecordOptions& o)
     }
 }
 
-int runRecord(const vk::Context& ctx, const HairScene& scene, const RecordOptions& o)
+int runRecord(const vk::Context& ctx, HairSession& session, const RecordOptions& o)
 {
     checkRecordOutputs(o);
     std::filesystem::create_directories(o.outDir);
     uint32_t written = 0;
     std::vector<Picture> sheet;
     try {
-        sheet = recordFrames(ctx, scene, o, written);
+        sheet = recordFrames(ctx, session, o, written);
     } catch (const vk::DeviceLost& e) {
         if (written > 0 && isatty(STDERR_FILENO))
             std::fputc('\n', stderr);  // ends the progress bar's line

@@ -4,9 +4,7 @@
 // frames, byte for byte, on the same device. A scene's timeline poses every step and frame.
 #pragma once
 
-#include "app/scene.h"
-#include "physics/hair_scene.h"
-#include "physics/simulation.h"
+#include "app/hair_session.h"
 #include "renderer/settings.h"
 #include "gpu/context.h"
 
@@ -21,17 +19,14 @@ struct RecordOptions {
     uint32_t frames = 120;
     float fps = 30.0f;
     RenderSettings settings;
-    SimSettings sim;
-    // The sphere, wind, head turn, camera and light over time (its base: the command line's
-    // sphere, wind and light). Step k takes its values at (k + 1) / step_hz; frame f, drawn after
-    // its steps, shows the moment (f + 1) x steps per frame / step_hz.
-    SceneTimeline timeline;
 };
 
 // Fails (UserError) before any work when the folder or the video cannot be written.
 void checkRecordOutputs(const RecordOptions& options);
-// When the device is lost, throws vk::DeviceLost saying which frames were written (each a complete
-// PNG); no contact sheet or video is made.
-int runRecord(const vk::Context& ctx, const HairScene& scene, const RecordOptions& options);
+// Records `session`'s run: its timeline poses every step (at the step's end) and frame (frame f,
+// drawn after its steps, shows the moment (f + 1) x steps per frame / step_hz). When the device is
+// lost, throws vk::DeviceLost saying which frames were written (each a complete PNG); no contact
+// sheet or video is made.
+int runRecord(const vk::Context& ctx, HairSession& session, const RecordOptions& options);
 
 }  // namespace wisp

@@ -242,7 +242,7 @@ std::vector<SettingSpec> buildSpecs()
                           .help = "wind x,y,z (scaled to the head's units), gusting around this",
                           .change = kLive, .option = "--wind"},
               [](Settings& x) -> auto& { return x.sim.wind; }));
-    add(field(number("wind_frequency", "Hz", {0.0, 10.0}, kSolver, "", "frequency of the wind's gusts"),
+    add(field(number("wind_frequency", "Hz", {0.0, 10.0}, kLive, "", "frequency of the wind's gusts"),
               [](Settings& x) -> auto& { return x.sim.windFrequency; }));
     add(field(integer("grid", {8, 256}, kSolver, "--grid", "hair-hair grid nodes per axis"),
               [](Settings& x) -> auto& { return x.sim.gridResolution; }));

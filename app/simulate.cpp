@@ -16,30 +16,22 @@
 
 namespace wisp {
 
-SimulationReport simulateHeadless(const vk::Context& ctx, const HairScene& scene, const SimSettings& sim, uint32_t steps,
-                                  const Motion& motion, uint32_t sampleEvery, const std::function<void(uint32_t)>& progress)
+SimulationReport simulateHeadless(const vk::Context& ctx, HairSession& session, uint32_t steps, uint32_t sampleEvery,
+                                  const std::function<void(uint32_t)>& progress)
 {
-    SimSettings settings = sim;
-    if (motion.wind)
-        settings.wind = motion.wind(0.0f);
-    SimSetup setup = makeSimSetup(settings, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
-    GpuSolver solver(ctx, scene.strands, setup, motion.head(0.0f));
+    GpuSolver& solver = *session.solver();
     PhysicsPass physics(solver);
     Frame frame(ctx, 1);
-    float stepSeconds = 1.0f / sim.stepHz;
-    auto stepAt = [&](uint32_t n) {
-        float t = float(n) * stepSeconds;
-        return motion.wind ? makeStep(setup, motion.head(t), motion.sphere(t), t, motion.wind(t))
-                           : makeStep(setup, motion.head(t), motion.sphere(t), t);
-    };
+    const HairScene& scene = session.scene();
+    float stepSeconds = session.clock().stepSeconds();
 
     SimulationReport report;
     double gpuMs = 0.0;
     uint32_t done = 0;
+    gpu::SimStep last{};
     auto submit = [&](uint32_t count) {
-        std::vector<gpu::SimStep> list;
-        for (uint32_t k = 0; k < count; ++k)
-            list.push_back(stepAt(done + k));
+        std::vector<gpu::SimStep> list = session.nextSteps(count);
+        last = list.back();
         physics.setSteps(std::move(list));
         FrameContext& fc = frame.begin({});
         std::vector<Pass*> passes = {&physics};
@@ -58,7 +50,7 @@ SimulationReport simulateHeadless(const vk::Context& ctx, const HairScene& scene
         std::vector<glm::vec4> before = solver.readState().positions;
         submit(1);
         report.state = solver.readState();
-        report.last = measure(report.state, before, stepSeconds, scene.strands, setup, stepAt(done - 1));  // the step just run
+        report.last = measure(report.state, before, stepSeconds, scene.strands, session.setup(), last);  // the step just run
         report.worst.maxStretch = std::max(report.worst.maxStretch, report.last.maxStretch);
         report.worst.maxPenetration = std::max(report.worst.maxPenetration, report.last.maxPenetration);
         report.worst.rootDrift = std::max(report.worst.rootDrift, report.last.rootDrift);
@@ -76,17 +68,29 @@ SimulationReport simulateHeadless(const vk::Context& ctx, const HairScene& scene
     return report;
 }
 
-std::vector<DispatchTiming> profilePhysics(const vk::Context& ctx, const HairScene& scene, const SimSettings& sim,
-                                           uint32_t warmupSteps, uint32_t timedSteps)
+SimulationReport simulateHeadless(const vk::Context& ctx, const HairScene& scene, const SimSettings& sim, uint32_t steps,
+                                  const Motion& motion, uint32_t sampleEvery, const std::function<void(uint32_t)>& progress)
 {
-    SimSetup setup = makeSimSetup(sim, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
-    GpuSolver solver(ctx, scene.strands, setup, glm::mat4(1.0f));
+    HairSession session(ctx, scene, sim, stillTimeline(glm::vec4(0.0f), sim.wind));
+    session.setPoses([&](double seconds) {
+        float t = float(seconds);
+        return StepPose{.head = motion.head(t), .sphere = motion.sphere(t), .wind = motion.wind ? motion.wind(t) : sim.wind};
+    });
+    // The solver starts from rest where the motion has the head at time 0.
+    session.reset(motion.head(0.0f));
+    return simulateHeadless(ctx, session, steps, sampleEvery, progress);
+}
+
+std::vector<DispatchTiming> profilePhysics(const vk::Context& ctx, HairSession& session, uint32_t warmupSteps,
+                                           uint32_t timedSteps)
+{
+    GpuSolver& solver = *session.solver();
     vk::GpuTimer timer(ctx, 8, "profile.timestamps");
     std::map<std::string, std::vector<double>> samples;
     std::vector<std::string> order;
     std::vector<double> totals;
     for (uint32_t n = 0; n < warmupSteps + timedSteps; ++n) {
-        gpu::SimStep step = makeStep(setup, glm::mat4(1.0f), glm::vec4(0.0f), float(n) / sim.stepHz);
+        gpu::SimStep step = session.nextSteps(1).front();
         ctx.submitAndWait([&](VkCommandBuffer cmd) {
             timer.reset(cmd);
             solver.recordStep(cmd, step, &timer);
@@ -107,12 +111,12 @@ std::vector<DispatchTiming> profilePhysics(const vk::Context& ctx, const HairSce
     constexpr uint32_t kBatch = 25;
     std::vector<double> batched;
     for (uint32_t b = 0; b < std::max(1u, timedSteps / kBatch); ++b) {
+        std::vector<gpu::SimStep> steps = session.nextSteps(kBatch);
         ctx.submitAndWait([&](VkCommandBuffer cmd) {
             timer.reset(cmd);
             timer.begin(cmd, "batch");
-            for (uint32_t k = 0; k < kBatch; ++k)
-                solver.recordStep(cmd, makeStep(setup, glm::mat4(1.0f), glm::vec4(0.0f),
-                                                float(warmupSteps + timedSteps + b * kBatch + k) / sim.stepHz));
+            for (const gpu::SimStep& step : steps)
+                solver.recordStep(cmd, step);
             timer.end(cmd);
         });
         batched.push_back(timer.read().front().milliseconds / double(kBatch));
@@ -129,17 +133,18 @@ std::vector<DispatchTiming> profilePhysics(const vk::Context& ctx, const HairSce
     return out;
 }
 
-int runSimulate(const SimulateOptions& o, const HairScene& scene)
+int runSimulate(const vk::Context& ctx, HairSession& session, const SimulateOptions& o)
 {
-    vk::Context ctx(o.context);
+    const HairScene& scene = session.scene();
+    const SimSettings& sim = session.sim();
     if (o.profile) {
-        std::vector<DispatchTiming> timings = profilePhysics(ctx, scene, o.sim, o.warmup, o.steps);
+        std::vector<DispatchTiming> timings = profilePhysics(ctx, session, o.warmup, o.steps);
         nlohmann::json out = {{"strands", scene.strands.strandCount()},
                               {"vertices_per_strand", scene.strands.verticesPerStrand},
                               {"vertices", scene.strands.vertexCount()},
-                              {"grid_resolution", o.sim.gridResolution},
-                              {"grid_atomics", o.sim.gridAtomics == SimSettings::GridAtomics::Fixed ? "fixed" : "float"},
-                              {"substeps", o.sim.substeps},
+                              {"grid_resolution", sim.gridResolution},
+                              {"grid_atomics", sim.gridAtomics == SimSettings::GridAtomics::Fixed ? "fixed" : "float"},
+                              {"substeps", sim.substeps},
                               {"warmup_steps", o.warmup},
                               {"timed_steps", o.steps},
                               {"device", ctx.report().name},
@@ -150,31 +155,21 @@ int runSimulate(const SimulateOptions& o, const HairScene& scene)
             std::cout << out.dump() << "\n";
         } else {
             std::printf("%zu guides x %u vertices, grid %u^3, %u substeps on %s (%u warm-up, %u timed steps)\n",
-                        scene.strands.strandCount(), scene.strands.verticesPerStrand, o.sim.gridResolution, o.sim.substeps,
+                        scene.strands.strandCount(), scene.strands.verticesPerStrand, sim.gridResolution, sim.substeps,
                         ctx.report().name.c_str(), o.warmup, o.steps);
             for (const DispatchTiming& t : timings)
                 std::printf("  %-15s median %8.4f ms   p95 %8.4f ms\n", t.name.c_str(), t.medianMs, t.p95Ms);
         }
         return ctx.validationMessages() > 0 ? kExitInternalError : 0;
     }
-    Motion motion;
-    glm::vec4 sphere = o.sphere.value_or(glm::vec4(0.0f));
-    motion.sphere = [sphere](float) { return sphere; };
-    if (o.timeline) {
-        const SceneTimeline& keys = *o.timeline;
-        Bounds head = scene.head.mesh.bounds();
-        motion.head = [&keys, head](float t) { return headYawTransform(head, keys.at(t).headYawDeg); };
-        motion.sphere = [&keys](float t) { return keys.at(t).sphere; };
-        motion.wind = [&keys](float t) { return keys.at(t).wind; };
-    }
-    SimulationReport r = simulateHeadless(ctx, scene, o.sim, o.steps, motion, o.sampleEvery, [&](uint32_t done) {
+    SimulationReport r = simulateHeadless(ctx, session, o.steps, o.sampleEvery, [&](uint32_t done) {
         if (!o.json)
             std::fprintf(stderr, "\rsimulate: %u / %u steps", done, o.steps);
     });
     if (!o.json)
         std::fprintf(stderr, "\n");
 
-    SimSetup setup = makeSimSetup(o.sim, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
+    const SimSetup& setup = session.setup();
     float diagonal = scene.head.mesh.bounds().diagonal();
     nlohmann::json energy = nlohmann::json::array();
     for (const auto& [step, value] : r.energy)
@@ -192,7 +187,7 @@ int runSimulate(const SimulateOptions& o, const HairScene& scene)
                           {"vertices_per_strand", scene.strands.verticesPerStrand},
                           {"parts", parts},
                           {"substeps", setup.substeps},
-                          {"step_hz", o.sim.stepHz},
+                          {"step_hz", sim.stepHz},
                           {"max_stretch", r.last.maxStretch},
                           {"max_penetration", r.last.maxPenetration / diagonal},
                           {"root_drift", r.last.rootDrift},
@@ -207,7 +202,7 @@ int runSimulate(const SimulateOptions& o, const HairScene& scene)
                           {"kinetic_energy", energy},
                           {"gpu_ms_per_step", r.gpuMsPerStep},
                           {"gpu_ms_per_step_over_time", stepMs},
-                          {"grid_resolution", o.sim.gridResolution},
+                          {"grid_resolution", sim.gridResolution},
                           {"colliders", scene.colliders.size()},
                           {"colliders_fitted", scene.collidersFitted},
                           {"device", ctx.report().name},
@@ -217,7 +212,7 @@ int runSimulate(const SimulateOptions& o, const HairScene& scene)
     } else {
         std::printf("%zu guides x %u vertices in %zu part(s), %u steps at %g Hz x %u substeps on %s\n",
                     scene.strands.strandCount(), scene.strands.verticesPerStrand, scene.strands.parts.size(), o.steps,
-                    double(o.sim.stepHz), setup.substeps, ctx.report().name.c_str());
+                    double(sim.stepHz), setup.substeps, ctx.report().name.c_str());
         std::printf("  max stretch       %.3g\n  max penetration   %.3g of the head's diagonal\n  root drift        %.3g\n"
                     "  non-finite resets %u\n  kinetic energy    %.4g (last)\n  GPU time per step %.4f ms\n",
                     double(r.last.maxStretch), double(r.last.maxPenetration / diagonal), double(r.last.rootDrift),

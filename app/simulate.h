@@ -2,6 +2,7 @@
 // run loop behind it, which tests also drive with scripted head and sphere motion.
 #pragma once
 
+#include "app/hair_session.h"
 #include "app/headless.h"
 #include "app/scene.h"
 #include "app/settings_table.h"
@@ -16,7 +17,8 @@
 
 namespace wisp {
 
-// Where the head and the sphere are, and the wind, at simulated time t (seconds).
+// Where the head and the sphere are, and the wind, at simulated time t (seconds): a test's
+// scripted motion.
 struct Motion {
     std::function<glm::mat4(float)> head = [](float) { return glm::mat4(1.0f); };
     std::function<glm::vec4(float)> sphere = [](float) { return glm::vec4(0.0f); };  // xyz, radius (0: none)
@@ -34,7 +36,10 @@ struct SimulationReport {
     MemorySample memoryStart, memoryEnd;                 // after the first sample, and at the end
 };
 
-// Runs `steps` fixed steps on the GPU, sampling every `sampleEvery` steps.
+// Runs `session`'s next `steps` fixed steps on the GPU, sampling every `sampleEvery` steps.
+SimulationReport simulateHeadless(const vk::Context& ctx, HairSession& session, uint32_t steps, uint32_t sampleEvery = 25,
+                                  const std::function<void(uint32_t)>& progress = {});
+// The same for `scene` from rest, posed by `motion` (each step at its end).
 SimulationReport simulateHeadless(const vk::Context& ctx, const HairScene& scene, const SimSettings& sim, uint32_t steps,
                                   const Motion& motion = {}, uint32_t sampleEvery = 25,
                                   const std::function<void(uint32_t)>& progress = {});
@@ -45,16 +50,12 @@ struct DispatchTiming {
     double medianMs = 0.0;
     double p95Ms = 0.0;
 };
-std::vector<DispatchTiming> profilePhysics(const vk::Context& ctx, const HairScene& scene, const SimSettings& sim,
-                                           uint32_t warmupSteps, uint32_t timedSteps);
+std::vector<DispatchTiming> profilePhysics(const vk::Context& ctx, HairSession& session, uint32_t warmupSteps,
+                                           uint32_t timedSteps);
 
 struct SimulateOptions {
-    vk::ContextOptions context;
     Settings settings;  // every setting, for the JSON output
-    SimSettings sim;
     uint32_t steps = 1000;
-    std::optional<glm::vec4> sphere;  // centre xyz and radius, asset units
-    std::optional<SceneTimeline> timeline;  // a scene's keys (head turn, sphere, wind), instead of a still sphere
     bool json = false;
     // Steps between samples of the kinetic energy (each reads the state back). Frequent samples of a
     // large run leave the GPU mostly idle while the CPU copies, and the H100 then runs the same
@@ -65,6 +66,6 @@ struct SimulateOptions {
     uint32_t warmup = 60;     // steps before timing (profile)
 };
 
-int runSimulate(const SimulateOptions& options, const HairScene& scene);
+int runSimulate(const vk::Context& ctx, HairSession& session, const SimulateOptions& options);
 
 }  // namespace wisp

@@ -71,11 +71,11 @@ int runSweep(const vk::Context& ctx, const SweepOptions& o, const SessionOptions
             std::fprintf(stderr, " %s=%s", o.axes[i].name.c_str(), values[i].c_str());
         std::fprintf(stderr, "\n");
 
-        HairScene scene = base.source.buildScene(settings);
-        HairRun run{.scene = &scene, .sim = settings.sim, .frames = 0, .framesPerSecond = 30.0f, .sphere = base.source.sphere};
+        HairSession session(ctx, base.source.buildScene(settings), settings.sim,
+                            stillTimeline(base.source.sphere, settings.sim.wind, render.light), base.source);
         OitStats oit;
-        std::vector<PassTiming> timings = profileFrames(ctx, scene.head, render, run, o.warmup, o.frames, &oit);
-        HairDrawCounts counts = hairDrawCounts(uint32_t(scene.strands.strandCount()), render.strands);
+        std::vector<PassTiming> timings = profileFrames(ctx, session, render, 30.0f, o.warmup, o.frames, &oit);
+        HairDrawCounts counts = hairDrawCounts(uint32_t(session.scene().strands.strandCount()), render.strands);
         for (const std::string& v : values)
             csv << v << ",";
         double frameMs = 0.0;

@@ -7,7 +7,7 @@
 #include "app/ui.h"
 #include "app/viewer.h"
 #include "core/error.h"
-#include "physics/gpu_solver.h"
+#include "app/hair_session.h"
 #include "assets/head.h"
 #include "gpu/frame.h"
 #include "renderer/renderer.h"
@@ -206,12 +206,11 @@ void requireDisplay()
                         "render offscreen with 'wisp render --out FILE.png' instead");
 }
 
-int runWindow(const WindowOptions& options)
+int runWindow(WindowOptions options)
 {
     requireDisplay();
     if (!options.screenshot.empty())
         checkPngOutput(options.screenshot);
-    const Head& head = options.scene->head;
 
     glfwSetErrorCallback([](int, const char* text) { std::fprintf(stderr, "wisp: GLFW: %s\n", text); });
     if (!glfwInit())
@@ -232,7 +231,7 @@ int runWindow(const WindowOptions& options)
 
     glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
     GLFWwindow* window = glfwCreateWindow(int(options.settings.render.width), int(options.settings.render.height),
-                                          ("Wisp - " + head.description.name).c_str(), nullptr, nullptr);
+                                          ("Wisp - " + options.scene.head.description.name).c_str(), nullptr, nullptr);
     if (!window)
         throw UserError("cannot open a window of " + std::to_string(options.settings.render.width) + "x" +
                         std::to_string(options.settings.render.height));
@@ -264,18 +263,12 @@ int runWindow(const WindowOptions& options)
     createSwapchain(ctx, surface, {settings.width, settings.height}, swapchain);
     settings.width = swapchain.extent.width;
     settings.height = swapchain.extent.height;
-    std::unique_ptr<GpuSolver> solver;
-    SimSetup setup;
-    if (options.scene->strands.strandCount() > 0) {
-        setup = makeSimSetup(options.settings.sim, options.scene->strands, options.scene->gpuColliders, options.scene->unitsPerMetre);
-        solver = std::make_unique<GpuSolver>(ctx, options.scene->strands, setup, glm::mat4(1.0f));
-    }
+    HairSession session(ctx, std::move(options.scene), options.settings.sim, options.timeline, options.source);
     // The renderer is remade, pipelines and all, when the shaders are reloaded.
     auto makeRenderer = [&](const RenderSettings& s) {
         auto r = std::make_unique<Renderer>(ctx, s, kFramesInFlight);
-        r->setHead(head);
-        if (solver)
-            r->attachHair(*solver, options.scene->strands, options.scene->unitsPerMetre);
+        r->setHead(session.scene().head);
+        session.attachTo(*r);
         r->showLightMarker(true);
         return r;
     };
@@ -285,10 +278,7 @@ int runWindow(const WindowOptions& options)
     if (!options.script.empty())
         script = loadScript(options.script);
     constexpr uint32_t kMaxStepsPerFrame = 8;  // beyond this the simulation slows down instead of spiralling
-    const float stepSeconds = 1.0f / options.settings.sim.stepHz;
-    const uint32_t scriptedStepsPerFrame = std::max(1u, uint32_t(std::lround(options.settings.sim.stepHz / 60.0f)));
-    uint64_t stepsDone = 0;
-    double pendingSeconds = 0.0;
+    constexpr float kScriptedFps = 60.0f;      // a scripted run (--frames) takes this rate's steps a frame
     bool paused = false;
     Frame frame(ctx, kFramesInFlight);
     auto present = std::make_unique<PresentBlitPass>(renderer->target());
@@ -363,15 +353,16 @@ int runWindow(const WindowOptions& options)
         if (viewer.takeReload()) {
             frame.waitIdle();
             if (rebuildShaders()) {
+                session.reloadShaders();
                 rebuildRenderer(renderer->settings());
                 std::fprintf(stderr, "wisp: shaders reloaded\n");
             } else {
                 std::fprintf(stderr, "wisp: the shader build failed; the previous shaders stay\n");
             }
         }
-        if (viewer.takeReset() && solver) {
+        if (viewer.takeReset() && session.hasHair()) {
             frame.waitIdle();
-            solver->reset(viewer.headTransform());
+            session.reset(viewer.headTransform());
         }
 
         // Orbit, pan and the drags follow the mouse while a button is held.
@@ -408,10 +399,10 @@ int runWindow(const WindowOptions& options)
 
         // The panel, built before the frame begins so that what it changes applies to this frame.
         PanelData panel{.status = viewer.status(), .help = viewerHelp(), .counts = {}, .passes = {}};
-        if (solver) {
+        if (session.hasHair()) {
             HairDrawCounts c = renderer->hairCounts();
             OitStats oit = renderer->oitStats(framesDrawn % kFramesInFlight);
-            panel.counts.push_back("guides " + std::to_string(c.guides) + " x " + std::to_string(options.scene->strands.verticesPerStrand) +
+            panel.counts.push_back("guides " + std::to_string(c.guides) + " x " + std::to_string(session.scene().strands.verticesPerStrand) +
                                    " vertices, simulated");
             panel.counts.push_back("strands drawn " + std::to_string(c.strands()) + " (" + std::to_string(c.strandsPerGuide) +
                                    " per guide, before LOD), segments " + std::to_string(c.segments()));
@@ -515,18 +506,19 @@ int runWindow(const WindowOptions& options)
             viewer.setLight(pending.render.light);
             viewer.setWind(pending.sim.wind);
         }
-        if (change == SettingChange::Live) {
-            renderer->settings() = pending.render;
-        } else if (change == SettingChange::Renderer) {
-            rebuildRenderer(pending.render);
-        } else if (change == SettingChange::Solver && solver) {
+        if (change == SettingChange::Solver) {  // the renderer holds the solver: it goes first
             frame.waitIdle();
-            sim = pending.sim;
-            setup = makeSimSetup(sim, options.scene->strands, options.scene->gpuColliders, options.scene->unitsPerMetre);
-            rendererOwner.reset();  // it holds the old solver
-            solver = std::make_unique<GpuSolver>(ctx, options.scene->strands, setup, viewer.headTransform());
-            rebuildRenderer(pending.render);
+            present.reset();
+            rendererOwner.reset();
         }
+        if (change) {  // the session rebuilds the solver when what it packs changed
+            sim = pending.sim;
+            session.setSim(sim, viewer.headTransform());
+        }
+        if (change == SettingChange::Live)
+            renderer->settings() = pending.render;
+        else if (change)
+            rebuildRenderer(pending.render);
 
         std::vector<TrackedImage*> transient = renderer->transientImages();
         FrameContext& fc = frame.begin(transient);
@@ -550,36 +542,24 @@ int runWindow(const WindowOptions& options)
         viewer.update(frameSeconds);
         paused = viewer.paused();
         if (viewer.playing()) {  // the scene's keys drive the camera, sphere, light, wind and head
-            SceneState st = timeline.at(double(stepsDone) * stepSeconds);
+            SceneState st = timeline.at(session.clock().seconds());
             viewer.pose(poseCamera(framing, st.camera), st.sphere, st.light, st.wind, st.headYawDeg);
         }
         uint32_t due = 0;
-        if (solver) {
-            if (paused) {
+        if (session.hasHair()) {
+            if (paused)
                 due = viewer.takeSteps();
-            } else if (options.maxFrames > 0) {
-                due = scriptedStepsPerFrame;
-            } else {
-                pendingSeconds += elapsed;
-                due = uint32_t(pendingSeconds / stepSeconds);
-                pendingSeconds -= double(due) * stepSeconds;
-                if (due > kMaxStepsPerFrame) {
-                    due = kMaxStepsPerFrame;
-                    pendingSeconds = 0.0;
-                }
-            }
+            else if (options.maxFrames > 0)
+                due = session.clock().stepsPerFrame(kScriptedFps);
+            else
+                due = session.clock().stepsDue(elapsed, kMaxStepsPerFrame);
         }
-        glm::mat4 headTransform = viewer.headTransform();
-        glm::vec4 sphere = viewer.sphere();
-        std::vector<gpu::SimStep> steps;
-        for (uint32_t k = 0; k < due; ++k)
-            steps.push_back(makeStep(setup, headTransform, sphere, float(stepsDone + k) * stepSeconds, viewer.wind()));
-        stepsDone += due;
-        renderer->setSteps(std::move(steps));
+        StepPose pose{.head = viewer.headTransform(), .sphere = viewer.sphere(), .wind = viewer.wind()};
+        renderer->setSteps(session.nextSteps(due, pose));
         renderer->settings().light = viewer.light();
-        renderer->setHeadTransform(headTransform);
-        renderer->setSphere(sphere);
-        renderer->prepare(fc, camera, float(stepsDone) * stepSeconds);
+        renderer->setHeadTransform(pose.head);
+        renderer->setSphere(pose.sphere);
+        renderer->prepare(fc, camera, session.clock().stepStart(session.clock().stepsDone()));
         std::string newTitle = "Wisp - " + viewer.status() + (viewer.helpShown() ? "  |  " + viewerHelp() : "");
         if (newTitle != title) {
             title = newTitle;

@@ -22,7 +22,7 @@ namespace wisp {
 struct WindowOptions {
     vk::ContextOptions context;
     Settings settings;                 // every setting, edited live in the panel
-    const HairScene* scene = nullptr;  // the head and its hair (no strands: the head alone)
+    HairScene scene;                   // the head and its hair (no strands: the head alone)
     glm::vec4 sphere{0.0f};            // the user's sphere (xyz, radius; 0 = none)
     uint32_t maxFrames = 0;  // 0 = until the window is closed
     std::string screenshot;  // PNG of the last frame, written on exit when set
@@ -37,6 +37,6 @@ struct WindowOptions {
 
 // Throws UserError, pointing to `wisp render`, when there is no display to open a window on.
 void requireDisplay();
-int runWindow(const WindowOptions& options);
+int runWindow(WindowOptions options);
 
 }  // namespace wisp

@@ -113,6 +113,12 @@ GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const Sim
               .pushConstantStages = VK_SHADER_STAGE_COMPUTE_BIT, .name = "sim.layout"});
     setLayout_ = std::move(layout.setLayout);
     layout_ = std::move(layout.layout);
+    createPipelines();
+}
+
+void GpuSolver::createPipelines()
+{
+    const vk::Context& ctx = ctx_;
     // The fixed-point grid's kernels are separate SPIR-V (they need 64-bit integer atomics, the
     // float ones need float atomics); the splatting substep is a specialization of integrate.
     std::string variant = fixedGrid_ ? "_fixed" : "";
@@ -122,6 +128,11 @@ GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const Sim
     clear_ = vk::createComputePipeline(ctx, layout_, "grid_clear" + variant + ".comp", "grid.clear");
     normalize_ = vk::createComputePipeline(ctx, layout_, "grid_normalize" + variant + ".comp", "grid.normalize");
     gather_ = vk::createComputePipeline(ctx, layout_, "grid_gather.comp", "grid.gather");
+}
+
+void GpuSolver::reloadPipelines()
+{
+    createPipelines();
 }
 
 void GpuSolver::reset(const glm::mat4& headTransform)

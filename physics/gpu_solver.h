@@ -2,7 +2,7 @@
 //   grid_clear | substeps x sim_integrate (the last one also splats into the grid) |
 //   grid_normalize | grid_gather
 // with a compute->compute barrier between every producer and consumer (a workgroup barrier()
-// does not order work across workgroups). It talks to the device only through renderer/vk; the
+// does not order work across workgroups). It talks to the device only through gpu/; the
 // model and the maths stay in physics/ and shaders/shared/.
 #pragma once
 
@@ -27,6 +27,9 @@ public:
     // substeps), grid_normalize, grid_gather.
     void recordStep(VkCommandBuffer cmd, const gpu::SimStep& step, vk::GpuTimer* timer = nullptr);
 
+    // Makes the kernels' pipelines again from their SPIR-V as it is now on disk (a shader reload);
+    // the device must be idle.
+    void reloadPipelines();
     // Puts every strand back in its rest pose around `headTransform`, at rest. The device must be
     // idle (the window waits for it).
     void reset(const glm::mat4& headTransform);
@@ -49,6 +52,7 @@ public:
 
 private:
     std::vector<uint8_t> download(const vk::Buffer& buffer) const;
+    void createPipelines();
 
     const vk::Context& ctx_;
     SimSetup setup_;

@@ -30,8 +30,8 @@ inline RenderSettings smallRenderSettings()
 // The scene's head and hair as the default camera frames them (the hair unsimulated).
 inline Picture renderHair(const vk::Context& ctx, const HairScene& scene, const RenderSettings& s)
 {
-    HairRun run{.scene = &scene};
-    return renderPicture(ctx, scene.head, s, &run);
+    HairSession session(ctx, scene, SimSettings{}, stillTimeline(glm::vec4(0.0f), glm::vec3(0.0f), s.light));
+    return renderPicture(ctx, session, s);
 }
 
 }  // namespace wisp::test

@@ -80,12 +80,13 @@ TEST_F(HeadRender, WithSimulatedHairTwoRendersAreByteIdentical)
     GrowthSettings growth;
     growth.guides = 300;
     HairScene scene = buildGrownScene(defaultHeadPath(), growth);
-    HairRun run{.scene = &scene, .sim = SimSettings{}, .frames = 12, .framesPerSecond = 30.0f,
-                .sphere = glm::vec4(0.0f, 0.1f, -0.12f, 0.05f)};
-    run.sim.wind = glm::vec3(3.0f, 0.0f, 0.0f);
+    SimSettings sim;
+    sim.wind = glm::vec3(3.0f, 0.0f, 0.0f);
+    SceneTimeline held = stillTimeline(glm::vec4(0.0f, 0.1f, -0.12f, 0.05f), sim.wind, smallSettings().light);
     vk::Context ctx(test::validatedOptions());
-    Picture a = renderPicture(ctx, scene.head, smallSettings(), &run);
-    Picture b = renderPicture(ctx, scene.head, smallSettings(), &run);
+    HairSession first(ctx, scene, sim, held), second(ctx, scene, sim, held);
+    Picture a = renderPicture(ctx, first, smallSettings(), 12, 30.0f);
+    Picture b = renderPicture(ctx, second, smallSettings(), 12, 30.0f);
     EXPECT_TRUE(a.rgba == b.rgba);
     Picture still = renderPicture(ctx, scene.head, smallSettings());
     EXPECT_FALSE(a.rgba == still.rgba);  // the hair is in the picture

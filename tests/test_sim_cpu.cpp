@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "physics/colliders.h"
 #include "physics/cpu_solver.h"
+#include "physics/step_clock.h"
 #include "physics/growth.h"
 #include "physics/hair_scene.h"
 
@@ -280,4 +281,27 @@ TEST(RootSampling, AnEmptyScalpIsAClearError)
 {
     Mesh m = twoTriangles();
     EXPECT_THROW(sampleRoots(m, {}, 10, false, 1), UserError);
+}
+
+TEST(StepClock, FramesTakeRoundedStepsAndRealTimeIsSpentInWholeSteps)
+{
+    StepClock clock(120.0f);
+    EXPECT_EQ(clock.stepsPerFrame(30.0f), 4u);
+    EXPECT_EQ(clock.stepsPerFrame(60.0f), 2u);
+    EXPECT_EQ(clock.stepsPerFrame(1000.0f), 1u);  // at least one
+    EXPECT_EQ(clock.stepsPerFrame(50.0f), 2u);    // round(2.4)
+    // 26 ms of real time: three steps of 8.33 ms, the rest carried to the next frame.
+    EXPECT_EQ(clock.stepsDue(0.026, 8), 3u);
+    EXPECT_EQ(clock.stepsDue(0.005, 8), 0u);
+    EXPECT_EQ(clock.stepsDue(0.005, 8), 1u);
+    // A stall: capped, and the backlog dropped (the simulation slows down instead of spiralling).
+    EXPECT_EQ(clock.stepsDue(1.0, 8), 8u);
+    EXPECT_EQ(clock.stepsDue(0.0, 8), 0u);
+    clock.advance(240);
+    EXPECT_DOUBLE_EQ(clock.seconds(), 2.0);
+    EXPECT_FLOAT_EQ(clock.stepStart(240), 2.0f);
+    EXPECT_DOUBLE_EQ(clock.stepEnd(239), 2.0);
+    clock.setStepHz(60.0f);  // time runs on at the new rate
+    EXPECT_DOUBLE_EQ(clock.seconds(), 2.0);
+    EXPECT_EQ(clock.stepsDone(), 120u);
 }
