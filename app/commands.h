@@ -1,0 +1,20 @@
+// app/commands.h: every command of `wisp`, each registering itself on the command line as
+// app/command.h says (`bsdf`, which needs no device, is app/bsdf_command.h). runCli (app/cli.cpp)
+// adds them in this order, which `wisp --help` lists.
+#pragma once
+
+#include "app/bsdf_command.h"
+#include "app/command.h"
+
+namespace wisp {
+
+CommandRun addRenderCommand(CLI::App& app, const GlobalOptions& global);    // render_command.cpp
+CommandRun addViewCommand(CLI::App& app, const GlobalOptions& global);      // view_command.cpp
+CommandRun addSimulateCommand(CLI::App& app, const GlobalOptions& global);  // simulate_command.cpp
+CommandRun addRecordCommand(CLI::App& app, const GlobalOptions& global);    // record_command.cpp
+CommandRun addSweepCommand(CLI::App& app, const GlobalOptions& global);     // sweep_command.cpp
+CommandRun addSettingsCommand(CLI::App& app);                               // settings_command.cpp
+CommandRun addInfoCommand(CLI::App& app);                                   // info_command.cpp
+CommandRun addInspectCommand(CLI::App& app);                                // inspect_command.cpp
+
+}  // namespace wisp

@@ -1,0 +1,128 @@
+// app/render_command.cpp: `wisp render`: one frame offscreen into a PNG after --frames simulated
+// frames (the head, its hair, a scene's moment), or --profile N: per-pass GPU times of whole frames
+// as JSON.
+#include "app/commands.h"
+
+#include "app/hair_session.h"
+#include "app/headless.h"
+#include "app/image_io.h"
+#include "app/settings_table.h"
+#include "core/error.h"
+#include "gpu/check.h"
+#include "renderer/hair_pass.h"
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <iostream>
+#include <memory>
+
+namespace wisp {
+
+namespace {
+
+struct RenderCommand {
+    CLI::App* command = nullptr;
+    CLI::Option* out = nullptr;
+    std::unique_ptr<SessionCommandLine> shared;
+    std::string outFile;
+    uint32_t frames = 0;
+    float fps = 30.0f;
+    uint32_t profileFrames = 0;  // > 0: time this many frames (after profileWarmup) instead of writing a picture
+    uint32_t profileWarmup = 60;
+};
+
+int runProfile(const GlobalOptions& g, SessionOptions& o, const RenderCommand& c)
+{
+    const RenderSettings& settings = o.settings.render;
+    o.source.noHair = false;
+    HairScene scene = buildCheckedScene(g, o, &settings);
+    vk::Context ctx(contextOptions(g));
+    HairSession session(ctx, std::move(scene), o.settings.sim, o.timeline, o.source);
+    OitStats oit;
+    std::vector<PassTiming> timings = profileFrames(ctx, session, settings, c.fps, c.profileWarmup, c.profileFrames, &oit);
+    HairDrawCounts counts = hairDrawCounts(uint32_t(session.scene().strands.strandCount()), settings.strands);
+    nlohmann::json out = {{"device", ctx.report().name},
+                          {"width", settings.width},
+                          {"height", settings.height},
+                          {"guides", counts.guides},
+                          {"vertices_per_strand", session.scene().strands.verticesPerStrand},
+                          {"strands_per_guide", counts.strandsPerGuide},
+                          {"divisions", counts.divisions},
+                          {"strands", counts.strands()},
+                          {"segments", counts.segments()},
+                          {"samples", settings.samples},
+                          {"warmup_frames", c.profileWarmup},
+                          {"timed_frames", c.profileFrames},
+                          {"transparency", settings.transparency.mode == Transparency::Oit ? "oit" : "msaa"},
+                          {"oit_fragments", oit.fragments},
+                          {"oit_overflow", oit.overflow},
+                          {"oit_capacity", oit.capacity},
+                          {"shadow_size", settings.shadows.mapSize},
+                          {"settings", settingsJson(o.settings)}};
+    for (const PassTiming& t : timings)
+        out["ms"][t.name] = {{"median", t.medianMs}, {"p95", t.p95Ms}};
+    std::cout << out.dump() << "\n";
+    return validationStatus(ctx);
+}
+
+int run(const GlobalOptions& g, const RenderCommand& c)
+{
+    if (c.profileFrames == 0 && !*c.out)
+        throw UserError("render: --out FILE.png is required (or --profile N to time frames)");
+    SessionOptions o = c.shared->resolve();
+    if (c.profileFrames > 0)
+        return runProfile(g, o, c);
+    checkPngOutput(c.outFile);  // fail before any GPU work
+    const RenderSettings& settings = o.settings.render;
+    HairScene scene = buildCheckedScene(g, o, &settings);
+    vk::Context ctx(contextOptions(g));
+    Picture picture;
+    try {
+        HairSession session(ctx, std::move(scene), o.settings.sim, o.timeline, o.source);
+        picture = renderPicture(ctx, session, settings, c.frames, c.fps);
+    } catch (const vk::DeviceLost& e) {
+        throw vk::DeviceLost(e.what() + std::string("; ") + c.outFile + " was not written");
+    }
+    int status = validationStatus(ctx);
+    if (status != 0)
+        return status;  // a picture made with validation errors is not trusted: nothing written
+    writePng(c.outFile, picture.width, picture.height, picture.rgba);
+    std::cout << c.outFile << "\n";
+    if (!picture.hairCounts.empty())
+        std::cout << picture.hairCounts << "\n";
+    if (picture.oit.capacity > 0) {
+        std::cout << "oit: " << picture.oit.fragments << " hair fragments, pool of " << picture.oit.capacity << "\n";
+        if (picture.oit.overflow > 0)
+            std::cerr << "wisp: warning: the OIT pool was full: " << picture.oit.overflow << " of "
+                      << picture.oit.fragments
+                      << " hair fragments were dropped; raise oit_nodes_per_pixel (--set oit_nodes_per_pixel=N)\n";
+    }
+    return 0;
+}
+
+}  // namespace
+
+CommandRun addRenderCommand(CLI::App& app, const GlobalOptions& global)
+{
+    auto c = std::make_shared<RenderCommand>();
+    CLI::App* cmd = app.add_subcommand(
+        "render", "render one frame offscreen into a PNG: the head and its simulated hair, shaded and shadowed");
+    c->command = cmd;
+    c->out = cmd->add_option("--out", c->outFile, "output PNG file (its folder must exist)");
+    cmd->add_option("--profile", c->profileFrames,
+                    "time this many frames (physics and every pass, after --warmup frames) and print per-pass GPU ms as "
+                    "JSON, instead of writing a picture")
+        ->check(CLI::Range(1u, 100000u));
+    cmd->add_option("--warmup", c->profileWarmup, "frames before timing with --profile")
+        ->check(CLI::Range(0u, 100000u))
+        ->capture_default_str();
+    cmd->add_option("--frames", c->frames, "simulated frames before the picture (each 1/fps seconds of fixed steps)")
+        ->check(CLI::Range(0u, 100000u))
+        ->capture_default_str();
+    cmd->add_option("--fps", c->fps, "simulated frames per second")->check(within(1.0, 1000.0))->capture_default_str();
+    c->shared = std::make_unique<SessionCommandLine>(cmd, SessionCommandLine::Uses{});
+    return [c, &global] { return c->command->parsed() ? run(global, *c) : -1; };
+}
+
+}  // namespace wisp
