@@ -1,17 +1,20 @@
-// app/window.cpp: GLFW window, Vulkan surface and swapchain (recreated on resize, idle while
-// minimized), input to the orbit camera, and the per-frame blit from the render target.
+// app/window.cpp: `wisp view` as a small class: GLFW (the window, its surface, the keys and the
+// mouse), the swapchain (app/swapchain.h), the renderer over a hair session, the panel, and the
+// frame: the input applied, the panel's edits applied (live, or rebuilding the renderer or the
+// solver), the steps due, the passes, present. Scenes are saved and loaded by app/window_scene.h.
 #include "app/window.h"
 
+#include "app/hair_session.h"
 #include "app/image_io.h"
 #include "app/settings_table.h"
+#include "app/swapchain.h"
 #include "app/ui.h"
 #include "app/viewer.h"
+#include "app/window_scene.h"
 #include "core/error.h"
-#include "app/hair_session.h"
-#include "assets/head.h"
+#include "gpu/check.h"
 #include "gpu/frame.h"
 #include "renderer/renderer.h"
-#include "gpu/check.h"
 
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
@@ -19,137 +22,18 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <memory>
-#include <optional>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
+#include <optional>
 
 namespace wisp {
 
 namespace {
 
-// Copies the render target's result into the acquired swapchain image.
-class PresentBlitPass : public Pass {
-public:
-    PresentBlitPass(RenderTarget& target) : target_(target) {}
-    const char* name() const override { return "present"; }
-    void setSwapchainImage(TrackedImage& image, VkExtent2D extent)
-    {
-        swapImage_ = &image;
-        swapExtent_ = extent;
-    }
-    void declare(PassIo& io) override
-    {
-        io.use(target_.result(), Access::TransferSrc);
-        io.use(*swapImage_, Access::TransferDst);
-    }
-    void record(VkCommandBuffer cmd, FrameContext&) override
-    {
-        VkExtent2D src = target_.extent();
-        VkImageBlit2 region{.sType = VK_STRUCTURE_TYPE_IMAGE_BLIT_2,
-                            .srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-                            .srcOffsets = {{0, 0, 0}, {int32_t(src.width), int32_t(src.height), 1}},
-                            .dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-                            .dstOffsets = {{0, 0, 0}, {int32_t(swapExtent_.width), int32_t(swapExtent_.height), 1}}};
-        VkBlitImageInfo2 info{.sType = VK_STRUCTURE_TYPE_BLIT_IMAGE_INFO_2,
-                              .srcImage = target_.resultImage().get(),
-                              .srcImageLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                              .dstImage = swapImage_->image,
-                              .dstImageLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                              .regionCount = 1,
-                              .pRegions = &region,
-                              .filter = VK_FILTER_NEAREST};
-        vkCmdBlitImage2(cmd, &info);
-    }
-
-private:
-    RenderTarget& target_;
-    TrackedImage* swapImage_ = nullptr;
-    VkExtent2D swapExtent_{};
-};
-
-struct Swapchain {
-    VkDevice device = VK_NULL_HANDLE;
-    VkSwapchainKHR handle = VK_NULL_HANDLE;
-    VkExtent2D extent{};
-    std::vector<TrackedImage> images;
-    std::vector<vk::Semaphore> renderDone;  // one per image: signalled by the frame, waited by present
-
-    ~Swapchain() { destroy(); }
-    void destroy()
-    {
-        renderDone.clear();
-        images.clear();
-        if (handle)
-            vkDestroySwapchainKHR(device, std::exchange(handle, VK_NULL_HANDLE), nullptr);
-    }
-};
-
-void createSwapchain(const vk::Context& ctx, VkSurfaceKHR surface, VkExtent2D wanted, Swapchain& sc)
-{
-    VkSurfaceCapabilitiesKHR caps;
-    VK_CHECK(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(ctx.physicalDevice(), surface, &caps));
-    uint32_t formatCount = 0;
-    VK_CHECK(vkGetPhysicalDeviceSurfaceFormatsKHR(ctx.physicalDevice(), surface, &formatCount, nullptr));
-    std::vector<VkSurfaceFormatKHR> formats(formatCount);
-    VK_CHECK(vkGetPhysicalDeviceSurfaceFormatsKHR(ctx.physicalDevice(), surface, &formatCount, formats.data()));
-    VkSurfaceFormatKHR format = formats.front();
-    for (const VkSurfaceFormatKHR& f : formats)
-        if ((f.format == VK_FORMAT_B8G8R8A8_SRGB || f.format == VK_FORMAT_R8G8B8A8_SRGB) &&
-            f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR)
-            format = f;
-    VkExtent2D extent = caps.currentExtent.width != UINT32_MAX
-                            ? caps.currentExtent
-                            : VkExtent2D{std::clamp(wanted.width, caps.minImageExtent.width, caps.maxImageExtent.width),
-                                         std::clamp(wanted.height, caps.minImageExtent.height, caps.maxImageExtent.height)};
-    uint32_t imageCount = caps.minImageCount + 1;
-    if (caps.maxImageCount > 0)
-        imageCount = std::min(imageCount, caps.maxImageCount);
-    if (!(caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_DST_BIT))
-        throw UserError("the window surface does not accept transfers (VK_IMAGE_USAGE_TRANSFER_DST_BIT)");
-
-    VkSwapchainKHR old = sc.handle;
-    VkSwapchainCreateInfoKHR info{.sType = VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR,
-                                  .surface = surface,
-                                  .minImageCount = imageCount,
-                                  .imageFormat = format.format,
-                                  .imageColorSpace = format.colorSpace,
-                                  .imageExtent = extent,
-                                  .imageArrayLayers = 1,
-                                  .imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
-                                  .imageSharingMode = VK_SHARING_MODE_EXCLUSIVE,
-                                  .preTransform = caps.currentTransform,
-                                  .compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR,
-                                  .presentMode = VK_PRESENT_MODE_FIFO_KHR,
-                                  .clipped = VK_TRUE,
-                                  .oldSwapchain = old};
-    VkSwapchainKHR handle = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateSwapchainKHR(ctx.device(), &info, nullptr, &handle));
-    sc.handle = VK_NULL_HANDLE;  // keep `old` alive until the new one exists
-    sc.destroy();
-    if (old)
-        vkDestroySwapchainKHR(ctx.device(), old, nullptr);
-    sc.device = ctx.device();
-    sc.handle = handle;
-    sc.extent = extent;
-    ctx.setName(handle, VK_OBJECT_TYPE_SWAPCHAIN_KHR, "window.swapchain");
-
-    uint32_t count = 0;
-    VK_CHECK(vkGetSwapchainImagesKHR(ctx.device(), handle, &count, nullptr));
-    std::vector<VkImage> images(count);
-    VK_CHECK(vkGetSwapchainImagesKHR(ctx.device(), handle, &count, images.data()));
-    for (VkImage image : images) {
-        sc.images.push_back({.image = image});
-        sc.renderDone.push_back(ctx.createSemaphore("window.renderDone"));
-    }
-}
-
-struct Input {
-    Viewer* viewer = nullptr;
-    UiOverlay* ui = nullptr;
-    double lastX = 0.0, lastY = 0.0;
-    bool orbiting = false, panning = false, dragging = false;
-};
+constexpr uint32_t kFramesInFlight = 2;
+constexpr uint32_t kMaxStepsPerFrame = 8;  // beyond this the simulation slows down instead of spiralling
+constexpr float kScriptedFps = 60.0f;      // a scripted run (--frames) takes this rate's steps a frame
 
 // GLFW keys to the viewer's (the one table of what each key does is app/viewer.cpp).
 bool viewerKeyOf(int glfwKey, ViewerKey& key)
@@ -195,6 +79,449 @@ bool rebuildShaders()
     return std::system(command.c_str()) == 0;
 }
 
+// GLFW for the window's life: initialised first, terminated last.
+struct GlfwLibrary {
+    GlfwLibrary()
+    {
+        glfwSetErrorCallback([](int, const char* text) { std::fprintf(stderr, "wisp: GLFW: %s\n", text); });
+        if (!glfwInit())
+            throw UserError("cannot open a window: GLFW could not initialise (is the display reachable?)");
+        if (!glfwVulkanSupported()) {
+            glfwTerminate();
+            throw UserError("cannot open a window: GLFW finds no Vulkan loader with surface support");
+        }
+    }
+    ~GlfwLibrary() { glfwTerminate(); }
+    GlfwLibrary(const GlfwLibrary&) = delete;
+    GlfwLibrary& operator=(const GlfwLibrary&) = delete;
+};
+
+vk::ContextOptions presentingOptions(vk::ContextOptions options)
+{
+    uint32_t count = 0;
+    const char** extensions = glfwGetRequiredInstanceExtensions(&count);
+    for (uint32_t i = 0; i < count; ++i)
+        options.instanceExtensions.emplace_back(extensions[i]);
+    options.presentation = true;
+    return options;
+}
+
+struct GlfwWindow {
+    GLFWwindow* handle = nullptr;
+    GlfwWindow(uint32_t width, uint32_t height, const std::string& title)
+    {
+        glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+        handle = glfwCreateWindow(int(width), int(height), title.c_str(), nullptr, nullptr);
+        if (!handle)
+            throw UserError("cannot open a window of " + std::to_string(width) + "x" + std::to_string(height));
+    }
+    ~GlfwWindow() { glfwDestroyWindow(handle); }
+    GlfwWindow(const GlfwWindow&) = delete;
+    GlfwWindow& operator=(const GlfwWindow&) = delete;
+};
+
+struct Surface {
+    VkInstance instance;
+    VkSurfaceKHR handle = VK_NULL_HANDLE;
+    Surface(const vk::Context& ctx, GLFWwindow* window) : instance(ctx.instance())
+    {
+        VK_CHECK(glfwCreateWindowSurface(ctx.instance(), window, nullptr, &handle));
+        VkBool32 presentable = VK_FALSE;
+        VkResult r = vkGetPhysicalDeviceSurfaceSupportKHR(ctx.physicalDevice(), ctx.queueFamily(), handle, &presentable);
+        if (r != VK_SUCCESS || !presentable) {
+            vkDestroySurfaceKHR(instance, handle, nullptr);
+            VK_CHECK(r);
+            throw UserError("the Vulkan device '" + ctx.report().name + "' cannot present to this window");
+        }
+    }
+    ~Surface() { vkDestroySurfaceKHR(instance, handle, nullptr); }
+    Surface(const Surface&) = delete;
+    Surface& operator=(const Surface&) = delete;
+};
+
+// The mouse as the last frame left it.
+struct Mouse {
+    double lastX = 0.0, lastY = 0.0;
+    bool orbiting = false, panning = false, dragging = false;
+};
+
+class Window {
+public:
+    explicit Window(WindowOptions options);
+    int run();
+
+private:
+    VkExtent2D framebufferSize() const;
+    void rebuildRenderer(const RenderSettings& settings);
+    void followMouse(float viewportHeight);
+    void buildPanel(const std::vector<std::string>& scriptedSets);
+    std::string applyFromPanel(const SettingSpec& spec, const SettingValue& value);
+    void saveOrLoadScene();
+    void applyEdits();
+    void drawFrame();
+    SceneState now();
+
+    WindowOptions options_;
+    GlfwLibrary glfw_;
+    vk::Context ctx_;
+    GlfwWindow window_;
+    Surface surface_;
+    Swapchain swapchain_;
+    HairSession session_;
+    std::unique_ptr<Renderer> renderer_;
+    std::vector<ScriptEvent> script_;
+    Frame frame_;
+    std::unique_ptr<PresentBlitPass> present_;
+    std::unique_ptr<ReadbackPass> readback_;  // the --screenshot of the last frame
+    std::vector<vk::Semaphore> acquired_;
+    Viewer viewer_;
+    OrbitCamera framing_;
+    Mouse mouse_;
+    UiOverlay ui_;  // after the window's callbacks: ImGui's GLFW backend chains them
+
+    SceneTimeline timeline_;   // a scene's keys, played while the viewer is playing
+    SimSettings sim_;          // what the solver runs with
+    Settings pending_;         // the settings as the panel edits them this frame
+    std::optional<SettingChange> change_;  // the largest change the edits need
+    bool rebuildSwapchain_ = false;
+    uint32_t framesDrawn_ = 0, screenshots_ = 0, scenesSaved_ = 0;
+    std::filesystem::path lastSaved_;
+    std::string title_;
+    std::chrono::steady_clock::time_point lastFrame_ = std::chrono::steady_clock::now();
+};
+
+Window::Window(WindowOptions options)
+    : options_(std::move(options)), glfw_(), ctx_(presentingOptions(options_.context)),
+      window_(options_.settings.render.width, options_.settings.render.height,
+              "Wisp - " + options_.scene.head.description.name),
+      surface_(ctx_, window_.handle), swapchain_(ctx_, surface_.handle, framebufferSize()),
+      session_(ctx_, std::move(options_.scene), options_.settings.sim, options_.timeline, options_.source),
+      frame_(ctx_, kFramesInFlight),
+      viewer_(OrbitCamera::framing(session_.headBounds(), float(swapchain_.extent().width) / float(swapchain_.extent().height)),
+              session_.headBounds(), options_.sphere, options_.settings.render.light, options_.settings.sim.wind),
+      framing_(viewer_.camera()), ui_(ctx_, window_.handle, kFramesInFlight), timeline_(options_.timeline),
+      sim_(options_.settings.sim)
+{
+    rebuildRenderer(options_.settings.render);
+    if (!options_.script.empty())
+        script_ = loadScript(options_.script);
+    for (uint32_t i = 0; i < kFramesInFlight; ++i)
+        acquired_.push_back(ctx_.createSemaphore("window.acquired"));
+    viewer_.setPlaying(options_.sceneLength > 0.0);
+
+    glfwSetWindowUserPointer(window_.handle, this);
+    glfwSetScrollCallback(window_.handle, [](GLFWwindow* w, double, double dy) {
+        Window* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
+        if (!self->ui_.wantsMouse())
+            self->viewer_.camera().zoom(std::pow(0.9f, float(dy)));
+    });
+    glfwSetKeyCallback(window_.handle, [](GLFWwindow* w, int glfwKey, int, int action, int) {
+        Window* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
+        ViewerKey key;
+        if (!viewerKeyOf(glfwKey, key))
+            return;
+        if (self->ui_.wantsKeyboard() && action == GLFW_PRESS)
+            return;  // typing into the panel
+        if (action == GLFW_PRESS)
+            self->viewer_.press(key);
+        else if (action == GLFW_RELEASE)
+            self->viewer_.release(key);
+    });
+}
+
+VkExtent2D Window::framebufferSize() const
+{
+    int width = 0, height = 0;
+    glfwGetFramebufferSize(window_.handle, &width, &height);
+    return {uint32_t(std::max(width, 1)), uint32_t(std::max(height, 1))};
+}
+
+// The renderer is made again, pipelines and all, when a setting sizes it, when the solver was
+// made again (it holds it), and when the shaders are reloaded.
+void Window::rebuildRenderer(const RenderSettings& settings)
+{
+    frame_.waitIdle();
+    present_.reset();
+    renderer_.reset();
+    RenderSettings s = settings;
+    s.width = swapchain_.extent().width;
+    s.height = swapchain_.extent().height;
+    renderer_ = std::make_unique<Renderer>(ctx_, s, kFramesInFlight);
+    renderer_->setHead(session_.scene().head);
+    session_.attachTo(*renderer_);
+    renderer_->showLightMarker(true);
+    present_ = std::make_unique<PresentBlitPass>(renderer_->target());
+    ui_.setTarget(renderer_->target());
+}
+
+// Orbit, pan and the drags follow the mouse while a button is held (not while the panel has it).
+void Window::followMouse(float viewportHeight)
+{
+    GLFWwindow* w = window_.handle;
+    double x = 0.0, y = 0.0;
+    glfwGetCursorPos(w, &x, &y);
+    bool left = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    bool middle = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+    bool right = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+    bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+    float dx = float(x - mouse_.lastX), dy = float(y - mouse_.lastY);
+    if (ui_.wantsMouse())
+        left = middle = right = false;
+    OrbitCamera& camera = viewer_.camera();
+    if (left && mouse_.orbiting)
+        viewer_.orbit(dx, dy);
+    if (middle && mouse_.panning) {
+        float unitsPerPixel = 2.0f * camera.distance * std::tan(glm::radians(camera.fovYDeg) * 0.5f) / viewportHeight;
+        camera.pan(-dx * unitsPerPixel, dy * unitsPerPixel);
+    }
+    if (right && mouse_.dragging) {
+        if (shift)
+            viewer_.dragLight(dx, dy);
+        else
+            viewer_.dragSphere(dx, dy, viewportHeight);
+    }
+    mouse_ = {.lastX = x, .lastY = y, .orbiting = left, .panning = middle, .dragging = right};
+}
+
+std::string Window::applyFromPanel(const SettingSpec& spec, const SettingValue& value)
+{
+    SettingEdit edit = editSetting(pending_, spec, value);
+    if (edit.error.empty())
+        change_ = std::max(change_.value_or(SettingChange::Live), edit.change);
+    return edit.error;
+}
+
+// The panel, built before the frame begins so that what it changes applies to this frame; a
+// script's `set` lines go the panel's way.
+void Window::buildPanel(const std::vector<std::string>& scriptedSets)
+{
+    PanelData panel{.status = viewer_.status(), .help = viewerHelp(), .counts = {}, .passes = {}};
+    if (session_.hasHair()) {
+        HairDrawCounts c = renderer_->hairCounts();
+        OitStats oit = renderer_->oitStats(framesDrawn_ % kFramesInFlight);
+        panel.counts.push_back("guides " + std::to_string(c.guides) + " x " +
+                               std::to_string(session_.scene().strands.verticesPerStrand) + " vertices, simulated");
+        panel.counts.push_back("strands drawn " + std::to_string(c.strands()) + " (" + std::to_string(c.strandsPerGuide) +
+                               " per guide, before LOD), segments " + std::to_string(c.segments()));
+        if (oit.capacity > 0)
+            panel.counts.push_back("OIT fragments " + std::to_string(oit.fragments) + " of a pool of " +
+                                   std::to_string(oit.capacity) + ", dropped " + std::to_string(oit.overflow));
+    }
+    for (const vk::ScopeTime& t : frame_.timings())
+        panel.passes.emplace_back(t.name, t.milliseconds);
+    // What the panel shows: the settings as they are now (the viewer's light and wind included).
+    pending_ = Settings{.growth = options_.settings.growth, .sim = sim_, .render = renderer_->settings()};
+    pending_.render.light = viewer_.light();
+    pending_.sim.wind = viewer_.wind();
+    const Settings shown = pending_;
+    change_.reset();
+    auto apply = [this](const SettingSpec& spec, const SettingValue& value) { return applyFromPanel(spec, value); };
+    ui_.build(panel, shown, apply, viewer_.helpShown());
+    for (const std::string& assignment : scriptedSets) {
+        size_t eq = assignment.find('=');
+        std::string name = assignment.substr(0, eq);
+        std::string error;
+        if (const SettingSpec* spec = findSetting(name)) {
+            try {
+                error = applyFromPanel(*spec, parseSetting(*spec, assignment.substr(eq + 1), name));
+            } catch (const UserError& e) {
+                error = e.what();
+            }
+        } else {
+            error = "unknown setting '" + name + "' (see 'wisp settings')";
+        }
+        if (!error.empty())
+            throw UserError("--script: " + assignment + ": " + error);
+    }
+}
+
+SceneState Window::now()
+{
+    return {.camera = cameraPoseOf(framing_, viewer_.camera()),
+            .sphere = viewer_.sphere(),
+            .light = viewer_.light(),
+            .wind = viewer_.wind(),
+            .headYawDeg = viewer_.headYawDeg()};
+}
+
+// F2 saves the window's state as a scene; F3 loads the last one saved back.
+void Window::saveOrLoadScene()
+{
+    if (viewer_.takeSave()) {
+        Settings current{.growth = options_.settings.growth, .sim = sim_, .render = renderer_->settings()};
+        current.sim.wind = viewer_.wind();
+        lastSaved_ = saveWindowScene(++scenesSaved_, options_.source, current, now());
+        std::printf("wisp: saved the scene %s\n", lastSaved_.string().c_str());
+    }
+    if (viewer_.takeLoad()) {
+        if (lastSaved_.empty()) {
+            std::fprintf(stderr, "wisp: no scene saved yet (F2 saves one; 'wisp view --scene FILE' opens any)\n");
+            return;
+        }
+        auto apply = [this](const SettingSpec& spec, const SettingValue& value) { return applyFromPanel(spec, value); };
+        timeline_ = loadWindowScene(lastSaved_, now(), apply);
+        SceneState s0 = timeline_.at(0.0);
+        viewer_.pose(poseCamera(framing_, s0.camera), s0.sphere, s0.light, s0.wind, s0.headYawDeg);
+        std::printf("wisp: loaded the scene %s (its head and hair are not reloaded)\n", lastSaved_.string().c_str());
+    }
+}
+
+// What the panel's edits need: live ones at once; the renderer made again for the settings that
+// size it; the solver too (the session decides from what it packs), the renderer holding it.
+void Window::applyEdits()
+{
+    if (!change_)
+        return;
+    viewer_.setLight(pending_.render.light);  // the light and the wind are the viewer's
+    viewer_.setWind(pending_.sim.wind);
+    if (change_ == SettingChange::Solver) {
+        frame_.waitIdle();
+        present_.reset();
+        renderer_.reset();
+    }
+    sim_ = pending_.sim;
+    session_.setSim(sim_, viewer_.headTransform());
+    if (change_ == SettingChange::Live)
+        renderer_->settings() = pending_.render;
+    else
+        rebuildRenderer(pending_.render);
+}
+
+// One frame: the steps due (real time since the last image was acquired, or a scripted frame's
+// worth), the passes (a screenshot's readback before the panel, or after it when asked), present.
+void Window::drawFrame()
+{
+    std::vector<TrackedImage*> transient = renderer_->transientImages();
+    FrameContext& fc = frame_.begin(transient);
+    VkSemaphore acquire = acquired_[fc.slot];
+    uint32_t imageIndex = 0;
+    if (!swapchain_.acquire(acquire, imageIndex)) {
+        frame_.submit(fc);  // empty, keeps the slot's fence in step
+        rebuildSwapchain_ = true;
+        return;
+    }
+    auto acquiredAt = std::chrono::steady_clock::now();
+    double elapsed = std::chrono::duration<double>(acquiredAt - lastFrame_).count();
+    lastFrame_ = acquiredAt;
+
+    // The simulation advances in fixed steps only: real time decides how many are due (a scripted
+    // run, --frames, takes one 60 Hz frame's worth each frame, so it repeats).
+    bool scripted = options_.maxFrames > 0;
+    viewer_.update(scripted ? 1.0f / kScriptedFps : float(std::min(elapsed, 0.1)));
+    if (viewer_.playing()) {  // the scene's keys drive the camera, sphere, light, wind and head
+        SceneState st = timeline_.at(session_.clock().seconds());
+        viewer_.pose(poseCamera(framing_, st.camera), st.sphere, st.light, st.wind, st.headYawDeg);
+    }
+    uint32_t due = 0;
+    if (session_.hasHair())
+        due = viewer_.paused() ? viewer_.takeSteps()
+              : scripted       ? session_.clock().stepsPerFrame(kScriptedFps)
+                               : session_.clock().stepsDue(elapsed, kMaxStepsPerFrame);
+    StepPose pose{.head = viewer_.headTransform(), .sphere = viewer_.sphere(), .wind = viewer_.wind()};
+    renderer_->setSteps(session_.nextSteps(due, pose));
+    renderer_->settings().light = viewer_.light();
+    renderer_->setHeadTransform(pose.head);
+    renderer_->setSphere(pose.sphere);
+    renderer_->prepare(fc, viewer_.camera(), session_.clock().stepStart(session_.clock().stepsDone()));
+    std::string title = "Wisp - " + viewer_.status() + (viewer_.helpShown() ? "  |  " + viewerHelp() : "");
+    if (title != title_) {
+        title_ = title;
+        glfwSetWindowTitle(window_.handle, title_.c_str());
+    }
+
+    TrackedImage& swapImage = swapchain_.beginImage(imageIndex);
+    present_->setSwapchainImage(swapImage, swapchain_.extent());
+    std::vector<Pass*> passes = renderer_->passes();
+    bool last = scripted && framesDrawn_ + 1 >= options_.maxFrames;
+    bool shot = viewer_.takeScreenshot();
+    std::unique_ptr<ReadbackPass> shotReadback;
+    if (shot) {  // screenshots are the scene, taken before the panel is drawn over it
+        shotReadback = std::make_unique<ReadbackPass>(ctx_, renderer_->target());
+        passes.push_back(shotReadback.get());
+    }
+    bool keepLast = last && !options_.screenshot.empty();
+    if (keepLast && !options_.screenshotPanel) {
+        readback_ = std::make_unique<ReadbackPass>(ctx_, renderer_->target());
+        passes.push_back(readback_.get());
+    }
+    passes.push_back(&ui_);
+    if (keepLast && options_.screenshotPanel) {
+        readback_ = std::make_unique<ReadbackPass>(ctx_, renderer_->target());
+        passes.push_back(readback_.get());
+    }
+    passes.push_back(present_.get());
+    frame_.run(fc, passes);
+    frame_.transition(fc, swapImage, Access::Present);
+    frame_.submit(fc, acquire, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, swapchain_.renderDone(imageIndex));
+    if (!swapchain_.present(imageIndex))
+        rebuildSwapchain_ = true;
+    ++framesDrawn_;
+    if (shot) {  // P: the frame as drawn, beside the working folder's other files
+        frame_.waitIdle();
+        char name[64];
+        std::snprintf(name, sizeof(name), "wisp-screenshot-%03u.png", ++screenshots_);
+        VkExtent2D e = renderer_->target().extent();
+        writePng(name, e.width, e.height, shotReadback->pixels());
+        std::printf("wisp: screenshot %s\n", name);
+    }
+    if (last)
+        glfwSetWindowShouldClose(window_.handle, GLFW_TRUE);
+}
+
+int Window::run()
+{
+    while (!glfwWindowShouldClose(window_.handle)) {
+        glfwPollEvents();
+        int width = 0, height = 0;
+        glfwGetFramebufferSize(window_.handle, &width, &height);
+        if (width == 0 || height == 0) {  // minimized: draw nothing until restored
+            glfwWaitEvents();
+            continue;
+        }
+        if (rebuildSwapchain_ || uint32_t(width) != swapchain_.extent().width || uint32_t(height) != swapchain_.extent().height) {
+            frame_.waitIdle();
+            swapchain_.recreate({uint32_t(width), uint32_t(height)});
+            renderer_->resize(swapchain_.extent());
+            ui_.setTarget(renderer_->target());
+            rebuildSwapchain_ = false;
+        }
+        if (viewer_.takeReload()) {  // F5: every shader, the solver's kernels and the renderer's pipelines
+            frame_.waitIdle();
+            if (rebuildShaders()) {
+                session_.reloadShaders();
+                rebuildRenderer(renderer_->settings());
+                std::fprintf(stderr, "wisp: shaders reloaded\n");
+            } else {
+                std::fprintf(stderr, "wisp: the shader build failed; the previous shaders stay\n");
+            }
+        }
+        if (viewer_.takeReset() && session_.hasHair()) {
+            frame_.waitIdle();
+            session_.reset(viewer_.headTransform());
+        }
+        followMouse(float(height));
+        std::vector<std::string> scriptedSets = playScript(script_, framesDrawn_, viewer_, float(height));
+        if (viewer_.quit())
+            glfwSetWindowShouldClose(window_.handle, GLFW_TRUE);
+        buildPanel(scriptedSets);
+        saveOrLoadScene();
+        applyEdits();
+        drawFrame();
+    }
+    frame_.waitIdle();
+    if (readback_) {
+        VkExtent2D e = renderer_->target().extent();
+        writePng(options_.screenshot, e.width, e.height, readback_->pixels());
+    }
+    std::printf("wisp: closed after %u frames: %s\n", framesDrawn_, viewer_.status().c_str());
+    uint32_t messages = ctx_.validationMessages();
+    if (messages > 0) {
+        std::fprintf(stderr, "wisp: %u Vulkan validation messages (printed above)\n", messages);
+        return kExitInternalError;
+    }
+    return 0;
+}
+
 }  // namespace
 
 void requireDisplay()
@@ -211,425 +538,8 @@ int runWindow(WindowOptions options)
     requireDisplay();
     if (!options.screenshot.empty())
         checkPngOutput(options.screenshot);
-
-    glfwSetErrorCallback([](int, const char* text) { std::fprintf(stderr, "wisp: GLFW: %s\n", text); });
-    if (!glfwInit())
-        throw UserError("cannot open a window: GLFW could not initialise (is the display reachable?)");
-    struct GlfwGuard {
-        ~GlfwGuard() { glfwTerminate(); }
-    } glfwGuard;
-    if (!glfwVulkanSupported())
-        throw UserError("cannot open a window: GLFW finds no Vulkan loader with surface support");
-
-    vk::ContextOptions contextOptions = options.context;
-    uint32_t glfwCount = 0;
-    const char** glfwExtensions = glfwGetRequiredInstanceExtensions(&glfwCount);
-    for (uint32_t i = 0; i < glfwCount; ++i)
-        contextOptions.instanceExtensions.emplace_back(glfwExtensions[i]);
-    contextOptions.presentation = true;
-    vk::Context ctx(contextOptions);
-
-    glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
-    GLFWwindow* window = glfwCreateWindow(int(options.settings.render.width), int(options.settings.render.height),
-                                          ("Wisp - " + options.scene.head.description.name).c_str(), nullptr, nullptr);
-    if (!window)
-        throw UserError("cannot open a window of " + std::to_string(options.settings.render.width) + "x" +
-                        std::to_string(options.settings.render.height));
-    struct WindowGuard {
-        GLFWwindow* w;
-        ~WindowGuard() { glfwDestroyWindow(w); }
-    } windowGuard{window};
-
-    VkSurfaceKHR surface = VK_NULL_HANDLE;
-    VK_CHECK(glfwCreateWindowSurface(ctx.instance(), window, nullptr, &surface));
-    struct SurfaceGuard {
-        VkInstance i;
-        VkSurfaceKHR s;
-        ~SurfaceGuard() { vkDestroySurfaceKHR(i, s, nullptr); }
-    } surfaceGuard{ctx.instance(), surface};
-    VkBool32 presentable = VK_FALSE;
-    VK_CHECK(vkGetPhysicalDeviceSurfaceSupportKHR(ctx.physicalDevice(), ctx.queueFamily(), surface, &presentable));
-    if (!presentable)
-        throw UserError("the Vulkan device '" + ctx.report().name + "' cannot present to this window");
-
-    constexpr uint32_t kFramesInFlight = 2;
-    int fbWidth = 0, fbHeight = 0;
-    glfwGetFramebufferSize(window, &fbWidth, &fbHeight);
-    RenderSettings settings = options.settings.render;
-    settings.width = uint32_t(std::max(fbWidth, 1));
-    settings.height = uint32_t(std::max(fbHeight, 1));
-
-    Swapchain swapchain;
-    createSwapchain(ctx, surface, {settings.width, settings.height}, swapchain);
-    settings.width = swapchain.extent.width;
-    settings.height = swapchain.extent.height;
-    HairSession session(ctx, std::move(options.scene), options.settings.sim, options.timeline, options.source);
-    // The renderer is remade, pipelines and all, when the shaders are reloaded.
-    auto makeRenderer = [&](const RenderSettings& s) {
-        auto r = std::make_unique<Renderer>(ctx, s, kFramesInFlight);
-        r->setHead(session.scene().head);
-        session.attachTo(*r);
-        r->showLightMarker(true);
-        return r;
-    };
-    std::unique_ptr<Renderer> rendererOwner = makeRenderer(settings);
-    Renderer* renderer = rendererOwner.get();
-    std::vector<ScriptEvent> script;
-    if (!options.script.empty())
-        script = loadScript(options.script);
-    constexpr uint32_t kMaxStepsPerFrame = 8;  // beyond this the simulation slows down instead of spiralling
-    constexpr float kScriptedFps = 60.0f;      // a scripted run (--frames) takes this rate's steps a frame
-    bool paused = false;
-    Frame frame(ctx, kFramesInFlight);
-    auto present = std::make_unique<PresentBlitPass>(renderer->target());
-    std::unique_ptr<ReadbackPass> readback;
-    uint32_t screenshots = 0;
-    std::vector<vk::Semaphore> acquired;
-    for (uint32_t i = 0; i < kFramesInFlight; ++i)
-        acquired.push_back(ctx.createSemaphore("window.acquired"));
-
-    Viewer viewer(OrbitCamera::framing(renderer->sceneBounds(), float(settings.width) / float(settings.height)),
-                  renderer->sceneBounds(), options.sphere, settings.light, options.settings.sim.wind);
-    Input input{.viewer = &viewer};
-    glfwSetWindowUserPointer(window, &input);
-    glfwSetScrollCallback(window, [](GLFWwindow* w, double, double dy) {
-        Input* in = static_cast<Input*>(glfwGetWindowUserPointer(w));
-        if (!in->ui || !in->ui->wantsMouse())
-            in->viewer->camera().zoom(std::pow(0.9f, float(dy)));
-    });
-    glfwSetKeyCallback(window, [](GLFWwindow* w, int glfwKey, int, int action, int) {
-        Input* in = static_cast<Input*>(glfwGetWindowUserPointer(w));
-        ViewerKey key;
-        if (!viewerKeyOf(glfwKey, key))
-            return;
-        if (in->ui && in->ui->wantsKeyboard() && action == GLFW_PRESS)
-            return;  // typing into the panel
-        if (action == GLFW_PRESS)
-            in->viewer->press(key);
-        else if (action == GLFW_RELEASE)
-            in->viewer->release(key);
-    });
-    std::string title;
-    const OrbitCamera framing = OrbitCamera::framing(renderer->sceneBounds(), float(settings.width) / float(settings.height));
-    SceneTimeline timeline = options.timeline;
-    viewer.setPlaying(options.sceneLength > 0.0);
-    std::filesystem::path lastSaved;
-    uint32_t scenesSaved = 0;
-    // After the window's callbacks: ImGui's GLFW backend chains them.
-    UiOverlay ui(ctx, window, kFramesInFlight);
-    ui.setTarget(renderer->target());
-    input.ui = &ui;
-    SimSettings sim = options.settings.sim;
-    // Settings edited in the panel: most apply in the next frame; a few rebuild what they size.
-    Settings pending;
-    std::optional<SettingChange> change;
-    auto rebuildRenderer = [&](const RenderSettings& s) {
-        frame.waitIdle();
-        present.reset();
-        rendererOwner.reset();
-        rendererOwner = makeRenderer(s);
-        renderer = rendererOwner.get();
-        present = std::make_unique<PresentBlitPass>(renderer->target());
-        ui.setTarget(renderer->target());
-    };
-
-    bool rebuild = false;
-    uint32_t framesDrawn = 0;
-    auto lastFrame = std::chrono::steady_clock::now();
-    while (!glfwWindowShouldClose(window)) {
-        glfwPollEvents();
-        glfwGetFramebufferSize(window, &fbWidth, &fbHeight);
-        if (fbWidth == 0 || fbHeight == 0) {  // minimized: draw nothing until restored
-            glfwWaitEvents();
-            continue;
-        }
-        if (rebuild || uint32_t(fbWidth) != swapchain.extent.width || uint32_t(fbHeight) != swapchain.extent.height) {
-            frame.waitIdle();
-            createSwapchain(ctx, surface, {uint32_t(fbWidth), uint32_t(fbHeight)}, swapchain);
-            renderer->resize(swapchain.extent);
-            ui.setTarget(renderer->target());
-            rebuild = false;
-        }
-        if (viewer.takeReload()) {
-            frame.waitIdle();
-            if (rebuildShaders()) {
-                session.reloadShaders();
-                rebuildRenderer(renderer->settings());
-                std::fprintf(stderr, "wisp: shaders reloaded\n");
-            } else {
-                std::fprintf(stderr, "wisp: the shader build failed; the previous shaders stay\n");
-            }
-        }
-        if (viewer.takeReset() && session.hasHair()) {
-            frame.waitIdle();
-            session.reset(viewer.headTransform());
-        }
-
-        // Orbit, pan and the drags follow the mouse while a button is held.
-        double x = 0.0, y = 0.0;
-        glfwGetCursorPos(window, &x, &y);
-        bool left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-        bool middle = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
-        bool rightButton = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
-        bool shift = glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(window, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
-        float dx = float(x - input.lastX), dy = float(y - input.lastY);
-        if (ui.wantsMouse())
-            left = middle = rightButton = false;  // the panel has the mouse
-        OrbitCamera& camera = viewer.camera();
-        if (left && input.orbiting)
-            viewer.orbit(dx, dy);
-        if (middle && input.panning) {
-            float unitsPerPixel = 2.0f * camera.distance * std::tan(glm::radians(camera.fovYDeg) * 0.5f) / float(fbHeight);
-            camera.pan(-dx * unitsPerPixel, dy * unitsPerPixel);
-        }
-        if (rightButton && input.dragging) {
-            if (shift)
-                viewer.dragLight(dx, dy);
-            else
-                viewer.dragSphere(dx, dy, float(fbHeight));
-        }
-        input.orbiting = left;
-        input.panning = middle;
-        input.dragging = rightButton;
-        input.lastX = x;
-        input.lastY = y;
-        std::vector<std::string> scriptedSets = playScript(script, framesDrawn, viewer, float(fbHeight));
-        if (viewer.quit())
-            glfwSetWindowShouldClose(window, GLFW_TRUE);
-
-        // The panel, built before the frame begins so that what it changes applies to this frame.
-        PanelData panel{.status = viewer.status(), .help = viewerHelp(), .counts = {}, .passes = {}};
-        if (session.hasHair()) {
-            HairDrawCounts c = renderer->hairCounts();
-            OitStats oit = renderer->oitStats(framesDrawn % kFramesInFlight);
-            panel.counts.push_back("guides " + std::to_string(c.guides) + " x " + std::to_string(session.scene().strands.verticesPerStrand) +
-                                   " vertices, simulated");
-            panel.counts.push_back("strands drawn " + std::to_string(c.strands()) + " (" + std::to_string(c.strandsPerGuide) +
-                                   " per guide, before LOD), segments " + std::to_string(c.segments()));
-            if (oit.capacity > 0)
-                panel.counts.push_back("OIT fragments " + std::to_string(oit.fragments) + " of a pool of " +
-                                       std::to_string(oit.capacity) + ", dropped " + std::to_string(oit.overflow));
-        }
-        for (const vk::ScopeTime& t : frame.timings())
-            panel.passes.emplace_back(t.name, t.milliseconds);
-        // What the panel shows: the settings as they are now (the viewer's light and wind included).
-        pending = Settings{.growth = options.settings.growth, .sim = sim, .render = renderer->settings()};
-        pending.render.light = viewer.light();
-        pending.sim.wind = viewer.wind();
-        const Settings shown = pending;
-        change.reset();
-        auto applyFromPanel = [&](const SettingSpec& spec, const SettingValue& value) -> std::string {
-            SettingEdit edit = editSetting(pending, spec, value);
-            if (edit.error.empty())
-                change = std::max(change.value_or(SettingChange::Live), edit.change);
-            return edit.error;
-        };
-        ui.build(panel, shown, applyFromPanel, viewer.helpShown());
-        for (const std::string& assignment : scriptedSets) {  // as if set in the panel
-            size_t eq = assignment.find('=');
-            std::string name = assignment.substr(0, eq);
-            std::string error;
-            if (const SettingSpec* spec = findSetting(name)) {
-                try {
-                    error = applyFromPanel(*spec, parseSetting(*spec, assignment.substr(eq + 1), name));
-                } catch (const UserError& e) {
-                    error = e.what();
-                }
-            } else {
-                error = "unknown setting '" + name + "' (see 'wisp settings')";
-            }
-            if (!error.empty())
-                throw UserError("--script: " + assignment + ": " + error);
-        }
-        if (viewer.takeSave()) {  // F2: the window's state as a scene of one key
-            char name[64];
-            std::snprintf(name, sizeof(name), "wisp-scene-%03u.json", ++scenesSaved);
-            std::filesystem::path out = std::filesystem::absolute(name);
-            Scene saved;
-            saved.description = "saved by wisp view";
-            if (!options.source.headFile.empty())
-                saved.head = scenePathText(out, std::filesystem::absolute(options.source.headFile));
-            const HairSource& h = options.source;
-            const GrowthSettings& growth = options.settings.growth;
-            if (h.hairFiles.empty()) {
-                saved.hair.guides = growth.guides;
-                saved.hair.vertices = growth.verticesPerStrand;
-                saved.hair.seed = growth.seed;
-                saved.hair.hairLength = growth.lengthMetres;
-                saved.hair.lengthVariation = growth.lengthVariation;
-                saved.hair.curl = growth.curlRadiusMetres;
-                saved.hair.poisson = growth.poissonDisk;
-            } else {
-                for (const std::string& f : h.hairFiles)
-                    saved.hair.files.push_back({.path = scenePathText(out, std::filesystem::absolute(f))});
-            }
-            // Every setting but the growth ones, which the hair above holds.
-            Settings current{.growth = growth, .sim = sim, .render = renderer->settings()};
-            for (const auto& setting : currentSettings(current))
-                if (settingSpec(setting.first).change != SettingChange::Restart)
-                    saved.settings.push_back(setting);
-            SceneState state{.camera = cameraPoseOf(framing, viewer.camera()),
-                             .sphere = viewer.sphere(),
-                             .light = viewer.light(),
-                             .wind = viewer.wind(),
-                             .headYawDeg = viewer.headYawDeg()};
-            saved.keys.push_back(sceneKey(0.0, state));
-            saveScene(out, saved);
-            lastSaved = out;
-            std::printf("wisp: saved the scene %s\n", out.string().c_str());
-        }
-        if (viewer.takeLoad()) {  // F3: the last saved scene's settings and keys (head and hair stay)
-            if (lastSaved.empty()) {
-                std::fprintf(stderr, "wisp: no scene saved yet (F2 saves one; 'wisp view --scene FILE' opens any)\n");
-            } else {
-                Scene loaded = loadScene(lastSaved);
-                for (const auto& [name, value] : loaded.settings) {
-                    const SettingSpec& spec = settingSpec(name);
-                    if (spec.change == SettingChange::Restart)
-                        continue;  // the hair stays
-                    if (std::string error = applyFromPanel(spec, parseSetting(spec, value, name)); !error.empty())
-                        std::fprintf(stderr, "wisp: %s: %s=%s: %s\n", lastSaved.string().c_str(), name.c_str(), value.c_str(),
-                                     error.c_str());
-                }
-                SceneState base{.camera = cameraPoseOf(framing, viewer.camera()),
-                                .sphere = viewer.sphere(),
-                                .light = viewer.light(),
-                                .wind = viewer.wind(),
-                                .headYawDeg = viewer.headYawDeg()};
-                timeline = SceneTimeline(loaded.keys, loaded.interpolation, base);
-                SceneState s0 = timeline.at(0.0);
-                viewer.pose(poseCamera(framing, s0.camera), s0.sphere, s0.light, s0.wind, s0.headYawDeg);
-                std::printf("wisp: loaded the scene %s (its head and hair are not reloaded)\n", lastSaved.string().c_str());
-            }
-        }
-        if (change) {  // the light and the wind are the viewer's, which the frame below takes them from
-            viewer.setLight(pending.render.light);
-            viewer.setWind(pending.sim.wind);
-        }
-        if (change == SettingChange::Solver) {  // the renderer holds the solver: it goes first
-            frame.waitIdle();
-            present.reset();
-            rendererOwner.reset();
-        }
-        if (change) {  // the session rebuilds the solver when what it packs changed
-            sim = pending.sim;
-            session.setSim(sim, viewer.headTransform());
-        }
-        if (change == SettingChange::Live)
-            renderer->settings() = pending.render;
-        else if (change)
-            rebuildRenderer(pending.render);
-
-        std::vector<TrackedImage*> transient = renderer->transientImages();
-        FrameContext& fc = frame.begin(transient);
-        VkSemaphore acquire = acquired[fc.slot];
-        uint32_t imageIndex = 0;
-        VkResult got = vkAcquireNextImageKHR(ctx.device(), swapchain.handle, UINT64_MAX, acquire, VK_NULL_HANDLE, &imageIndex);
-        if (got == VK_ERROR_OUT_OF_DATE_KHR) {
-            frame.submit(fc);  // empty, keeps the slot's fence in step
-            rebuild = true;
-            continue;
-        }
-        if (got != VK_SUBOPTIMAL_KHR)
-            VK_CHECK(got);
-
-        // The simulation advances in fixed steps only: real time decides how many are due (a
-        // scripted run, --frames, takes one 60 Hz frame's worth each frame, so it repeats).
-        auto now = std::chrono::steady_clock::now();
-        double elapsed = std::chrono::duration<double>(now - lastFrame).count();
-        lastFrame = now;
-        float frameSeconds = options.maxFrames > 0 ? 1.0f / 60.0f : float(std::min(elapsed, 0.1));
-        viewer.update(frameSeconds);
-        paused = viewer.paused();
-        if (viewer.playing()) {  // the scene's keys drive the camera, sphere, light, wind and head
-            SceneState st = timeline.at(session.clock().seconds());
-            viewer.pose(poseCamera(framing, st.camera), st.sphere, st.light, st.wind, st.headYawDeg);
-        }
-        uint32_t due = 0;
-        if (session.hasHair()) {
-            if (paused)
-                due = viewer.takeSteps();
-            else if (options.maxFrames > 0)
-                due = session.clock().stepsPerFrame(kScriptedFps);
-            else
-                due = session.clock().stepsDue(elapsed, kMaxStepsPerFrame);
-        }
-        StepPose pose{.head = viewer.headTransform(), .sphere = viewer.sphere(), .wind = viewer.wind()};
-        renderer->setSteps(session.nextSteps(due, pose));
-        renderer->settings().light = viewer.light();
-        renderer->setHeadTransform(pose.head);
-        renderer->setSphere(pose.sphere);
-        renderer->prepare(fc, camera, session.clock().stepStart(session.clock().stepsDone()));
-        std::string newTitle = "Wisp - " + viewer.status() + (viewer.helpShown() ? "  |  " + viewerHelp() : "");
-        if (newTitle != title) {
-            title = newTitle;
-            glfwSetWindowTitle(window, title.c_str());
-        }
-        TrackedImage& swapImage = swapchain.images[imageIndex];
-        swapImage.layout = VK_IMAGE_LAYOUT_UNDEFINED;  // its previous contents are not needed
-        swapImage.stages = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;  // wait for the acquire semaphore's stage
-        swapImage.accesses = VK_ACCESS_2_NONE;
-        swapImage.written = false;
-        present->setSwapchainImage(swapImage, swapchain.extent);
-        std::vector<Pass*> passes = renderer->passes();
-        bool last = options.maxFrames > 0 && framesDrawn + 1 >= options.maxFrames;
-        bool shot = viewer.takeScreenshot();
-        std::unique_ptr<ReadbackPass> shotReadback;
-        // Screenshots are the scene, taken before the panel is drawn over it.
-        if (shot) {
-            shotReadback = std::make_unique<ReadbackPass>(ctx, renderer->target());
-            passes.push_back(shotReadback.get());
-        }
-        if (last && !options.screenshot.empty() && !options.screenshotPanel) {
-            readback = std::make_unique<ReadbackPass>(ctx, renderer->target());
-            passes.push_back(readback.get());
-        }
-        passes.push_back(&ui);
-        if (last && !options.screenshot.empty() && options.screenshotPanel) {
-            readback = std::make_unique<ReadbackPass>(ctx, renderer->target());
-            passes.push_back(readback.get());
-        }
-        passes.push_back(present.get());
-        frame.run(fc, passes);
-        frame.transition(fc, swapImage, Access::Present);
-        VkSemaphore done = swapchain.renderDone[imageIndex];
-        frame.submit(fc, acquire, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, done);
-
-        VkPresentInfoKHR presentInfo{.sType = VK_STRUCTURE_TYPE_PRESENT_INFO_KHR,
-                                     .waitSemaphoreCount = 1,
-                                     .pWaitSemaphores = &done,
-                                     .swapchainCount = 1,
-                                     .pSwapchains = &swapchain.handle,
-                                     .pImageIndices = &imageIndex};
-        VkResult presented = vkQueuePresentKHR(ctx.queue(), &presentInfo);
-        if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR)
-            rebuild = true;
-        else
-            VK_CHECK(presented);
-        ++framesDrawn;
-        if (shot) {  // P: the frame as drawn, beside the working folder's other files
-            frame.waitIdle();
-            char name[64];
-            std::snprintf(name, sizeof(name), "wisp-screenshot-%03u.png", ++screenshots);
-            VkExtent2D e = renderer->target().extent();
-            writePng(name, e.width, e.height, shotReadback->pixels());
-            std::printf("wisp: screenshot %s\n", name);
-        }
-        if (last)
-            glfwSetWindowShouldClose(window, GLFW_TRUE);
-    }
-    frame.waitIdle();
-    if (readback) {
-        VkExtent2D e = renderer->target().extent();
-        writePng(options.screenshot, e.width, e.height, readback->pixels());
-    }
-    std::printf("wisp: closed after %u frames: %s\n", framesDrawn, viewer.status().c_str());
-    uint32_t messages = ctx.validationMessages();
-    if (messages > 0) {
-        std::fprintf(stderr, "wisp: %u Vulkan validation messages (printed above)\n", messages);
-        return kExitInternalError;
-    }
-    return 0;
+    Window window(std::move(options));
+    return window.run();
 }
 
 }  // namespace wisp

@@ -1,7 +1,7 @@
 // app/window.h: the interactive front end: a GLFW window whose swapchain receives the renderer's
-// result by a blit each frame, with the hair simulated live (real time is accumulated and spent in
-// fixed steps, at most kMaxStepsPerFrame a frame; with --frames, exactly one frame's worth of
-// steps per frame, so a scripted run is reproducible). The keys and drags are app/viewer.h's; the
+// result by a blit each frame, with the hair simulated live by a hair session (real time is spent
+// in fixed steps, at most 8 a frame; with --frames, exactly one 60 Hz frame's worth of steps per
+// frame, so a scripted run is reproducible). The keys and drags are app/viewer.h's; the
 // title bar shows the state and the help line. Resize and minimize are handled. Without a display
 // it says so and points to `wisp render`.
 #pragma once

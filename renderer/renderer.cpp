@@ -51,7 +51,7 @@ gpu::FrameParams pack(const RenderSettings& s, const OrbitCamera& camera, VkExte
     p.viewportWidth = static_cast<float>(extent.width);
     p.backgroundColor = s.background;
     p.viewportHeight = static_cast<float>(extent.height);
-    p.headTransform = glm::mat4(1.0f);  // the head does not move in the renderer yet
+    p.headTransform = glm::mat4(1.0f);  // the Renderer sets the head's pose (setHeadTransform) after packing
 
     // The light's view: orthographic along its direction, around the sphere holding the scene.
     glm::vec3 centre = light.scene.center();

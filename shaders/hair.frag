@@ -12,7 +12,7 @@
 //   (shared/strands.h coverageMask): with MSAA the resolve averages it, with one sample it dithers.
 // - oit (hair_oit.frag, HAIR_OIT): the fragment, with alpha = strand opacity x coverage, is pushed
 //   onto its pixel's linked list (an atomic exchange of the head pointer, nodes from a pool with
-//   an atomic counter); oit_resolve.frag blends the lists. A full pool drops the fragment and
+//   an atomic counter); oit_resolve.comp blends the lists. A full pool drops the fragment and
 //   counts it.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/frame_params.h"
