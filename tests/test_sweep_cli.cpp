@@ -1,0 +1,59 @@
+// tests/test_sweep_cli.cpp: `wisp sweep` through the real binary: a tiny grid's CSV and charts,
+// and --vary values checked before anything is written.
+#include "cli_support.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+using namespace wisp::test;
+
+TEST(Sweep, TinyGridWritesAWellFormedCsvAndCharts)
+{
+    TempDir dir;
+    auto r = runWisp("--validation sweep --out '" + (dir / "s").string() +
+                     "' --vary strands_per_guide=1,3 --vary divisions=2,5 --warmup 1 --frames 2 --width 64 --height 48 --guides 20");
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::ifstream in(dir / "s" / "results.csv");
+    std::string header;
+    std::getline(in, header);
+    EXPECT_EQ(header.rfind("strands_per_guide,divisions,physics_ms_median,", 0), 0u) << header;
+    size_t columns = size_t(std::count(header.begin(), header.end(), ',')) + 1;
+    std::vector<std::string> rows;
+    for (std::string line; std::getline(in, line);)
+        rows.push_back(line);
+    ASSERT_EQ(rows.size(), 4u);  // the 2 x 2 grid
+    auto fields = [](const std::string& row) {  // commas inside quotes ("llvmpipe (LLVM 15, 256 bits)") do not count
+        size_t n = 1;
+        bool quoted = false;
+        for (char c : row) {
+            quoted = c == '"' ? !quoted : quoted;
+            n += (c == ',' && !quoted) ? 1 : 0;
+        }
+        return n;
+    };
+    for (const std::string& row : rows)
+        EXPECT_EQ(fields(row), columns) << row;
+    EXPECT_EQ(rows[0].rfind("1,2,", 0), 0u);
+    EXPECT_EQ(rows[3].rfind("3,5,", 0), 0u);
+    EXPECT_NE(rows[3].find(",60,"), std::string::npos) << rows[3];  // 20 guides x 3 strands
+    for (const char* chart : {"fps.png", "passes.png"})
+        EXPECT_GT(std::filesystem::file_size(dir / "s" / chart), 1000u) << chart;
+}
+
+TEST(BadInput, SweepVaryValuesAreChecked)
+{
+    TempDir dir;
+    std::string out = " --out '" + (dir / "s").string() + "'";
+    expectUserError(runWisp("sweep --vary sparkle=1,2" + out), "unknown setting 'sparkle'");
+    auto r = runWisp("sweep --vary divisions=4,0" + out);
+    expectUserError(r, "--vary divisions=4,0");
+    EXPECT_NE(r.err.find("1 .. 1024"), std::string::npos) << r.err;
+    expectUserError(runWisp("sweep --vary divisions" + out), "NAME=V1,V2");
+    expectUserError(runWisp("sweep --vary divisions=4,,8" + out), "empty value");
+    EXPECT_FALSE(std::filesystem::exists(dir / "s"));  // checked before anything is written
+}
