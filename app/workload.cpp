@@ -1,12 +1,15 @@
-// app/workload.cpp: a workload's 32-bit counts and its GPU memory, estimated from the same sizes
-// the owners allocate (physics/gpu_solver.cpp, renderer/hair_pass.cpp, guide_pass.cpp,
-// render_target.cpp, light_maps.cpp, oit.cpp) and checked against the device up front.
+// app/workload.cpp: a workload's 32-bit counts and its GPU memory, summed from what each owner
+// says it allocates (solverDeviceBytes, HairPass, GuidePass, RenderTarget, LightMaps and Oit's
+// deviceBytes, each in its own formats) and checked against the device up front.
 #include "app/workload.h"
 
 #include "core/error.h"
 #include "gpu/context.h"
-#include "shaders/shared/hair_shading.h"
-#include "shaders/shared/shadows.h"
+#include "renderer/guide_pass.h"
+#include "renderer/hair_pass.h"
+#include "renderer/light_maps.h"
+#include "renderer/oit.h"
+#include "renderer/render_target.h"
 
 #include <algorithm>
 #include <limits>
@@ -16,11 +19,6 @@ namespace wisp {
 
 namespace {
 
-// Bytes per texel of the formats the render parts use.
-constexpr uint64_t kRgba8Bytes = 4;     // the target's colour (R8G8B8A8_SRGB)
-constexpr uint64_t kDepth32Bytes = 4;   // every depth image (D32_SFLOAT)
-constexpr uint64_t kRgba16fBytes = 8;   // the light's opacity layers, the OIT's resolved colour
-constexpr uint64_t kRgba32fBytes = 16;  // the hair's lookup tables
 constexpr uint64_t kMaxCount = std::numeric_limits<uint32_t>::max();
 
 uint64_t mebibytes(uint64_t bytes)
@@ -35,6 +33,7 @@ std::string mib(uint64_t bytes)
 
 }  // namespace
 
+// Each owner states what it allocates, in its own formats, beside the allocation.
 GpuMemory estimateGpuMemory(const Workload& w)
 {
     GpuMemory m;
@@ -44,18 +43,12 @@ GpuMemory estimateGpuMemory(const Workload& w)
     if (!w.render)
         return m;
     const RenderSettings& r = *w.render;
-    uint64_t lines = w.guides * (w.verticesPerStrand > 0 ? w.verticesPerStrand - 1 : 0);
-    m.hair = w.guides * sizeof(glm::uvec4) + uint64_t(gpu::kHairLutSize) * gpu::kHairLutSize * gpu::kHairLutLayers * kRgba32fBytes +
-             lines * 2 * sizeof(uint32_t);
-    uint64_t pixels = uint64_t(r.width) * r.height;
-    uint64_t samples = std::max<uint32_t>(r.samples, 1);
-    m.target = pixels * (samples > 1 ? samples * kRgba8Bytes : 0) + pixels * samples * kDepth32Bytes + pixels * kRgba8Bytes;
-    uint64_t texels = uint64_t(r.shadows.mapSize) * r.shadows.mapSize;
-    m.lightMaps = texels * (2 * kDepth32Bytes + kRgba16fBytes);
-    if (r.transparency.mode == Transparency::Oit) {
-        uint64_t nodesPerPixel = std::max<uint32_t>(r.transparency.oitNodesPerPixel, 1);
-        m.oit = pixels * (sizeof(uint32_t) + kRgba16fBytes + nodesPerPixel * sizeof(gpu::OitNode));
-    }
+    VkExtent2D extent{r.width, r.height};
+    m.hair = HairPass::deviceBytes(w.guides) + GuidePass::deviceBytes(w.guides, w.verticesPerStrand);
+    m.target = RenderTarget::deviceBytes(extent, std::max<uint32_t>(r.samples, 1));
+    m.lightMaps = LightMaps::deviceBytes(r.shadows.mapSize);
+    if (r.transparency.mode == Transparency::Oit)
+        m.oit = Oit::deviceBytes(extent, r.transparency.oitNodesPerPixel);
     return m;
 }
 

@@ -17,6 +17,12 @@ class GpuSolver;
 
 class GuidePass : public Pass {
 public:
+    // The device memory of the lines' indices: two per segment of every guide.
+    static constexpr uint64_t deviceBytes(uint64_t guides, uint32_t verticesPerStrand)
+    {
+        return guides * (verticesPerStrand > 0 ? verticesPerStrand - 1 : 0) * 2 * sizeof(uint32_t);
+    }
+
     GuidePass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& uniforms, GpuSolver& solver,
               uint32_t strandCount, uint32_t verticesPerStrand);
     const char* name() const override { return "guides"; }

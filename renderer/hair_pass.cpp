@@ -127,7 +127,7 @@ HairPass::HairPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
 void HairPass::setLut(const shading::HairLut& lut, FrameContext* frame)
 {
     uint32_t n = lut.size;
-    vk::Image image = ctx_.createImage({.format = VK_FORMAT_R32G32B32A32_SFLOAT,
+    vk::Image image = ctx_.createImage({.format = kLutFormat,
                                         .extent = {n, n},
                                         .usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                                         .layers = gpu::kHairLutLayers,

@@ -40,6 +40,14 @@ HairDrawCounts hairDrawCounts(uint32_t guides, const StrandSettings& settings);
 
 class HairPass : public Pass {
 public:
+    static constexpr VkFormat kLutFormat = VK_FORMAT_R32G32B32A32_SFLOAT;  // the lookup tables' layers
+    // The device memory for `guides` guides: a triangle of guides each, and the lookup tables.
+    static constexpr uint64_t deviceBytes(uint64_t guides)
+    {
+        return guides * sizeof(glm::uvec4) +
+               uint64_t(gpu::kHairLutSize) * gpu::kHairLutSize * gpu::kHairLutLayers * vk::formatBytes(kLutFormat);
+    }
+
     HairPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& uniforms, GpuSolver& solver,
              const StrandSet& strands);
     const char* name() const override { return "hair"; }

@@ -27,6 +27,12 @@ public:
     static constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
     static constexpr VkFormat kOpacityFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 
+    // The device memory of maps of `size`² texels: the head's and the hair's depth, the opacity layers.
+    static constexpr uint64_t deviceBytes(uint32_t size)
+    {
+        return uint64_t(size) * size * (2 * vk::formatBytes(kDepthFormat) + vk::formatBytes(kOpacityFormat));
+    }
+
     LightMaps(const vk::Context& ctx, uint32_t size);
     // Recreates the maps at a new size; the device must be idle.
     void resize(uint32_t size);

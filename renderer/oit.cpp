@@ -80,7 +80,7 @@ void Oit::resize(VkExtent2D extent, uint32_t requestedNodesPerPixel)
     counters_ = ctx_.createBuffer({.size = sizeof(gpu::OitCounters),
                                    .usage = vk::kStorage | vk::kTransferDst | vk::kTransferSrc,
                                    .name = "oit.counters"});
-    color_ = ctx_.createImage({.format = VK_FORMAT_R16G16B16A16_SFLOAT,
+    color_ = ctx_.createImage({.format = kColorFormat,
                                .extent = extent,
                                .usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
                                .name = "oit.color"});

@@ -36,6 +36,15 @@ public:
     // Nodes per pixel when the setting is 0 (automatic) and the device has room.
     static constexpr uint32_t kAutoNodesPerPixel = 24;
     static constexpr uint64_t kAutoMinNodes = 8u << 20;
+    static constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // the resolved lists
+    // The device memory per pixel of `extent`: a list head, the resolved colour, and the node pool
+    // (`nodesPerPixel`; an automatic pool, 0, counts one node a pixel, the least it takes).
+    static constexpr uint64_t deviceBytes(VkExtent2D extent, uint32_t nodesPerPixel)
+    {
+        uint64_t nodes = nodesPerPixel > 0 ? nodesPerPixel : 1;
+        return uint64_t(extent.width) * extent.height *
+               (sizeof(uint32_t) + vk::formatBytes(kColorFormat) + nodes * sizeof(gpu::OitNode));
+    }
 
     // nodesPerPixel 0: automatic (kAutoNodesPerPixel, at least kAutoMinNodes, as the device allows).
     Oit(const vk::Context& ctx, VkExtent2D extent, uint32_t nodesPerPixel, uint32_t framesInFlight);

@@ -22,6 +22,15 @@ public:
     static constexpr VkFormat kColorFormat = VK_FORMAT_R8G8B8A8_SRGB;
     static constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 
+    // The device memory of a target of `extent` and `samples`: the multisampled colour (when
+    // samples > 1), the depth and the resolved colour.
+    static constexpr uint64_t deviceBytes(VkExtent2D extent, uint32_t samples)
+    {
+        uint64_t pixels = uint64_t(extent.width) * extent.height, n = samples > 1 ? samples : 1;
+        return pixels * ((n > 1 ? n * vk::formatBytes(kColorFormat) : 0) + n * vk::formatBytes(kDepthFormat) +
+                         vk::formatBytes(kColorFormat));
+    }
+
     RenderTarget(const vk::Context& ctx, VkExtent2D extent, uint32_t requestedSamples);
     // Recreates the images at a new size (passes keep their references); device must be idle.
     void resize(VkExtent2D extent);
