@@ -727,7 +727,7 @@ std::string settingsTable()
         return text + std::string(width > text.size() ? width - text.size() : 1, ' ');
     };
     std::ostringstream out;
-    out << column("NAME", 21) << column("UNIT", 7) << column("ALLOWED", 34) << column("DEFAULT", 12)
+    out << column("NAME", 21) << column("UNIT", 7) << column("ALLOWED", 40) << column("DEFAULT", 12)
         << column("CHANGE", 9) << column("OPTION", 20) << "DESCRIPTION\n";
     for (const SettingSpec& s : settingSpecs()) {
         std::string allowed = s.type == SettingType::Vector || s.type == SettingType::Color
@@ -735,7 +735,7 @@ std::string settingsTable()
                                   : (s.type == SettingType::Number || s.type == SettingType::Integer)
                                         ? rangeText(s.range, "") + (s.optional() ? " | " + s.unsetText : "")
                                         : s.allowed();
-        out << column(s.name, 21) << column(s.unit, 7) << column(allowed, 34)
+        out << column(s.name, 21) << column(s.unit, 7) << column(allowed, 40)
             << column(settingText(s, s.get(defaults)), 12) << column(changeName(s.change), 9)
             << column(s.option, 20) << s.help << "\n";
     }
