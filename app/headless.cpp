@@ -43,7 +43,7 @@ Picture renderFrame(const vk::Context& ctx, Renderer& renderer, Frame& frame, co
     frame.submit(fc);
     frame.waitIdle();
     VkExtent2D e = renderer.target().extent();
-    return {e.width, e.height, readback.pixels(), "", renderer.oitStats(fc.slot)};
+    return {e.width, e.height, readback.pixels(), "", renderer.oitStats(fc.slot), renderer.rasterStats(fc.slot)};
 }
 
 TimedSteps timedSteps(const SceneTimeline& timeline, const SimSetup& setup, const Bounds& head, float unitsPerMetre,
@@ -116,6 +116,9 @@ Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSett
     OrbitCamera camera = poseFrame(renderer, poses, seconds, OrbitCamera::framing(headBounds, aspect));
 
     Picture picture = renderFrame(ctx, renderer, frame, camera);
+    // The compute path's bins grow after a frame that outgrew them: that frame is drawn again.
+    for (int again = 0; again < 2 && picture.raster.overflow > 0; ++again)
+        picture = renderFrame(ctx, renderer, frame, camera);
     if (hair) {
         HairDrawCounts c = renderer.hairCounts();
         picture.hairCounts = "hair: " + std::to_string(c.guides) + " guides x " + std::to_string(c.strandsPerGuide) + " strands x " +

@@ -20,6 +20,7 @@ enum class Access {
     TransferDst,       // copied or blitted to
     FragmentSampled,   // sampled in fragment shaders
     GraphicsSampled,   // sampled in any graphics stage (vertex, tessellation, geometry, fragment)
+    ComputeSampled,    // sampled (or fetched) in compute shaders
     ComputeRead,       // storage read in compute shaders
     ComputeWrite,      // storage write (or read-modify-write) in compute shaders
     VertexShaderRead,  // storage read in vertex, tessellation or geometry shaders

@@ -42,7 +42,7 @@ public:
 
     // For a pass whose shaders read the maps: the accesses to declare, and the descriptor
     // writes for bindings kBindingShadowHead..kBindingOpacity (valid while this object lives).
-    void declareRead(PassIo& io);
+    void declareRead(PassIo& io, Access access = Access::GraphicsSampled);
     std::array<VkWriteDescriptorSet, 4> descriptorWrites() const;
     // The hair depth alone, for the opacity pass (binding kBindingHairDepth).
     VkWriteDescriptorSet hairDepthWrite() const;
@@ -71,12 +71,15 @@ public:
     void declare(PassIo& io) override;
     void record(VkCommandBuffer cmd, FrameContext& frame) override;
     void setEnabled(bool enabled) { enabled_ = enabled; }  // off: the maps are only cleared
+    // Off: the hair's depth map is left alone (the compute path writes it).
+    void setHairDepth(bool drawn) { hairDepth_ = drawn; }
 
 private:
     LightMaps& maps_;
     MeshPass& meshes_;
     HairPass* hair_;
     bool enabled_ = true;
+    bool hairDepth_ = true;
 };
 
 // The hair's deep opacity layers.

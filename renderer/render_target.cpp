@@ -38,7 +38,8 @@ void RenderTarget::resize(VkExtent2D extent)
                                   .name = "target.color.msaa"});
     depth_ = ctx.createImage({.format = kDepthFormat,
                               .extent = extent,
-                              .usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                              .usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                       VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
                               .samples = samples_,
                               .name = "target.depth"});
     resolved_ = ctx.createImage({.format = kColorFormat,

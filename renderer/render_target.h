@@ -38,6 +38,9 @@ public:
     void beginFrame() { cleared_ = false; }
 
     TrackedImage& result() { return resolvedTrack_; }  // single-sample, sRGB
+    // The meshes' depth (multisampled like the colour), which the compute hair path reads.
+    TrackedImage& depth() { return depthTrack_; }
+    const vk::Image& depthImage() const { return depth_; }
     const vk::Image& resultImage() const { return resolved_; }
     std::vector<TrackedImage*> transientImages();
 
