@@ -121,17 +121,23 @@ Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSett
         picture = renderFrame(ctx, renderer, frame, camera);
     if (hair) {
         HairDrawCounts c = renderer.hairCounts();
-        picture.hairCounts = "hair: " + std::to_string(c.guides) + " guides x " + std::to_string(c.strandsPerGuide) + " strands x " +
-                 std::to_string(c.divisions) + " divisions = " + std::to_string(c.segments()) + " segments, drawn as " +
-                 std::to_string(uint64_t(c.guides) * c.lengthChunks * c.strandChunks) + " patches of up to " +
-                 std::to_string(c.strandsPerPatch) + " strands x " + std::to_string((c.divisions + c.lengthChunks - 1) / c.lengthChunks) +
-                 " divisions (" + std::to_string(c.strandChunks) + " instances)";
+        picture.hairCounts = "hair: " + std::to_string(c.guides) + " guides x " + std::to_string(c.strandsPerGuide) +
+                             " strands x " + std::to_string(c.divisions) + " divisions = " +
+                             std::to_string(c.segments()) + " segments, ";
+        if (renderer.hairRaster() == HairRaster::Compute)
+            picture.hairCounts += "drawn in compute (hair_raster=compute)";
+        else
+            picture.hairCounts += "drawn as " + std::to_string(uint64_t(c.guides) * c.lengthChunks * c.strandChunks) +
+                                  " patches of up to " + std::to_string(c.strandsPerPatch) + " strands x " +
+                                  std::to_string((c.divisions + c.lengthChunks - 1) / c.lengthChunks) +
+                                  " divisions (" + std::to_string(c.strandChunks) + " instances)";
     }
     return picture;
 }
 
 std::vector<PassTiming> profileFrames(const vk::Context& ctx, const Head& head, const RenderSettings& settings,
-                                      const HairRun& hair, uint32_t warmup, uint32_t frames, OitStats* oit)
+                                      const HairRun& hair, uint32_t warmup, uint32_t frames, OitStats* oit,
+                                      RasterStats* raster)
 {
     Renderer renderer(ctx, settings, 1);
     renderer.setHead(head);
@@ -160,6 +166,8 @@ std::vector<PassTiming> profileFrames(const vk::Context& ctx, const Head& head, 
         frame.waitIdle();
         if (oit)
             *oit = renderer.oitStats(fc.slot);
+        if (raster)
+            *raster = renderer.rasterStats(fc.slot);
         if (n < warmup)
             continue;
         double total = 0.0;

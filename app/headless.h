@@ -79,8 +79,9 @@ struct PassTiming {
     double medianMs = 0.0;
     double p95Ms = 0.0;
 };
-// `oit`, when given, receives the last frame's OIT counts.
+// `oit` and `raster`, when given, receive the last frame's OIT and compute-path counts.
 std::vector<PassTiming> profileFrames(const vk::Context& ctx, const Head& head, const RenderSettings& settings,
-                                      const HairRun& hair, uint32_t warmup, uint32_t frames, OitStats* oit = nullptr);
+                                      const HairRun& hair, uint32_t warmup, uint32_t frames, OitStats* oit = nullptr,
+                                      RasterStats* raster = nullptr);
 
 }  // namespace wisp

@@ -27,6 +27,7 @@ enum class Access {
     FragmentStorageRead,   // storage read in fragment shaders
     FragmentStorageWrite,  // storage write (atomics included) in fragment shaders
     VertexInput,       // read as a vertex buffer
+    IndirectRead,      // read as the arguments of an indirect draw or dispatch
     Present,           // handed to the presentation engine
 };
 

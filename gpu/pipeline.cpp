@@ -185,19 +185,23 @@ Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& 
 }
 
 Pipeline createComputePipeline(const Context& ctx, VkPipelineLayout layout, const std::string& shader, const char* name,
-                               std::optional<bool> boolConstant0)
+                               const std::vector<uint32_t>& constants)
 {
     std::string file = shader + ".spv";
     ShaderModule module = loadShader(ctx, file);
-    VkBool32 value = boolConstant0.value_or(false) ? VK_TRUE : VK_FALSE;
-    VkSpecializationMapEntry entry{.constantID = 0, .offset = 0, .size = sizeof(VkBool32)};
-    VkSpecializationInfo specialization{.mapEntryCount = 1, .pMapEntries = &entry, .dataSize = sizeof(value), .pData = &value};
+    std::vector<VkSpecializationMapEntry> entries;
+    for (uint32_t i = 0; i < constants.size(); ++i)
+        entries.push_back({.constantID = i, .offset = i * 4, .size = 4});
+    VkSpecializationInfo specialization{.mapEntryCount = uint32_t(entries.size()),
+                                        .pMapEntries = entries.data(),
+                                        .dataSize = constants.size() * 4,
+                                        .pData = constants.data()};
     VkComputePipelineCreateInfo info{.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
                                      .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
                                                .stage = stageOf(file),
                                                .module = module,
                                                .pName = "main",
-                                               .pSpecializationInfo = boolConstant0 ? &specialization : nullptr},
+                                               .pSpecializationInfo = constants.empty() ? nullptr : &specialization},
                                      .layout = layout};
     VkPipeline pipeline = VK_NULL_HANDLE;
     VK_CHECK(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));

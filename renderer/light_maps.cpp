@@ -9,6 +9,8 @@
 #include "gpu/pipeline.h"
 #include "shaders/shared/shadows.h"
 
+#include <cstring>
+
 namespace wisp {
 
 namespace {
@@ -47,7 +49,9 @@ void LightMaps::resize(uint32_t size)
                                  .usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                                           VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_STORAGE_BIT,
                                  .name = "light.opacity"});
-    headTrack_ = {.image = headDepth_.get(), .aspect = VK_IMAGE_ASPECT_DEPTH_BIT};
+    headTrack_ = {.image = headDepth_.get(), .aspect = VK_IMAGE_ASPECT_DEPTH_BIT, .transient = false};
+    drawnKey_ = HeadShadowKey{};  // a new map: drawn again
+    headStale_ = true;
     hairTrack_ = {.image = hairDepth_.get(), .aspect = VK_IMAGE_ASPECT_DEPTH_BIT};
     opacityTrack_ = {.image = opacity_.get()};
     updateInfos();
@@ -60,6 +64,12 @@ void LightMaps::updateInfos()
     infos_[1] = {compare_, hairDepth_.view(), kRead};
     infos_[2] = {nearest_, hairDepth_.view(), kRead};
     infos_[3] = {linear_, opacity_.view(), kRead};
+}
+
+void LightMaps::setHeadKey(const HeadShadowKey& key)
+{
+    key_ = key;
+    headStale_ = headStale_ || drawnKey_.size == 0 || std::memcmp(&key_, &drawnKey_, sizeof(key_)) != 0;
 }
 
 void LightMaps::declareRead(PassIo& io, Access access)
@@ -124,7 +134,8 @@ void LightMaps::beginOpacity(VkCommandBuffer cmd) const
 
 void ShadowPass::declare(PassIo& io)
 {
-    io.use(maps_.headDepth(), Access::DepthAttachment);
+    if (maps_.headDepthStale())
+        io.use(maps_.headDepth(), Access::DepthAttachment);
     if (!hairDepth_)
         return;
     io.use(maps_.hairDepth(), Access::DepthAttachment);
@@ -134,10 +145,13 @@ void ShadowPass::declare(PassIo& io)
 
 void ShadowPass::record(VkCommandBuffer cmd, FrameContext& frame)
 {
-    maps_.beginDepth(cmd, maps_.headDepthImage());
-    if (enabled_)
-        meshes_.recordFromLight(cmd, frame);
-    vkCmdEndRendering(cmd);
+    if (maps_.headDepthStale()) {
+        maps_.beginDepth(cmd, maps_.headDepthImage());
+        if (enabled_)
+            meshes_.recordFromLight(cmd, frame);
+        vkCmdEndRendering(cmd);
+        maps_.headDepthDrawn();
+    }
     if (!hairDepth_)
         return;
     maps_.beginDepth(cmd, maps_.hairDepthImage());

@@ -139,7 +139,17 @@ OitResolvePass::OitResolvePass(const vk::Context& ctx, Oit& oit) : ctx_(ctx), oi
               .name = "oit.resolve.layout"});
     setLayout_ = std::move(layout.setLayout);
     layout_ = std::move(layout.layout);
-    pipeline_ = vk::createComputePipeline(ctx, layout_, "oit_resolve.comp", "oit.resolve.pipeline");
+    pipeline_ = vk::createComputePipeline(ctx, layout_, "oit_resolve.comp", "oit.resolve.pipeline", {k_});
+}
+
+void OitResolvePass::setK(uint32_t k, FrameContext& frame)
+{
+    k = std::clamp(k, 1u, gpu::kMaxOitK);
+    if (k == k_)
+        return;
+    k_ = k;
+    frame.retire(std::move(pipeline_));
+    pipeline_ = vk::createComputePipeline(ctx_, layout_, "oit_resolve.comp", "oit.resolve.pipeline", {k_});
 }
 
 void OitResolvePass::declare(PassIo& io)

@@ -87,7 +87,9 @@ public:
     const char* name() const override { return "oit.resolve"; }
     void declare(PassIo& io) override;
     void record(VkCommandBuffer cmd, FrameContext& frame) override;
-    void setK(uint32_t k) { k_ = k; }
+    // oit_k, a specialization constant of the resolve (its lists stay in registers): a new value
+    // builds the pipeline again, the old one retired to `frame`.
+    void setK(uint32_t k, FrameContext& frame);
 
 private:
     const vk::Context& ctx_;

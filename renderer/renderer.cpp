@@ -119,6 +119,7 @@ void Renderer::resize(VkExtent2D extent)
     settings_.width = extent.width;
     settings_.height = extent.height;
     target_->resize(extent);
+    meshPass_->resize();
     if (oit_)
         oit_->resize(extent, settings_.transparency.oitNodesPerPixel);
     if (strandRaster_)
@@ -134,6 +135,7 @@ std::vector<TrackedImage*> Renderer::transientImages()
         list.push_back(image);
     if (strandRaster_)
         list.push_back(&strandRaster_->color());
+    list.push_back(&meshPass_->shadowMask());
     return list;
 }
 
@@ -157,6 +159,12 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
     frameParams.hair = material_;
     uniforms_.write(frame.slot, frameParams);
     frameParams_ = frameParams;
+    meshPass_->setInverseViewProjection(glm::inverse(frameParams.viewProjection));
+    lightMaps_->setHeadKey({.lightViewProjection = frameParams.lightViewProjection,
+                            .headTransform = headTransform_,
+                            .sphere = meshPass_->sphere(),
+                            .enabled = settings_.shadows.enabled ? 1u : 0u,
+                            .size = lightMaps_->size()});
     float sceneRadius = 0.5f * lightFit_.scene.diagonal();
     meshPass_->setLightMarker(lightFit_.scene.center() + 0.75f * sceneRadius * settings_.light.direction(),
                               showLightMarker_ ? 0.025f * sceneRadius : 0.0f);
@@ -167,7 +175,7 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
     }
     opacityPass_->setEnabled(settings_.shadows.enabled && settings_.shadows.domLayers > 0);
     if (oitResolve_)
-        oitResolve_->setK(settings_.transparency.oitK);
+        oitResolve_->setK(settings_.transparency.oitK, frame);
     if (!hairPass_)
         return;
     const StrandSettings& s = settings_.strands;
@@ -209,13 +217,7 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
         return;
 
     // The compute path draws the same strands from the same parameters.
-    if (!strandRaster_) {
-        strandRaster_ = std::make_unique<StrandRaster>(ctx_, *target_, uniforms_, *lightMaps_, *solver_,
-                                                       guideTriangles_, framesInFlight_);
-        headShadowPass_ = std::make_unique<ShadowPass>(*lightMaps_, *meshPass_, nullptr);
-        headShadowPass_->setHairDepth(false);
-        strandComposite_ = std::make_unique<CompositePass>(ctx_, *target_, "hair.composite");
-    }
+    makeStrandRaster();
     headShadowPass_->setEnabled(settings_.shadows.enabled);
     strandComposite_->setSource(&strandRaster_->color(), &strandRaster_->colorImage());
     auto rasterPush = [&](const gpu::HairPush& p) {
@@ -238,6 +240,17 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
     if (!settings_.shadows.enabled)
         lightRaster.drawnPerGuide = 0;  // the maps are only cleared
     strandRaster_->prepare(frame, rasterPush(push), lightRaster, &hairPass_->lutInfo());
+}
+
+void Renderer::makeStrandRaster()
+{
+    if (strandRaster_)
+        return;
+    strandRaster_ = std::make_unique<StrandRaster>(ctx_, *target_, uniforms_, *lightMaps_, *solver_, guideTriangles_,
+                                                   framesInFlight_);
+    headShadowPass_ = std::make_unique<ShadowPass>(*lightMaps_, *meshPass_, nullptr);
+    headShadowPass_->setHairDepth(false);
+    strandComposite_ = std::make_unique<CompositePass>(ctx_, *target_, "hair.composite");
 }
 
 HairRaster Renderer::hairRaster() const
@@ -284,6 +297,8 @@ void Renderer::attachHair(GpuSolver& solver, const StrandSet& strands, float uni
     verticesPerStrand_ = strands.verticesPerStrand;
     solver_ = &solver;
     guideTriangles_ = guideTriangles(strands);
+    if (hairRaster() == HairRaster::Compute)
+        makeStrandRaster();  // (else made the first time a frame draws with it)
     unitsPerMetre_ = unitsPerMetre;
 }
 
@@ -316,6 +331,8 @@ std::vector<Pass*> Renderer::passes()
         for (Stage stage : StrandRaster::kLightStages)
             if (stage != Stage::Clear)
                 list.push_back(strandRaster_->pass(stage));
+        list.push_back(meshPass_->depthPass());
+        list.push_back(meshPass_->shadowMaskPass());
         list.push_back(meshPass_.get());
         for (Stage stage : StrandRaster::kCameraStages)
             list.push_back(strandRaster_->pass(stage));
@@ -326,6 +343,8 @@ std::vector<Pass*> Renderer::passes()
         list.push_back(opacityPass_.get());
         if (oitClear_)
             list.push_back(oitClear_.get());
+        list.push_back(meshPass_->depthPass());
+        list.push_back(meshPass_->shadowMaskPass());
         list.push_back(meshPass_.get());
         if (hairPass_)
             list.push_back(hairPass_.get());

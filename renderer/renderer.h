@@ -118,6 +118,7 @@ private:
     std::unique_ptr<CompositePass> strandComposite_;
     GpuSolver* solver_ = nullptr;
     std::vector<glm::uvec4> guideTriangles_;
+    void makeStrandRaster();
     uint32_t guideCount_ = 0;
     uint32_t verticesPerStrand_ = 0;
     float unitsPerMetre_ = 1.0f;

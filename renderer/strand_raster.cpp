@@ -16,7 +16,8 @@
 
 namespace wisp {
 
-static_assert(sizeof(gpu::StrandRasterPush) == 80, "StrandRasterPush must fit the 128 bytes of push constants");
+static_assert(sizeof(gpu::StrandRasterPush) == 96, "StrandRasterPush must fit the 128 bytes of push constants");
+static_assert(sizeof(gpu::RasterDispatch) == 16);
 static_assert(sizeof(gpu::RasterCounters) == 32);
 
 namespace {
@@ -31,11 +32,13 @@ const char* stageName(StrandRaster::Stage stage)
     case StrandRaster::Stage::LightDepth: return "light.depth";
     case StrandRaster::Stage::LightOpacity: return "light.opacity";
     case StrandRaster::Stage::LightResolve: return "light.resolve";
+    case StrandRaster::Stage::LightCopy: return "light.copy";
     case StrandRaster::Stage::Generate: return "strands.generate";
     case StrandRaster::Stage::Count: return "strands.count";
     case StrandRaster::Stage::Scan: return "strands.scan";
     case StrandRaster::Stage::Bin: return "strands.bin";
     case StrandRaster::Stage::Raster: return "strands.raster";
+    case StrandRaster::Stage::Merge: return "strands.merge";
     case StrandRaster::Stage::Stats: return "strands.stats";
     }
     return "strands";
@@ -107,7 +110,12 @@ StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUn
                            {gpu::kRasterBindingHairColor, kImage, kCompute},
                            {gpu::kRasterBindingLightDepth, kStorage, kCompute},
                            {gpu::kRasterBindingLightOpacity, kStorage, kCompute},
-                           {gpu::kRasterBindingOpacityImage, kImage, kCompute}},
+                           {gpu::kRasterBindingOpacityImage, kImage, kCompute},
+                           {gpu::kRasterBindingChunkOffsets, kStorage, kCompute},
+                           {gpu::kRasterBindingPartialOffsets, kStorage, kCompute},
+                           {gpu::kRasterBindingChunkTiles, kStorage, kCompute},
+                           {gpu::kRasterBindingDispatch, kStorage, kCompute},
+                           {gpu::kRasterBindingPartials, kStorage, kCompute}},
               .pushConstantBytes = sizeof(gpu::StrandRasterPush),
               .pushConstantStages = kCompute,
               .name = "strands.layout"});
@@ -115,14 +123,11 @@ StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUn
     layout_ = std::move(layout.layout);
     generatePipeline_ = vk::createComputePipeline(ctx, layout_, "strands_generate.comp", "strands.generate.pipeline");
     generateLightPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_generate_light.comp", "strands.light.pipeline");
-    countPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_bin.comp", "strands.count.pipeline", false);
-    binPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_bin.comp", "strands.bin.pipeline", true);
+    countPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_bin.comp", "strands.count.pipeline", {/*kWrite=*/0});
+    binPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_bin.comp", "strands.bin.pipeline", {/*kWrite=*/1});
     scanPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_scan.comp", "strands.scan.pipeline");
-    rasterPipeline_ = vk::createComputePipeline(ctx, layout_,
-                                        target.multisampled() ? "strands_raster.comp" : "strands_raster_single.comp",
-                                        "strands.raster.pipeline");
-    lightDepthPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_light.comp", "light.depth.pipeline", false);
-    lightOpacityPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_light.comp", "light.opacity.pipeline", true);
+    lightDepthPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_light.comp", "light.depth.pipeline", {/*kOpacity=*/0});
+    lightOpacityPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_light.comp", "light.opacity.pipeline", {/*kOpacity=*/1});
     lightResolvePipeline_ = vk::createComputePipeline(ctx, layout_, "strands_light_resolve.comp", "light.resolve.pipeline");
     depthSampler_ = vk::createSampler(ctx, VK_FILTER_NEAREST, false, "strands.depth.sampler");
 
@@ -131,6 +136,8 @@ StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUn
                                           triangles.data(), triangles.size() * sizeof(glm::uvec4));
     allocate(counters_, sizeof(gpu::RasterCounters), vk::kStorage | vk::kTransferDst | vk::kTransferSrc,
              "strands.counters", nullptr);
+    allocate(dispatch_, sizeof(gpu::RasterDispatch),
+             vk::kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | vk::kTransferSrc, "strands.dispatch", nullptr);
     for (uint32_t i = 0; i < framesInFlight; ++i) {
         readback_.push_back(ctx.createBuffer({.size = sizeof(gpu::RasterCounters),
                                               .usage = vk::kTransferDst,
@@ -160,6 +167,10 @@ void StrandRaster::resize()
     uint64_t count = uint64_t(tiles(e.width)) * tiles(e.height);
     allocate(tileCounts_, count * 4, vk::kStorage | vk::kTransferDst, "strands.tile_counts", nullptr);
     allocate(tileOffsets_, (count + 1) * 4, vk::kStorage | vk::kTransferSrc, "strands.tile_offsets", nullptr);
+    allocate(chunkOffsets_, (count + 1) * 4, vk::kStorage | vk::kTransferSrc, "strands.chunk_offsets", nullptr);
+    allocate(partialOffsets_, (count + 1) * 4, vk::kStorage | vk::kTransferSrc, "strands.partial_offsets", nullptr);
+    binCapacity_ = 0;  // the chunk table follows the tiles: remade with the bins
+    bins_.buffer.reset();
     color_ = ctx_.createImage({.format = VK_FORMAT_R16G16B16A16_SFLOAT,
                                .extent = e,
                                .usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
@@ -180,6 +191,11 @@ StrandRaster::Storage& StrandRaster::storage(Buffer which)
     case Buffer::Counters: return counters_;
     case Buffer::LightDepth: return lightDepth_;
     case Buffer::LightOpacity: return lightOpacity_;
+    case Buffer::ChunkOffsets: return chunkOffsets_;
+    case Buffer::PartialOffsets: return partialOffsets_;
+    case Buffer::ChunkTiles: return chunkTiles_;
+    case Buffer::Dispatch: return dispatch_;
+    case Buffer::Partials: return partials_;
     }
     return counters_;
 }
@@ -203,7 +219,7 @@ RasterStats StrandRaster::stats(uint32_t slot) const
     gpu::RasterCounters c{};
     std::memcpy(&c, readback_.at(slot).mapped(), sizeof(c));
     return {.segments = c.segments, .pairs = c.pairs, .capacity = c.capacity, .overflow = c.overflow,
-            .fragments = c.fragments};
+            .fragments = c.fragments, .chunks = c.chunks, .maxTile = c.maxTile};
 }
 
 void StrandRaster::prepare(FrameContext& frame, gpu::StrandRasterPush camera, gpu::StrandRasterPush light,
@@ -239,6 +255,26 @@ void StrandRaster::prepare(FrameContext& frame, gpu::StrandRasterPush camera, gp
     if (wanted > binCapacity_ || !bins_.buffer) {
         binCapacity_ = std::max(wanted, binCapacity_);
         allocate(bins_, binCapacity_ * 4, vk::kStorage | vk::kTransferSrc, "strands.bins", &frame);
+        // Every chunk holds chunkSegments pairs but a tile's last; a tile of several chunks leaves
+        // fewer than 2 x its pairs / chunkSegments partial lists.
+        uint64_t tileCount = uint64_t(tiles(e.width)) * tiles(e.height);
+        uint64_t chunks = tileCount + binCapacity_ / chunkSegments_ + 1;
+        partialCapacity_ = 2 * binCapacity_ / chunkSegments_ + 1;
+        allocate(chunkTiles_, chunks * 4, vk::kStorage | vk::kTransferSrc, "strands.chunk_tiles", &frame);
+        allocate(partials_, partialCapacity_ * (2 * gpu::kMaxOitK + 5) * gpu::kRasterTilePixels * 4, vk::kStorage,
+                 "strands.partials", &frame);
+    }
+    // oit_k is the raster's and the merge's specialization constant.
+    uint32_t k = std::clamp(camera.oitK, 1u, gpu::kMaxOitK);
+    if (k != pipelineK_) {
+        if (rasterPipeline_)
+            frame.retire(std::move(rasterPipeline_));
+        if (mergePipeline_)
+            frame.retire(std::move(mergePipeline_));
+        const char* raster = target_.multisampled() ? "strands_raster.comp" : "strands_raster_single.comp";
+        rasterPipeline_ = vk::createComputePipeline(ctx_, layout_, raster, "strands.raster.pipeline", {k});
+        mergePipeline_ = vk::createComputePipeline(ctx_, layout_, "strands_merge.comp", "strands.merge.pipeline", {k});
+        pipelineK_ = k;
     }
 
     camera.fromLight = 0;
@@ -249,6 +285,9 @@ void StrandRaster::prepare(FrameContext& frame, gpu::StrandRasterPush camera, gp
     camera.targetHeight = e.height;
     camera.samples = uint32_t(target_.samples());
     camera.binCapacity = uint32_t(binCapacity_);
+    camera.oitK = k;
+    camera.chunkSegments = chunkSegments_;
+    camera.partialCapacity = uint32_t(partialCapacity_);
     light.fromLight = 1;
     light.segmentCount = uint32_t(uint64_t(light.guideCount) * light.drawnPerGuide * light.divisions);
     light.tilesX = tiles(lightSize_);
@@ -287,6 +326,8 @@ void StrandRaster::declare(Stage stage, PassIo& io)
     case Stage::LightResolve:
         io.use(lightOpacity_.track, Access::ComputeRead);
         io.use(maps_.opacity(), Access::ComputeWrite);
+        break;
+    case Stage::LightCopy:
         io.use(lightDepth_.track, Access::TransferSrc);
         io.use(maps_.hairDepth(), Access::TransferDst);
         break;
@@ -304,6 +345,10 @@ void StrandRaster::declare(Stage stage, PassIo& io)
     case Stage::Scan:
         io.use(tileCounts_.track, Access::ComputeWrite);
         io.use(tileOffsets_.track, Access::ComputeWrite);
+        io.use(chunkOffsets_.track, Access::ComputeWrite);
+        io.use(partialOffsets_.track, Access::ComputeWrite);
+        io.use(chunkTiles_.track, Access::ComputeWrite);
+        io.use(dispatch_.track, Access::ComputeWrite);
         io.use(counters_.track, Access::ComputeWrite);
         break;
     case Stage::Bin:
@@ -318,7 +363,19 @@ void StrandRaster::declare(Stage stage, PassIo& io)
         io.use(tileOffsets_.track, Access::ComputeRead);
         io.use(bins_.track, Access::ComputeRead);
         io.use(counters_.track, Access::ComputeWrite);
+        io.use(chunkOffsets_.track, Access::ComputeRead);
+        io.use(partialOffsets_.track, Access::ComputeRead);
+        io.use(chunkTiles_.track, Access::ComputeRead);
+        io.use(dispatch_.track, Access::IndirectRead);
+        io.use(dispatch_.track, Access::ComputeRead);
+        io.use(partials_.track, Access::ComputeWrite);
         io.use(target_.depth(), Access::ComputeSampled);
+        io.use(colorTrack_, Access::ComputeWrite);
+        break;
+    case Stage::Merge:
+        io.use(chunkOffsets_.track, Access::ComputeRead);
+        io.use(partialOffsets_.track, Access::ComputeRead);
+        io.use(partials_.track, Access::ComputeRead);
         io.use(colorTrack_, Access::ComputeWrite);
         break;
     case Stage::Stats:
@@ -361,6 +418,8 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
     VkDescriptorBufferInfo lightVertices = whole(lightVertices_), lightColors = whole(lightColors_);
     VkDescriptorBufferInfo tileCounts = whole(tileCounts_), tileOffsets = whole(tileOffsets_), bins = whole(bins_);
     VkDescriptorBufferInfo counters = whole(counters_);
+    VkDescriptorBufferInfo chunkOffsets = whole(chunkOffsets_), partialOffsets = whole(partialOffsets_);
+    VkDescriptorBufferInfo chunkTiles = whole(chunkTiles_), dispatchArgs = whole(dispatch_), partials = whole(partials_);
     VkDescriptorBufferInfo lightDepth = whole(lightDepth_), lightOpacity = whole(lightOpacity_);
     auto frameWrite = bufferWrite(gpu::kRasterBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frameInfo);
     uint64_t cameraVertices = uint64_t(camera_.guideCount) * camera_.drawnPerGuide * (camera_.divisions + 1);
@@ -409,6 +468,9 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
             bufferWrite(gpu::kRasterBindingLightOpacity, kStorage, &lightOpacity),
             imageWrite(gpu::kRasterBindingOpacityImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &opacityImage)};
         dispatch(cmd, lightResolvePipeline_, light_, writes, vk::groupCount(lightSize_, 8), vk::groupCount(lightSize_, 8));
+        break;
+    }
+    case Stage::LightCopy: {
         VkBufferImageCopy region{.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1},
                                  .imageExtent = {lightSize_, lightSize_, 1}};
         vkCmdCopyBufferToImage(cmd, lightDepth_.buffer, maps_.hairDepthImage().get(),
@@ -426,9 +488,14 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
         break;
     }
     case Stage::Scan: {
-        std::vector<VkWriteDescriptorSet> writes = {bufferWrite(gpu::kRasterBindingTileCounts, kStorage, &tileCounts),
-                                                    bufferWrite(gpu::kRasterBindingTileOffsets, kStorage, &tileOffsets),
-                                                    bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters)};
+        std::vector<VkWriteDescriptorSet> writes = {
+            bufferWrite(gpu::kRasterBindingTileCounts, kStorage, &tileCounts),
+            bufferWrite(gpu::kRasterBindingTileOffsets, kStorage, &tileOffsets),
+            bufferWrite(gpu::kRasterBindingChunkOffsets, kStorage, &chunkOffsets),
+            bufferWrite(gpu::kRasterBindingPartialOffsets, kStorage, &partialOffsets),
+            bufferWrite(gpu::kRasterBindingChunkTiles, kStorage, &chunkTiles),
+            bufferWrite(gpu::kRasterBindingDispatch, kStorage, &dispatchArgs),
+            bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters)};
         dispatch(cmd, scanPipeline_, camera_, writes, 1);
         break;
     }
@@ -442,8 +509,27 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
             bufferWrite(gpu::kRasterBindingBins, kStorage, &bins),
             bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters),
             imageWrite(gpu::kRasterBindingMeshDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &depth),
+            imageWrite(gpu::kRasterBindingHairColor, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &color),
+            bufferWrite(gpu::kRasterBindingChunkOffsets, kStorage, &chunkOffsets),
+            bufferWrite(gpu::kRasterBindingPartialOffsets, kStorage, &partialOffsets),
+            bufferWrite(gpu::kRasterBindingChunkTiles, kStorage, &chunkTiles),
+            bufferWrite(gpu::kRasterBindingDispatch, kStorage, &dispatchArgs),
+            bufferWrite(gpu::kRasterBindingPartials, kStorage, &partials)};
+        // One workgroup per chunk, as many as the scan counted (rows of at most 65535).
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, rasterPipeline_);
+        ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, uint32_t(writes.size()), writes.data());
+        vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(camera_), &camera_);
+        vkCmdDispatchIndirect(cmd, dispatch_.buffer, 0);
+        break;
+    }
+    case Stage::Merge: {
+        VkDescriptorImageInfo color{VK_NULL_HANDLE, color_.view(), VK_IMAGE_LAYOUT_GENERAL};
+        std::vector<VkWriteDescriptorSet> writes = {
+            bufferWrite(gpu::kRasterBindingChunkOffsets, kStorage, &chunkOffsets),
+            bufferWrite(gpu::kRasterBindingPartialOffsets, kStorage, &partialOffsets),
+            bufferWrite(gpu::kRasterBindingPartials, kStorage, &partials),
             imageWrite(gpu::kRasterBindingHairColor, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &color)};
-        dispatch(cmd, rasterPipeline_, camera_, writes, camera_.tilesX, camera_.tilesY);
+        dispatch(cmd, mergePipeline_, camera_, writes, camera_.tilesX, camera_.tilesY);
         break;
     }
     case Stage::Stats: {

@@ -14,6 +14,7 @@
 #include "shared/strand_raster.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
+layout(constant_id = 0) const uint kOitK = 8u;  // oit_k, 1 .. kMaxOitK: the lists stay in registers
 layout(push_constant) uniform PushBlock { uint width; uint height; uint k; uint maxWalk; } push;
 layout(set = 0, binding = 0, std430) readonly buffer Heads { uint heads[]; };
 layout(set = 0, binding = 1, std430) readonly buffer Nodes { OitNode nodes[]; };
@@ -30,7 +31,7 @@ void main()
         imageStore(hairColor, ivec2(xy), vec4(0.0));
         return;
     }
-    uint k = min(push.k, kMaxOitK);
+    const uint k = kOitK;
     PixelFragments f = emptyPixelFragments();
     // The walk is bounded by the pool (a list never holds more nodes than were handed out).
     uint capacity = counters.capacity;

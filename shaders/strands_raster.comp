@@ -1,19 +1,26 @@
 #version 460
-// strands_raster.comp: one workgroup per screen tile, one thread per pixel. The tile's bin is
-// read in batches of 64 segments into shared memory, each with the mask of the tile's pixels it
-// can reach (tilePixelMask: a pixel outside it skips the segment with one test); every pixel the
-// segment reaches covers it analytically
+// strands_raster.comp: one workgroup per chunk of a screen tile's bin (at most chunkSegments of
+// its segments; a tile of more is shared among workgroups, so the dense crown of a head does not
+// hold up the frame), one thread per pixel of the tile. The chunk is read in batches of 32
+// segments into shared memory, each with the mask of the tile's pixels it can reach
+// (tilePixelMask). The (segment, pixel) pairs the masks name are then dealt out one per thread
+// (a strand segment touches a few pixels of a tile: with a thread per pixel, most threads would
+// idle while a few covered it), and each pair covers its pixel analytically
 // (shared/strand_raster.h segmentCoverage), tests the point's depth against each MSAA sample of
 // the meshes' depth (the share of samples in front scales the coverage, so the head's silhouette
-// stays antialiased), and keeps what passes as the list resolve does: the nearest oit_k sorted,
-// the rest as one order-independent layer (insertFragment). The colour and opacity at the point
-// interpolate the two vertices' (shaded along the strand by strands_generate.comp). Each pixel
-// writes its premultiplied hair once; hair.composite lays it over the target. With
+// stays antialiased); what passes waits in shared memory for its pixel's thread, which keeps it
+// as the list resolve does: the nearest oit_k sorted, the rest as one order-independent layer
+// (insertFragment). The colour and opacity at the point
+// interpolate the two vertices' (shaded along the strand by strands_generate.comp). A tile of one
+// chunk writes its premultiplied hair; the chunks of a larger one leave their pixels' lists for
+// strands_merge.comp. hair.composite lays the picture over the target. oit_k is specialization
+// constant 0 (so the lists stay in registers). With
 // RASTER_SINGLE_SAMPLE (strands_raster_single.comp) the meshes' depth has one sample.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/strand_raster.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;  // kRasterTileSize
+layout(constant_id = 0) const uint kOitK = 8u;
 layout(push_constant) uniform PushBlock { StrandRasterPush push; };
 layout(set = 0, binding = kRasterBindingVertices, std430) readonly buffer Vertices { vec4 vertices[]; };
 layout(set = 0, binding = kRasterBindingColors, std430) readonly buffer Colors { uint colors[]; };
@@ -26,43 +33,64 @@ layout(set = 0, binding = kRasterBindingMeshDepth) uniform sampler2D meshDepth;
 layout(set = 0, binding = kRasterBindingMeshDepth) uniform sampler2DMS meshDepth;
 #endif
 layout(set = 0, binding = kRasterBindingHairColor, rgba16f) uniform writeonly image2D hairColor;
+layout(set = 0, binding = kRasterBindingChunkOffsets, std430) readonly buffer ChunkOffsets { uint chunkOffsets[]; };
+layout(set = 0, binding = kRasterBindingPartialOffsets, std430) readonly buffer PartialOffsets { uint partialOffsets[]; };
+layout(set = 0, binding = kRasterBindingChunkTiles, std430) readonly buffer ChunkTiles { uint chunkTiles[]; };
+layout(set = 0, binding = kRasterBindingDispatch, std430) readonly buffer Dispatch { RasterDispatch dispatch; };
+layout(set = 0, binding = kRasterBindingPartials, std430) writeonly buffer Partials { uint partials[]; };
 
-const uint kBatch = 64u;  // kRasterTilePixels: each thread loads one segment per batch
+const uint kBatch = 32u;            // segments per batch
 const uint kMaxSamples = 8u;
 shared vec4 segmentLine[kBatch];    // a.xy, dir.xy
 shared vec4 segmentShape[kBatch];   // len, ha, hb, footA
 shared vec4 segmentDepth[kBatch];   // footB, za, zb
 shared vec4 segmentColorA[kBatch];  // unpacked colour and opacity at the start
 shared vec4 segmentColorB[kBatch];  // and at the end
-shared uvec2 segmentMask[kBatch];  // the tile's pixels it can cover (tilePixelMask)
+shared uvec2 segmentMask[kBatch];   // the tile's pixels it can cover (tilePixelMask)
+shared uint pairStart[kBatch + 1u]; // the batch's (segment, pixel) pairs: segment j's first, the total last
+shared float pixelDepth[kRasterTilePixels * kMaxSamples];  // the meshes' depth, each pixel's samples
+shared uint pixelCount[kRasterTilePixels];                 // fragments waiting for each pixel
+shared float waitingDepth[kRasterTilePixels * kBatch];
+shared uint waitingColor[kRasterTilePixels * kBatch];
 shared uint groupFragments;
 
 void main()
 {
+    uint chunk = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+    if (chunk >= dispatch.chunks)
+        return;  // the last row of workgroups runs past the chunks (the whole workgroup returns)
     uint lane = gl_LocalInvocationIndex;
     if (lane == 0u)
         groupFragments = 0u;
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    pixelCount[lane] = 0u;
+    uint tile = chunkTiles[chunk];
+    uint part = chunk - chunkOffsets[tile];
+    uint parts = chunkOffsets[tile + 1u] - chunkOffsets[tile];
+    uvec2 tileXY = uvec2(tile % push.tilesX, tile / push.tilesX);
+    vec2 origin = vec2(tileXY * kRasterTileSize);
+    ivec2 pixel = ivec2(tileXY * kRasterTileSize + gl_LocalInvocationID.xy);
     bool inside = pixel.x < int(push.targetWidth) && pixel.y < int(push.targetHeight);
-    vec2 centre = vec2(pixel) + 0.5;
-    uint tile = gl_WorkGroupID.y * push.tilesX + gl_WorkGroupID.x;
 
-    float sampleDepth[kMaxSamples];
     uint samples = min(push.samples, kMaxSamples);
-    for (uint s = 0u; s < kMaxSamples; ++s) {
-#ifdef RASTER_SINGLE_SAMPLE
-        sampleDepth[s] = inside && s == 0u ? texelFetch(meshDepth, pixel, 0).r : 1.0;
-#else
-        sampleDepth[s] = inside && s < samples ? texelFetch(meshDepth, pixel, int(s)).r : 1.0;
-#endif
-    }
 #ifdef RASTER_SINGLE_SAMPLE
     samples = 1u;
 #endif
+    for (uint s = 0u; s < kMaxSamples; ++s) {
+        float d = 1.0;
+#ifdef RASTER_SINGLE_SAMPLE
+        if (inside && s == 0u)
+            d = texelFetch(meshDepth, pixel, 0).r;
+#else
+        if (inside && s < samples)
+            d = texelFetch(meshDepth, pixel, int(s)).r;
+#endif
+        pixelDepth[lane * kMaxSamples + s] = d;
+    }
 
-    uint begin = min(tileOffsets[tile], push.binCapacity);
-    uint end = min(tileOffsets[tile + 1u], push.binCapacity);
-    uint k = min(push.oitK, kMaxOitK);
+    uint binEnd = min(tileOffsets[tile + 1u], push.binCapacity);
+    uint begin = min(min(tileOffsets[tile], push.binCapacity) + part * push.chunkSegments, binEnd);
+    uint end = min(begin + push.chunkSegments, binEnd);
+    const uint k = kOitK;  // 1 .. kMaxOitK (the renderer clamps it)
     PixelFragments f = emptyPixelFragments();
     uint fragments = 0u;
     for (uint base = begin; base < end; base += kBatch) {
@@ -74,21 +102,44 @@ void main()
             vec4 a = vertices[v];
             vec4 b = vertices[v + 1u];
             RasterSegment s = makeRasterSegment(a.xy, b.xy, a.w, b.w);
-            vec2 origin = vec2(gl_WorkGroupID.xy * kRasterTileSize);
-            segmentMask[lane] = tilePixelMask(a.xy, b.xy, segmentReach(a.w, b.w), origin);
             segmentLine[lane] = vec4(s.a, s.dir);
             segmentShape[lane] = vec4(s.len, s.ha, s.hb, s.footA);
             segmentDepth[lane] = vec4(s.footB, a.z, b.z, 0.0);
             segmentColorA[lane] = unpackFragmentColor(colors[v]);
             segmentColorB[lane] = unpackFragmentColor(colors[v + 1u]);
+            segmentMask[lane] = tilePixelMask(a.xy, b.xy, segmentReach(a.w, b.w), origin);
         }
         barrier();
-        if (!inside)
-            continue;
-        uint bit = 1u << (lane % 32u);
-        for (uint j = 0u; j < n; ++j) {
-            if (((lane < 32u ? segmentMask[j].x : segmentMask[j].y) & bit) == 0u)
-                continue;  // cannot reach this pixel
+        if (lane == 0u) {
+            uint total = 0u;
+            for (uint j = 0u; j < n; ++j) {
+                pairStart[j] = total;
+                total += bitCount(segmentMask[j].x) + bitCount(segmentMask[j].y);
+            }
+            pairStart[n] = total;
+        }
+        barrier();
+
+        // Each thread takes (segment, pixel) pairs: the segment by a binary search of the starts,
+        // the pixel as the mask's next set bit.
+        uint pairs = pairStart[n];
+        for (uint h = lane; h < pairs; h += kRasterTilePixels) {
+            uint lo = 0u, hi = n;
+            while (hi - lo > 1u) {
+                uint mid = (lo + hi) / 2u;
+                if (pairStart[mid] <= h)
+                    lo = mid;
+                else
+                    hi = mid;
+            }
+            uint j = lo;
+            uint r = h - pairStart[j];
+            uvec2 mask = segmentMask[j];
+            uint low = bitCount(mask.x);
+            uint p = r < low ? nthSetBit(mask.x, r) : 32u + nthSetBit(mask.y, r - low);
+            vec2 centre = origin + vec2(float(p % kRasterTileSize), float(p / kRasterTileSize)) + 0.5;
+            if (centre.x > float(push.targetWidth) || centre.y > float(push.targetHeight))
+                continue;
             RasterSegment s;
             s.a = segmentLine[j].xy;
             s.dir = segmentLine[j].zw;
@@ -103,19 +154,39 @@ void main()
             float depth = mix(segmentDepth[j].y, segmentDepth[j].z, hit.y);
             uint front = 0u;
             for (uint m = 0u; m < kMaxSamples; ++m)
-                front += m < samples && depth <= sampleDepth[m] ? 1u : 0u;
+                front += m < samples && depth <= pixelDepth[p * kMaxSamples + m] ? 1u : 0u;
             if (front == 0u)
                 continue;
             vec4 c = mix(segmentColorA[j], segmentColorB[j], hit.y);
             float alpha = c.w * hit.x * float(front) / float(samples);
             if (alpha < 0.5 / 255.0)
                 continue;  // below what the fragment's 8 bits of alpha hold
-            insertFragment(f, k, depth, packFragmentColor(c.rgb, alpha));
-            ++fragments;
+            uint slot = atomicAdd(pixelCount[p], 1u);  // < kBatch: one fragment per segment and pixel
+            waitingDepth[p * kBatch + slot] = depth;
+            waitingColor[p * kBatch + slot] = packFragmentColor(c.rgb, alpha);
         }
+        barrier();
+        uint waiting = pixelCount[lane];
+        for (uint i = 0u; i < waiting; ++i)
+            insertFragment(f, k, waitingDepth[lane * kBatch + i], waitingColor[lane * kBatch + i]);
+        fragments += waiting;
+        pixelCount[lane] = 0u;  // (read again only after the next batch's barriers)
     }
-    if (inside)
-        imageStore(hairColor, pixel, resolveFragments(f, k));
+    if (parts == 1u) {
+        if (inside)
+            imageStore(hairColor, pixel, resolveFragments(f, k));
+    } else {
+        uint p = partialOffsets[tile] + part;
+        for (uint i = 0u; i < k; ++i) {
+            partials[partialWord(p, i, lane, k)] = floatBitsToUint(f.depth[i]);
+            partials[partialWord(p, k + i, lane, k)] = f.color[i];
+        }
+        partials[partialWord(p, 2u * k, lane, k)] = f.tailR;
+        partials[partialWord(p, 2u * k + 1u, lane, k)] = f.tailG;
+        partials[partialWord(p, 2u * k + 2u, lane, k)] = f.tailB;
+        partials[partialWord(p, 2u * k + 3u, lane, k)] = f.tailAlpha;
+        partials[partialWord(p, 2u * k + 4u, lane, k)] = f.tailClear;
+    }
     if (fragments > 0u)
         atomicAdd(groupFragments, fragments);
     barrier();

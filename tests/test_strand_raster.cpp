@@ -122,7 +122,8 @@ struct RasterFrame {
     }
 };
 
-RasterFrame renderRasterFrame(const vk::Context& ctx, const HairScene& scene, RenderSettings s)
+RasterFrame renderRasterFrame(const vk::Context& ctx, const HairScene& scene, RenderSettings s,
+                              uint32_t chunkSegments = gpu::kRasterChunkSegments)
 {
     s.hairRaster = HairRaster::Compute;
     s.samples = 1;  // the meshes' depth read back as one sample per pixel
@@ -131,6 +132,7 @@ RasterFrame renderRasterFrame(const vk::Context& ctx, const HairScene& scene, Re
     SimSetup setup = makeSimSetup(SimSettings{}, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
     GpuSolver solver(ctx, scene.strands, setup, glm::mat4(1.0f));
     renderer.attachHair(solver, scene.strands, scene.unitsPerMetre);
+    renderer.strandRaster()->setChunkSegments(chunkSegments);
     Frame frame(ctx, 1);
     OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(s.width) / float(s.height));
     FrameContext& fc = frame.begin(renderer.transientImages());
@@ -182,15 +184,18 @@ TEST(StrandRaster, CameraKernelsMatchTheirCpuTwin)
 {
     vk::Context ctx(test::validatedOptions());
     HairScene scene = test::smallHairScene(60);
+    // Karis with the tiles' bins taken whole, Kajiya-Kay with them cut into chunks of 16 segments,
+    // so most tiles are shared among raster workgroups and merged.
     for (Interpolation interpolation : {Interpolation::Single, Interpolation::Multi}) {
         for (ShadingModel model : {ShadingModel::Karis, ShadingModel::Kajiya}) {
             SCOPED_TRACE(interpolation == Interpolation::Single ? "single" : "multi");
-            SCOPED_TRACE(model == ShadingModel::Karis ? "karis" : "kajiya");
+            SCOPED_TRACE(model == ShadingModel::Karis ? "karis, whole bins" : "kajiya, chunks of 16");
             RenderSettings s = test::smallRenderSettings();
             s.shadows.enabled = false;  // the twin shades with the light unoccluded
             s.strands.interpolation = interpolation;
             s.hair.model = model;
-            RasterFrame f = renderRasterFrame(ctx, scene, s);
+            uint32_t chunk = model == ShadingModel::Karis ? gpu::kRasterChunkSegments : 16u;
+            RasterFrame f = renderRasterFrame(ctx, scene, s, chunk);
 
             // strands.generate
             reference::StrandVertices gpuStrands = f.strands(false);
@@ -212,6 +217,18 @@ TEST(StrandRaster, CameraKernelsMatchTheirCpuTwin)
             EXPECT_EQ(counters.pairs, offsets[tiles]);
             EXPECT_EQ(counters.overflow, 0u);
             EXPECT_GT(bins.segments, 1000u);
+            uint32_t chunks = 0, shared = 0, most = 0;
+            for (size_t t = 0; t < tiles; ++t) {
+                uint32_t n = (bins.counts[t] + chunk - 1) / chunk;
+                chunks += n;
+                shared += n > 1 ? 1 : 0;
+                most = std::max(most, bins.counts[t]);
+            }
+            EXPECT_EQ(counters.chunks, chunks);
+            EXPECT_EQ(counters.maxTile, most);
+            if (chunk == 16u) {
+                EXPECT_GT(shared, 50u) << "tiles shared among raster workgroups, merged";
+            }
 
             // strands.raster
             uint64_t fragments = 0;

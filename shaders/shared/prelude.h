@@ -47,6 +47,7 @@ using glm::exp2;
 using glm::transpose;
 using glm::length;
 using glm::packUnorm4x8;
+using glm::bitCount;
 using glm::unpackUnorm4x8;
 GPU_NAMESPACE_END
 #else

@@ -10,12 +10,17 @@
 //   scan      one workgroup: each tile's first slot in the bins (exclusive prefix sum), the total
 //             and the overflow against the bins' capacity; the counts become write cursors
 //   bin       the same walk again, each segment's index written into its tiles' bins
-//   raster    one workgroup per tile, one thread per pixel: every segment of the tile's bin is
-//             covered analytically (segmentCoverage: the exact area of the ribbon over the pixel
-//             across it, times the overlap along it), depth-tested against the meshes' depth (each
-//             MSAA sample), and kept in registers as the list resolve does: the nearest k sorted,
-//             the rest blended as one order-independent layer (insertFragment / resolveFragments,
-//             shared with oit_resolve.comp); the pixel's premultiplied colour is written once
+//   raster    one workgroup per chunk of a tile's bin (at most chunkSegments segments: a tile with
+//             thousands of segments is shared among workgroups), one thread per pixel: every
+//             segment is covered analytically (segmentCoverage: the exact area of the ribbon over
+//             the pixel across it, times the overlap along it), depth-tested against the meshes'
+//             depth (each MSAA sample), and kept in registers as the list resolve does: the nearest
+//             k sorted, the rest blended as one order-independent layer (insertFragment /
+//             resolveFragments, shared with oit_resolve.comp). A tile of one chunk writes its
+//             pixels' premultiplied colour; the chunks of a larger tile write their pixels' lists
+//   merge     one workgroup per tile of several chunks: their lists merged (the nearest k of all,
+//             the rest into the tail: exactly what one list of every segment would hold), and
+//             tiles without hair cleared
 //   light     from the light, the same generated segments (fewer, wider: shadow_strands) are
 //             rasterized one thread per segment into the hair's depth (atomicMin) and then the
 //             deep opacity layers (fixed-point atomicAdd: sums commute, so frames repeat bit for bit)
@@ -40,6 +45,7 @@ GPU_CONST uint kRasterTileSize = 8u;        // pixels per tile side; the raster'
 GPU_CONST uint kRasterTilePixels = kRasterTileSize * kRasterTileSize;
 GPU_CONST uint kRasterGroupSize = 64u;      // threads of the per-vertex and per-segment kernels
 GPU_CONST uint kRasterScanGroupSize = 1024u;
+GPU_CONST uint kRasterChunkSegments = 2048u;  // segments one raster workgroup takes of a tile's bin
 
 // Bindings (each kernel pushes the ones it reads; 4..7 are the light's maps of shared/shadows.h).
 GPU_CONST uint kRasterBindingFrame = 0;        // uniform FrameParams
@@ -58,6 +64,11 @@ GPU_CONST uint kRasterBindingHairColor = 16;   // image2D rgba16f: the hair, pre
 GPU_CONST uint kRasterBindingLightDepth = 17;  // uint per light texel: the hair's first depth (float bits)
 GPU_CONST uint kRasterBindingLightOpacity = 18;// uint x 4 per light texel: opacity layers, fixed point
 GPU_CONST uint kRasterBindingOpacityImage = 19;// image2D rgba16f: the deep opacity layers, as shaders read them
+GPU_CONST uint kRasterBindingChunkOffsets = 20;   // uint per tile + 1: the tile's first chunk, the total last
+GPU_CONST uint kRasterBindingPartialOffsets = 21; // uint per tile + 1: the first partial list of a tile of several chunks
+GPU_CONST uint kRasterBindingChunkTiles = 22;     // uint per chunk: its tile
+GPU_CONST uint kRasterBindingDispatch = 23;       // RasterDispatch: the raster's indirect dispatch
+GPU_CONST uint kRasterBindingPartials = 24;       // uint words: each chunk's pixel lists (partialWord)
 
 // Fixed point of the light's opacity sums (integer units per unit of opacity).
 GPU_CONST float kOpacityFixedScale = 1024.0f;
@@ -88,6 +99,18 @@ struct StrandRasterPush {
     uint  samples;            // MSAA samples of the meshes' depth
     uint  binCapacity;        // (segment, tile) pairs the bins hold
     uint  domLayers;          // deep opacity layers (light opacity kernel)
+    uint  chunkSegments;      // segments of a tile's bin one raster workgroup takes (kRasterChunkSegments)
+    uint  partialCapacity;    // partial lists the scratch buffer holds
+    uint  pad0;
+    uint  pad1;
+};
+
+// The raster's indirect dispatch (rows of at most 65535 workgroups, one per chunk), written by the scan.
+struct RasterDispatch {
+    uint x;
+    uint y;
+    uint z;
+    uint chunks;  // chunks in all; workgroups past it return
 };
 
 // What the kernels count, copied back to the host each frame.
@@ -97,9 +120,9 @@ struct RasterCounters {
     uint overflow;   // pairs that did not fit (dropped this frame; the renderer grows the bins)
     uint fragments;  // (segment, pixel) overlaps that reached a pixel's list
     uint segments;   // segments binned (on screen, in front of the camera)
-    uint pad0;
-    uint pad1;
-    uint pad2;
+    uint chunks;     // raster workgroups (chunks of tiles' bins)
+    uint partials;   // partial lists of tiles of several chunks
+    uint maxTile;    // the most segments one tile's bin held
 };
 
 // One strand vertex as the rasterizer reads it: where it is on the screen and how wide.
@@ -137,20 +160,14 @@ GPU_FN vec4 projectStrandVertex(mat4 viewProjection, vec2 size, vec3 world, floa
 // n . (x - centre) = x. Exact, so a straight ribbon's coverage below is exact too.
 GPU_FN float pixelFootprintCdf(float x, float a, float b)
 {
-    // a >= b >= 0: the larger and smaller of |n.x|, |n.y| (a >= 1/sqrt(2)).
-    float s = 0.5f * (a + b);  // half the support
-    float p = 0.5f * (a - b);  // half the plateau, where the density is 1 / a
-    float ax = abs(x);
-    float inner;               // the share between 0 and |x|
-    if (ax >= s) {
-        inner = 0.5f;
-    } else if (ax <= p) {
-        inner = ax / a;
-    } else {
-        float r = s - ax;      // on the ramp: density falls linearly to 0 over b
-        inner = 0.5f - r * r / (2.0f * a * b);
-    }
-    return x >= 0.0f ? 0.5f + inner : 0.5f - inner;
+    // a >= b >= 0: the larger and smaller of |n.x|, |n.y| (a >= 1/sqrt(2)). The trapezoid's
+    // density is 1 / a on its plateau (half width (a - b) / 2) and falls linearly to 0 over b on
+    // each side; what lies beyond |x| is q^2 / (2ab) on the ramp plus (r - q) / a on the plateau,
+    // with r = s - |x| the distance to the support's end s = (a + b) / 2 and q = min(r, b).
+    float r = max(0.5f * (a + b) - abs(x), 0.0f);
+    float q = min(r, b);
+    float beyond = q * q / (2.0f * a * max(b, 1e-7f)) + (r - q) / a;
+    return x >= 0.0f ? 1.0f - beyond : beyond;
 }
 
 // A segment prepared for coverage tests (in screen pixels).
@@ -256,6 +273,29 @@ GPU_FN float segmentReach(float ha, float hb)
     return max(ha, hb) + 0.7072f;
 }
 
+// The position of the n-th (from 0) set bit of v; v must hold more than n set bits. (The raster
+// hands out the pixels a segment's mask names, one per thread.)
+GPU_FN uint nthSetBit(uint v, uint n)
+{
+    uint position = 0u;
+    for (uint width = 16u; width > 0u; width >>= 1u) {
+        uint low = bitCount(v & ((1u << width) - 1u));
+        if (n >= low) {
+            n -= low;
+            v >>= width;
+            position += width;
+        }
+    }
+    return position;
+}
+
+// Word `word` of lane `lane`'s list in partial list `partial`: words 0..k-1 the depths (float bits),
+// k..2k-1 the colours, then the five tail sums; lanes side by side, so a workgroup's writes coalesce.
+GPU_FN uint partialWord(uint partial, uint word, uint lane, uint k)
+{
+    return (partial * (2u * k + 5u) + word) * kRasterTilePixels + lane;
+}
+
 // ---- Order-independent blending (the nearest k sorted, the rest as one layer) ----------------
 
 // Fragments order by depth, ties by their colour bits, so equal depths sort the same whatever
@@ -324,6 +364,10 @@ GPU_FN void addToTail(GPU_INOUT(PixelFragments) f, uint color)
 // it), and whatever comes out of the last kept slot joins the tail.
 GPU_FN void insertFragment(GPU_INOUT(PixelFragments) f, uint k, float depth, uint color)
 {
+    if (!fragmentFarther(f.depth[k - 1u], f.color[k - 1u], depth, color)) {
+        addToTail(f, color);  // behind all k kept: no swap would happen (most fragments, once k are kept)
+        return;
+    }
     float d = depth;
     uint c = color;
     for (uint i = 0u; i < kMaxOitK; ++i) {
@@ -342,6 +386,16 @@ GPU_FN void insertFragment(GPU_INOUT(PixelFragments) f, uint k, float depth, uin
 
 // The pixel's hair, premultiplied: the nearest k front to back, then the tail as one layer whose
 // colour is its alpha-weighted mean and whose opacity is 1 - prod(1 - alpha).
+// Adds another list's tail (its fixed-point sums) to this one's.
+GPU_FN void addTailSums(GPU_INOUT(PixelFragments) f, uint r, uint g, uint b, uint alpha, uint clear)
+{
+    f.tailR = min(f.tailR, kTailSaturate - min(r, kTailSaturate)) + min(r, kTailSaturate);
+    f.tailG = min(f.tailG, kTailSaturate - min(g, kTailSaturate)) + min(g, kTailSaturate);
+    f.tailB = min(f.tailB, kTailSaturate - min(b, kTailSaturate)) + min(b, kTailSaturate);
+    f.tailAlpha = min(f.tailAlpha, kTailSaturate - min(alpha, kTailSaturate)) + min(alpha, kTailSaturate);
+    f.tailClear = min(f.tailClear, kTailSaturate - min(clear, kTailSaturate)) + min(clear, kTailSaturate);
+}
+
 GPU_FN vec4 resolveFragments(PixelFragments f, uint k)
 {
     vec3 color = vec3(0.0f);
