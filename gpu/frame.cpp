@@ -5,6 +5,7 @@
 #include "gpu/check.h"
 #include "gpu/context.h"
 
+#include <algorithm>
 #include <string>
 
 namespace wisp {
@@ -165,9 +166,22 @@ void Frame::barrier(VkCommandBuffer cmd, const PassIo& io)
             t.accesses |= next.access;
         }
     }
+    // A buffer a pass uses in several ways (say, as indirect arguments and as storage) is one use
+    // of all those stages and accesses, so that one barrier makes the last write visible to each.
+    std::vector<std::pair<TrackedBuffer*, AccessInfo>> buffers;
     for (const PassIo::BufferUse& use : io.buffers) {
-        TrackedBuffer& t = *use.buffer;
-        AccessInfo next = describe(use.access);
+        AccessInfo info = describe(use.access);
+        auto same = std::find_if(buffers.begin(), buffers.end(), [&](const auto& b) { return b.first == use.buffer; });
+        if (same == buffers.end()) {
+            buffers.push_back({use.buffer, info});
+            continue;
+        }
+        same->second.stage |= info.stage;
+        same->second.access |= info.access;
+        same->second.writes = same->second.writes || info.writes;
+    }
+    for (const auto& [buffer, next] : buffers) {
+        TrackedBuffer& t = *buffer;
         bool hazard = t.written || (next.writes && t.stages != VK_PIPELINE_STAGE_2_NONE);
         bool unseen = t.dirty && (next.stage & ~t.visible) != 0;
         if (hazard || unseen) {

@@ -83,7 +83,7 @@ MeshPass::MeshPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
     vk::GraphicsPipelineDesc depth = shade;
     depth.shaders = {"mesh.vert"};
     depth.depthWrite = true;
-    depth.colorWrite = false;
+    depth.colorFormat = VK_FORMAT_UNDEFINED;  // depth alone
     depth.name = "mesh.depth.pipeline";
     depthPipeline_ = vk::createGraphicsPipeline(ctx, depth);
 
@@ -173,7 +173,7 @@ void MeshPass::declare(PassIo& io)
 
 void MeshPass::declareDepth(PassIo& io)
 {
-    target_.declareDraw(io);
+    target_.declareDepth(io);
 }
 
 void MeshPass::declareShadowMask(PassIo& io)
@@ -222,7 +222,7 @@ void MeshPass::recordFromLight(VkCommandBuffer cmd, FrameContext& frame)
 
 void MeshPass::recordDepth(VkCommandBuffer cmd, FrameContext& frame)
 {
-    target_.beginRendering(cmd, clearColor_);
+    target_.beginDepthRendering(cmd);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depthPipeline_);
     uniforms_.push(ctx_, cmd, layout_, frame.slot);
     draw(cmd, head_, headTransform_ * model_, albedo_, roughness_);

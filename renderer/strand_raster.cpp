@@ -312,10 +312,11 @@ void StrandRaster::declare(Stage stage, PassIo& io)
         io.use(lightVertices_.track, Access::ComputeWrite);
         io.use(lightColors_.track, Access::ComputeWrite);
         break;
-    case Stage::LightDepth:
+    case Stage::LightDepth:  // (one shader with light.opacity: it binds, never touches, the opacity)
         io.use(lightVertices_.track, Access::ComputeRead);
         io.use(lightColors_.track, Access::ComputeRead);
         io.use(lightDepth_.track, Access::ComputeWrite);
+        io.use(lightOpacity_.track, Access::ComputeRead);
         break;
     case Stage::LightOpacity:
         io.use(lightVertices_.track, Access::ComputeRead);
@@ -337,10 +338,12 @@ void StrandRaster::declare(Stage stage, PassIo& io)
         io.use(vertices_.track, Access::ComputeWrite);
         io.use(colors_.track, Access::ComputeWrite);
         break;
-    case Stage::Count:
+    case Stage::Count:  // (one shader with strands.bin: it binds, never touches, the offsets and bins)
         io.use(vertices_.track, Access::ComputeRead);
         io.use(tileCounts_.track, Access::ComputeWrite);
         io.use(counters_.track, Access::ComputeWrite);
+        io.use(tileOffsets_.track, Access::ComputeRead);
+        io.use(bins_.track, Access::ComputeWrite);
         break;
     case Stage::Scan:
         io.use(tileCounts_.track, Access::ComputeWrite);
@@ -351,11 +354,12 @@ void StrandRaster::declare(Stage stage, PassIo& io)
         io.use(dispatch_.track, Access::ComputeWrite);
         io.use(counters_.track, Access::ComputeWrite);
         break;
-    case Stage::Bin:
+    case Stage::Bin:  // (and the counters strands.count adds to)
         io.use(vertices_.track, Access::ComputeRead);
         io.use(tileOffsets_.track, Access::ComputeRead);
         io.use(tileCounts_.track, Access::ComputeWrite);
         io.use(bins_.track, Access::ComputeWrite);
+        io.use(counters_.track, Access::ComputeWrite);
         break;
     case Stage::Raster:
         io.use(vertices_.track, Access::ComputeRead);

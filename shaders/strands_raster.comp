@@ -1,11 +1,11 @@
 #version 460
 // strands_raster.comp: one workgroup per chunk of a screen tile's bin (at most chunkSegments of
 // its segments; a tile of more is shared among workgroups, so the dense crown of a head does not
-// hold up the frame), one thread per pixel of the tile. The chunk is read in batches of 32
-// segments into shared memory, each with the mask of the tile's pixels it can reach
-// (tilePixelMask). The (segment, pixel) pairs the masks name are then dealt out one per thread
-// (a strand segment touches a few pixels of a tile: with a thread per pixel, most threads would
-// idle while a few covered it), and each pair covers its pixel analytically
+// hold up the frame), 64 threads. The chunk is read in batches of 32 segments into shared memory,
+// each with the mask of the tile's pixels it can reach (tilePixelMask); two threads take each
+// segment, one per half of the tile, and cover the pixels the mask names (a strand segment
+// touches a few pixels of a tile: with a thread per pixel, most threads would idle while a few
+// covered it), each analytically
 // (shared/strand_raster.h segmentCoverage), tests the point's depth against each MSAA sample of
 // the meshes' depth (the share of samples in front scales the coverage, so the head's silhouette
 // stays antialiased); what passes waits in shared memory for its pixel's thread, which keeps it
@@ -47,11 +47,11 @@ shared vec4 segmentDepth[kBatch];   // footB, za, zb
 shared vec4 segmentColorA[kBatch];  // unpacked colour and opacity at the start
 shared vec4 segmentColorB[kBatch];  // and at the end
 shared uvec2 segmentMask[kBatch];   // the tile's pixels it can cover (tilePixelMask)
-shared uint pairStart[kBatch + 1u]; // the batch's (segment, pixel) pairs: segment j's first, the total last
-shared float pixelDepth[kRasterTilePixels * kMaxSamples];  // the meshes' depth, each pixel's samples
+// (Arrays of pixels side by side, so that the threads of a warp read neighbouring banks.)
+shared float pixelDepth[kMaxSamples * kRasterTilePixels];  // the meshes' depth: sample s of pixel p at s * 64 + p
 shared uint pixelCount[kRasterTilePixels];                 // fragments waiting for each pixel
-shared float waitingDepth[kRasterTilePixels * kBatch];
-shared uint waitingColor[kRasterTilePixels * kBatch];
+shared float waitingDepth[kBatch * kRasterTilePixels];     // waiting fragment i of pixel p at i * 64 + p
+shared uint waitingColor[kBatch * kRasterTilePixels];
 shared uint groupFragments;
 
 void main()
@@ -84,7 +84,7 @@ void main()
         if (inside && s < samples)
             d = texelFetch(meshDepth, pixel, int(s)).r;
 #endif
-        pixelDepth[lane * kMaxSamples + s] = d;
+        pixelDepth[s * kRasterTilePixels + lane] = d;
     }
 
     uint binEnd = min(tileOffsets[tile + 1u], push.binCapacity);
@@ -110,37 +110,14 @@ void main()
             segmentMask[lane] = tilePixelMask(a.xy, b.xy, segmentReach(a.w, b.w), origin);
         }
         barrier();
-        if (lane == 0u) {
-            uint total = 0u;
-            for (uint j = 0u; j < n; ++j) {
-                pairStart[j] = total;
-                total += bitCount(segmentMask[j].x) + bitCount(segmentMask[j].y);
-            }
-            pairStart[n] = total;
-        }
-        barrier();
 
-        // Each thread takes (segment, pixel) pairs: the segment by a binary search of the starts,
-        // the pixel as the mask's next set bit.
-        uint pairs = pairStart[n];
-        for (uint h = lane; h < pairs; h += kRasterTilePixels) {
-            uint lo = 0u, hi = n;
-            while (hi - lo > 1u) {
-                uint mid = (lo + hi) / 2u;
-                if (pairStart[mid] <= h)
-                    lo = mid;
-                else
-                    hi = mid;
-            }
-            uint j = lo;
-            uint r = h - pairStart[j];
-            uvec2 mask = segmentMask[j];
-            uint low = bitCount(mask.x);
-            uint p = r < low ? nthSetBit(mask.x, r) : 32u + nthSetBit(mask.y, r - low);
-            vec2 centre = origin + vec2(float(p % kRasterTileSize), float(p / kRasterTileSize)) + 0.5;
-            if (centre.x > float(push.targetWidth) || centre.y > float(push.targetHeight))
-                continue;
-            RasterSegment s;
+        // Two threads a segment, one for each half of the tile (rows 0-3, 4-7), each covering the
+        // pixels its half of the mask names.
+        uint j = lane / 2u;
+        uint side = lane % 2u;
+        uint bits = j < n ? (side == 0u ? segmentMask[j].x : segmentMask[j].y) : 0u;
+        RasterSegment s;
+        if (bits != 0u) {
             s.a = segmentLine[j].xy;
             s.dir = segmentLine[j].zw;
             s.len = segmentShape[j].x;
@@ -148,13 +125,20 @@ void main()
             s.hb = segmentShape[j].z;
             s.footA = segmentShape[j].w;
             s.footB = segmentDepth[j].x;
+        }
+        while (bits != 0u) {
+            uint p = uint(findLSB(bits)) + 32u * side;
+            bits &= bits - 1u;
+            vec2 centre = origin + vec2(float(p % kRasterTileSize), float(p / kRasterTileSize)) + 0.5;
+            if (centre.x > float(push.targetWidth) || centre.y > float(push.targetHeight))
+                continue;
             vec2 hit = segmentCoverage(s, centre);
             if (hit.x <= 0.0)
                 continue;
             float depth = mix(segmentDepth[j].y, segmentDepth[j].z, hit.y);
             uint front = 0u;
             for (uint m = 0u; m < kMaxSamples; ++m)
-                front += m < samples && depth <= pixelDepth[p * kMaxSamples + m] ? 1u : 0u;
+                front += m < samples && depth <= pixelDepth[m * kRasterTilePixels + p] ? 1u : 0u;
             if (front == 0u)
                 continue;
             vec4 c = mix(segmentColorA[j], segmentColorB[j], hit.y);
@@ -162,13 +146,13 @@ void main()
             if (alpha < 0.5 / 255.0)
                 continue;  // below what the fragment's 8 bits of alpha hold
             uint slot = atomicAdd(pixelCount[p], 1u);  // < kBatch: one fragment per segment and pixel
-            waitingDepth[p * kBatch + slot] = depth;
-            waitingColor[p * kBatch + slot] = packFragmentColor(c.rgb, alpha);
+            waitingDepth[slot * kRasterTilePixels + p] = depth;
+            waitingColor[slot * kRasterTilePixels + p] = packFragmentColor(c.rgb, alpha);
         }
         barrier();
         uint waiting = pixelCount[lane];
         for (uint i = 0u; i < waiting; ++i)
-            insertFragment(f, k, waitingDepth[lane * kBatch + i], waitingColor[lane * kBatch + i]);
+            insertFragment(f, k, waitingDepth[i * kRasterTilePixels + lane], waitingColor[i * kRasterTilePixels + lane]);
         fragments += waiting;
         pixelCount[lane] = 0u;  // (read again only after the next batch's barriers)
     }
