@@ -375,9 +375,8 @@ int runRenderProfile(const GlobalOptions& g, RenderOptions& o)
                           {"shadow_size", o.settings.shadows.mapSize},
                           {"hair_raster_drawn", path == HairRaster::Compute ? "compute" : "graphics"}};
     if (path == HairRaster::Compute)
-        out["raster"] = {{"segments", raster.segments}, {"pairs", raster.pairs},     {"capacity", raster.capacity},
-                         {"overflow", raster.overflow}, {"fragments", raster.fragments}, {"chunks", raster.chunks},
-                         {"max_tile", raster.maxTile}};
+        out["raster"] = {{"segments", raster.segments}, {"fragments", raster.fragments}, {"capacity", raster.capacity},
+                         {"overflow", raster.overflow}, {"max_pixel", raster.maxPixel}};
     for (const PassTiming& t : timings)
         out["ms"][t.name] = {{"median", t.medianMs}, {"p95", t.p95Ms}};
     std::cout << out.dump() << "\n";
@@ -408,12 +407,13 @@ int runRender(const GlobalOptions& g, RenderOptions& o)
     if (!picture.hairCounts.empty())
         std::cout << picture.hairCounts << "\n";
     if (picture.raster.capacity > 0) {
-        std::cout << "compute raster: " << picture.raster.segments << " segments on screen, " << picture.raster.pairs
-                  << " segment-tile pairs in bins of " << picture.raster.capacity << ", " << picture.raster.fragments
-                  << " fragments\n";
+        std::cout << "compute raster: " << picture.raster.segments << " segments on screen, " << picture.raster.fragments
+                  << " hair fragments (at most " << picture.raster.maxPixel << " in a pixel), buffer of "
+                  << picture.raster.capacity << "\n";
         if (picture.raster.overflow > 0)
-            std::cerr << "wisp: warning: the compute path's bins were full: " << picture.raster.overflow << " of "
-                      << picture.raster.pairs << " segment-tile pairs were dropped (the device holds no larger buffer)\n";
+            std::cerr << "wisp: warning: the compute path's fragment buffer was full: " << picture.raster.overflow << " of "
+                      << picture.raster.fragments << " hair fragments were dropped ('" << ctx.report().name
+                      << "' holds no larger buffer); lower the resolution or strands_per_guide\n";
     }
     if (picture.oit.capacity > 0) {
         std::cout << "oit: " << picture.oit.fragments << " hair fragments, pool of " << picture.oit.capacity << "\n";

@@ -16,8 +16,7 @@
 
 namespace wisp {
 
-static_assert(sizeof(gpu::StrandRasterPush) == 96, "StrandRasterPush must fit the 128 bytes of push constants");
-static_assert(sizeof(gpu::RasterDispatch) == 16);
+static_assert(sizeof(gpu::StrandRasterPush) == 80, "StrandRasterPush must fit the 128 bytes of push constants");
 static_assert(sizeof(gpu::RasterCounters) == 32);
 
 namespace {
@@ -34,11 +33,13 @@ const char* stageName(StrandRaster::Stage stage)
     case StrandRaster::Stage::LightResolve: return "light.resolve";
     case StrandRaster::Stage::LightCopy: return "light.copy";
     case StrandRaster::Stage::Generate: return "strands.generate";
+    case StrandRaster::Stage::Depth: return "strands.depth";
     case StrandRaster::Stage::Count: return "strands.count";
-    case StrandRaster::Stage::Scan: return "strands.scan";
-    case StrandRaster::Stage::Bin: return "strands.bin";
-    case StrandRaster::Stage::Raster: return "strands.raster";
-    case StrandRaster::Stage::Merge: return "strands.merge";
+    case StrandRaster::Stage::ScanBlocks: return "strands.scan.blocks";
+    case StrandRaster::Stage::ScanTotals: return "strands.scan.totals";
+    case StrandRaster::Stage::ScanOffsets: return "strands.scan.offsets";
+    case StrandRaster::Stage::Write: return "strands.write";
+    case StrandRaster::Stage::Resolve: return "strands.resolve";
     case StrandRaster::Stage::Stats: return "strands.stats";
     }
     return "strands";
@@ -75,10 +76,7 @@ VkWriteDescriptorSet imageWrite(uint32_t binding, VkDescriptorType type, const V
             .pImageInfo = info};
 }
 
-uint32_t tiles(uint32_t pixels)
-{
-    return (pixels + gpu::kRasterTileSize - 1) / gpu::kRasterTileSize;
-}
+constexpr uint32_t kScanBlockThreads = 256;  // strands_scan.comp's blocks: 4 counts a thread
 
 }  // namespace
 
@@ -102,20 +100,17 @@ StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUn
                            {gpu::kRasterBindingLut, kSampler, kCompute},
                            {gpu::kRasterBindingVertices, kStorage, kCompute},
                            {gpu::kRasterBindingColors, kStorage, kCompute},
-                           {gpu::kRasterBindingTileCounts, kStorage, kCompute},
-                           {gpu::kRasterBindingTileOffsets, kStorage, kCompute},
-                           {gpu::kRasterBindingBins, kStorage, kCompute},
+                           {gpu::kRasterBindingCounts, kStorage, kCompute},
+                           {gpu::kRasterBindingOffsets, kStorage, kCompute},
+                           {gpu::kRasterBindingFragments, kStorage, kCompute},
                            {gpu::kRasterBindingCounters, kStorage, kCompute},
                            {gpu::kRasterBindingMeshDepth, kSampler, kCompute},
                            {gpu::kRasterBindingHairColor, kImage, kCompute},
                            {gpu::kRasterBindingLightDepth, kStorage, kCompute},
                            {gpu::kRasterBindingLightOpacity, kStorage, kCompute},
                            {gpu::kRasterBindingOpacityImage, kImage, kCompute},
-                           {gpu::kRasterBindingChunkOffsets, kStorage, kCompute},
-                           {gpu::kRasterBindingPartialOffsets, kStorage, kCompute},
-                           {gpu::kRasterBindingChunkTiles, kStorage, kCompute},
-                           {gpu::kRasterBindingDispatch, kStorage, kCompute},
-                           {gpu::kRasterBindingPartials, kStorage, kCompute}},
+                           {gpu::kRasterBindingDepthRange, kStorage, kCompute},
+                           {gpu::kRasterBindingBlockSums, kStorage, kCompute}},
               .pushConstantBytes = sizeof(gpu::StrandRasterPush),
               .pushConstantStages = kCompute,
               .name = "strands.layout"});
@@ -123,9 +118,19 @@ StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUn
     layout_ = std::move(layout.layout);
     generatePipeline_ = vk::createComputePipeline(ctx, layout_, "strands_generate.comp", "strands.generate.pipeline");
     generateLightPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_generate_light.comp", "strands.light.pipeline");
-    countPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_bin.comp", "strands.count.pipeline", {/*kWrite=*/0});
-    binPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_bin.comp", "strands.bin.pipeline", {/*kWrite=*/1});
-    scanPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_scan.comp", "strands.scan.pipeline");
+    const char* single = target.multisampled() ? "" : "_single";
+    depthPipeline_ = vk::createComputePipeline(ctx, layout_, std::string("strands_depth") + single + ".comp",
+                                               "strands.depth.pipeline");
+    countPipeline_ = vk::createComputePipeline(ctx, layout_, std::string("strands_fragments") + single + ".comp",
+                                               "strands.count.pipeline", {/*kWrite=*/0});
+    writePipeline_ = vk::createComputePipeline(ctx, layout_, std::string("strands_fragments") + single + ".comp",
+                                               "strands.write.pipeline", {/*kWrite=*/1});
+    scanBlocksPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_scan.comp", "strands.scan.blocks.pipeline",
+                                                    {/*kPhase=*/0, kScanBlockThreads});
+    scanTotalsPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_scan.comp", "strands.scan.totals.pipeline",
+                                                    {/*kPhase=*/1, gpu::kRasterScanGroupSize});
+    scanOffsetsPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_scan.comp", "strands.scan.offsets.pipeline",
+                                                     {/*kPhase=*/2, kScanBlockThreads});
     lightDepthPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_light.comp", "light.depth.pipeline", {/*kOpacity=*/0});
     lightOpacityPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_light.comp", "light.opacity.pipeline", {/*kOpacity=*/1});
     lightResolvePipeline_ = vk::createComputePipeline(ctx, layout_, "strands_light_resolve.comp", "light.resolve.pipeline");
@@ -136,8 +141,6 @@ StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUn
                                           triangles.data(), triangles.size() * sizeof(glm::uvec4));
     allocate(counters_, sizeof(gpu::RasterCounters), vk::kStorage | vk::kTransferDst | vk::kTransferSrc,
              "strands.counters", nullptr);
-    allocate(dispatch_, sizeof(gpu::RasterDispatch),
-             vk::kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | vk::kTransferSrc, "strands.dispatch", nullptr);
     for (uint32_t i = 0; i < framesInFlight; ++i) {
         readback_.push_back(ctx.createBuffer({.size = sizeof(gpu::RasterCounters),
                                               .usage = vk::kTransferDst,
@@ -164,19 +167,29 @@ void StrandRaster::allocate(Storage& storage, uint64_t bytes, VkBufferUsageFlags
 void StrandRaster::resize()
 {
     VkExtent2D e = target_.extent();
-    uint64_t count = uint64_t(tiles(e.width)) * tiles(e.height);
-    allocate(tileCounts_, count * 4, vk::kStorage | vk::kTransferDst, "strands.tile_counts", nullptr);
-    allocate(tileOffsets_, (count + 1) * 4, vk::kStorage | vk::kTransferSrc, "strands.tile_offsets", nullptr);
-    allocate(chunkOffsets_, (count + 1) * 4, vk::kStorage | vk::kTransferSrc, "strands.chunk_offsets", nullptr);
-    allocate(partialOffsets_, (count + 1) * 4, vk::kStorage | vk::kTransferSrc, "strands.partial_offsets", nullptr);
-    binCapacity_ = 0;  // the chunk table follows the tiles: remade with the bins
-    bins_.buffer.reset();
+    uint64_t pixels = uint64_t(e.width) * e.height;
+    uint64_t blocks = (pixels + 1 + gpu::kRasterScanBlock - 1) / gpu::kRasterScanBlock;
+    allocate(counts_, (pixels + 1) * 4, vk::kStorage | vk::kTransferDst, "strands.counts", nullptr);
+    allocate(offsets_, (pixels + 1) * 4, vk::kStorage | vk::kTransferSrc, "strands.offsets", nullptr);
+    allocate(depthRange_, pixels * 8, vk::kStorage, "strands.depth_range", nullptr);
+    allocate(blockSums_, blocks * 4, vk::kStorage, "strands.block_sums", nullptr);
+    // The count past the last pixel is always 0 (its offset is the total): zeroed once.
+    ctx_.submitAndWait([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, counts_.buffer, 0, VK_WHOLE_SIZE, 0); });
     color_ = ctx_.createImage({.format = VK_FORMAT_R16G16B16A16_SFLOAT,
                                .extent = e,
                                .usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                                         VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
                                .name = "strands.color"});
     colorTrack_ = {.image = color_.get()};
+}
+
+void StrandRaster::setFragmentCapacity(uint64_t fragments)
+{
+    forcedCapacity_ = fragments;
+    fragmentCapacity_ = 0;
+    fragments_.buffer.reset();
+    for (vk::Buffer& b : readback_)  // what earlier frames needed is forgotten
+        std::memset(b.mapped(), 0, sizeof(gpu::RasterCounters));
 }
 
 StrandRaster::Storage& StrandRaster::storage(Buffer which)
@@ -186,27 +199,13 @@ StrandRaster::Storage& StrandRaster::storage(Buffer which)
     case Buffer::Colors: return colors_;
     case Buffer::LightVertices: return lightVertices_;
     case Buffer::LightColors: return lightColors_;
-    case Buffer::TileOffsets: return tileOffsets_;
-    case Buffer::Bins: return bins_;
+    case Buffer::Offsets: return offsets_;
+    case Buffer::Fragments: return fragments_;
     case Buffer::Counters: return counters_;
     case Buffer::LightDepth: return lightDepth_;
     case Buffer::LightOpacity: return lightOpacity_;
-    case Buffer::ChunkOffsets: return chunkOffsets_;
-    case Buffer::PartialOffsets: return partialOffsets_;
-    case Buffer::ChunkTiles: return chunkTiles_;
-    case Buffer::Dispatch: return dispatch_;
-    case Buffer::Partials: return partials_;
     }
     return counters_;
-}
-
-void StrandRaster::setBinCapacity(uint64_t pairs)
-{
-    forcedCapacity_ = pairs;
-    binCapacity_ = 0;
-    bins_.buffer.reset();
-    for (vk::Buffer& b : readback_)  // what earlier frames needed is forgotten
-        std::memset(b.mapped(), 0, sizeof(gpu::RasterCounters));
 }
 
 Pass* StrandRaster::pass(Stage stage)
@@ -218,8 +217,8 @@ RasterStats StrandRaster::stats(uint32_t slot) const
 {
     gpu::RasterCounters c{};
     std::memcpy(&c, readback_.at(slot).mapped(), sizeof(c));
-    return {.segments = c.segments, .pairs = c.pairs, .capacity = c.capacity, .overflow = c.overflow,
-            .fragments = c.fragments, .chunks = c.chunks, .maxTile = c.maxTile};
+    return {.segments = c.segments, .fragments = c.fragments, .capacity = c.capacity, .overflow = c.overflow,
+            .maxPixel = c.maxPixel};
 }
 
 void StrandRaster::prepare(FrameContext& frame, gpu::StrandRasterPush camera, gpu::StrandRasterPush light,
@@ -243,55 +242,40 @@ void StrandRaster::prepare(FrameContext& frame, gpu::StrandRasterPush camera, gp
         allocate(lightDepth_, texels * 4, vk::kStorage | vk::kTransferDst | vk::kTransferSrc, "strands.light_depth", &frame);
         allocate(lightOpacity_, texels * 16, vk::kStorage | vk::kTransferDst | vk::kTransferSrc, "strands.light_opacity", &frame);
     }
-    // The bins: enough for what this slot's last frame needed (it has completed), with room to
-    // spare; at first a few pairs per segment. Never past what one buffer may hold.
+    // The fragments: room for what this slot's last frame needed (it has completed), with some to
+    // spare; at first a few per segment. Never past what one buffer may hold.
     uint64_t segments = uint64_t(camera.guideCount) * camera.drawnPerGuide * camera.divisions;
-    uint64_t limit = std::min<uint64_t>(ctx_.report().maxStorageBufferRange, 0xffffffffull) / 4;
-    uint64_t wanted = forcedCapacity_ > 0 ? forcedCapacity_ : std::max(kMinBinPairs, segments * kInitialPairsPerSegment);
+    uint64_t limit = std::min<uint64_t>(ctx_.report().maxStorageBufferRange, 0xffffffffull) / 8;
+    uint64_t wanted = forcedCapacity_ > 0 ? forcedCapacity_
+                                          : std::max(kMinFragments, segments * kInitialFragmentsPerSegment);
     RasterStats last = stats(frame.slot);
-    if (last.pairs > binCapacity_)
-        wanted = std::max(wanted, last.pairs + last.pairs / 4);
+    if (last.fragments > fragmentCapacity_)
+        wanted = std::max(wanted, last.fragments + last.fragments / 4);
     wanted = std::min(wanted, limit);
-    if (wanted > binCapacity_ || !bins_.buffer) {
-        binCapacity_ = std::max(wanted, binCapacity_);
-        allocate(bins_, binCapacity_ * 4, vk::kStorage | vk::kTransferSrc, "strands.bins", &frame);
-        // Every chunk holds chunkSegments pairs but a tile's last; a tile of several chunks leaves
-        // fewer than 2 x its pairs / chunkSegments partial lists.
-        uint64_t tileCount = uint64_t(tiles(e.width)) * tiles(e.height);
-        uint64_t chunks = tileCount + binCapacity_ / chunkSegments_ + 1;
-        partialCapacity_ = 2 * binCapacity_ / chunkSegments_ + 1;
-        allocate(chunkTiles_, chunks * 4, vk::kStorage | vk::kTransferSrc, "strands.chunk_tiles", &frame);
-        allocate(partials_, partialCapacity_ * (2 * gpu::kMaxOitK + 5) * gpu::kRasterTilePixels * 4, vk::kStorage,
-                 "strands.partials", &frame);
+    if (wanted > fragmentCapacity_ || !fragments_.buffer) {
+        fragmentCapacity_ = std::max(wanted, fragmentCapacity_);
+        allocate(fragments_, fragmentCapacity_ * 8, vk::kStorage | vk::kTransferSrc, "strands.fragments", &frame);
     }
-    // oit_k is the raster's and the merge's specialization constant.
+    // oit_k is the resolve's specialization constant.
     uint32_t k = std::clamp(camera.oitK, 1u, gpu::kMaxOitK);
     if (k != pipelineK_) {
-        if (rasterPipeline_)
-            frame.retire(std::move(rasterPipeline_));
-        if (mergePipeline_)
-            frame.retire(std::move(mergePipeline_));
-        const char* raster = target_.multisampled() ? "strands_raster.comp" : "strands_raster_single.comp";
-        rasterPipeline_ = vk::createComputePipeline(ctx_, layout_, raster, "strands.raster.pipeline", {k});
-        mergePipeline_ = vk::createComputePipeline(ctx_, layout_, "strands_merge.comp", "strands.merge.pipeline", {k});
+        if (resolvePipeline_)
+            frame.retire(std::move(resolvePipeline_));
+        resolvePipeline_ = vk::createComputePipeline(ctx_, layout_, "strands_resolve.comp", "strands.resolve.pipeline", {k});
         pipelineK_ = k;
     }
 
+    uint64_t pixels = uint64_t(e.width) * e.height;
     camera.fromLight = 0;
     camera.segmentCount = uint32_t(segments);
-    camera.tilesX = tiles(e.width);
-    camera.tilesY = tiles(e.height);
     camera.targetWidth = e.width;
     camera.targetHeight = e.height;
     camera.samples = uint32_t(target_.samples());
-    camera.binCapacity = uint32_t(binCapacity_);
+    camera.fragmentCapacity = uint32_t(fragmentCapacity_);
+    camera.scanBlocks = uint32_t((pixels + 1 + gpu::kRasterScanBlock - 1) / gpu::kRasterScanBlock);
     camera.oitK = k;
-    camera.chunkSegments = chunkSegments_;
-    camera.partialCapacity = uint32_t(partialCapacity_);
     light.fromLight = 1;
     light.segmentCount = uint32_t(uint64_t(light.guideCount) * light.drawnPerGuide * light.divisions);
-    light.tilesX = tiles(lightSize_);
-    light.tilesY = tiles(lightSize_);
     light.targetWidth = lightSize_;
     light.targetHeight = lightSize_;
     camera_ = camera;
@@ -304,7 +288,6 @@ void StrandRaster::declare(Stage stage, PassIo& io)
     case Stage::Clear:
         io.use(lightDepth_.track, Access::TransferDst);
         io.use(lightOpacity_.track, Access::TransferDst);
-        io.use(tileCounts_.track, Access::TransferDst);
         io.use(counters_.track, Access::TransferDst);
         break;
     case Stage::LightGenerate:
@@ -338,48 +321,34 @@ void StrandRaster::declare(Stage stage, PassIo& io)
         io.use(vertices_.track, Access::ComputeWrite);
         io.use(colors_.track, Access::ComputeWrite);
         break;
-    case Stage::Count:  // (one shader with strands.bin: it binds, never touches, the offsets and bins)
-        io.use(vertices_.track, Access::ComputeRead);
-        io.use(tileCounts_.track, Access::ComputeWrite);
-        io.use(counters_.track, Access::ComputeWrite);
-        io.use(tileOffsets_.track, Access::ComputeRead);
-        io.use(bins_.track, Access::ComputeWrite);
+    case Stage::Depth:
+        io.use(target_.depth(), Access::ComputeSampled);
+        io.use(depthRange_.track, Access::ComputeWrite);
+        io.use(counts_.track, Access::ComputeWrite);
         break;
-    case Stage::Scan:
-        io.use(tileCounts_.track, Access::ComputeWrite);
-        io.use(tileOffsets_.track, Access::ComputeWrite);
-        io.use(chunkOffsets_.track, Access::ComputeWrite);
-        io.use(partialOffsets_.track, Access::ComputeWrite);
-        io.use(chunkTiles_.track, Access::ComputeWrite);
-        io.use(dispatch_.track, Access::ComputeWrite);
-        io.use(counters_.track, Access::ComputeWrite);
-        break;
-    case Stage::Bin:  // (and the counters strands.count adds to)
-        io.use(vertices_.track, Access::ComputeRead);
-        io.use(tileOffsets_.track, Access::ComputeRead);
-        io.use(tileCounts_.track, Access::ComputeWrite);
-        io.use(bins_.track, Access::ComputeWrite);
-        io.use(counters_.track, Access::ComputeWrite);
-        break;
-    case Stage::Raster:
+    case Stage::Count:  // (one shader with strands.write: it binds, never touches, the offsets and fragments)
+    case Stage::Write:
         io.use(vertices_.track, Access::ComputeRead);
         io.use(colors_.track, Access::ComputeRead);
-        io.use(tileOffsets_.track, Access::ComputeRead);
-        io.use(bins_.track, Access::ComputeRead);
-        io.use(counters_.track, Access::ComputeWrite);
-        io.use(chunkOffsets_.track, Access::ComputeRead);
-        io.use(partialOffsets_.track, Access::ComputeRead);
-        io.use(chunkTiles_.track, Access::ComputeRead);
-        io.use(dispatch_.track, Access::IndirectRead);
-        io.use(dispatch_.track, Access::ComputeRead);
-        io.use(partials_.track, Access::ComputeWrite);
+        io.use(depthRange_.track, Access::ComputeRead);
         io.use(target_.depth(), Access::ComputeSampled);
-        io.use(colorTrack_, Access::ComputeWrite);
+        io.use(counts_.track, Access::ComputeWrite);
+        io.use(offsets_.track, Access::ComputeRead);
+        io.use(fragments_.track, Access::ComputeWrite);
+        io.use(counters_.track, Access::ComputeWrite);
         break;
-    case Stage::Merge:
-        io.use(chunkOffsets_.track, Access::ComputeRead);
-        io.use(partialOffsets_.track, Access::ComputeRead);
-        io.use(partials_.track, Access::ComputeRead);
+    case Stage::ScanBlocks:
+    case Stage::ScanTotals:
+    case Stage::ScanOffsets:
+        io.use(counts_.track, Access::ComputeWrite);
+        io.use(offsets_.track, Access::ComputeWrite);
+        io.use(blockSums_.track, Access::ComputeWrite);
+        io.use(counters_.track, Access::ComputeWrite);
+        break;
+    case Stage::Resolve:
+        io.use(offsets_.track, Access::ComputeRead);
+        io.use(fragments_.track, Access::ComputeRead);
+        io.use(counters_.track, Access::ComputeWrite);
         io.use(colorTrack_, Access::ComputeWrite);
         break;
     case Stage::Stats:
@@ -400,11 +369,11 @@ void StrandRaster::dispatch(VkCommandBuffer cmd, VkPipeline pipeline, const gpu:
 }
 
 void StrandRaster::dispatchLinear(VkCommandBuffer cmd, VkPipeline pipeline, const gpu::StrandRasterPush& push,
-                                  const std::vector<VkWriteDescriptorSet>& writes, uint64_t threads)
+                                  const std::vector<VkWriteDescriptorSet>& writes, uint64_t items, uint32_t groupSize)
 {
-    // Rows of at most kMaxGroupsPerDimension groups; the kernels number their threads
+    // Rows of at most kMaxGroupsPerDimension groups; the kernels number their items
     // x + y * (groups per row * group size) and skip those past the end.
-    uint64_t groups = (threads + gpu::kRasterGroupSize - 1) / gpu::kRasterGroupSize;
+    uint64_t groups = (items + groupSize - 1) / groupSize;
     uint32_t x = uint32_t(std::min<uint64_t>(groups, kMaxGroupsPerDimension));
     uint32_t y = x == 0 ? 0 : uint32_t((groups + x - 1) / x);
     dispatch(cmd, pipeline, push, writes, x, y);
@@ -420,11 +389,10 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
     VkDescriptorBufferInfo triangles{triangles_, 0, VK_WHOLE_SIZE};
     VkDescriptorBufferInfo vertices = whole(vertices_), colors = whole(colors_);
     VkDescriptorBufferInfo lightVertices = whole(lightVertices_), lightColors = whole(lightColors_);
-    VkDescriptorBufferInfo tileCounts = whole(tileCounts_), tileOffsets = whole(tileOffsets_), bins = whole(bins_);
-    VkDescriptorBufferInfo counters = whole(counters_);
-    VkDescriptorBufferInfo chunkOffsets = whole(chunkOffsets_), partialOffsets = whole(partialOffsets_);
-    VkDescriptorBufferInfo chunkTiles = whole(chunkTiles_), dispatchArgs = whole(dispatch_), partials = whole(partials_);
+    VkDescriptorBufferInfo counts = whole(counts_), offsets = whole(offsets_), fragments = whole(fragments_);
+    VkDescriptorBufferInfo counters = whole(counters_), depthRange = whole(depthRange_), blockSums = whole(blockSums_);
     VkDescriptorBufferInfo lightDepth = whole(lightDepth_), lightOpacity = whole(lightOpacity_);
+    VkDescriptorImageInfo meshDepth{depthSampler_, target_.depthImage().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     auto frameWrite = bufferWrite(gpu::kRasterBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frameInfo);
     uint64_t cameraVertices = uint64_t(camera_.guideCount) * camera_.drawnPerGuide * (camera_.divisions + 1);
     uint64_t lightVertexCount = uint64_t(light_.guideCount) * light_.drawnPerGuide * (light_.divisions + 1);
@@ -433,7 +401,6 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
     case Stage::Clear: {
         vkCmdFillBuffer(cmd, lightDepth_.buffer, 0, VK_WHOLE_SIZE, 0x3f800000u);  // 1.0f: nothing in front
         vkCmdFillBuffer(cmd, lightOpacity_.buffer, 0, VK_WHOLE_SIZE, 0);
-        vkCmdFillBuffer(cmd, tileCounts_.buffer, 0, VK_WHOLE_SIZE, 0);
         vkCmdFillBuffer(cmd, counters_.buffer, 0, VK_WHOLE_SIZE, 0);
         break;
     }
@@ -452,7 +419,7 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
             writes.push_back(imageWrite(gpu::kRasterBindingLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, lut_));
         }
         dispatchLinear(cmd, fromLight ? generateLightPipeline_.get() : generatePipeline_.get(), fromLight ? light_ : camera_, writes,
-                       fromLight ? lightVertexCount : cameraVertices);
+                       fromLight ? lightVertexCount : cameraVertices, gpu::kRasterGroupSize);
         break;
     }
     case Stage::LightDepth:
@@ -463,7 +430,7 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
             bufferWrite(gpu::kRasterBindingLightDepth, kStorage, &lightDepth),
             bufferWrite(gpu::kRasterBindingLightOpacity, kStorage, &lightOpacity)};
         dispatchLinear(cmd, stage == Stage::LightDepth ? lightDepthPipeline_.get() : lightOpacityPipeline_.get(), light_, writes,
-                       light_.segmentCount);
+                       light_.segmentCount, gpu::kRasterGroupSize);
         break;
     }
     case Stage::LightResolve: {
@@ -481,59 +448,53 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
         break;
     }
-    case Stage::Count:
-    case Stage::Bin: {
-        std::vector<VkWriteDescriptorSet> writes = {bufferWrite(gpu::kRasterBindingVertices, kStorage, &vertices),
-                                                    bufferWrite(gpu::kRasterBindingTileCounts, kStorage, &tileCounts),
-                                                    bufferWrite(gpu::kRasterBindingTileOffsets, kStorage, &tileOffsets),
-                                                    bufferWrite(gpu::kRasterBindingBins, kStorage, &bins),
-                                                    bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters)};
-        dispatchLinear(cmd, stage == Stage::Count ? countPipeline_.get() : binPipeline_.get(), camera_, writes, camera_.segmentCount);
-        break;
-    }
-    case Stage::Scan: {
+    case Stage::Depth: {
         std::vector<VkWriteDescriptorSet> writes = {
-            bufferWrite(gpu::kRasterBindingTileCounts, kStorage, &tileCounts),
-            bufferWrite(gpu::kRasterBindingTileOffsets, kStorage, &tileOffsets),
-            bufferWrite(gpu::kRasterBindingChunkOffsets, kStorage, &chunkOffsets),
-            bufferWrite(gpu::kRasterBindingPartialOffsets, kStorage, &partialOffsets),
-            bufferWrite(gpu::kRasterBindingChunkTiles, kStorage, &chunkTiles),
-            bufferWrite(gpu::kRasterBindingDispatch, kStorage, &dispatchArgs),
-            bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters)};
-        dispatch(cmd, scanPipeline_, camera_, writes, 1);
+            imageWrite(gpu::kRasterBindingMeshDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &meshDepth),
+            bufferWrite(gpu::kRasterBindingDepthRange, kStorage, &depthRange),
+            bufferWrite(gpu::kRasterBindingCounts, kStorage, &counts)};
+        dispatch(cmd, depthPipeline_, camera_, writes, vk::groupCount(camera_.targetWidth, 8),
+                 vk::groupCount(camera_.targetHeight, 8));
         break;
     }
-    case Stage::Raster: {
-        VkDescriptorImageInfo depth{depthSampler_, target_.depthImage().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-        VkDescriptorImageInfo color{VK_NULL_HANDLE, color_.view(), VK_IMAGE_LAYOUT_GENERAL};
+    case Stage::Count:
+    case Stage::Write: {
         std::vector<VkWriteDescriptorSet> writes = {
             bufferWrite(gpu::kRasterBindingVertices, kStorage, &vertices),
             bufferWrite(gpu::kRasterBindingColors, kStorage, &colors),
-            bufferWrite(gpu::kRasterBindingTileOffsets, kStorage, &tileOffsets),
-            bufferWrite(gpu::kRasterBindingBins, kStorage, &bins),
+            bufferWrite(gpu::kRasterBindingCounts, kStorage, &counts),
+            bufferWrite(gpu::kRasterBindingOffsets, kStorage, &offsets),
+            bufferWrite(gpu::kRasterBindingFragments, kStorage, &fragments),
             bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters),
-            imageWrite(gpu::kRasterBindingMeshDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &depth),
-            imageWrite(gpu::kRasterBindingHairColor, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &color),
-            bufferWrite(gpu::kRasterBindingChunkOffsets, kStorage, &chunkOffsets),
-            bufferWrite(gpu::kRasterBindingPartialOffsets, kStorage, &partialOffsets),
-            bufferWrite(gpu::kRasterBindingChunkTiles, kStorage, &chunkTiles),
-            bufferWrite(gpu::kRasterBindingDispatch, kStorage, &dispatchArgs),
-            bufferWrite(gpu::kRasterBindingPartials, kStorage, &partials)};
-        // One workgroup per chunk, as many as the scan counted (rows of at most 65535).
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, rasterPipeline_);
-        ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, uint32_t(writes.size()), writes.data());
-        vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(camera_), &camera_);
-        vkCmdDispatchIndirect(cmd, dispatch_.buffer, 0);
+            bufferWrite(gpu::kRasterBindingDepthRange, kStorage, &depthRange),
+            imageWrite(gpu::kRasterBindingMeshDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &meshDepth)};
+        dispatchLinear(cmd, stage == Stage::Count ? countPipeline_.get() : writePipeline_.get(), camera_, writes,
+                       camera_.segmentCount, gpu::kRasterGroupSize);
         break;
     }
-    case Stage::Merge: {
+    case Stage::ScanBlocks:
+    case Stage::ScanTotals:
+    case Stage::ScanOffsets: {
+        std::vector<VkWriteDescriptorSet> writes = {bufferWrite(gpu::kRasterBindingCounts, kStorage, &counts),
+                                                    bufferWrite(gpu::kRasterBindingOffsets, kStorage, &offsets),
+                                                    bufferWrite(gpu::kRasterBindingBlockSums, kStorage, &blockSums),
+                                                    bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters)};
+        if (stage == Stage::ScanTotals)
+            dispatch(cmd, scanTotalsPipeline_, camera_, writes, 1);
+        else
+            dispatchLinear(cmd, stage == Stage::ScanBlocks ? scanBlocksPipeline_.get() : scanOffsetsPipeline_.get(),
+                           camera_, writes, camera_.scanBlocks, 1);
+        break;
+    }
+    case Stage::Resolve: {
         VkDescriptorImageInfo color{VK_NULL_HANDLE, color_.view(), VK_IMAGE_LAYOUT_GENERAL};
         std::vector<VkWriteDescriptorSet> writes = {
-            bufferWrite(gpu::kRasterBindingChunkOffsets, kStorage, &chunkOffsets),
-            bufferWrite(gpu::kRasterBindingPartialOffsets, kStorage, &partialOffsets),
-            bufferWrite(gpu::kRasterBindingPartials, kStorage, &partials),
+            bufferWrite(gpu::kRasterBindingOffsets, kStorage, &offsets),
+            bufferWrite(gpu::kRasterBindingFragments, kStorage, &fragments),
+            bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters),
             imageWrite(gpu::kRasterBindingHairColor, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &color)};
-        dispatch(cmd, mergePipeline_, camera_, writes, camera_.tilesX, camera_.tilesY);
+        dispatch(cmd, resolvePipeline_, camera_, writes, vk::groupCount(camera_.targetWidth, 8),
+                 vk::groupCount(camera_.targetHeight, 8));
         break;
     }
     case Stage::Stats: {

@@ -75,89 +75,58 @@ StrandVertices generateStrands(const gpu::StrandRasterPush& push, const gpu::Fra
     return out;
 }
 
-TileBins binSegments(const gpu::StrandRasterPush& push, const std::vector<glm::vec4>& vertices)
+std::vector<std::vector<Fragment>> pixelFragments(const gpu::StrandRasterPush& push, const StrandVertices& strands,
+                                                  const std::vector<float>& meshDepth, uint32_t* segments)
 {
-    size_t tiles = size_t(push.tilesX) * push.tilesY;
-    TileBins out;
-    out.counts.assign(tiles, 0);
-    out.bins.assign(tiles, {});
+    std::vector<std::vector<Fragment>> out(size_t(push.targetWidth) * push.targetHeight);
+    uint32_t drawnSegments = 0;
     for (uint32_t segment = 0; segment < push.segmentCount; ++segment) {
         uint32_t v = firstVertex(push, segment);
-        glm::vec4 a = vertices[v], b = vertices[v + 1];
+        glm::vec4 a = strands.positions[v], b = strands.positions[v + 1];
         if (!(a.w >= 0.0f && b.w >= 0.0f && std::min(a.z, b.z) >= 0.0f && std::max(a.z, b.z) <= 1.0f))
             continue;
-        float r = gpu::segmentReach(a.w, b.w);
-        float size = float(gpu::kRasterTileSize);
-        int ty0 = std::max(int(std::floor((std::min(a.y, b.y) - r) / size)), 0);
-        int ty1 = std::min(int(std::floor((std::max(a.y, b.y) + r) / size)), int(push.tilesY) - 1);
-        bool drawn = false;
-        for (int ty = ty0; ty <= ty1; ++ty) {
-            glm::vec2 span = gpu::segmentRowSpan(glm::vec2(a), glm::vec2(b), r, float(ty) * size, float(ty + 1) * size);
-            if (span.x > span.y)
-                continue;
-            int tx0 = std::max(int(std::floor(span.x / size)), 0);
-            int tx1 = std::min(int(std::floor(span.y / size)), int(push.tilesX) - 1);
-            for (int tx = tx0; tx <= tx1; ++tx) {
-                size_t tile = size_t(ty) * push.tilesX + size_t(tx);
-                ++out.counts[tile];
-                out.bins[tile].push_back(segment);
-                drawn = true;
-            }
-        }
-        out.segments += drawn ? 1 : 0;
-    }
-    out.offsets.resize(tiles + 1);
-    uint32_t total = 0;
-    for (size_t t = 0; t < tiles; ++t) {
-        out.offsets[t] = total;
-        total += out.counts[t];
-    }
-    out.offsets[tiles] = total;
-    return out;
-}
-
-std::vector<glm::vec4> rasterTiles(const gpu::StrandRasterPush& push, const StrandVertices& strands,
-                                   const std::vector<std::vector<uint32_t>>& bins, const std::vector<float>& meshDepth,
-                                   uint64_t* fragments)
-{
-    std::vector<glm::vec4> out(size_t(push.targetWidth) * push.targetHeight, glm::vec4(0.0f));
-    uint32_t k = std::min(push.oitK, gpu::kMaxOitK);
-    uint64_t added = 0;
-    for (uint32_t y = 0; y < push.targetHeight; ++y) {
-        for (uint32_t x = 0; x < push.targetWidth; ++x) {
-            size_t tile = size_t(y / gpu::kRasterTileSize) * push.tilesX + x / gpu::kRasterTileSize;
-            glm::vec2 centre = glm::vec2(float(x), float(y)) + 0.5f;
-            glm::vec2 origin = glm::vec2(float(x / gpu::kRasterTileSize), float(y / gpu::kRasterTileSize)) *
-                               float(gpu::kRasterTileSize);
-            uint32_t lane = (y % gpu::kRasterTileSize) * gpu::kRasterTileSize + x % gpu::kRasterTileSize;
-            float depthHere = meshDepth[size_t(y) * push.targetWidth + x];
-            gpu::PixelFragments f = gpu::emptyPixelFragments();
-            for (uint32_t segment : bins[tile]) {
-                uint32_t v = firstVertex(push, segment);
-                glm::vec4 a = strands.positions[v], b = strands.positions[v + 1];
-                glm::uvec2 mask = gpu::tilePixelMask(glm::vec2(a), glm::vec2(b), gpu::segmentReach(a.w, b.w), origin);
-                if (((lane < 32 ? mask.x : mask.y) & (1u << (lane % 32))) == 0)
-                    continue;
-                gpu::RasterSegment s = gpu::makeRasterSegment(glm::vec2(a), glm::vec2(b), a.w, b.w);
-                glm::vec2 hit = gpu::segmentCoverage(s, centre);
+        ++drawnSegments;
+        gpu::RasterSegment s = gpu::makeRasterSegment(glm::vec2(a), glm::vec2(b), a.w, b.w);
+        glm::vec4 colorA = gpu::unpackFragmentColor(strands.colors[v]);
+        glm::vec4 colorB = gpu::unpackFragmentColor(strands.colors[v + 1]);
+        float reach = gpu::ribbonReach(s);
+        int y0 = std::max(int(std::ceil(std::min(a.y, b.y) - reach - 0.5f)), 0);
+        int y1 = std::min(int(std::floor(std::max(a.y, b.y) + reach - 0.5f)), int(push.targetHeight) - 1);
+        for (int y = y0; y <= y1; ++y) {
+            glm::vec2 span = gpu::ribbonRowSpan(s, float(y) + 0.5f);
+            int x0 = std::max(int(std::ceil(span.x - 0.5f)), 0);
+            int x1 = std::min(int(std::floor(span.y - 0.5f)), int(push.targetWidth) - 1);
+            for (int x = x0; x <= x1; ++x) {
+                glm::vec2 hit = gpu::segmentCoverage(s, glm::vec2(float(x), float(y)) + 0.5f);
                 if (hit.x <= 0.0f)
                     continue;
                 float depth = glm::mix(a.z, b.z, hit.y);
-                if (!(depth <= depthHere))
+                size_t p = size_t(y) * push.targetWidth + size_t(x);
+                if (!(depth <= meshDepth[p]))
                     continue;
-                glm::vec4 c = glm::mix(gpu::unpackFragmentColor(strands.colors[v]),
-                                       gpu::unpackFragmentColor(strands.colors[v + 1]), hit.y);
+                glm::vec4 c = glm::mix(colorA, colorB, hit.y);
                 float alpha = c.w * hit.x;
                 if (alpha < 0.5f / 255.0f)
                     continue;
-                gpu::insertFragment(f, k, depth, gpu::packFragmentColor(glm::vec3(c), alpha));
-                ++added;
+                out[p].push_back({depth, gpu::packFragmentColor(glm::vec3(c), alpha)});
             }
-            out[size_t(y) * push.targetWidth + x] = gpu::resolveFragments(f, k);
         }
     }
-    if (fragments)
-        *fragments = added;
+    if (segments)
+        *segments = drawnSegments;
+    return out;
+}
+
+std::vector<glm::vec4> resolvePixels(const gpu::StrandRasterPush& push, const std::vector<std::vector<Fragment>>& pixels)
+{
+    uint32_t k = std::clamp(push.oitK, 1u, gpu::kMaxOitK);
+    std::vector<glm::vec4> out(pixels.size());
+    for (size_t p = 0; p < pixels.size(); ++p) {
+        gpu::PixelFragments f = gpu::emptyPixelFragments();
+        for (const Fragment& fragment : pixels[p])
+            gpu::insertFragment(f, k, fragment.depth, fragment.color);
+        out[p] = gpu::resolveFragments(f, k);
+    }
     return out;
 }
 
@@ -176,19 +145,17 @@ LightMaps rasterLight(const gpu::StrandRasterPush& push, const gpu::FrameParams&
                 continue;
             float alpha = 0.5f * (glm::unpackUnorm4x8(strands.colors[v]).w + glm::unpackUnorm4x8(strands.colors[v + 1]).w);
             gpu::RasterSegment s = gpu::makeRasterSegment(glm::vec2(a), glm::vec2(b), a.w, b.w);
-            float r = std::max(gpu::segmentReach(a.w, b.w), 1.2072f);
-            bool alongX = std::abs(b.x - a.x) >= std::abs(b.y - a.y);
-            glm::vec2 pa = alongX ? glm::vec2(a.y, a.x) : glm::vec2(a);
-            glm::vec2 pb = alongX ? glm::vec2(b.y, b.x) : glm::vec2(b);
-            int lo = int(std::floor(std::min(pa.y, pb.y) - r));
-            int hi = int(std::floor(std::max(pa.y, pb.y) + r));
-            int limit = int(alongX ? push.targetWidth : push.targetHeight);
-            for (int line = std::max(lo, 0); line <= std::min(hi, limit - 1); ++line) {
-                glm::vec2 span = gpu::segmentRowSpan(pa, pb, r, float(line), float(line + 1));
-                if (span.x > span.y)
-                    continue;
-                for (int m = int(std::floor(span.x)); m <= int(std::floor(span.y)); ++m) {
-                    glm::ivec2 texel = alongX ? glm::ivec2(line, m) : glm::ivec2(m, line);
+            gpu::RasterSegment reach =
+                opacity ? s : gpu::makeRasterSegment(glm::vec2(a), glm::vec2(b), std::max(a.w, 0.5f), std::max(b.w, 0.5f));
+            float extent = gpu::ribbonReach(reach);
+            int y0 = std::max(int(std::ceil(std::min(a.y, b.y) - extent - 0.5f)), 0);
+            int y1 = std::min(int(std::floor(std::max(a.y, b.y) + extent - 0.5f)), int(push.targetHeight) - 1);
+            for (int y = y0; y <= y1; ++y) {
+                glm::vec2 span = gpu::ribbonRowSpan(reach, float(y) + 0.5f);
+                int x0 = std::max(int(std::ceil(span.x - 0.5f)), 0);
+                int x1 = std::min(int(std::floor(span.y - 0.5f)), int(push.targetWidth) - 1);
+                for (int x = x0; x <= x1; ++x) {
+                    glm::ivec2 texel(x, y);
                     if (texel.x < 0 || texel.y < 0 || texel.x >= int(push.targetWidth) ||
                         texel.y >= int(push.targetHeight))
                         continue;

@@ -27,22 +27,23 @@ StrandVertices generateStrands(const gpu::StrandRasterPush& push, const gpu::Fra
                                const gpu::SimParams& sim, const std::vector<glm::vec3>& guides,
                                const std::vector<glm::uvec4>& triangles);
 
-struct TileBins {
-    std::vector<uint32_t> counts;                // segments per tile
-    std::vector<uint32_t> offsets;               // first slot of each tile's bin, the total last
-    std::vector<std::vector<uint32_t>> bins;     // each tile's segments, in segment order
-    uint32_t segments = 0;                       // segments binned
+// One fragment as strands_fragments.comp writes it: its depth and its packed colour and opacity.
+struct Fragment {
+    float depth = 0.0f;
+    uint32_t color = 0;
+    bool operator<(const Fragment& o) const { return depth != o.depth ? depth < o.depth : color < o.color; }
+    bool operator==(const Fragment& o) const { return depth == o.depth && color == o.color; }
 };
 
-// strands_bin.comp (count), strands_scan.comp and strands_bin.comp (write).
-TileBins binSegments(const gpu::StrandRasterPush& push, const std::vector<glm::vec4>& vertices);
+// strands_depth.comp, strands_fragments.comp (count and write) and the scan: every pixel's
+// fragments (row-major), given the meshes' depth (one sample per pixel, row-major), each pixel's
+// in the order the segments come (the kernels' order is the atomics'); `segments` receives the
+// segments drawn.
+std::vector<std::vector<Fragment>> pixelFragments(const gpu::StrandRasterPush& push, const StrandVertices& strands,
+                                                  const std::vector<float>& meshDepth, uint32_t* segments = nullptr);
 
-// strands_raster.comp: the premultiplied hair of every pixel (row-major), given the meshes' depth
-// (one sample per pixel, row-major) and each tile's bin. `fragments` receives the count the
-// kernel adds to its counters.
-std::vector<glm::vec4> rasterTiles(const gpu::StrandRasterPush& push, const StrandVertices& strands,
-                                   const std::vector<std::vector<uint32_t>>& bins, const std::vector<float>& meshDepth,
-                                   uint64_t* fragments = nullptr);
+// strands_resolve.comp: the premultiplied hair of every pixel.
+std::vector<glm::vec4> resolvePixels(const gpu::StrandRasterPush& push, const std::vector<std::vector<Fragment>>& pixels);
 
 struct LightMaps {
     std::vector<uint32_t> depth;          // float bits per texel: the hair's first depth (1 where none)

@@ -54,8 +54,9 @@ import json, sys
 rows = [json.loads(l) for l in open(sys.argv[1])]
 hair = {"graphics": ["shadow", "opacity", "oit.clear", "hair", "oit.resolve", "oit.composite", "oit.stats"],
         "compute": ["strands.clear", "shadow", "strands.light", "light.depth", "light.opacity", "light.resolve",
-                    "light.copy", "strands.generate", "strands.count", "strands.scan", "strands.bin",
-                    "strands.raster", "strands.merge", "hair.composite", "strands.stats"]}
+                    "light.copy", "strands.generate", "strands.depth", "strands.count", "strands.scan.blocks",
+                    "strands.scan.totals", "strands.scan.offsets", "strands.write", "strands.resolve",
+                    "hair.composite", "strands.stats"]}
 by = {}
 for r in rows:
     by.setdefault(r["workload"], {})[r["hair_raster"]] = r

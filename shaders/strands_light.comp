@@ -1,8 +1,7 @@
 #version 460
 // strands_light.comp: the hair in the light's maps, one thread per segment of the light's strands
 // (strands_generate_light.comp: fewer and wider, the same coverage). The thread walks the texels
-// the ribbon can touch, column by column along its longer axis (segmentRowSpan on swapped axes
-// for columns). Specialization constant 0 chooses the map:
+// the ribbon can touch, row by row (ribbonRowSpan). Specialization constant 0 chooses the map:
 //   false (light.depth):   the hair's first depth, atomicMin over the float's bits (depths are
 //                          positive, so their bits order as the numbers do), on every texel whose
 //                          centre lies within the ribbon, at least a texel wide (as rasterization does)
@@ -62,19 +61,17 @@ void main()
         return;
     float alpha = 0.5 * (unpackUnorm4x8(colors[v]).w + unpackUnorm4x8(colors[v + 1u]).w);
     RasterSegment s = makeRasterSegment(a.xy, b.xy, a.w, b.w);
-    float r = max(segmentReach(a.w, b.w), 1.2072);  // depth: at least a texel wide
-    // Along the longer axis, one line of texels at a time, the span the thickened segment crosses.
-    bool alongX = abs(b.x - a.x) >= abs(b.y - a.y);
-    vec2 pa = alongX ? a.yx : a.xy;  // (minor, major) so that segmentRowSpan walks the major axis
-    vec2 pb = alongX ? b.yx : b.xy;
-    int lo = int(floor(min(pa.y, pb.y) - r));
-    int hi = int(floor(max(pa.y, pb.y) + r));
-    int limit = int(alongX ? push.targetWidth : push.targetHeight);
-    for (int line = max(lo, 0); line <= min(hi, limit - 1); ++line) {
-        vec2 span = segmentRowSpan(pa, pb, r, float(line), float(line + 1));
-        if (span.x > span.y)
-            continue;
-        for (int m = int(floor(span.x)); m <= int(floor(span.y)); ++m)
-            touch(s, a.z, b.z, alpha, alongX ? ivec2(line, m) : ivec2(m, line));
+    // The texels the ribbon can reach, row by row: as covered (opacity), or at least a texel wide
+    // (depth, as rasterization draws thin ribbons).
+    RasterSegment reach = kOpacity ? s : makeRasterSegment(a.xy, b.xy, max(a.w, 0.5), max(b.w, 0.5));
+    float extent = ribbonReach(reach);
+    int y0 = max(int(ceil(min(a.y, b.y) - extent - 0.5)), 0);
+    int y1 = min(int(floor(max(a.y, b.y) + extent - 0.5)), int(push.targetHeight) - 1);
+    for (int y = y0; y <= y1; ++y) {
+        vec2 span = ribbonRowSpan(reach, float(y) + 0.5);
+        int x0 = max(int(ceil(span.x - 0.5)), 0);
+        int x1 = min(int(floor(span.y - 0.5)), int(push.targetWidth) - 1);
+        for (int x = x0; x <= x1; ++x)
+            touch(s, a.z, b.z, alpha, ivec2(x, y));
     }
 }

@@ -1,117 +1,89 @@
 #version 460
-// strands_scan.comp: one workgroup of kRasterScanGroupSize threads lays out the bins and the
-// raster's work. Each thread takes a run of tiles; three exclusive prefix sums over the workgroup
-// (each thread sums its run, the workgroup scans the sums, each thread writes its run) give:
-//   tileOffsets     each tile's first bin slot (from the counts), the total pairs last
-//   chunkOffsets    each tile's first chunk: its bin (as far as the capacity holds it) cut into
-//                   runs of chunkSegments, one raster workgroup each; chunkTiles names each
-//                   chunk's tile, and the raster's indirect dispatch covers them all
-//   partialOffsets  where the chunks of a tile of several chunks leave their pixels' lists
-// and the frame's counters: pairs needed, capacity, overflow, chunks, partials, the largest bin.
-// The counts are zeroed to serve as the bin pass's write cursors.
+// strands_scan.comp: the exclusive prefix sum of the pixels' fragment counts (and one count past
+// the last pixel, always 0, so its offset is the total), in three dispatches; specialization
+// constant 0 chooses the phase:
+//   0 (strands.scan.blocks)  one workgroup per block of kRasterScanBlock counts: its total
+//   1 (strands.scan.totals)  one workgroup: the blocks' totals scanned into their offsets; the
+//                            grand total, the capacity and what does not fit into the counters
+//   2 (strands.scan.offsets) one workgroup per block: each count's offset (its block's plus its
+//                            own within the block); the counts zeroed to serve as write cursors
 #extension GL_GOOGLE_include_directive : require
 #include "shared/strand_raster.h"
 
-layout(local_size_x = 1024) in;  // kRasterScanGroupSize
+layout(local_size_x_id = 1) in;  // 256 for the blocks, kRasterScanGroupSize for the totals
+layout(constant_id = 0) const uint kPhase = 0u;
 layout(push_constant) uniform PushBlock { StrandRasterPush push; };
-layout(set = 0, binding = kRasterBindingTileCounts, std430) buffer TileCounts { uint tileCounts[]; };
-layout(set = 0, binding = kRasterBindingTileOffsets, std430) writeonly buffer TileOffsets { uint tileOffsets[]; };
-layout(set = 0, binding = kRasterBindingChunkOffsets, std430) writeonly buffer ChunkOffsets { uint chunkOffsets[]; };
-layout(set = 0, binding = kRasterBindingPartialOffsets, std430) writeonly buffer PartialOffsets { uint partialOffsets[]; };
-layout(set = 0, binding = kRasterBindingChunkTiles, std430) writeonly buffer ChunkTiles { uint chunkTiles[]; };
-layout(set = 0, binding = kRasterBindingDispatch, std430) writeonly buffer Dispatch { RasterDispatch dispatch; };
+layout(set = 0, binding = kRasterBindingCounts, std430) buffer Counts { uint counts[]; };
+layout(set = 0, binding = kRasterBindingOffsets, std430) writeonly buffer Offsets { uint offsets[]; };
+layout(set = 0, binding = kRasterBindingBlockSums, std430) buffer BlockSums { uint blockSums[]; };
 layout(set = 0, binding = kRasterBindingCounters, std430) buffer Counters { RasterCounters counters; };
 
-shared uint sums[1024];
-shared uint largest;
+shared uint sums[kRasterScanGroupSize];
 
-// The exclusive prefix of `value` over the workgroup's lanes; `total` gets the sum of all.
+// The exclusive prefix of `value` over the workgroup; `total` gets the sum of all.
 uint exclusiveScan(uint lane, uint value, out uint total)
 {
-    barrier();
     sums[lane] = value;
     barrier();
-    for (uint step = 1u; step < kRasterScanGroupSize; step *= 2u) {
+    for (uint step = 1u; step < gl_WorkGroupSize.x; step *= 2u) {
         uint add = lane >= step ? sums[lane - step] : 0u;
         barrier();
         sums[lane] += add;
         barrier();
     }
-    total = sums[kRasterScanGroupSize - 1u];
+    total = sums[gl_WorkGroupSize.x - 1u];
     return sums[lane] - value;
-}
-
-// The chunks of a tile whose bin holds `n` segments, and the partial lists they leave.
-uint chunksOf(uint n)
-{
-    return (n + push.chunkSegments - 1u) / push.chunkSegments;
 }
 
 void main()
 {
     uint lane = gl_LocalInvocationIndex;
-    if (lane == 0u)
-        largest = 0u;
-    uint tiles = push.tilesX * push.tilesY;
-    uint run = (tiles + kRasterScanGroupSize - 1u) / kRasterScanGroupSize;
-    uint first = min(lane * run, tiles);
-    uint last = min(first + run, tiles);
-
-    uint pairs = 0u;
-    uint most = 0u;
-    for (uint i = first; i < last; ++i) {
-        pairs += tileCounts[i];
-        most = max(most, tileCounts[i]);
+    uint count = push.targetWidth * push.targetHeight + 1u;
+    if (kPhase == 1u) {
+        uint run = (push.scanBlocks + gl_WorkGroupSize.x - 1u) / gl_WorkGroupSize.x;
+        uint first = min(lane * run, push.scanBlocks);
+        uint last = min(first + run, push.scanBlocks);
+        uint sum = 0u;
+        for (uint i = first; i < last; ++i)
+            sum += blockSums[i];
+        uint total;
+        uint offset = exclusiveScan(lane, sum, total);
+        for (uint i = first; i < last; ++i) {
+            uint s = blockSums[i];
+            blockSums[i] = offset;
+            offset += s;
+        }
+        if (lane == 0u) {
+            counters.fragments = total;
+            counters.capacity = push.fragmentCapacity;
+            counters.overflow = total > push.fragmentCapacity ? total - push.fragmentCapacity : 0u;
+        }
+        return;
     }
-    uint totalPairs;
-    uint offset = exclusiveScan(lane, pairs, totalPairs);
-    atomicMax(largest, most);
-
-    // What the capacity holds of each tile's bin, cut into chunks.
-    uint chunks = 0u, partials = 0u;
-    uint o = offset;
-    for (uint i = first; i < last; ++i) {
-        uint count = tileCounts[i];
-        uint held = min(o + count, push.binCapacity) - min(o, push.binCapacity);
-        uint c = chunksOf(held);
-        chunks += c;
-        partials += c > 1u ? c : 0u;
-        o += count;
+    uint block = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+    if (block >= push.scanBlocks)
+        return;  // (whole workgroups)
+    uint per = kRasterScanBlock / gl_WorkGroupSize.x;
+    uint first = block * kRasterScanBlock + lane * per;
+    uint values[4];
+    uint sum = 0u;
+    for (uint i = 0u; i < 4u; ++i) {
+        values[i] = i < per && first + i < count ? counts[first + i] : 0u;
+        sum += values[i];
     }
-    uint totalChunks, totalPartials;
-    uint chunk = exclusiveScan(lane, chunks, totalChunks);
-    uint partial = exclusiveScan(lane, partials, totalPartials);
-
-    o = offset;
-    for (uint i = first; i < last; ++i) {
-        uint count = tileCounts[i];
-        uint held = min(o + count, push.binCapacity) - min(o, push.binCapacity);
-        uint c = chunksOf(held);
-        tileOffsets[i] = o;
-        chunkOffsets[i] = chunk;
-        partialOffsets[i] = partial;
-        for (uint j = 0u; j < c; ++j)
-            chunkTiles[chunk + j] = i;
-        tileCounts[i] = 0u;
-        o += count;
-        chunk += c;
-        partial += c > 1u ? c : 0u;
+    uint total;
+    uint offset = exclusiveScan(lane, sum, total);
+    if (kPhase == 0u) {
+        if (lane == 0u)
+            blockSums[block] = total;
+        return;
     }
-    barrier();
-    if (lane == kRasterScanGroupSize - 1u) {
-        tileOffsets[tiles] = totalPairs;
-        chunkOffsets[tiles] = totalChunks;
-        partialOffsets[tiles] = totalPartials;
-        uint x = min(totalChunks, 65535u);
-        dispatch.x = x;
-        dispatch.y = x == 0u ? 0u : (totalChunks + x - 1u) / x;
-        dispatch.z = 1u;
-        dispatch.chunks = totalChunks;
-        counters.pairs = totalPairs;
-        counters.capacity = push.binCapacity;
-        counters.overflow = totalPairs > push.binCapacity ? totalPairs - push.binCapacity : 0u;
-        counters.chunks = totalChunks;
-        counters.partials = totalPartials;
-        counters.maxTile = largest;
+    offset += blockSums[block];
+    for (uint i = 0u; i < 4u; ++i) {
+        if (i < per && first + i < count) {
+            offsets[first + i] = offset;
+            counts[first + i] = 0u;
+            offset += values[i];
+        }
     }
 }

@@ -1,7 +1,6 @@
 // tests/test_strand_raster_math.cpp: the compute strand renderer's shared math on the CPU
 // (shaders/shared/strand_raster.h): analytic coverage against exact polygon areas, seamless joints,
-// the tiles' pixel masks and row spans holding everything covered, and the per-pixel fragment
-// lists (the nearest k sorted, the rest blended) against a plain sort, in any arrival order.
+// the row spans holding everything covered, and the per-pixel fragment lists (the nearest k sorted, the rest blended) against a plain sort, in any arrival order.
 #include "shaders/shared/strand_raster.h"
 
 #include <gtest/gtest.h>
@@ -122,38 +121,38 @@ TEST(RasterCoverage, ConsecutiveSegmentsJoinWithoutSeamOrOverlap)
         }
 }
 
-TEST(RasterBinning, RowSpansAndPixelMasksHoldEveryCoveredPixel)
+TEST(RasterReach, RowSpansHoldEveryCoveredPixelAndLittleElse)
 {
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> pos(-4.0f, 20.0f), width(0.02f, 2.5f);
-    int masked = 0, covered = 0;
+    int spanned = 0, covered = 0;
     for (int trial = 0; trial < 400; ++trial) {
         glm::vec2 a(pos(rng), pos(rng)), b(pos(rng), pos(rng));
         if (trial % 5 == 0)
             b.y = a.y;  // horizontal
+        if (trial % 6 == 0)
+            b.x = a.x;  // vertical
         if (trial % 7 == 0)
             b = a + glm::vec2(0.3f, 0.2f);  // shorter than a pixel
-        float ha = width(rng), hb = width(rng);
-        gpu::RasterSegment s = gpu::makeRasterSegment(a, b, ha, hb);
-        float reach = gpu::segmentReach(ha, hb);
-        glm::vec2 origin(8.0f, 8.0f);  // the tile [8, 16)²
-        glm::uvec2 mask = gpu::tilePixelMask(a, b, reach, origin);
-        for (uint32_t lane = 0; lane < 64; ++lane) {
-            glm::vec2 centre = origin + glm::vec2(float(lane % 8), float(lane / 8)) + 0.5f;
-            bool bit = ((lane < 32 ? mask.x : mask.y) >> (lane % 32) & 1u) != 0;
-            masked += bit ? 1 : 0;
-            if (gpu::segmentCoverage(s, centre).x <= 0.0f)
-                continue;
-            ++covered;
-            EXPECT_TRUE(bit) << "trial " << trial << ": a covered pixel (lane " << lane << ") is outside the mask";
-            // The tile row holding the pixel: its span holds the pixel's centre.
-            glm::vec2 span = gpu::segmentRowSpan(a, b, reach, std::floor(centre.y), std::floor(centre.y) + 1.0f);
-            EXPECT_LE(span.x, centre.x);
-            EXPECT_GE(span.y, centre.x);
+        gpu::RasterSegment s = gpu::makeRasterSegment(a, b, width(rng), width(rng));
+        float reach = gpu::ribbonReach(s);
+        for (int y = -8; y < 28; ++y) {
+            glm::vec2 span = gpu::ribbonRowSpan(s, float(y) + 0.5f);
+            bool rowReached = float(y) + 0.5f >= std::min(a.y, b.y) - reach && float(y) + 0.5f <= std::max(a.y, b.y) + reach;
+            for (int x = -8; x < 28; ++x) {
+                glm::vec2 centre(float(x) + 0.5f, float(y) + 0.5f);
+                bool inSpan = span.x <= centre.x && centre.x <= span.y;
+                spanned += inSpan ? 1 : 0;
+                if (gpu::segmentCoverage(s, centre).x <= 0.0f)
+                    continue;
+                ++covered;
+                EXPECT_TRUE(inSpan) << "trial " << trial << ": covered pixel " << x << ", " << y << " outside its row's span";
+                EXPECT_TRUE(rowReached) << "trial " << trial << ": covered pixel " << x << ", " << y << " beyond the reach";
+            }
         }
     }
     EXPECT_GT(covered, 1000);
-    EXPECT_LT(masked, 4 * covered) << "the masks are conservative, not the whole tile";
+    EXPECT_LT(spanned, covered + covered / 4) << "the spans hold little more than the covered pixels";
 }
 
 TEST(RasterFragments, TheNearestKAreSortedAndTheRestBlendedWhateverTheOrder)

@@ -1,31 +1,29 @@
 // shaders/shared/strand_raster.h: the compute strand renderer's interface and pure math, one copy
 // for its kernels (shaders/strands_*.comp) and their C++ twin (renderer/strand_raster_reference.cpp).
-// The frame, in compute (hair_raster=compute), after the physics:
-//   generate  one thread per strand vertex: the strand's point (shared/strands.h, as hair.tese
-//             places it), projected to the screen (or the light's map) with its half width in
-//             pixels, shaded there (shared/strand_shading.h: shading along the strand, not per
-//             pixel) and packed with its opacity
-//   count     one thread per segment (two consecutive vertices): the screen tiles its ribbon
-//             touches, row by row (segmentRowSpan), counted per tile with atomics
-//   scan      one workgroup: each tile's first slot in the bins (exclusive prefix sum), the total
-//             and the overflow against the bins' capacity; the counts become write cursors
-//   bin       the same walk again, each segment's index written into its tiles' bins
-//   raster    one workgroup per chunk of a tile's bin (at most chunkSegments segments: a tile with
-//             thousands of segments is shared among workgroups), one thread per pixel: every
-//             segment is covered analytically (segmentCoverage: the exact area of the ribbon over
-//             the pixel across it, times the overlap along it), depth-tested against the meshes'
-//             depth (each MSAA sample), and kept in registers as the list resolve does: the nearest
-//             k sorted, the rest blended as one order-independent layer (insertFragment /
-//             resolveFragments, shared with oit_resolve.comp). A tile of one chunk writes its
-//             pixels' premultiplied colour; the chunks of a larger tile write their pixels' lists
-//   merge     one workgroup per tile of several chunks: their lists merged (the nearest k of all,
-//             the rest into the tail: exactly what one list of every segment would hold), and
-//             tiles without hair cleared
-//   light     from the light, the same generated segments (fewer, wider: shadow_strands) are
-//             rasterized one thread per segment into the hair's depth (atomicMin) and then the
-//             deep opacity layers (fixed-point atomicAdd: sums commute, so frames repeat bit for bit)
-// Nothing is dropped silently: bins that outgrow their buffer count the overflow, and the renderer
-// grows the buffer for the next frame. Conventions: screen positions in pixels, (0, 0) the top-left
+// The frame, in compute (hair_raster=compute), after the physics and the meshes' depth:
+//   generate   one thread per strand vertex: the strand's point (shared/strands.h, as hair.tese
+//              places it), projected to the screen (or the light's map) with its half width in
+//              pixels, shaded there (shared/strand_shading.h: shading along the strand, not per
+//              pixel) and packed with its opacity
+//   depth      one thread per pixel: the nearest and farthest of the meshes' depth samples; the
+//              pixel's fragment count zeroed
+//   count      one thread per segment (two consecutive vertices): every pixel its ribbon can reach
+//              (ribbonRowSpan, row by row) covered analytically (segmentCoverage: the exact area of
+//              the ribbon over the pixel across it, times the overlap along it) and depth-tested
+//              against the meshes (each MSAA sample); each fragment that stays counted at its pixel
+//   scan       the counts' exclusive prefix sum (blocks, their totals, the offsets): each pixel's
+//              first slot in one fragment buffer, the total against its capacity; the counts
+//              become write cursors
+//   write      the same walk again, each fragment (depth, colour and opacity) written to its slot:
+//              every pixel's fragments side by side, binned by prefix sums, no cap per pixel
+//   resolve    one thread per pixel: its fragments kept as the list resolve keeps them, the
+//              nearest k sorted and the rest blended as one order-independent layer
+//              (insertFragment / resolveFragments, shared with oit_resolve.comp); one write
+//   light      from the light, the same generated segments (fewer, wider: shadow_strands) are
+//              rasterized one thread per segment into the hair's depth (atomicMin) and then the
+//              deep opacity layers (fixed-point atomicAdd: sums commute, so frames repeat bit for bit)
+// Nothing is dropped silently: fragments past the buffer's capacity are counted, and the renderer
+// grows it for the next frame. Conventions: screen positions in pixels, (0, 0) the top-left
 // corner of the top-left pixel, pixel centres at + 0.5; depth as the depth buffer holds it (0 near,
 // 1 far); colours tone-mapped linear RGB.
 #ifndef WISP_SHARED_STRAND_RASTER_H
@@ -41,11 +39,9 @@ GPU_NAMESPACE_BEGIN
 #define GPU_INOUT(T) inout T
 #endif
 
-GPU_CONST uint kRasterTileSize = 8u;        // pixels per tile side; the raster's workgroup is one tile
-GPU_CONST uint kRasterTilePixels = kRasterTileSize * kRasterTileSize;
 GPU_CONST uint kRasterGroupSize = 64u;      // threads of the per-vertex and per-segment kernels
-GPU_CONST uint kRasterScanGroupSize = 1024u;
-GPU_CONST uint kRasterChunkSegments = 2048u;  // segments one raster workgroup takes of a tile's bin
+GPU_CONST uint kRasterScanBlock = 1024u;    // counts one scan workgroup sums (256 threads, 4 each)
+GPU_CONST uint kRasterScanGroupSize = 1024u;  // threads of the scan of the blocks' totals
 
 // Bindings (each kernel pushes the ones it reads; 4..7 are the light's maps of shared/shadows.h).
 GPU_CONST uint kRasterBindingFrame = 0;        // uniform FrameParams
@@ -55,20 +51,17 @@ GPU_CONST uint kRasterBindingTriangles = 3;    // uvec4 per guide: the guide and
 GPU_CONST uint kRasterBindingLut = 8;          // sampler2DArray: the lookup mode's tables
 GPU_CONST uint kRasterBindingVertices = 9;     // vec4 per strand vertex: StrandVertex
 GPU_CONST uint kRasterBindingColors = 10;      // uint per strand vertex: packed colour and opacity
-GPU_CONST uint kRasterBindingTileCounts = 11;  // uint per tile: segments (count), then write cursors
-GPU_CONST uint kRasterBindingTileOffsets = 12; // uint per tile + 1: first slot of each bin, the total last
-GPU_CONST uint kRasterBindingBins = 13;        // uint per (segment, tile) pair: the segment's index
+GPU_CONST uint kRasterBindingCounts = 11;      // uint per pixel: fragments (count), then write cursors
+GPU_CONST uint kRasterBindingOffsets = 12;     // uint per pixel + 1: its first fragment slot, the total last
+GPU_CONST uint kRasterBindingFragments = 13;   // uvec2 per fragment: depth bits, packed colour and opacity
 GPU_CONST uint kRasterBindingCounters = 14;    // RasterCounters
-GPU_CONST uint kRasterBindingMeshDepth = 15;   // sampler2DMS: the meshes' depth (the target's)
+GPU_CONST uint kRasterBindingMeshDepth = 15;   // sampler2DMS (sampler2D with one sample): the meshes' depth
 GPU_CONST uint kRasterBindingHairColor = 16;   // image2D rgba16f: the hair, premultiplied
 GPU_CONST uint kRasterBindingLightDepth = 17;  // uint per light texel: the hair's first depth (float bits)
 GPU_CONST uint kRasterBindingLightOpacity = 18;// uint x 4 per light texel: opacity layers, fixed point
 GPU_CONST uint kRasterBindingOpacityImage = 19;// image2D rgba16f: the deep opacity layers, as shaders read them
-GPU_CONST uint kRasterBindingChunkOffsets = 20;   // uint per tile + 1: the tile's first chunk, the total last
-GPU_CONST uint kRasterBindingPartialOffsets = 21; // uint per tile + 1: the first partial list of a tile of several chunks
-GPU_CONST uint kRasterBindingChunkTiles = 22;     // uint per chunk: its tile
-GPU_CONST uint kRasterBindingDispatch = 23;       // RasterDispatch: the raster's indirect dispatch
-GPU_CONST uint kRasterBindingPartials = 24;       // uint words: each chunk's pixel lists (partialWord)
+GPU_CONST uint kRasterBindingDepthRange = 20;  // vec2 per pixel: the nearest and farthest mesh depth sample
+GPU_CONST uint kRasterBindingBlockSums = 21;   // uint per scan block: its counts' total, then its offset
 
 // Fixed point of the light's opacity sums (integer units per unit of opacity).
 GPU_CONST float kOpacityFixedScale = 1024.0f;
@@ -91,38 +84,26 @@ struct StrandRasterPush {
     float lodStrands;         // strands per guide after LOD (continuous)
     uint  fromLight;          // 1: generate for the light's maps (orthographic, no shading)
     uint  segmentCount;       // guideCount * drawnPerGuide * D
-    uint  tilesX;             // tiles per row of the picture (or of the light's map)
-    uint  tilesY;
     uint  targetWidth;        // pixels of the picture (or texels of the light's map) per row
     uint  targetHeight;
-    uint  oitK;               // nearest fragments kept sorted (<= kMaxOitK)
     uint  samples;            // MSAA samples of the meshes' depth
-    uint  binCapacity;        // (segment, tile) pairs the bins hold
+    uint  fragmentCapacity;   // fragments the fragment buffer holds
     uint  domLayers;          // deep opacity layers (light opacity kernel)
-    uint  chunkSegments;      // segments of a tile's bin one raster workgroup takes (kRasterChunkSegments)
-    uint  partialCapacity;    // partial lists the scratch buffer holds
+    uint  scanBlocks;         // ceil((pixels + 1) / kRasterScanBlock)
+    uint  oitK;               // nearest fragments kept sorted (the resolve's specialization constant)
     uint  pad0;
-    uint  pad1;
-};
-
-// The raster's indirect dispatch (rows of at most 65535 workgroups, one per chunk), written by the scan.
-struct RasterDispatch {
-    uint x;
-    uint y;
-    uint z;
-    uint chunks;  // chunks in all; workgroups past it return
 };
 
 // What the kernels count, copied back to the host each frame.
 struct RasterCounters {
-    uint pairs;      // (segment, tile) pairs the bins needed this frame
-    uint capacity;   // pairs the bins hold
-    uint overflow;   // pairs that did not fit (dropped this frame; the renderer grows the bins)
-    uint fragments;  // (segment, pixel) overlaps that reached a pixel's list
-    uint segments;   // segments binned (on screen, in front of the camera)
-    uint chunks;     // raster workgroups (chunks of tiles' bins)
-    uint partials;   // partial lists of tiles of several chunks
-    uint maxTile;    // the most segments one tile's bin held
+    uint fragments;  // fragments the pixels held this frame (what the buffer needed)
+    uint capacity;   // fragments the buffer holds
+    uint overflow;   // fragments that did not fit (dropped this frame; the renderer grows the buffer)
+    uint segments;   // segments on screen, in front of the camera
+    uint maxPixel;   // the most fragments one pixel held
+    uint pad0;
+    uint pad1;
+    uint pad2;
 };
 
 // One strand vertex as the rasterizer reads it: where it is on the screen and how wide.
@@ -130,8 +111,8 @@ struct RasterCounters {
 // w < 0 marks a vertex that is not drawn (behind the camera, or a strand LOD left out).
 // Its colour is a second word: packUnorm4x8(vec4(sqrt(rgb), opacity)), as OIT nodes store it.
 
-// The per-vertex and per-segment kernels are dispatched in rows of at most 65535 workgroups (the
-// dispatch limit every device has); a thread's number counts whole rows first.
+// The per-vertex, per-segment and per-block kernels are dispatched in rows of at most 65535
+// workgroups (the dispatch limit every device has); a thread's number counts whole rows first.
 GPU_FN uint linearInvocation(uvec3 global, uint threadsPerRow)
 {
     return global.x + global.y * threadsPerRow;
@@ -215,85 +196,45 @@ GPU_FN vec2 segmentCoverage(RasterSegment s, vec2 pixel)
     return vec2(clamp(across * along, 0.0f, 1.0f), t);
 }
 
-// ---- Binning ---------------------------------------------------------------------------------
+// ---- Where a segment reaches --------------------------------------------------------------------
 
-// The x range (pixels) over which the segment a..b, thickened by r on every side, crosses the
-// horizontal band y0 <= y <= y1; empty (x > y) when it does not.
-GPU_FN vec2 segmentRowSpan(vec2 a, vec2 b, float r, float y0, float y1)
+// The x range of the pixel centres on the row of centres at height cy that the segment's ribbon
+// can cover: within its widest half width plus the pixel's footprint (s = (footA + footB) / 2)
+// across the segment, and within s of its ends along it (a rectangle: each side a slab, each slab
+// an interval of x on the row). Exactly where segmentCoverage can be above zero; empty (x > y)
+// when the row misses the rectangle.
+GPU_FN vec2 ribbonRowSpan(RasterSegment seg, float cy)
 {
-    float lo = y0 - r;
-    float hi = y1 + r;
-    float dy = b.y - a.y;
-    float t0 = 0.0f;
-    float t1 = 1.0f;
-    if (abs(dy) > 1e-6f) {
-        float ta = (lo - a.y) / dy;
-        float tb = (hi - a.y) / dy;
-        t0 = max(t0, min(ta, tb));
-        t1 = min(t1, max(ta, tb));
-    } else if (a.y < lo || a.y > hi) {
+    float s = 0.5f * (seg.footA + seg.footB) + 1e-4f;
+    float across = max(seg.ha, seg.hb) + s;
+    float y = cy - seg.a.y;
+    float lo = -1e30f;
+    float hi = 1e30f;
+    // across: v = dir.x * y - dir.y * (x - a.x), |v| <= across
+    if (abs(seg.dir.y) > 1e-6f) {
+        float x0 = (seg.dir.x * y - across) / seg.dir.y;
+        float x1 = (seg.dir.x * y + across) / seg.dir.y;
+        lo = max(lo, min(x0, x1));
+        hi = min(hi, max(x0, x1));
+    } else if (abs(y) > across) {
         return vec2(1.0f, 0.0f);
     }
-    if (t0 > t1)
+    // along: u = dir.x * (x - a.x) + dir.y * y, -s <= u <= len + s
+    if (abs(seg.dir.x) > 1e-6f) {
+        float x0 = (-s - seg.dir.y * y) / seg.dir.x;
+        float x1 = (seg.len + s - seg.dir.y * y) / seg.dir.x;
+        lo = max(lo, min(x0, x1));
+        hi = min(hi, max(x0, x1));
+    } else if (seg.dir.y * y < -s || seg.dir.y * y > seg.len + s) {
         return vec2(1.0f, 0.0f);
-    float xa = mix(a.x, b.x, t0);
-    float xb = mix(a.x, b.x, t1);
-    return vec2(min(xa, xb) - r, max(xa, xb) + r);
-}
-
-// Which pixels of the tile at `origin` (its top-left corner, pixels) the segment can cover: bit
-// y * 8 + x for pixel (x, y) of the tile, low 32 pixels in .x. Conservative (every pixel whose
-// centre lies within `reach` of the segment, measured as a square), so a pixel without its bit
-// gets no coverage from the segment, and the raster skips it with one test.
-GPU_FN uvec2 tilePixelMask(vec2 a, vec2 b, float reach, vec2 origin)
-{
-    uvec2 mask = uvec2(0u, 0u);
-    for (uint row = 0u; row < kRasterTileSize; ++row) {
-        float cy = origin.y + float(row) + 0.5f;
-        vec2 span = segmentRowSpan(a, b, reach, cy, cy);
-        if (span.x > span.y)
-            continue;
-        int first = max(int(ceil(span.x - origin.x - 0.5f)), 0);
-        int last = min(int(floor(span.y - origin.x - 0.5f)), int(kRasterTileSize) - 1);
-        if (first > last)
-            continue;
-        uint bits = ((2u << uint(last)) - (1u << uint(first))) << (row % 4u * 8u);
-        if (row < 4u)
-            mask.x |= bits;
-        else
-            mask.y |= bits;
     }
-    return mask;
+    return vec2(lo + seg.a.x, hi + seg.a.x);
 }
 
-// How far beyond a segment's centre line its coverage can reach: its half width plus a pixel's
-// half diagonal.
-GPU_FN float segmentReach(float ha, float hb)
+// How far beyond its ends, in y, a segment's ribbon can reach a pixel centre.
+GPU_FN float ribbonReach(RasterSegment seg)
 {
-    return max(ha, hb) + 0.7072f;
-}
-
-// The position of the n-th (from 0) set bit of v; v must hold more than n set bits. (The raster
-// hands out the pixels a segment's mask names, one per thread.)
-GPU_FN uint nthSetBit(uint v, uint n)
-{
-    uint position = 0u;
-    for (uint width = 16u; width > 0u; width >>= 1u) {
-        uint low = bitCount(v & ((1u << width) - 1u));
-        if (n >= low) {
-            n -= low;
-            v >>= width;
-            position += width;
-        }
-    }
-    return position;
-}
-
-// Word `word` of lane `lane`'s list in partial list `partial`: words 0..k-1 the depths (float bits),
-// k..2k-1 the colours, then the five tail sums; lanes side by side, so a workgroup's writes coalesce.
-GPU_FN uint partialWord(uint partial, uint word, uint lane, uint k)
-{
-    return (partial * (2u * k + 5u) + word) * kRasterTilePixels + lane;
+    return max(seg.ha, seg.hb) + seg.footA + seg.footB;
 }
 
 // ---- Order-independent blending (the nearest k sorted, the rest as one layer) ----------------
@@ -360,40 +301,42 @@ GPU_FN void addToTail(GPU_INOUT(PixelFragments) f, uint color)
     f.tailClear = saturatingAdd(f.tailClear, -log(1.0f - min(c.w, 0.999f)));
 }
 
-// Adds a fragment: it bubbles into the nearest k (each kept one farther than it swaps places with
-// it), and whatever comes out of the last kept slot joins the tail.
+// Adds a fragment: it takes its place among the nearest k (after every kept fragment not farther
+// than it), the kept ones behind it move back one, and whatever falls out of the last kept slot
+// (or the fragment itself, when it is behind all k) joins the tail. Written as independent
+// comparisons and moves with constant indices, not a chain of swaps: the lists stay in registers
+// and the steps do not wait on one another.
 GPU_FN void insertFragment(GPU_INOUT(PixelFragments) f, uint k, float depth, uint color)
 {
-    if (!fragmentFarther(f.depth[k - 1u], f.color[k - 1u], depth, color)) {
-        addToTail(f, color);  // behind all k kept: no swap would happen (most fragments, once k are kept)
+    uint position = 0u;
+    for (uint i = 0u; i < kMaxOitK; ++i)
+        position += i < k && !fragmentFarther(f.depth[i], f.color[i], depth, color) ? 1u : 0u;
+    if (position >= k) {
+        addToTail(f, color);  // behind all k kept (most fragments, once k are kept)
         return;
     }
-    float d = depth;
-    uint c = color;
+    float lastDepth = kRasterFarDepth;
+    uint lastColor = 0u;
     for (uint i = 0u; i < kMaxOitK; ++i) {
-        if (i < k && fragmentFarther(f.depth[i], f.color[i], d, c)) {
-            float keptDepth = f.depth[i];
-            uint keptColor = f.color[i];
-            f.depth[i] = d;
-            f.color[i] = c;
-            d = keptDepth;
-            c = keptColor;
+        if (i + 1u == k) {
+            lastDepth = f.depth[i];
+            lastColor = f.color[i];
         }
     }
-    if (d < kRasterFarDepth)
-        addToTail(f, c);
-}
-
-// The pixel's hair, premultiplied: the nearest k front to back, then the tail as one layer whose
-// colour is its alpha-weighted mean and whose opacity is 1 - prod(1 - alpha).
-// Adds another list's tail (its fixed-point sums) to this one's.
-GPU_FN void addTailSums(GPU_INOUT(PixelFragments) f, uint r, uint g, uint b, uint alpha, uint clear)
-{
-    f.tailR = min(f.tailR, kTailSaturate - min(r, kTailSaturate)) + min(r, kTailSaturate);
-    f.tailG = min(f.tailG, kTailSaturate - min(g, kTailSaturate)) + min(g, kTailSaturate);
-    f.tailB = min(f.tailB, kTailSaturate - min(b, kTailSaturate)) + min(b, kTailSaturate);
-    f.tailAlpha = min(f.tailAlpha, kTailSaturate - min(alpha, kTailSaturate)) + min(alpha, kTailSaturate);
-    f.tailClear = min(f.tailClear, kTailSaturate - min(clear, kTailSaturate)) + min(clear, kTailSaturate);
+    for (uint i = kMaxOitK - 1u; i > 0u; --i) {
+        if (i < k && i > position) {
+            f.depth[i] = f.depth[i - 1u];
+            f.color[i] = f.color[i - 1u];
+        }
+    }
+    for (uint i = 0u; i < kMaxOitK; ++i) {
+        if (i == position) {
+            f.depth[i] = depth;
+            f.color[i] = color;
+        }
+    }
+    if (lastDepth < kRasterFarDepth)
+        addToTail(f, lastColor);
 }
 
 GPU_FN vec4 resolveFragments(PixelFragments f, uint k)
