@@ -10,6 +10,7 @@
 #include "renderer/hair_pass.h"
 #include "renderer/camera.h"
 #include "renderer/oit.h"
+#include "renderer/strand_raster.h"
 #include "renderer/settings.h"
 #include "gpu/context.h"
 
@@ -28,6 +29,7 @@ struct Picture {
     std::vector<uint8_t> rgba;  // tightly packed, top row first, sRGB
     std::string hairCounts;     // what the hair draw was split into (empty without hair)
     OitStats oit;               // the OIT lists of this frame (zeros in MSAA mode or without hair)
+    RasterStats raster;         // the compute path's counts (zeros when the hair is drawn by graphics)
 };
 
 // Host and device memory at one moment: long runs report it at their start and end (a soak's
@@ -58,8 +60,8 @@ Picture renderPicture(const vk::Context& ctx, HairSession& session, const Render
                       float fps = 30.0f);
 // The head alone, as the default camera frames it, lit by the settings' light.
 Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSettings& settings);
-// The picture's hair counts as `wisp render` prints them.
-std::string describeHairCounts(const HairDrawCounts& counts);
+// The hair `renderer` draws, as `wisp render` prints it (its counts, and how it is drawn).
+std::string describeHairCounts(const Renderer& renderer);
 
 // Per-pass GPU time of whole frames (physics stepping one frame's worth each frame, as the window
 // does): `warmup` frames, then `frames` timed; medians and p95 in milliseconds, per pass and for
@@ -69,8 +71,9 @@ struct PassTiming {
     double medianMs = 0.0;
     double p95Ms = 0.0;
 };
-// `oit`, when given, receives the last frame's OIT counts.
+// `oit` and `raster`, when given, receive the last frame's OIT and compute-path counts.
 std::vector<PassTiming> profileFrames(const vk::Context& ctx, HairSession& session, const RenderSettings& settings,
-                                      float fps, uint32_t warmup, uint32_t frames, OitStats* oit = nullptr);
+                                      float fps, uint32_t warmup, uint32_t frames, OitStats* oit = nullptr,
+                                      RasterStats* raster = nullptr);
 
 }  // namespace wisp

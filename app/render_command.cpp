@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "gpu/check.h"
 #include "renderer/hair_pass.h"
+#include "renderer/renderer.h"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -40,7 +41,10 @@ int runProfile(const GlobalOptions& g, SessionOptions& o, const RenderCommand& c
     vk::Context ctx(contextOptions(g));
     HairSession session(ctx, std::move(scene), o.settings.sim, o.timeline, o.source);
     OitStats oit;
-    std::vector<PassTiming> timings = profileFrames(ctx, session, settings, c.fps, c.profileWarmup, c.profileFrames, &oit);
+    RasterStats raster;
+    std::vector<PassTiming> timings =
+        profileFrames(ctx, session, settings, c.fps, c.profileWarmup, c.profileFrames, &oit, &raster);
+    HairRaster path = resolveHairRaster(settings.hairRaster, ctx.report().type);
     HairDrawCounts counts = hairDrawCounts(uint32_t(session.scene().strands.strandCount()), settings.strands);
     nlohmann::json out = {{"device", ctx.report().name},
                           {"width", settings.width},
@@ -59,7 +63,11 @@ int runProfile(const GlobalOptions& g, SessionOptions& o, const RenderCommand& c
                           {"oit_overflow", oit.overflow},
                           {"oit_capacity", oit.capacity},
                           {"shadow_size", settings.shadows.mapSize},
+                          {"hair_raster_drawn", path == HairRaster::Compute ? "compute" : "graphics"},
                           {"settings", settingsJson(o.settings)}};
+    if (path == HairRaster::Compute)
+        out["raster"] = {{"segments", raster.segments}, {"fragments", raster.fragments}, {"capacity", raster.capacity},
+                         {"overflow", raster.overflow}, {"max_pixel", raster.maxPixel}};
     for (const PassTiming& t : timings)
         out["ms"][t.name] = {{"median", t.medianMs}, {"p95", t.p95Ms}};
     std::cout << out.dump() << "\n";
@@ -91,6 +99,15 @@ int run(const GlobalOptions& g, const RenderCommand& c)
     std::cout << c.outFile << "\n";
     if (!picture.hairCounts.empty())
         std::cout << picture.hairCounts << "\n";
+    if (picture.raster.capacity > 0) {
+        std::cout << "compute raster: " << picture.raster.segments << " segments on screen, " << picture.raster.fragments
+                  << " hair fragments (at most " << picture.raster.maxPixel << " in a pixel), buffer of "
+                  << picture.raster.capacity << "\n";
+        if (picture.raster.overflow > 0)
+            std::cerr << "wisp: warning: the compute path's fragment buffer was full: " << picture.raster.overflow << " of "
+                      << picture.raster.fragments << " hair fragments were dropped ('" << ctx.report().name
+                      << "' holds no larger buffer); lower the resolution or strands_per_guide\n";
+    }
     if (picture.oit.capacity > 0) {
         std::cout << "oit: " << picture.oit.fragments << " hair fragments, pool of " << picture.oit.capacity << "\n";
         if (picture.oit.overflow > 0)

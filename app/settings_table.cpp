@@ -297,6 +297,10 @@ std::vector<SettingSpec> buildSpecs()
               [](Settings& x) -> auto& { return x.render.strands.lodMinFraction; }));
     add(field(onOff("show_guides", kLive, "", "also draw the simulated guides as lines"),
               [](Settings& x) -> auto& { return x.render.strands.showGuides; }));
+    add(field(choice("hair_raster", {"graphics", "compute", "auto"}, kLive, "",
+                     "how the hair is drawn: tessellation and geometry shaders, or compute (tiles, analytic coverage, "
+                     "the nearest oit_k sorted); auto: compute on GPUs, graphics on CPU drivers"),
+              [](Settings& x) -> auto& { return x.render.hairRaster; }));
 
     // ---- The target, the light and the shadows ----
     group = SettingGroup::Light;

@@ -67,6 +67,10 @@ struct TransparencySettings {
     float hairOpacity = 0.85f;        // opacity of a strand that covers its pixel (oit, deep opacity)
 };
 
+// How the hair is drawn: the tessellation and geometry stages (hair_pass.cpp), or entirely in
+// compute (strand_raster.cpp); auto picks the faster on the device (resolveHairRaster).
+enum class HairRaster { Graphics, Compute, Auto };
+
 struct RenderSettings {
     uint32_t width = 1280;
     uint32_t height = 720;
@@ -79,6 +83,7 @@ struct RenderSettings {
     float exposure = 1.0f;
     glm::vec3 headAlbedo{0.62f, 0.6f, 0.57f};        // mannequin grey-beige
     float headRoughness = 0.55f;
+    HairRaster hairRaster = HairRaster::Auto;
     StrandSettings strands;
     ShadowSettings shadows;
     TransparencySettings transparency;
