@@ -228,7 +228,7 @@ std::vector<SettingSpec> buildSpecs()
                        shadows.strandFraction, float);
     add({"hair_raster", "", "graphics | compute | auto",
          "how the hair is drawn: tessellation and geometry shaders, or compute (tiles, analytic coverage, the "
-         "nearest oit_k sorted); auto: compute on GPUs, graphics on CPU drivers",
+         "nearest oit_k sorted); auto: the faster on the device (compute on every device measured)",
          [](const SettingsRefs& r) {
              if (!r.render)
                  return std::string("-");
