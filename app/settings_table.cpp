@@ -299,7 +299,7 @@ std::vector<SettingSpec> buildSpecs()
               [](Settings& x) -> auto& { return x.render.strands.showGuides; }));
     add(field(choice("hair_raster", {"graphics", "compute", "auto"}, kLive, "",
                      "how the hair is drawn: tessellation and geometry shaders, or compute (tiles, analytic coverage, "
-                     "the nearest oit_k sorted); auto: compute on GPUs, graphics on CPU drivers"),
+                     "the nearest oit_k sorted); auto: the faster on the device (compute on every device measured)"),
               [](Settings& x) -> auto& { return x.render.hairRaster; }));
 
     // ---- The target, the light and the shadows ----

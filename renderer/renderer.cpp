@@ -88,9 +88,10 @@ gpu::FrameParams pack(const RenderSettings& s, const OrbitCamera& camera, VkExte
 
 HairRaster resolveHairRaster(HairRaster setting, VkPhysicalDeviceType deviceType)
 {
-    if (setting != HairRaster::Auto)
-        return setting;
-    return deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? HairRaster::Graphics : HairRaster::Compute;
+    // Measured (README, "Two ways to draw strands"): compute is the faster on every device tried,
+    // the H100 (6 to 10 times) and lavapipe (about 13 times), whatever the workload.
+    (void)deviceType;
+    return setting == HairRaster::Auto ? HairRaster::Compute : setting;
 }
 
 Renderer::Renderer(const vk::Context& ctx, const RenderSettings& settings, uint32_t framesInFlight)

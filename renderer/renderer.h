@@ -40,9 +40,8 @@ struct LightFit {
     float unitsPerMetre = 1.0f;
 };
 
-// What hair_raster=auto draws with on a device of this type: compute wherever the GPU runs
-// compute on more of its units than graphics (every GPU measured), the tessellation path on CPU
-// drivers.
+// What hair_raster=auto draws with on a device of this type: compute, the faster on every device
+// measured (the H100, lavapipe).
 HairRaster resolveHairRaster(HairRaster setting, VkPhysicalDeviceType deviceType);
 
 // Turns the human-facing settings and the camera into the GPU's per-frame block, all but the hair

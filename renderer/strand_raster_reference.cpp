@@ -146,7 +146,7 @@ LightMaps rasterLight(const gpu::StrandRasterPush& push, const gpu::FrameParams&
             float alpha = 0.5f * (glm::unpackUnorm4x8(strands.colors[v]).w + glm::unpackUnorm4x8(strands.colors[v + 1]).w);
             gpu::RasterSegment s = gpu::makeRasterSegment(glm::vec2(a), glm::vec2(b), a.w, b.w);
             gpu::RasterSegment reach =
-                opacity ? s : gpu::makeRasterSegment(glm::vec2(a), glm::vec2(b), std::max(a.w, 0.5f), std::max(b.w, 0.5f));
+                gpu::makeRasterSegment(glm::vec2(a), glm::vec2(b), std::max(a.w, 0.5f), std::max(b.w, 0.5f));
             float extent = gpu::ribbonReach(reach);
             int y0 = std::max(int(std::ceil(std::min(a.y, b.y) - extent - 0.5f)), 0);
             int y1 = std::min(int(std::floor(std::max(a.y, b.y) + extent - 0.5f)), int(push.targetHeight) - 1);
@@ -160,27 +160,20 @@ LightMaps rasterLight(const gpu::StrandRasterPush& push, const gpu::FrameParams&
                         texel.y >= int(push.targetHeight))
                         continue;
                     size_t index = size_t(texel.y) * push.targetWidth + size_t(texel.x);
-                    glm::vec2 centre = glm::vec2(texel) + 0.5f;
+                    glm::vec3 hit = gpu::lightTexelHit(s, glm::vec2(texel) + 0.5f);
+                    if (hit.x <= 0.0f)
+                        continue;
+                    float depth = glm::mix(a.z, b.z, hit.y);
                     if (!opacity) {
-                        glm::vec2 d = centre - s.a;
-                        float u = glm::dot(d, s.dir);
-                        float t = s.len > 0.0f ? std::clamp(u / s.len, 0.0f, 1.0f) : 0.0f;
-                        float across = std::abs(s.dir.x * d.y - s.dir.y * d.x);
-                        if (u < 0.0f || u > s.len || across > std::max(glm::mix(s.ha, s.hb, t), 0.5f))
-                            continue;
-                        uint32_t bits = std::bit_cast<uint32_t>(std::max(glm::mix(a.z, b.z, t), 0.0f));
+                        uint32_t bits = std::bit_cast<uint32_t>(std::max(depth, 0.0f));
                         out.depth[index] = std::min(out.depth[index], bits);
                         continue;
                     }
-                    glm::vec2 hit = gpu::segmentCoverage(s, centre);
-                    if (hit.x <= 0.0f)
-                        continue;
                     float z0 = std::bit_cast<float>(out.depth[index]);
-                    float depth = glm::mix(a.z, b.z, hit.y);
                     uint32_t layers = std::clamp(push.domLayers, 1u, gpu::kMaxDomLayers);
                     uint32_t layer = std::min(uint32_t(std::max(depth - z0, 0.0f) / std::max(frame.domSpacing, 1e-12f)),
                                               layers - 1);
-                    out.opacity[index][int(layer)] += uint32_t(alpha * hit.x * gpu::kOpacityFixedScale + 0.5f);
+                    out.opacity[index][int(layer)] += uint32_t(alpha * hit.z * gpu::kOpacityFixedScale + 0.5f);
                 }
             }
         }

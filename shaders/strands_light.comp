@@ -5,9 +5,11 @@
 //   false (light.depth):   the hair's first depth, atomicMin over the float's bits (depths are
 //                          positive, so their bits order as the numbers do), on every texel whose
 //                          centre lies within the ribbon, at least a texel wide (as rasterization does)
-//   true  (light.opacity): each texel's covered share x the strand's opacity, added in fixed point
-//                          to the deep opacity layer its depth falls in behind the first depth
-//                          (Yuksel & Keyser 2008; shared/shadows.h domLayerMask)
+//   true  (light.opacity): on the same texels, the strand's opacity x the share of the texel-wide
+//                          ribbon its width covers, added in fixed point to the deep opacity layer
+//                          its depth falls in behind the first depth (Yuksel & Keyser 2008;
+//                          shared/shadows.h domLayerMask), as the tessellation path's light pass
+//                          adds it
 #extension GL_GOOGLE_include_directive : require
 #include "shared/frame_params.h"
 #include "shared/strand_raster.h"
@@ -25,26 +27,19 @@ void touch(RasterSegment s, float za, float zb, float alpha, ivec2 texel)
 {
     if (texel.x < 0 || texel.y < 0 || texel.x >= int(push.targetWidth) || texel.y >= int(push.targetHeight))
         return;
-    uint index = uint(texel.y) * push.targetWidth + uint(texel.x);
-    vec2 centre = vec2(texel) + 0.5;
-    if (!kOpacity) {
-        vec2 d = centre - s.a;
-        float u = dot(d, s.dir);
-        float t = s.len > 0.0 ? clamp(u / s.len, 0.0, 1.0) : 0.0;
-        float across = abs(s.dir.x * d.y - s.dir.y * d.x);
-        if (u < 0.0 || u > s.len || across > max(mix(s.ha, s.hb, t), 0.5))
-            return;
-        atomicMin(lightDepth[index], floatBitsToUint(max(mix(za, zb, t), 0.0)));
-        return;
-    }
-    vec2 hit = segmentCoverage(s, centre);
+    vec3 hit = lightTexelHit(s, vec2(texel) + 0.5);  // as the tessellation path's light ribbons
     if (hit.x <= 0.0)
         return;
-    float z0 = uintBitsToFloat(lightDepth[index]);
+    uint index = uint(texel.y) * push.targetWidth + uint(texel.x);
     float depth = mix(za, zb, hit.y);
+    if (!kOpacity) {
+        atomicMin(lightDepth[index], floatBitsToUint(max(depth, 0.0)));
+        return;
+    }
+    float z0 = uintBitsToFloat(lightDepth[index]);
     uint layers = clamp(push.domLayers, 1u, kMaxDomLayers);
     uint layer = min(uint(max(depth - z0, 0.0) / max(frame.domSpacing, 1e-12)), layers - 1u);
-    uint add = uint(alpha * hit.x * kOpacityFixedScale + 0.5);
+    uint add = uint(alpha * hit.z * kOpacityFixedScale + 0.5);
     if (add > 0u)
         atomicAdd(lightOpacity[index * 4u + layer], add);
 }
@@ -61,9 +56,8 @@ void main()
         return;
     float alpha = 0.5 * (unpackUnorm4x8(colors[v]).w + unpackUnorm4x8(colors[v + 1u]).w);
     RasterSegment s = makeRasterSegment(a.xy, b.xy, a.w, b.w);
-    // The texels the ribbon can reach, row by row: as covered (opacity), or at least a texel wide
-    // (depth, as rasterization draws thin ribbons).
-    RasterSegment reach = kOpacity ? s : makeRasterSegment(a.xy, b.xy, max(a.w, 0.5), max(b.w, 0.5));
+    // The texels the ribbon, at least a texel wide, can reach, row by row.
+    RasterSegment reach = makeRasterSegment(a.xy, b.xy, max(a.w, 0.5), max(b.w, 0.5));
     float extent = ribbonReach(reach);
     int y0 = max(int(ceil(min(a.y, b.y) - extent - 0.5)), 0);
     int y1 = min(int(floor(max(a.y, b.y) + extent - 0.5)), int(push.targetHeight) - 1);

@@ -104,7 +104,9 @@ namespace {
 
 struct HairFrame {
     Picture picture;
-    HairPass::Statistics stats;
+    HairPass::Statistics stats;  // the tessellation path's pipeline statistics
+    // The segments drawn: the geometry shader's invocations, or the compute path's count.
+    uint64_t segments() const { return picture.raster.capacity > 0 ? picture.raster.segments : stats.geometryInvocations; }
 };
 
 HairFrame renderHairFrame(const vk::Context& ctx, const HairScene& scene, const RenderSettings& settings,
@@ -118,8 +120,10 @@ HairFrame renderHairFrame(const vk::Context& ctx, const HairScene& scene, const 
     Frame frame(ctx, 1);
     OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(settings.width) / float(settings.height));
     camera.distance *= cameraDistanceScale;
+    camera.fitPlanes();  // the hair stays between the planes (as the window's zoom keeps it)
     Picture picture = renderFrame(ctx, renderer, frame, camera);
-    return {picture, renderer.hair()->statistics()};
+    bool graphics = renderer.hairRaster() == HairRaster::Graphics;
+    return {picture, graphics ? renderer.hair()->statistics() : HairPass::Statistics{}};
 }
 
 HairScene smallScene(uint32_t guides)
@@ -142,6 +146,7 @@ TEST(HairRender, PipelineStatisticsCountWhatTheSettingsAsk)
     };
     for (Case c : {Case{3, 5}, Case{1, 1}, Case{70, 9}, Case{5, 100}}) {
         RenderSettings s;
+        s.hairRaster = HairRaster::Graphics;  // what the tessellation stages count
         s.width = 96;
         s.height = 64;
         s.strands.strandsPerGuide = c.strands;
@@ -182,6 +187,13 @@ size_t changedPixels(const Picture& a, const Picture& b)
     return n;
 }
 
+// The rendering tests that hold for both ways of drawing the strands run on each.
+class HairRenderBoth : public ::testing::TestWithParam<HairRaster> {};
+INSTANTIATE_TEST_SUITE_P(Paths, HairRenderBoth, ::testing::Values(HairRaster::Graphics, HairRaster::Compute),
+                         [](const ::testing::TestParamInfo<HairRaster>& p) {
+                             return std::string(p.param == HairRaster::Graphics ? "graphics" : "compute");
+                         });
+
 RenderSettings imageSettings()
 {
     RenderSettings s;
@@ -192,11 +204,12 @@ RenderSettings imageSettings()
 
 }  // namespace
 
-TEST(HairRender, HairCoversTheScalpAndMoreStrandsCoverMore)
+TEST_P(HairRenderBoth, HairCoversTheScalpAndMoreStrandsCoverMore)
 {
     vk::Context ctx(test::validatedOptions());
     HairScene scene = smallScene(300);
     RenderSettings s = imageSettings();
+    s.hairRaster = GetParam();
     Picture bald = renderPicture(ctx, scene.head, s);
     s.strands.strandsPerGuide = 8;
     HairFrame fewer = renderHairFrame(ctx, scene, s);
@@ -223,7 +236,7 @@ TEST(HairRender, HairCoversTheScalpAndMoreStrandsCoverMore)
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 
-TEST(HairRender, AHorizontalStrandKeepsItsWidth)
+TEST_P(HairRenderBoth, AHorizontalStrandKeepsItsWidth)
 {
     // One guide lying horizontally across the view (the seed offset ribbons along screen x, so
     // such a strand collapsed to nothing): its ribbon must cover pixels in a band, not a line.
@@ -237,6 +250,7 @@ TEST(HairRender, AHorizontalStrandKeepsItsWidth)
     scene.strands.strands[0].pinnedRoot = 1;
     scene.gpuColliders.clear();
     RenderSettings s = imageSettings();
+    s.hairRaster = GetParam();
     s.strands.strandsPerGuide = 1;
     s.strands.widthMetres = 0.004f;  // a few pixels wide at this distance
     s.strands.lod = false;
@@ -258,28 +272,29 @@ TEST(HairRender, AHorizontalStrandKeepsItsWidth)
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 
-TEST(HairRender, LodDrawsFewerStrandsFarAwayAndAllNearby)
+TEST_P(HairRenderBoth, LodDrawsFewerStrandsFarAwayAndAllNearby)
 {
     vk::Context ctx(test::validatedOptions());
-    if (!ctx.report().pipelineStatisticsQuery)
+    if (GetParam() == HairRaster::Graphics && !ctx.report().pipelineStatisticsQuery)
         GTEST_SKIP() << "the device has no pipeline statistics queries";
     HairScene scene = smallScene(20);
     RenderSettings s;
+    s.hairRaster = GetParam();
     s.width = 96;
     s.height = 64;
     s.strands.strandsPerGuide = 40;
     s.strands.divisions = 4;
     uint64_t all = 20ull * 40 * 4;
-    EXPECT_EQ(renderHairFrame(ctx, scene, s, 1.0f).stats.geometryInvocations, all);    // at the framing distance
-    EXPECT_EQ(renderHairFrame(ctx, scene, s, 0.5f).stats.geometryInvocations, all);    // nearer: never more
-    uint64_t twice = renderHairFrame(ctx, scene, s, 2.0f).stats.geometryInvocations;  // (1/2)² = 25% of the strands
+    EXPECT_EQ(renderHairFrame(ctx, scene, s, 1.0f).segments(), all);    // at the framing distance
+    EXPECT_EQ(renderHairFrame(ctx, scene, s, 0.5f).segments(), all);    // nearer: never more
+    uint64_t twice = renderHairFrame(ctx, scene, s, 2.0f).segments();  // (1/2)² = 25% of the strands
     EXPECT_EQ(twice, 20ull * 10 * 4);
-    uint64_t far = renderHairFrame(ctx, scene, s, 10.0f).stats.geometryInvocations;   // floor: lodMinFraction (20%)
+    uint64_t far = renderHairFrame(ctx, scene, s, 10.0f).segments();   // floor: lodMinFraction (20%)
     EXPECT_EQ(far, 20ull * 8 * 4);
     s.strands.lodMinFraction = 0.5f;
-    EXPECT_EQ(renderHairFrame(ctx, scene, s, 10.0f).stats.geometryInvocations, 20ull * 20 * 4);  // a higher floor
+    EXPECT_EQ(renderHairFrame(ctx, scene, s, 10.0f).segments(), 20ull * 20 * 4);  // a higher floor
     s.strands.lod = false;
-    EXPECT_EQ(renderHairFrame(ctx, scene, s, 10.0f).stats.geometryInvocations, all);   // off: always all
+    EXPECT_EQ(renderHairFrame(ctx, scene, s, 10.0f).segments(), all);   // off: always all
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 

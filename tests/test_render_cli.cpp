@@ -32,11 +32,15 @@ TEST(Cli, RenderWritesAPngWithValidationClean)
 
 TEST(Cli, EveryPassIsCleanUnderSynchronizationValidation)
 {
-    // Shadows, deep opacity, both transparency modes and every shading model: the barriers the
-    // frame derives from the passes' declarations satisfy the synchronization checks.
+    // Shadows, deep opacity, both ways of drawing the strands, both transparency modes and every
+    // shading model, one sample and four: the barriers the frame derives from the passes'
+    // declarations satisfy the synchronization checks.
     TempDir dir;
-    for (const char* sets : {"--set transparency=oit --set shading=karis", "--set transparency=msaa --set shading=lut",
-                             "--set dom_layers=0 --set shading=kajiya"}) {
+    for (const char* sets : {"--set hair_raster=graphics --set transparency=oit --set shading=karis",
+                             "--set hair_raster=graphics --set transparency=msaa --set shading=lut",
+                             "--set hair_raster=graphics --set dom_layers=0 --set shading=kajiya",
+                             "--set hair_raster=compute --set shading=lut", "--set hair_raster=compute --set samples=1",
+                             "--set hair_raster=compute --set dom_layers=0 --set shading=kajiya --set shadows=off"}) {
         auto r = runWisp("--sync-validation render --width 96 --height 72 --guides 60 --set strands_per_guide=4 " +
                          std::string(sets) + " --set shadow_size=256 --out '" + (dir / "s.png").string() + "'");
         EXPECT_EQ(r.status, 0) << sets << "\n" << r.err;
@@ -84,11 +88,17 @@ TEST(BadInput, OutputNotPng)
 TEST(Cli, SetChangesWhatIsDrawn)
 {
     TempDir dir;
-    auto r = runWisp("render --width 64 --height 64 --guides 10 --set strands_per_guide=100 --set divisions=100 --out '" +
-                     (dir / "a.png").string() + "'");
+    auto r = runWisp("render --width 64 --height 64 --guides 10 --set strands_per_guide=100 --set divisions=100 "
+                     "--set hair_raster=graphics --out '" + (dir / "a.png").string() + "'");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.out.find("10 guides x 100 strands x 100 divisions = 100000 segments"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("50 instances"), std::string::npos) << r.out;  // past the tessellation limits, not capped
+    // In compute: every segment on screen is drawn, each fragment counted.
+    r = runWisp("render --width 64 --height 64 --guides 10 --set strands_per_guide=100 --set divisions=100 "
+                "--set hair_raster=compute --out '" + (dir / "b.png").string() + "'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("drawn in compute"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("compute raster: 100000 segments on screen"), std::string::npos) << r.out;
 }
 
 TEST(Cli, DeviceLostDuringRenderWritesNoPicture)

@@ -450,3 +450,4 @@ TEST(StrandRaster, AFullFragmentBufferIsCountedAndGrowsForTheNextFrame)
     EXPECT_EQ(grown.rgba, reference.rgba) << "once grown, nothing is missing";
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
+

@@ -231,6 +231,20 @@ GPU_FN vec2 ribbonRowSpan(RasterSegment seg, float cy)
     return vec2(lo + seg.a.x, hi + seg.a.x);
 }
 
+// A texel of the light's maps and a light segment, as the tessellation path's light pass
+// rasterizes its ribbons (at least a texel wide, their opacity scaled by the share of that width
+// the strand covers): x 1 when the texel's centre lies within the ribbon, y where along it (t),
+// z the share. The depth and the opacity passes take the same texels.
+GPU_FN vec3 lightTexelHit(RasterSegment s, vec2 centre)
+{
+    vec2 d = centre - s.a;
+    float u = dot(d, s.dir);
+    float t = s.len > 0.0f ? clamp(u / s.len, 0.0f, 1.0f) : 0.0f;
+    float h = mix(s.ha, s.hb, t);
+    bool inside = u >= 0.0f && u <= s.len && abs(s.dir.x * d.y - s.dir.y * d.x) <= max(h, 0.5f);
+    return vec3(inside ? 1.0f : 0.0f, t, min(2.0f * h, 1.0f));
+}
+
 // How far beyond its ends, in y, a segment's ribbon can reach a pixel centre.
 GPU_FN float ribbonReach(RasterSegment seg)
 {
