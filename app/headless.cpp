@@ -122,7 +122,7 @@ Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSett
                  std::to_string(c.divisions) + " divisions = " + std::to_string(c.segments()) + " segments, drawn as " +
                  std::to_string(uint64_t(c.guides) * c.lengthChunks * c.strandChunks) + " patches of up to " +
                  std::to_string(c.strandsPerPatch) + " strands x " + std::to_string((c.divisions + c.lengthChunks - 1) / c.lengthChunks) +
-                 " divisions (" + std::to_string(c.strandChunks) + " instances)";
+                 " divisions (" + std::to_string(c.strandChunks) + " instances, " + std::to_string(c.draws()) + " draws)";
     }
     return picture;
 }

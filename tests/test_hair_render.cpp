@@ -98,6 +98,32 @@ TEST(StrandMath, DrawCountsSplitPastTheTessellationLimits)
     EXPECT_EQ(c.strandChunks, 2u);
 }
 
+TEST(StrandMath, DrawsStayWithinTheTessellatedVerticesADrawMayHold)
+{
+    // Each instance of each draw tessellates at most kMaxTessVerticesPerDraw vertices (lavapipe
+    // indexes them with 16 bits), whatever the groom and the patch size.
+    for (uint32_t maxPatch : {26u, 128u, 1000u, 4160u})
+        for (uint32_t divisions : {1u, 24u, 64u, 200u})
+            for (uint32_t guides : {1u, 3000u, 100000u}) {
+                StrandSettings s;
+                s.strandsPerGuide = 32;
+                s.divisions = divisions;
+                s.maxPatchVertices = maxPatch;
+                HairDrawCounts c = hairDrawCounts(guides, s);
+                uint32_t divisionsPerPatch = (divisions + c.lengthChunks - 1) / c.lengthChunks;
+                uint64_t perPatch = uint64_t(c.strandsPerPatch) * (divisionsPerPatch + 1);
+                EXPECT_LE(c.patchesPerDraw * perPatch, uint64_t(gpu::kMaxTessVerticesPerDraw));
+                EXPECT_GT((c.patchesPerDraw + 1) * perPatch, uint64_t(gpu::kMaxTessVerticesPerDraw))
+                    << "no more draws than needed";
+                EXPECT_EQ(c.draws(), (c.patches() + c.patchesPerDraw - 1) / c.patchesPerDraw);
+            }
+    StrandSettings s;
+    s.strandsPerGuide = 5;
+    HairDrawCounts c = hairDrawCounts(3000, s);  // 3000 patches of 5 x 25 vertices
+    EXPECT_EQ(c.patchesPerDraw, 524u);           // 524 x 125 = 65,500
+    EXPECT_EQ(c.draws(), 6u);
+}
+
 // ---- On the device ------------------------------------------------------------------------------
 
 namespace {

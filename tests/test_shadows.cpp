@@ -250,6 +250,38 @@ TEST(Oit, TheResultDoesNotDependOnDrawOrder)
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 
+TEST(Oit, AGroomPastOneDrawsTessellationLimitDrawsEveryStrandInEitherOrder)
+{
+    // 600 guides x 5 strands x 25 vertices are 75,000 tessellated vertices: more than one draw may
+    // produce on lavapipe (it indexes them with 16 bits). Drawn as one draw, patches were lost by
+    // draw order (the count and the picture changed with reverse_order); split, every strand is
+    // there in either order, and the picture equals that of one strand per patch (other patches,
+    // other draws, the same strands).
+    vk::Context ctx(test::validatedOptions());
+    HairScene scene = smallHairScene(600);
+    RenderSettings s = smallRenderSettings();
+    s.transparency.oitNodesPerPixel = 64;
+    s.strands.strandsPerGuide = 5;
+    s.strands.divisions = 24;
+    s.strands.lod = false;
+    Picture forward = renderHair(ctx, scene, s);
+    s.strands.reverseOrder = true;
+    Picture reverse = renderHair(ctx, scene, s);
+    s.strands.reverseOrder = false;
+    s.strands.maxPatchVertices = 25;  // one strand per patch, five instances
+    Picture single = renderHair(ctx, scene, s);
+    EXPECT_GT(forward.oit.fragments, 10000u);
+    EXPECT_EQ(forward.oit.overflow, 0u);
+    EXPECT_EQ(reverse.oit.fragments, forward.oit.fragments) << "the same strands, in the other order";
+    EXPECT_EQ(single.oit.fragments, forward.oit.fragments) << "the same strands, from smaller patches";
+    int maxDiff = 0;
+    for (size_t i = 0; i < forward.rgba.size(); ++i)
+        maxDiff = std::max({maxDiff, std::abs(int(forward.rgba[i]) - int(reverse.rgba[i])),
+                            std::abs(int(forward.rgba[i]) - int(single.rgba[i]))});
+    EXPECT_LE(maxDiff, 2) << "only the rounding of the unsorted tail's sums may differ";
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
 TEST(Oit, AFullPoolIsCountedAndTheFrameStillCompletes)
 {
     vk::Context ctx(test::validatedOptions());
