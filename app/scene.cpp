@@ -818,13 +818,11 @@ std::vector<std::pair<std::string, std::string>> currentSettings(const SettingsR
 OrbitCamera poseCamera(const OrbitCamera& framing, const CameraPose& pose)
 {
     OrbitCamera c = framing;
-    float radius = (framing.farPlane - framing.distance) / 8.0f;  // as OrbitCamera::framing sets the planes
     c.yawDeg = pose.yawDeg.value_or(framing.yawDeg);
     c.pitchDeg = pose.pitchDeg.value_or(framing.pitchDeg);
     c.distance = framing.distance * pose.distance.value_or(1.0f);
     c.target = pose.target.value_or(framing.target);
-    c.nearPlane = std::max(1e-4f, c.distance - 4.0f * radius) * 0.5f;
-    c.farPlane = c.distance + 8.0f * radius + glm::length(c.target - framing.target);
+    c.fitPlanes(glm::length(c.target - framing.target));
     return c;
 }
 

@@ -35,7 +35,14 @@ void OrbitCamera::orbit(float dYawDeg, float dPitchDeg)
 
 void OrbitCamera::zoom(float factor)
 {
-    distance = std::clamp(distance * factor, nearPlane * 4.0f, farPlane * 0.5f);
+    distance = std::clamp(distance * factor, 0.05f * sceneRadius, 50.0f * sceneRadius);
+    fitPlanes();
+}
+
+void OrbitCamera::fitPlanes(float targetOffset)
+{
+    nearPlane = std::max(distance - kNearReach * sceneRadius - targetOffset, kMinNearFraction * distance);
+    farPlane = distance + kFarReach * sceneRadius + targetOffset;
 }
 
 void OrbitCamera::pan(float dxUnits, float dyUnits)
@@ -57,8 +64,8 @@ OrbitCamera OrbitCamera::framing(const Bounds& bounds, float aspect)
     float fitVertical = radius / std::sin(halfFov);
     float fitHorizontal = radius / std::sin(std::atan(std::tan(halfFov) * aspect));
     c.distance = 0.8f * std::max(fitVertical, fitHorizontal);
-    c.nearPlane = std::max(1e-4f, c.distance - 4.0f * radius) * 0.5f;
-    c.farPlane = c.distance + 8.0f * radius;
+    c.sceneRadius = std::max(radius, 1e-6f);
+    c.fitPlanes();
     return c;
 }
 

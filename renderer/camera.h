@@ -16,6 +16,7 @@ struct OrbitCamera {
     float fovYDeg = 30.0f;
     float nearPlane = 0.01f;
     float farPlane = 100.0f;
+    float sceneRadius = 1.0f;  // the framed bounds' half diagonal: the planes and the zoom follow it
 
     glm::vec3 position() const;
     glm::mat4 view() const;
@@ -24,6 +25,15 @@ struct OrbitCamera {
     void orbit(float dYawDeg, float dPitchDeg);
     void zoom(float factor);  // distance *= factor, kept within sensible bounds
     void pan(float dxUnits, float dyUnits);
+
+    // Near and far planes around a scene of sceneRadius whose centre is `targetOffset` from the
+    // target: near just short of the scene's front (what depth precision depends on is far / near,
+    // so it scales with the scene: a head in centimetres is drawn as one in metres), never nearer
+    // than kMinNearFraction of the distance; far past its back.
+    void fitPlanes(float targetOffset = 0.0f);
+    static constexpr float kNearReach = 3.0f;          // scene radii in front of the centre kept in view
+    static constexpr float kFarReach = 8.0f;           // and behind it
+    static constexpr float kMinNearFraction = 0.02f;  // of the distance
 
     // A three-quarter view that fits `bounds` in the frame with a margin.
     static OrbitCamera framing(const Bounds& bounds, float aspect);
