@@ -110,10 +110,13 @@ void HairOptions::apply()
 {
     // CLI11 reads "nan" and "inf" as numbers: every value of these lists must be finite.
     auto requireFinite = [](const char* option, const std::vector<float>& values, const char* form) {
+        // "the first value", not "value 1" (which reads as the number 1).
+        static const char* const kOrdinals[] = {"first", "second", "third", "fourth"};
         for (size_t i = 0; i < values.size(); ++i)
             if (!std::isfinite(values[i]))
-                throw UserError(std::string(option) + ": value " + std::to_string(i + 1) + " is not a finite number (" +
-                                form + ")");
+                throw UserError(std::string(option) + ": the " +
+                                (i < 4 ? std::string(kOrdinals[i]) : std::to_string(i + 1) + "th") + " value (" +
+                                std::to_string(values[i]) + ") is not a finite number (" + form + ")");
     };
     requireFinite("--sphere", sphere, "x,y,z,r in the head's units");
     requireFinite("--wind", wind, "x,y,z in m/s^2");

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <unistd.h>
 #include <map>
 #include <iostream>
 
@@ -169,11 +170,21 @@ int runSimulate(const SimulateOptions& o, const HairScene& scene)
         motion.sphere = [&keys](float t) { return keys.at(t).sphere; };
         motion.wind = [&keys](float t) { return keys.at(t).wind; };
     }
+    // On a terminal one line rewritten in place; in a log (stderr not a terminal) a line of its own
+    // every 10%, never lines run together by carriage returns.
+    bool tty = isatty(STDERR_FILENO) != 0;
+    uint32_t lastLogged = 0;
     SimulationReport r = simulateHeadless(ctx, scene, o.sim, o.steps, motion, o.sampleEvery, [&](uint32_t done) {
-        if (!o.json)
+        if (o.json)
+            return;
+        if (tty) {
             std::fprintf(stderr, "\rsimulate: %u / %u steps", done, o.steps);
+        } else if (done == o.steps || done - lastLogged >= std::max(1u, o.steps / 10)) {
+            std::fprintf(stderr, "simulate: %u / %u steps\n", done, o.steps);
+            lastLogged = done;
+        }
     });
-    if (!o.json)
+    if (!o.json && tty)
         std::fprintf(stderr, "\n");
 
     SimSetup setup = makeSimSetup(o.sim, scene.strands, scene.gpuColliders, scene.unitsPerMetre);

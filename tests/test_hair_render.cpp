@@ -98,6 +98,32 @@ TEST(StrandMath, DrawCountsSplitPastTheTessellationLimits)
     EXPECT_EQ(c.strandChunks, 2u);
 }
 
+TEST(StrandMath, GuideNeighboursOfFewGuidesOnALine)
+{
+    // Two guides whose roots differ along x only: the search grid is one cell thick and about a
+    // thousand long, and the second neighbour never exists. The search grew its ring to the whole
+    // grid through every cell of a cube (hours); now it ends once every other guide was seen.
+    StrandSet set;
+    set.verticesPerStrand = 4;
+    for (int s = 0; s < 2; ++s)
+        set.add({glm::vec3(0.2f * float(s), 1.5f, -1.0f), glm::vec3(0.2f * float(s), 1.0f, -1.0f),
+                 glm::vec3(0.2f * float(s), 0.5f, -1.0f), glm::vec3(0.2f * float(s), 0.0f, -1.0f)},
+                0, 1, false);
+    set.parts.push_back({});
+    std::vector<glm::uvec4> tri = guideTriangles(set);
+    ASSERT_EQ(tri.size(), 2u);
+    EXPECT_EQ(tri[0], glm::uvec4(0, 1, 0, 0));
+    EXPECT_EQ(tri[1], glm::uvec4(1, 0, 1, 0));
+    for (uint32_t s = 2; s < 7; ++s)  // and a few more on the line: the two nearest
+        set.add({glm::vec3(0.2f * float(s), 1.5f, -1.0f), glm::vec3(0.2f * float(s), 1.0f, -1.0f),
+                 glm::vec3(0.2f * float(s), 0.5f, -1.0f), glm::vec3(0.2f * float(s), 0.0f, -1.0f)},
+                0, 1, false);
+    tri = guideTriangles(set);
+    EXPECT_EQ(tri[3].x, 3u);
+    EXPECT_EQ(std::min(tri[3].y, tri[3].z), 2u);
+    EXPECT_EQ(std::max(tri[3].y, tri[3].z), 4u);
+}
+
 TEST(StrandMath, DrawsStayWithinTheTessellatedVerticesADrawMayHold)
 {
     // Each instance of each draw tessellates at most kMaxTessVerticesPerDraw vertices (lavapipe
