@@ -91,6 +91,7 @@ void CpuSolver::integrateStrand(uint32_t s, const SimStep& step)
     bool prevPinned = true;
     vec3 prevShift(0.0f);  // see sim_integrate.comp: local shape stays out of the velocity
     mat3 frame = R;
+    bool bothEnds = info.pinnedTip != 0u && info.pinnedRoot < V - 1u;
 
     for (uint32_t i = 1; i < V; ++i) {
         uint32_t g = base + i;
@@ -142,6 +143,36 @@ void CpuSolver::integrateStrand(uint32_t s, const SimStep& step)
     positions[base + V - 1] = vec4(prevP, positions[base + V - 1].w);
     velocities[base + V - 1] = vec4((prevP - prevX - prevShift) / dt, 0.0f);
     tangents[base + V - 1] = vec4(lastTangent, 0.0f);
+
+    // Both ends pinned: the strand bends at its middle vertex so that its end lands on the pinned
+    // tip, both halves moving rigidly (sim.h); a moved vertex keeps no velocity against its move.
+    if (bothEnds) {
+        auto move = [&](uint32_t i, vec3 p) {
+            uint32_t g = base + i;
+            velocities[g] = vec4(constrainedVelocity(vec3(velocities[g]), p - vec3(positions[g])), 0.0f);
+            positions[g] = vec4(p, positions[g].w);
+            finite = finite && isFinite3(p);
+        };
+        auto at = [&](uint32_t i) { return vec3(positions[base + i]); };
+        uint32_t anchor = info.pinnedRoot - 1u;  // the last pinned root vertex
+        uint32_t m = (anchor + V - 1u) / 2u;     // the bending vertex, a free one
+        vec3 a = at(anchor), tip = at(V - 1u), middle = at(m);
+        vec3 end = ftlProject(at(V - 2u), tip, rest_[base + V - 1u].segmentLength);  // where FTL puts the tip
+        float rootSide = length(middle - a), tipSide = length(end - middle);
+        if (rootSide > 1e-12f && tipSide > 1e-12f) {
+            vec3 bent = twoLinkJoint(a, tip, rootSide, tipSide, middle);
+            mat3 turnRoot = minimalRotation((middle - a) / rootSide, normalize(bent - a));
+            mat3 turnTip = minimalRotation((end - middle) / tipSide, normalize(tip - bent));
+            for (uint32_t i = m + 1u; i < V - 1u; ++i)
+                move(i, bent + turnTip * (at(i) - middle));
+            for (uint32_t i = info.pinnedRoot; i <= m; ++i)
+                move(i, a + turnRoot * (at(i) - a));
+        }
+        for (uint32_t i = 0; i < V; ++i) {
+            uint32_t j = std::min(i + 1u, V - 1u);
+            tangents[base + i] = vec4(normalize(at(j) - at(j - 1u)), 0.0f);
+        }
+    }
 
     if (!finite) {
         for (uint32_t i = 0; i < V; ++i) {

@@ -10,7 +10,9 @@
 //      d_{i+1}; l_i is the local-shape displacement, kept out of the velocity: the pull moves only the
 //      child (it is not momentum-conserving), and fed into the velocity it pumps energy into the hair
 //      (measured: hair never came to rest); as a pure position correction it holds the style and settles;
-//   5. a strand with any non-finite value is reset to its rest pose and counted.
+//   5. a strand pinned at both ends (TressFX bothEndsImmovable) bends at its middle vertex, both
+//      halves moving rigidly, so that its end lands on the pinned tip (sim.h), every segment kept;
+//   6. a strand with any non-finite value is reset to its rest pose and counted.
 // Vertex i-1 is finished (written) while vertex i is processed, so no per-strand arrays are needed.
 //
 // The variant with kSplatToGrid (the step's last substep) also splats the hair-hair grid for its
@@ -165,6 +167,15 @@ vec3 pushOut(vec3 p)
     return p;
 }
 
+// Moves vertex i of the strand at `base` to p, as an inelastic constraint (constrainedVelocity).
+void moveVertex(uint base, uint i, vec3 p, inout bool finite)
+{
+    uint g = base + i * kSimStrandBlock;
+    velocities[g].xyz = constrainedVelocity(velocities[g].xyz, p - positions[g].xyz);
+    positions[g].xyz = p;
+    finite = finite && isFinite3(p);
+}
+
 void main()
 {
     uint s = gl_GlobalInvocationID.x;
@@ -186,6 +197,10 @@ void main()
     bool prevPinned = true;
     vec3 prevShift = vec3(0.0);  // the parent's local-shape displacement (kept out of its velocity)
     mat3 frame = R;  // the parent's frame for local shape: head axes transported along the strand
+    // A strand with both ends pinned is finished after the bend below: its splat and tangents
+    // wait for it.
+    bool bothEnds = info.pinnedTip != 0u && info.pinnedRoot < V - 1u;
+    bool splatNow = kSplatToGrid && !bothEnds;
 
     for (uint i = 1u; i < V; ++i) {
         uint g = base + i * kSimStrandBlock;
@@ -227,7 +242,7 @@ void main()
         positions[parent].xyz = prevP;
         velocities[parent].xyz = prevV;
         vec3 actualDir = normalize(p - prevP);  // |p - prevP| = L_i > 0 after FTL
-        if (kSplatToGrid) {
+        if (splatNow) {
             splatVertex(prevP, prevV);
             tangents[parent] = vec4(actualDir, 0.0);
         }
@@ -244,11 +259,43 @@ void main()
     vec3 tipV = (prevP - prevX - prevShift) / dt;
     positions[tip].xyz = prevP;
     velocities[tip].xyz = tipV;
-    if (kSplatToGrid) {
+    if (splatNow) {
         tangents[tip] = vec4(lastTangent, 0.0);
         splatVertex(prevP, tipV);
         if (runOpen)
             flushRun();
+    }
+
+    // Both ends pinned: the strand bends at its middle vertex so that its end lands on the pinned
+    // tip, both halves moving rigidly (sim.h); a moved vertex keeps no velocity against its move.
+    if (bothEnds) {
+        uint anchor = info.pinnedRoot - 1u;  // the last pinned root vertex
+        uint m = (anchor + V - 1u) / 2u;     // the bending vertex, a free one
+        vec3 a = positions[base + anchor * kSimStrandBlock].xyz;
+        vec3 tipP = positions[tip].xyz;
+        vec3 middle = positions[base + m * kSimStrandBlock].xyz;
+        vec3 end = ftlProject(positions[base + (V - 2u) * kSimStrandBlock].xyz, tipP, rest[tip].segmentLength);
+        float rootSide = length(middle - a), tipSide = length(end - middle);
+        if (rootSide > 1e-12 && tipSide > 1e-12) {
+            vec3 bent = twoLinkJoint(a, tipP, rootSide, tipSide, middle);
+            mat3 turnRoot = minimalRotation((middle - a) / rootSide, normalize(bent - a));
+            mat3 turnTip = minimalRotation((end - middle) / tipSide, normalize(tipP - bent));
+            for (uint i = m + 1u; i < V - 1u; ++i)
+                moveVertex(base, i, bent + turnTip * (positions[base + i * kSimStrandBlock].xyz - middle), finite);
+            for (uint i = info.pinnedRoot; i <= m; ++i)
+                moveVertex(base, i, a + turnRoot * (positions[base + i * kSimStrandBlock].xyz - a), finite);
+        }
+        if (kSplatToGrid) {
+            for (uint i = 0u; i < V; ++i) {
+                uint g = base + i * kSimStrandBlock;
+                uint j = min(i + 1u, V - 1u);
+                vec3 along = positions[base + j * kSimStrandBlock].xyz - positions[base + (j - 1u) * kSimStrandBlock].xyz;
+                tangents[g] = vec4(normalize(along), 0.0);
+                splatVertex(positions[g].xyz, velocities[g].xyz);
+            }
+            if (runOpen)
+                flushRun();
+        }
     }
 
     if (!finite) {

@@ -261,6 +261,61 @@ GPU_FN vec3 ftlProject(vec3 parent, vec3 p, float restLength)
     return parent + d * (restLength / len);
 }
 
+// ---- Strands pinned at both ends ---------------------------------------------------------------
+// TressFX's bothEndsImmovable pins the tip as well as the root. Follow-the-leader from the root
+// alone keeps every segment but the last, which stretches to wherever the tip is pinned (measured:
+// stretch 2 to 7.5 and kinetic energy about 1e7 within 10 steps). Iterating FABRIK passes
+// (Aristidou and Lasenby 2011) from there converges too slowly on long strands (64 vertices: 2%
+// stretch after 8 passes, 0.06% after 32). Instead, after FTL the strand bends at its middle
+// vertex m: the part from the last pinned root vertex to m turns rigidly about that vertex, the
+// part from m to the tip moves rigidly so that its end lands on the pinned tip, and m goes where
+// the two parts' end-to-end lengths meet (twoLinkJoint). Rigid parts keep every segment's length
+// exactly; the root and tip follow the head rigidly, so the distance between them is the rest
+// pose's, which the strand reaches (one substep moves it little from the last, which reached it).
+// Measured on a 64-vertex loop: stretch about 1e-5 (float rounding of the turns), and it comes to
+// rest (kinetic energy 1e-9) once the head stops.
+
+// The bend is an inelastic constraint, like a contact: a vertex it moves by `move` loses the part of
+// its velocity that ran against the move, and keeps the rest. (Feeding the move into the velocity,
+// as PBD does, kept a loop jittering by millimetres a step at rest; leaving the velocity alone
+// let gravity build up a velocity of metres per second that the bend absorbed every substep.)
+GPU_FN vec3 constrainedVelocity(vec3 v, vec3 move)
+{
+    float len = length(move);
+    if (len < 1e-12f)
+        return v;
+    vec3 n = move / len;
+    float against = dot(v, n);
+    return against < 0.0f ? v - against * n : v;
+}
+
+// The point at distance la from `a` and lb from `b` nearest `p` (on the circle where the two
+// spheres meet). When they do not meet the chain is taut: the point on the line between them that
+// shares the stretch between both segments; when one holds the other, the projection around `a`.
+GPU_FN vec3 twoLinkJoint(vec3 a, vec3 b, float la, float lb, vec3 p)
+{
+    vec3 ab = b - a;
+    float d = length(ab);
+    if (d < 1e-12f || d <= abs(la - lb))
+        return ftlProject(a, p, la);
+    vec3 axis = ab / d;
+    if (d >= la + lb)
+        return a + axis * (d * la / (la + lb));
+    float along = (d * d + la * la - lb * lb) / (2.0f * d);  // from a, toward b
+    float radius = sqrt(max(la * la - along * along, 0.0f));
+    vec3 centre = a + along * axis;
+    vec3 w = p - centre;
+    w -= dot(w, axis) * axis;
+    float wl = length(w);
+    if (wl < 1e-12f) {  // p on the axis: any point of the circle; the one toward the largest other axis
+        vec3 helper = abs(axis.x) < 0.9f ? vec3(1.0f, 0.0f, 0.0f) : vec3(0.0f, 1.0f, 0.0f);
+        w = normalize(cross(axis, helper));
+    } else {
+        w /= wl;
+    }
+    return centre + radius * w;
+}
+
 // The smallest rotation taking unit vector a to unit vector b (Rodrigues' formula written
 // with v = a x b, c = a . b: R = I + [v]x + [v]x² / (1 + c)). Near-opposite vectors return the
 // identity (the constraint just does not turn the frame that step).
