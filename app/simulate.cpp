@@ -223,6 +223,7 @@ int runSimulate(const SimulateOptions& o, const HairScene& scene)
                           {"grid_resolution", o.sim.gridResolution},
                           {"colliders", scene.colliders.size()},
                           {"colliders_fitted", scene.collidersFitted},
+                          {"loaded_hair", loadedHairJson(scene)},
                           {"device", ctx.report().name}};
     if (o.json) {
         std::cout << out.dump() << "\n";
@@ -234,6 +235,8 @@ int runSimulate(const SimulateOptions& o, const HairScene& scene)
                     "  non-finite resets %u\n  kinetic energy    %.4g (last)\n  GPU time per step %.4f ms\n",
                     double(r.last.maxStretch), double(r.last.maxPenetration / diagonal), double(r.last.rootDrift),
                     r.nonfiniteResets, double(r.last.kineticEnergy), r.gpuMsPerStep);
+        for (const std::string& line : describeLoadedHair(scene))
+            std::printf("  %s\n", line.c_str());
         std::printf("  worst over %zu samples: stretch %.3g, penetration %.3g, root drift %.3g\n  memory            %s\n",
                     r.energy.size(), double(r.worst.maxStretch), double(r.worst.maxPenetration / diagonal),
                     double(r.worst.rootDrift), describeMemory(r.memoryStart, r.memoryEnd).c_str());

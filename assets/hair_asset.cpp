@@ -697,6 +697,14 @@ glm::vec3 applyPlacement(const HairPlacement& placement, glm::vec3 point)
     return p + placement.offset;
 }
 
+float strandLength(const std::vector<glm::vec3>& points)
+{
+    double length = 0.0;
+    for (size_t k = 1; k < points.size(); ++k)
+        length += glm::length(glm::dvec3(points[k]) - glm::dvec3(points[k - 1]));
+    return float(length);
+}
+
 nlohmann::json describeHairAsset(const HairAsset& asset)
 {
     Bounds b = asset.bounds();

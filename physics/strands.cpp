@@ -25,7 +25,7 @@ void StrandSet::add(const std::vector<glm::vec3>& points, uint32_t part, uint32_
     }
     uint32_t index = static_cast<uint32_t>(strands.size());
     strands.push_back({.part = part,
-                       .pinnedRoot = std::clamp<uint32_t>(pinnedRoot, 1, verticesPerStrand - 1),
+                       .pinnedRoot = std::clamp<uint32_t>(pinnedRoot, 1, verticesPerStrand),  // V: rigid
                        .pinnedTip = pinnedTip ? 1u : 0u,
                        .seed = gpu::hashUint(index * 2654435761u + 17u)});
     rest.insert(rest.end(), points.begin(), points.end());
