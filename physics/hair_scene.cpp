@@ -25,6 +25,9 @@ void prepareHead(HairScene& scene)
         scene.collidersFitted = true;
     }
     scene.scalp = scene.head.description.scalp ? *scene.head.description.scalp : defaultScalpRule(scene.colliders.front());
+    if (scene.collidersFitted)  // the scalp outside them, within a quarter of a percent of the head
+        inscribeColliders(scene.colliders, scene.head.mesh, scalpTriangles(scene.head.mesh, scene.scalp),
+                          kInscribedTolerance * scene.head.mesh.bounds().diagonal());
     scene.gpuColliders.clear();
     for (const Ellipsoid& e : scene.colliders)
         scene.gpuColliders.push_back(toGpu(e));

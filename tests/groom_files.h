@@ -7,7 +7,9 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -112,6 +114,67 @@ Strands grownStrands(uint32_t guides, uint32_t vertices, Transform transform)
         for (uint32_t i = 0; i < vertices; ++i)
             out[s].push_back(transform(scene.strands.rest[s * vertices + i]));
     return out;
+}
+
+// A head like a 3D scan's: closed, of quads (triangles at the poles), with CRLF line endings, and
+// far from an ellipsoid: boxy above the jaw, the back of the skull flattened, the crown raised,
+// the jaw narrower, wider at the temples. Centimetres, y up, face toward +z.
+inline void writeScanHead(const std::filesystem::path& path)
+{
+    constexpr int kRings = 40, kSegments = 64;
+    auto surface = [](float theta, float phi) {
+        glm::vec3 d(std::sin(theta) * std::sin(phi), std::cos(theta), std::sin(theta) * std::cos(phi));
+        glm::vec3 r(8.0f, 11.0f, 10.0f);
+        // Boxy above the jaw (a superellipsoid of exponent 4: flat top and sides, full corners).
+        float box = std::pow(std::pow(std::abs(d.x), 4.0f) + std::pow(std::abs(d.y), 4.0f) + std::pow(std::abs(d.z), 4.0f), -0.25f);
+        float scale = (d.y > -0.3f ? box : 1.0f) - 0.18f * std::pow(std::max(0.0f, -d.z), 3.0f)   // flat back
+                      + 0.08f * std::pow(std::max(0.0f, d.y), 4.0f)          // raised crown
+                      - 0.2f * std::pow(std::max(0.0f, -d.y), 2.0f)          // narrow jaw
+                      + 0.06f * std::pow(std::abs(d.x), 3.0f) * std::max(0.0f, d.y + 0.3f);  // temples
+        return glm::vec3(0.0f, 150.0f, 0.0f) + scale * r * d;
+    };
+    std::string text = "# a scan-like head, quads\r\n";
+    auto vertex = [&](glm::vec3 p) {
+        text += "v " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\r\n";
+    };
+    vertex(surface(0.0f, 0.0f));  // 1: the top pole
+    for (int i = 1; i < kRings; ++i)
+        for (int j = 0; j < kSegments; ++j)
+            vertex(surface(3.14159265f * float(i) / kRings, 6.2831853f * float(j) / kSegments));
+    vertex(surface(3.14159265f, 0.0f));  // the bottom pole
+    auto at = [&](int ring, int seg) { return 2 + (ring - 1) * kSegments + (seg % kSegments); };
+    int bottom = 2 + (kRings - 1) * kSegments;
+    for (int j = 0; j < kSegments; ++j)  // counter-clockwise seen from outside
+        text += "f 1 " + std::to_string(at(1, j)) + " " + std::to_string(at(1, j + 1)) + "\r\n";
+    for (int i = 1; i < kRings - 1; ++i)
+        for (int j = 0; j < kSegments; ++j)
+            text += "f " + std::to_string(at(i, j)) + " " + std::to_string(at(i + 1, j)) + " " +
+                    std::to_string(at(i + 1, j + 1)) + " " + std::to_string(at(i, j + 1)) + "\r\n";
+    for (int j = 0; j < kSegments; ++j)
+        text += "f " + std::to_string(at(kRings - 1, j)) + " " + std::to_string(bottom) + " " +
+                std::to_string(at(kRings - 1, j + 1)) + "\r\n";
+    writeBytes(path, text);
+}
+
+// The default mannequin deformed (wider above the ears, its back flattened) in metres, as an
+// ASCII PLY read through assimp: a bust from another tool.
+inline void writeDeformedBustPly(const std::filesystem::path& path)
+{
+    Mesh mesh = loadMesh(std::filesystem::path(WISP_SOURCE_DIR) / "models" / "head.obj");
+    std::string text = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(mesh.positions.size()) +
+                       "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
+                       std::to_string(mesh.triangleCount()) + "\nproperty list uchar int vertex_indices\nend_header\n";
+    for (glm::vec3 p : mesh.positions) {
+        if (p.y > 0.12f)
+            p.x *= 1.0f + 1.5f * (p.y - 0.12f);
+        if (p.z < -0.03f && p.y > 0.05f)
+            p.z = -0.03f + 0.7f * (p.z + 0.03f);
+        text += std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
+    }
+    for (size_t t = 0; t < mesh.triangleCount(); ++t)
+        text += "3 " + std::to_string(mesh.indices[3 * t]) + " " + std::to_string(mesh.indices[3 * t + 1]) + " " +
+                std::to_string(mesh.indices[3 * t + 2]) + "\n";
+    writeBytes(path, text);
 }
 
 }  // namespace wisp::test
