@@ -391,9 +391,7 @@ int runRender(const GlobalOptions& g, RenderOptions& o)
     if (picture.oit.capacity > 0) {
         std::cout << "oit: " << picture.oit.fragments << " hair fragments, pool of " << picture.oit.capacity << "\n";
         if (picture.oit.overflow > 0)
-            std::cerr << "wisp: warning: the OIT pool was full: " << picture.oit.overflow << " of "
-                      << picture.oit.fragments
-                      << " hair fragments were dropped; raise oit_nodes_per_pixel (--set oit_nodes_per_pixel=N)\n";
+            std::cerr << "wisp: warning: " << oitOverflowAdvice(picture.oit, o.settings.width, o.settings.height) << "\n";
     }
     return 0;
 }

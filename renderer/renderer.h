@@ -74,6 +74,9 @@ public:
     std::vector<TrackedImage*> transientImages();
     // Fragments the OIT lists held and dropped in the last completed frame of `slot` (zeros in MSAA mode).
     OitStats oitStats(uint32_t slot) const;
+    // After a frame that overflowed the automatic OIT pool: grows it (the device must be idle), so
+    // the next frame drops nothing; false when it cannot (the user's pool, or the device's limit).
+    bool growOit(const OitStats& overflowed);
 
     RenderTarget& target() { return *target_; }
     LightMaps& lightMaps() { return *lightMaps_; }
@@ -103,6 +106,7 @@ private:
     float unitsPerMetre_ = 1.0f;
     float lodReferenceDistance_ = 1.0f;  // the default framing's distance: full detail at or nearer
     Bounds bounds_;
+    Mesh headMesh_;  // kept to paint its scalp once the hair is known
     LightFit lightFit_;
     glm::mat4 headTransform_{1.0f};
     bool showLightMarker_ = false;
