@@ -51,8 +51,8 @@ private:
 // A root is on the head when it lies within this fraction of the head's bounding-box diagonal of
 // its surface (Sintel's roots: 0.4 mm on a bust of 0.74 m).
 inline constexpr float kRootOnSurface = 0.02f;
-// A groom is on the head when at least this share of its roots is; below kRootsOffHead it is
-// not on it at all.
+// A groom is on the head when at least this share of its roots is (an automatic placement must
+// reach it); below kRootsOffHead it is not on it at all.
 inline constexpr float kRootsOnHead = 0.9f;
 inline constexpr float kRootsOffHead = 0.5f;
 

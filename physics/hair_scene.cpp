@@ -126,7 +126,7 @@ HairScene buildLoadedScene(Head head, const std::vector<HairPartSource>& parts, 
                             percent(1.0f - placed.fit.onSurface) + " of them farther than " + percent(kRootOnSurface) +
                             " of the head's size from its surface (median " + percent(placed.fit.median) + ")";
         const std::string& file = parts.front().file.string();
-        if (placed.method != GroomPlacement::Method::Given && placed.fit.offHead())
+        if (placed.method != GroomPlacement::Method::Given && !placed.fit.onHead())
             throw UserError(file + ": " + where +
                             "; place it by hand with --hair-scale S, --hair-offset X,Y,Z, --hair-z-up true|false and "
                             "--hair-mirror-z true|false (in a scene: hair's scale, offset, z_up, mirror_z)");

@@ -54,8 +54,9 @@ struct HairPartSource {
 
 // Loads the head and the hair files (each a part), resampled to `verticesPerStrand`, placed
 // together on the head (assets/placement.h: `request` fixes what the user gave). An automatic
-// placement that leaves the roots off the head is refused (UserError naming the options that
-// place a groom by hand); a placement by hand that does is kept, with a warning. Strands of no
+// placement that leaves more than a tenth of the roots off the head is refused (UserError naming
+// the options that place a groom by hand: a groom half on the head draws hair through the face);
+// a placement by hand that does is kept, with a warning. Strands of no
 // length are dropped and strands too short to simulate kept rigid, both counted (`loaded`).
 HairScene buildLoadedScene(const std::filesystem::path& headFile, const std::vector<HairPartSource>& parts,
                            uint32_t verticesPerStrand, const PlacementRequest& request = {});
