@@ -2,6 +2,7 @@
 // every bad-input path: one line on stderr naming what and where, exit status 2, nothing written;
 // a lost device (injected): its own exit status, and what was written is complete.
 #include "core/error.h"
+#include "groom_files.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -714,13 +715,7 @@ TEST(BadInput, ASweepFailingAtItsSecondPointLeavesNoFolder)
     // allows; the first point has run by then (a loaded groom is checked per point, once loaded).
     // Nothing half-written: no folder, and a folder that was already there keeps what it held.
     TempDir dir;
-    std::string groom = "numStrands 2\n";
-    for (int s = 0; s < 2; ++s) {
-        groom += "strand " + std::to_string(s) + " numVerts 3 texcoord 0 0\n";
-        for (int v = 0; v < 3; ++v)
-            groom += std::to_string(0.02 * s) + " " + std::to_string(0.15 - 0.05 * v) + " -0.1\n";
-    }
-    writeFile(dir / "groom.tfx", groom);
+    wisp::test::writeTfx4(dir / "groom.tfx", wisp::test::grownStrands(5, 4, [](glm::vec3 p) { return p; }));
     std::string args = " --hair '" + (dir / "groom.tfx").string() +
                        "' --vary oit_nodes_per_pixel=1,256 --width 1024 --height 1024 --warmup 0 --frames 1 --set shadow_size=64";
     auto r = runWisp("sweep --out '" + (dir / "s").string() + "'" + args);
