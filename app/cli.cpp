@@ -16,6 +16,7 @@
 #include "app/viewer.h"
 #include "app/window.h"
 #include "renderer/hair_pass.h"
+#include "renderer/renderer.h"
 #include "core/error.h"
 #include "physics/hair_scene.h"
 #include "assets/head.h"
@@ -336,8 +337,10 @@ int runRenderProfile(const GlobalOptions& g, RenderOptions& o)
     vk::Context ctx(contextOptions(g));
     HairRun run{.scene = &scene, .sim = o.hair.sim, .frames = 0, .framesPerSecond = o.fps, .sphere = o.hair.sphereOrNone()};
     OitStats oit;
+    RasterStats raster;
     std::vector<PassTiming> timings =
-        profileFrames(ctx, scene.head, o.settings, run, o.profileWarmup, o.profileFrames, &oit);
+        profileFrames(ctx, scene.head, o.settings, run, o.profileWarmup, o.profileFrames, &oit, &raster);
+    HairRaster path = resolveHairRaster(o.settings.hairRaster, ctx.report().type);
     HairDrawCounts c = hairDrawCounts(uint32_t(scene.strands.strandCount()), o.settings.strands);
     nlohmann::json out = {{"device", ctx.report().name},
                           {"width", o.settings.width},
@@ -355,7 +358,11 @@ int runRenderProfile(const GlobalOptions& g, RenderOptions& o)
                           {"oit_fragments", oit.fragments},
                           {"oit_overflow", oit.overflow},
                           {"oit_capacity", oit.capacity},
-                          {"shadow_size", o.settings.shadows.mapSize}};
+                          {"shadow_size", o.settings.shadows.mapSize},
+                          {"hair_raster_drawn", path == HairRaster::Compute ? "compute" : "graphics"}};
+    if (path == HairRaster::Compute)
+        out["raster"] = {{"segments", raster.segments}, {"fragments", raster.fragments}, {"capacity", raster.capacity},
+                         {"overflow", raster.overflow}, {"max_pixel", raster.maxPixel}};
     for (const PassTiming& t : timings)
         out["ms"][t.name] = {{"median", t.medianMs}, {"p95", t.p95Ms}};
     std::cout << out.dump() << "\n";
@@ -388,6 +395,15 @@ int runRender(const GlobalOptions& g, RenderOptions& o)
             std::cout << line << "\n";
     if (!picture.hairCounts.empty())
         std::cout << picture.hairCounts << "\n";
+    if (picture.raster.capacity > 0) {
+        std::cout << "compute raster: " << picture.raster.segments << " segments on screen, " << picture.raster.fragments
+                  << " hair fragments (at most " << picture.raster.maxPixel << " in a pixel), buffer of "
+                  << picture.raster.capacity << "\n";
+        if (picture.raster.overflow > 0)
+            std::cerr << "wisp: warning: the compute path's fragment buffer was full: " << picture.raster.overflow << " of "
+                      << picture.raster.fragments << " hair fragments were dropped ('" << ctx.report().name
+                      << "' holds no larger buffer); lower the resolution or strands_per_guide\n";
+    }
     if (picture.oit.capacity > 0) {
         std::cout << "oit: " << picture.oit.fragments << " hair fragments, pool of " << picture.oit.capacity << "\n";
         if (picture.oit.overflow > 0)

@@ -7,6 +7,7 @@
 #include "physics/simulation.h"
 #include "renderer/camera.h"
 #include "renderer/oit.h"
+#include "renderer/strand_raster.h"
 #include "renderer/settings.h"
 #include "gpu/context.h"
 
@@ -25,6 +26,7 @@ struct Picture {
     std::vector<uint8_t> rgba;  // tightly packed, top row first, sRGB
     std::string hairCounts;     // what the hair draw was split into (empty without hair)
     OitStats oit;               // the OIT lists of this frame (zeros in MSAA mode or without hair)
+    RasterStats raster;         // the compute path's counts (zeros when the hair is drawn by graphics)
 };
 
 // Hair to simulate and draw with the head.
@@ -77,8 +79,9 @@ struct PassTiming {
     double medianMs = 0.0;
     double p95Ms = 0.0;
 };
-// `oit`, when given, receives the last frame's OIT counts.
+// `oit` and `raster`, when given, receive the last frame's OIT and compute-path counts.
 std::vector<PassTiming> profileFrames(const vk::Context& ctx, const Head& head, const RenderSettings& settings,
-                                      const HairRun& hair, uint32_t warmup, uint32_t frames, OitStats* oit = nullptr);
+                                      const HairRun& hair, uint32_t warmup, uint32_t frames, OitStats* oit = nullptr,
+                                      RasterStats* raster = nullptr);
 
 }  // namespace wisp

@@ -226,6 +226,26 @@ std::vector<SettingSpec> buildSpecs()
     WISP_RENDER_NUMBER("shadow_strands", "", kShadowStrandsRange,
                        "share of the strands drawn into the light's maps (fewer, wider: the same coverage)",
                        shadows.strandFraction, float);
+    add({"hair_raster", "", "graphics | compute | auto",
+         "how the hair is drawn: tessellation and geometry shaders, or compute (tiles, analytic coverage, the "
+         "nearest oit_k sorted); auto: compute on GPUs, graphics on CPU drivers",
+         [](const SettingsRefs& r) {
+             if (!r.render)
+                 return std::string("-");
+             HairRaster m = r.render->hairRaster;
+             return std::string(m == HairRaster::Graphics ? "graphics" : m == HairRaster::Compute ? "compute" : "auto");
+         },
+         [](const SettingsRefs& r, const std::string& v) {
+             WISP_NEED(r, render, "hair_raster");
+             if (v == "graphics")
+                 r.render->hairRaster = HairRaster::Graphics;
+             else if (v == "compute")
+                 r.render->hairRaster = HairRaster::Compute;
+             else if (v == "auto")
+                 r.render->hairRaster = HairRaster::Auto;
+             else
+                 bad("hair_raster", v, "allowed: graphics | compute | auto");
+         }});
     add({"transparency", "", "oit | msaa", "hair blending: sorted per-pixel lists, or opaque coverage with MSAA",
          [](const SettingsRefs& r) {
              return r.render ? std::string(r.render->transparency.mode == Transparency::Oit ? "oit" : "msaa") : "-";

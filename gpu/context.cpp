@@ -380,6 +380,21 @@ Context::Context(const ContextOptions& options) : deviceLostAtSubmission_(inject
                                              .synchronization2 = VK_TRUE,
                                              .dynamicRendering = VK_TRUE,
                                              .maintenance4 = VK_TRUE};
+        // WISP_SHADER_STATS=1 (profiling aid): the driver's statistics of every compute pipeline
+        // (registers, shared memory, spills) printed as it is made, where the device reports them.
+        VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR executableInfo{
+            .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR,
+            .pipelineExecutableInfo = VK_TRUE};
+        if (std::getenv("WISP_SHADER_STATS")) {
+            for (const VkExtensionProperties& e : deviceExtensions(physical_))
+                if (std::string(e.extensionName) == VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME)
+                    shaderStats_ = true;
+            if (shaderStats_) {
+                deviceExtensionNames.push_back(VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+                executableInfo.pNext = f12.pNext;
+                f12.pNext = &executableInfo;
+            }
+        }
         VkPhysicalDeviceFeatures2 features{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &f13};
         features.features.tessellationShader = VK_TRUE;
         features.features.geometryShader = VK_TRUE;

@@ -87,6 +87,8 @@ public:
     uint32_t queueFamily() const { return report_.queueFamily; }
     const DeviceReport& report() const { return report_; }
     bool validationEnabled() const { return messenger_ != VK_NULL_HANDLE; }
+    // WISP_SHADER_STATS=1 and the device reports pipeline statistics (profiling only).
+    bool shaderStats() const { return shaderStats_; }
     // Validation warnings and errors seen since creation (0 when validation is off).
     uint32_t validationMessages() const { return validationMessages_.load(); }
 
@@ -131,7 +133,8 @@ private:
     PFN_vkSetDebugUtilsObjectNameEXT setObjectName_ = nullptr;
     PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet_ = nullptr;
     mutable std::atomic<uint32_t> validationMessages_{0};
-    uint64_t deviceLostAtSubmission_ = 0;  // WISP_INJECT_DEVICE_LOST; 0: none
+    uint64_t deviceLostAtSubmission_ = 0;
+    bool shaderStats_ = false;  // WISP_INJECT_DEVICE_LOST; 0: none
     mutable uint64_t submissions_ = 0;
 
     static VKAPI_ATTR VkBool32 VKAPI_CALL onMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,

@@ -5,6 +5,7 @@
 #include "gpu/check.h"
 #include "gpu/context.h"
 
+#include <algorithm>
 #include <string>
 
 namespace wisp {
@@ -37,6 +38,9 @@ AccessInfo describe(Access access)
     case Access::FragmentSampled:
         return {VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, false};
+    case Access::ComputeSampled:
+        return {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
+                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, false};
     case Access::ComputeRead:
         return {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
                 VK_IMAGE_LAYOUT_GENERAL, false};
@@ -57,6 +61,9 @@ AccessInfo describe(Access access)
     case Access::VertexInput:
         return {VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT, VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT,
                 VK_IMAGE_LAYOUT_UNDEFINED, false};
+    case Access::IndirectRead:
+        return {VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                false};
     case Access::Present:
         return {VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, false};
     }
@@ -159,9 +166,22 @@ void Frame::barrier(VkCommandBuffer cmd, const PassIo& io)
             t.accesses |= next.access;
         }
     }
+    // A buffer a pass uses in several ways (say, as indirect arguments and as storage) is one use
+    // of all those stages and accesses, so that one barrier makes the last write visible to each.
+    std::vector<std::pair<TrackedBuffer*, AccessInfo>> buffers;
     for (const PassIo::BufferUse& use : io.buffers) {
-        TrackedBuffer& t = *use.buffer;
-        AccessInfo next = describe(use.access);
+        AccessInfo info = describe(use.access);
+        auto same = std::find_if(buffers.begin(), buffers.end(), [&](const auto& b) { return b.first == use.buffer; });
+        if (same == buffers.end()) {
+            buffers.push_back({use.buffer, info});
+            continue;
+        }
+        same->second.stage |= info.stage;
+        same->second.access |= info.access;
+        same->second.writes = same->second.writes || info.writes;
+    }
+    for (const auto& [buffer, next] : buffers) {
+        TrackedBuffer& t = *buffer;
         bool hazard = t.written || (next.writes && t.stages != VK_PIPELINE_STAGE_2_NONE);
         bool unseen = t.dirty && (next.stage & ~t.visible) != 0;
         if (hazard || unseen) {

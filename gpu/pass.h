@@ -20,12 +20,14 @@ enum class Access {
     TransferDst,       // copied or blitted to
     FragmentSampled,   // sampled in fragment shaders
     GraphicsSampled,   // sampled in any graphics stage (vertex, tessellation, geometry, fragment)
+    ComputeSampled,    // sampled (or fetched) in compute shaders
     ComputeRead,       // storage read in compute shaders
     ComputeWrite,      // storage write (or read-modify-write) in compute shaders
     VertexShaderRead,  // storage read in vertex, tessellation or geometry shaders
     FragmentStorageRead,   // storage read in fragment shaders
     FragmentStorageWrite,  // storage write (atomics included) in fragment shaders
     VertexInput,       // read as a vertex buffer
+    IndirectRead,      // read as the arguments of an indirect draw or dispatch
     Present,           // handed to the presentation engine
 };
 

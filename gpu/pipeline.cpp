@@ -5,6 +5,8 @@
 #include "gpu/context.h"
 
 #include <array>
+#include <cstdio>
+#include <vector>
 #include <fstream>
 #include <stdexcept>
 #include <unistd.h>
@@ -184,24 +186,70 @@ Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& 
     return Pipeline(ctx.device(), pipeline);
 }
 
+namespace {
+
+// The driver's statistics of a pipeline's executables, one line each on stderr (WISP_SHADER_STATS).
+void printShaderStats(const Context& ctx, VkPipeline pipeline, const char* name)
+{
+    auto properties = reinterpret_cast<PFN_vkGetPipelineExecutablePropertiesKHR>(
+        vkGetDeviceProcAddr(ctx.device(), "vkGetPipelineExecutablePropertiesKHR"));
+    auto statistics = reinterpret_cast<PFN_vkGetPipelineExecutableStatisticsKHR>(
+        vkGetDeviceProcAddr(ctx.device(), "vkGetPipelineExecutableStatisticsKHR"));
+    if (!properties || !statistics)
+        return;
+    VkPipelineInfoKHR info{.sType = VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR, .pipeline = pipeline};
+    uint32_t count = 0;
+    VK_CHECK(properties(ctx.device(), &info, &count, nullptr));
+    for (uint32_t e = 0; e < count; ++e) {
+        VkPipelineExecutableInfoKHR executable{.sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR,
+                                               .pipeline = pipeline,
+                                               .executableIndex = e};
+        uint32_t n = 0;
+        VK_CHECK(statistics(ctx.device(), &executable, &n, nullptr));
+        std::vector<VkPipelineExecutableStatisticKHR> stats(n, {.sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR});
+        VK_CHECK(statistics(ctx.device(), &executable, &n, stats.data()));
+        std::string line = std::string("wisp: shader stats ") + name + ":";
+        for (const VkPipelineExecutableStatisticKHR& st : stats) {
+            line += " " + std::string(st.name) + "=";
+            switch (st.format) {
+            case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_BOOL32_KHR: line += st.value.b32 ? "true" : "false"; break;
+            case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_INT64_KHR: line += std::to_string(st.value.i64); break;
+            case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_UINT64_KHR: line += std::to_string(st.value.u64); break;
+            case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_FLOAT64_KHR: line += std::to_string(st.value.f64); break;
+            default: line += "?";
+            }
+        }
+        std::fprintf(stderr, "%s\n", line.c_str());
+    }
+}
+
+}  // namespace
+
 Pipeline createComputePipeline(const Context& ctx, VkPipelineLayout layout, const std::string& shader, const char* name,
-                               std::optional<bool> boolConstant0)
+                               const std::vector<uint32_t>& constants)
 {
     std::string file = shader + ".spv";
     ShaderModule module = loadShader(ctx, file);
-    VkBool32 value = boolConstant0.value_or(false) ? VK_TRUE : VK_FALSE;
-    VkSpecializationMapEntry entry{.constantID = 0, .offset = 0, .size = sizeof(VkBool32)};
-    VkSpecializationInfo specialization{.mapEntryCount = 1, .pMapEntries = &entry, .dataSize = sizeof(value), .pData = &value};
+    std::vector<VkSpecializationMapEntry> entries;
+    for (uint32_t i = 0; i < constants.size(); ++i)
+        entries.push_back({.constantID = i, .offset = i * 4, .size = 4});
+    VkSpecializationInfo specialization{.mapEntryCount = uint32_t(entries.size()),
+                                        .pMapEntries = entries.data(),
+                                        .dataSize = constants.size() * 4,
+                                        .pData = constants.data()};
     VkComputePipelineCreateInfo info{.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+                                     .flags = ctx.shaderStats() ? VkPipelineCreateFlags(VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR) : 0u,
                                      .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
                                                .stage = stageOf(file),
                                                .module = module,
                                                .pName = "main",
-                                               .pSpecializationInfo = boolConstant0 ? &specialization : nullptr},
+                                               .pSpecializationInfo = constants.empty() ? nullptr : &specialization},
                                      .layout = layout};
     VkPipeline pipeline = VK_NULL_HANDLE;
     VK_CHECK(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
     ctx.setName(pipeline, VK_OBJECT_TYPE_PIPELINE, name);
+    if (ctx.shaderStats())
+        printShaderStats(ctx, pipeline, name);
     return Pipeline(ctx.device(), pipeline);
 }
 

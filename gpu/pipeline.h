@@ -72,9 +72,9 @@ struct GraphicsPipelineDesc {
     const char* name = "unnamed pipeline";
 };
 Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& desc);
-// `boolConstant0`, when set, is the shader's specialization constant 0 (a bool variant switch).
+// `constants[i]` is the shader's specialization constant i, 32 bits each (a bool is 0 or 1).
 Pipeline createComputePipeline(const Context& ctx, VkPipelineLayout layout, const std::string& shader, const char* name,
-                               std::optional<bool> boolConstant0 = std::nullopt);
+                               const std::vector<uint32_t>& constants = {});
 
 // A clamp-to-edge sampler without mipmaps: `filter` for magnification and minification, and
 // with `compare` a depth comparison (LESS_OR_EQUAL: shadow maps).

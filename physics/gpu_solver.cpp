@@ -115,9 +115,9 @@ GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const Sim
     // The fixed-point grid's kernels are separate SPIR-V (they need 64-bit integer atomics, the
     // float ones need float atomics); the splatting substep is a specialization of integrate.
     std::string variant = fixedGrid_ ? "_fixed" : "";
-    integrate_ = vk::createComputePipeline(ctx, layout_, "sim_integrate" + variant + ".comp", "sim.integrate", /*kSplatToGrid=*/false);
+    integrate_ = vk::createComputePipeline(ctx, layout_, "sim_integrate" + variant + ".comp", "sim.integrate", {/*kSplatToGrid=*/0});
     integrateSplat_ = vk::createComputePipeline(ctx, layout_, "sim_integrate" + variant + ".comp", "sim.integrate+splat",
-                                                /*kSplatToGrid=*/true);
+                                                {/*kSplatToGrid=*/1});
     clear_ = vk::createComputePipeline(ctx, layout_, "grid_clear" + variant + ".comp", "grid.clear");
     normalize_ = vk::createComputePipeline(ctx, layout_, "grid_normalize" + variant + ".comp", "grid.normalize");
     gather_ = vk::createComputePipeline(ctx, layout_, "grid_gather.comp", "grid.gather");

@@ -39,6 +39,7 @@ public:
     SimState readState() const;
     std::vector<gpu::GridNode> readGrid() const;
 
+    const SimSetup& setup() const { return setup_; }
     const vk::Buffer& positions() const { return positions_; }
     const vk::Buffer& tangents() const { return tangents_; }
     const vk::Buffer& params() const { return params_; }  // the SimParams uniform block (colliders)

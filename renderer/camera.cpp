@@ -39,7 +39,6 @@ void OrbitCamera::zoom(float factor)
     fitPlanes();
 }
 
-
 void OrbitCamera::pan(float dxUnits, float dyUnits)
 {
     glm::mat4 v = view();

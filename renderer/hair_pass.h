@@ -57,6 +57,8 @@ public:
     // Uploads the lookup mode's tables (waits for the upload); the image they replace goes to
     // `frame`'s deletion list when given (it may still be in use), else is freed at once.
     void setLut(const shading::HairLut& lut, FrameContext* frame);
+    // The tables' descriptor (the compute path shades with them too).
+    const VkDescriptorImageInfo& lutInfo() const { return lutInfo_; }
     // The guides the tessellation reads, for the passes that draw the hair from the light.
     void declareGuides(PassIo& io);
     enum class LightDraw { Depth, Opacity };

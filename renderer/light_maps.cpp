@@ -9,6 +9,8 @@
 #include "gpu/pipeline.h"
 #include "shaders/shared/shadows.h"
 
+#include <cstring>
+
 namespace wisp {
 
 namespace {
@@ -37,15 +39,19 @@ void LightMaps::resize(uint32_t size)
     size_ = size;
     VkExtent2D extent{size, size};
     // Transfer source too: the tests read the maps back.
-    constexpr VkImageUsageFlags kDepthUsage =
-        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    // Transfer destination and storage: the compute hair path writes the hair's maps.
+    constexpr VkImageUsageFlags kDepthUsage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                              VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     headDepth_ = ctx_.createImage({.format = kDepthFormat, .extent = extent, .usage = kDepthUsage, .name = "light.head_depth"});
     hairDepth_ = ctx_.createImage({.format = kDepthFormat, .extent = extent, .usage = kDepthUsage, .name = "light.hair_depth"});
     opacity_ = ctx_.createImage({.format = kOpacityFormat,
                                  .extent = extent,
-                                 .usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                 .usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                          VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_STORAGE_BIT,
                                  .name = "light.opacity"});
-    headTrack_ = {.image = headDepth_.get(), .aspect = VK_IMAGE_ASPECT_DEPTH_BIT};
+    headTrack_ = {.image = headDepth_.get(), .aspect = VK_IMAGE_ASPECT_DEPTH_BIT, .transient = false};
+    drawnKey_ = HeadShadowKey{};  // a new map: drawn again
+    headStale_ = true;
     hairTrack_ = {.image = hairDepth_.get(), .aspect = VK_IMAGE_ASPECT_DEPTH_BIT};
     opacityTrack_ = {.image = opacity_.get()};
     updateInfos();
@@ -60,11 +66,17 @@ void LightMaps::updateInfos()
     infos_[3] = {linear_, opacity_.view(), kRead};
 }
 
-void LightMaps::declareRead(PassIo& io)
+void LightMaps::setHeadKey(const HeadShadowKey& key)
 {
-    io.use(headTrack_, Access::GraphicsSampled);
-    io.use(hairTrack_, Access::GraphicsSampled);
-    io.use(opacityTrack_, Access::GraphicsSampled);
+    key_ = key;
+    headStale_ = headStale_ || drawnKey_.size == 0 || std::memcmp(&key_, &drawnKey_, sizeof(key_)) != 0;
+}
+
+void LightMaps::declareRead(PassIo& io, Access access)
+{
+    io.use(headTrack_, access);
+    io.use(hairTrack_, access);
+    io.use(opacityTrack_, access);
 }
 
 std::array<VkWriteDescriptorSet, 4> LightMaps::descriptorWrites() const
@@ -122,7 +134,10 @@ void LightMaps::beginOpacity(VkCommandBuffer cmd) const
 
 void ShadowPass::declare(PassIo& io)
 {
-    io.use(maps_.headDepth(), Access::DepthAttachment);
+    if (maps_.headDepthStale())
+        io.use(maps_.headDepth(), Access::DepthAttachment);
+    if (!hairDepth_)
+        return;
     io.use(maps_.hairDepth(), Access::DepthAttachment);
     if (hair_)
         hair_->declareGuides(io);
@@ -130,10 +145,15 @@ void ShadowPass::declare(PassIo& io)
 
 void ShadowPass::record(VkCommandBuffer cmd, FrameContext& frame)
 {
-    maps_.beginDepth(cmd, maps_.headDepthImage());
-    if (enabled_)
-        meshes_.recordFromLight(cmd, frame);
-    vkCmdEndRendering(cmd);
+    if (maps_.headDepthStale()) {
+        maps_.beginDepth(cmd, maps_.headDepthImage());
+        if (enabled_)
+            meshes_.recordFromLight(cmd, frame);
+        vkCmdEndRendering(cmd);
+        maps_.headDepthDrawn();
+    }
+    if (!hairDepth_)
+        return;
     maps_.beginDepth(cmd, maps_.hairDepthImage());
     if (enabled_ && hair_)
         hair_->recordFromLight(cmd, frame, HairPass::LightDraw::Depth);

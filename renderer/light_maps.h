@@ -11,6 +11,8 @@
 #include "gpu/handle.h"
 #include "gpu/resources.h"
 
+#include <glm/glm.hpp>
+
 #include <array>
 #include <vector>
 
@@ -21,6 +23,19 @@ class Context;
 }
 class MeshPass;
 class HairPass;
+
+// What the head's depth from the light depends on: while it stays the same, the map drawn for an
+// earlier frame still holds (the head is rigid; its shadow map is kept, as engines keep static
+// casters' shadows).
+struct HeadShadowKey {
+    glm::mat4 lightViewProjection{1.0f};
+    glm::mat4 headTransform{1.0f};
+    glm::vec4 sphere{0.0f};  // the user's sphere casts too
+    uint32_t enabled = 0;
+    uint32_t size = 0;
+    uint32_t pad0 = 0;
+    uint32_t pad1 = 0;
+};
 
 class LightMaps {
 public:
@@ -38,11 +53,16 @@ public:
     const vk::Image& headDepthImage() const { return headDepth_; }
     const vk::Image& hairDepthImage() const { return hairDepth_; }
     const vk::Image& opacityImage() const { return opacity_; }
-    std::vector<TrackedImage*> transientImages() { return {&headTrack_, &hairTrack_, &opacityTrack_}; }
+    // The hair's maps are remade every frame; the head's depth only when its key changes.
+    std::vector<TrackedImage*> transientImages() { return {&hairTrack_, &opacityTrack_}; }
+    // This frame's key for the head's depth (before the frame's passes are declared).
+    void setHeadKey(const HeadShadowKey& key);
+    bool headDepthStale() const { return headStale_; }
+    void headDepthDrawn() { drawnKey_ = key_; headStale_ = false; }
 
     // For a pass whose shaders read the maps: the accesses to declare, and the descriptor
     // writes for bindings kBindingShadowHead..kBindingOpacity (valid while this object lives).
-    void declareRead(PassIo& io);
+    void declareRead(PassIo& io, Access access = Access::GraphicsSampled);
     std::array<VkWriteDescriptorSet, 4> descriptorWrites() const;
     // The hair depth alone, for the opacity pass (binding kBindingHairDepth).
     VkWriteDescriptorSet hairDepthWrite() const;
@@ -56,6 +76,8 @@ private:
     uint32_t size_ = 0;
     vk::Image headDepth_, hairDepth_, opacity_;
     TrackedImage headTrack_, hairTrack_, opacityTrack_;
+    HeadShadowKey key_, drawnKey_;
+    bool headStale_ = true;
     vk::Sampler compare_;  // depth compare, bilinear (each PCF tap is itself a 2x2 filter)
     vk::Sampler nearest_;  // the hair's first depth as a value
     vk::Sampler linear_;   // the opacity layers
@@ -71,12 +93,15 @@ public:
     void declare(PassIo& io) override;
     void record(VkCommandBuffer cmd, FrameContext& frame) override;
     void setEnabled(bool enabled) { enabled_ = enabled; }  // off: the maps are only cleared
+    // Off: the hair's depth map is left alone (the compute path writes it).
+    void setHairDepth(bool drawn) { hairDepth_ = drawn; }
 
 private:
     LightMaps& maps_;
     MeshPass& meshes_;
     HairPass* hair_;
     bool enabled_ = true;
+    bool hairDepth_ = true;
 };
 
 // The hair's deep opacity layers.

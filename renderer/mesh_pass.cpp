@@ -30,6 +30,23 @@ struct MeshVertex {
     float scalp;  // 0..1, kMeshLocationScalp
 };
 static_assert(sizeof(MeshVertex) == 28);
+static_assert(sizeof(gpu::MeshShadowPush) == 80);
+
+// One of the passes before the shading (MeshPass::depthPass, shadowMaskPass).
+class MeshStagePass : public Pass {
+public:
+    MeshStagePass(MeshPass& meshes, bool shadow) : meshes_(meshes), shadow_(shadow) {}
+    const char* name() const override { return shadow_ ? "meshes.shadow" : "meshes.depth"; }
+    void declare(PassIo& io) override { shadow_ ? meshes_.declareShadowMask(io) : meshes_.declareDepth(io); }
+    void record(VkCommandBuffer cmd, FrameContext& frame) override
+    {
+        shadow_ ? meshes_.recordShadowMask(cmd, frame) : meshes_.recordDepth(cmd, frame);
+    }
+
+private:
+    MeshPass& meshes_;
+    bool shadow_;
+};
 
 }  // namespace
 
@@ -95,27 +112,59 @@ MeshPass::MeshPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
                            {gpu::kBindingShadowHead, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
                            {gpu::kBindingShadowHair, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
                            {gpu::kBindingHairDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
-                           {gpu::kBindingOpacity, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}},
+                           {gpu::kBindingOpacity, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
+                           {gpu::kMeshBindingShadowMask, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}},
               .pushConstantBytes = sizeof(gpu::MeshPush),
               .pushConstantStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
               .name = "mesh.layout"});
+    // (The light's maps are read by mesh_shadow.comp; the shading reads the mask at binding 8.)
     setLayout_ = std::move(layout.setLayout);
     layout_ = std::move(layout.layout);
-    pipeline_ = vk::createGraphicsPipeline(
-        ctx, {.layout = layout_,
-              .shaders = {"mesh.vert", "mesh.frag"},
-              .vertexStride = sizeof(MeshVertex),
-              .attributes = {{.location = gpu::kMeshLocationPosition, .format = VK_FORMAT_R32G32B32_SFLOAT,
-                              .offset = offsetof(MeshVertex, position)},
-                             {.location = gpu::kMeshLocationNormal, .format = VK_FORMAT_R32G32B32_SFLOAT,
-                              .offset = offsetof(MeshVertex, normal)},
-                             {.location = gpu::kMeshLocationScalp, .format = VK_FORMAT_R32_SFLOAT,
-                              .offset = offsetof(MeshVertex, scalp)}},
-              .cullMode = VK_CULL_MODE_NONE,  // meshes from the wild are not always closed or consistently wound
-              .colorFormat = RenderTarget::kColorFormat,
-              .depthFormat = RenderTarget::kDepthFormat,
-              .samples = target.samples(),
-              .name = "mesh.pipeline"});
+    vk::GraphicsPipelineDesc shade{
+        .layout = layout_,
+        .shaders = {"mesh.vert", "mesh.frag"},
+        .vertexStride = sizeof(MeshVertex),
+        .attributes = {{.location = gpu::kMeshLocationPosition, .format = VK_FORMAT_R32G32B32_SFLOAT,
+                        .offset = offsetof(MeshVertex, position)},
+                       {.location = gpu::kMeshLocationNormal, .format = VK_FORMAT_R32G32B32_SFLOAT,
+                        .offset = offsetof(MeshVertex, normal)},
+                       {.location = gpu::kMeshLocationScalp, .format = VK_FORMAT_R32_SFLOAT,
+                        .offset = offsetof(MeshVertex, scalp)}},
+        .cullMode = VK_CULL_MODE_NONE,  // meshes from the wild are not always closed or consistently wound
+        .depthWrite = false,            // the depth pass has written it; the same surfaces pass LESS_OR_EQUAL
+        .colorFormat = RenderTarget::kColorFormat,
+        .depthFormat = RenderTarget::kDepthFormat,
+        .samples = target.samples(),
+        .name = "mesh.pipeline"};
+    pipeline_ = vk::createGraphicsPipeline(ctx, shade);
+    vk::GraphicsPipelineDesc depth = shade;
+    depth.shaders = {"mesh.vert"};
+    depth.depthWrite = true;
+    depth.colorFormat = VK_FORMAT_UNDEFINED;  // depth alone
+    depth.name = "mesh.depth.pipeline";
+    depthPipeline_ = vk::createGraphicsPipeline(ctx, depth);
+
+    constexpr VkShaderStageFlags kCompute = VK_SHADER_STAGE_COMPUTE_BIT;
+    constexpr VkDescriptorType kSampler = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    vk::PipelineLayoutBundle shadow = vk::createPipelineLayout(
+        ctx, {.bindings = {{gpu::kMeshBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCompute},
+                           {gpu::kBindingShadowHead, kSampler, kCompute},
+                           {gpu::kBindingShadowHair, kSampler, kCompute},
+                           {gpu::kBindingHairDepth, kSampler, kCompute},
+                           {gpu::kBindingOpacity, kSampler, kCompute},
+                           {gpu::kMeshBindingShadowMask, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCompute},
+                           {gpu::kMeshBindingDepth, kSampler, kCompute}},
+              .pushConstantBytes = sizeof(gpu::MeshShadowPush),
+              .pushConstantStages = kCompute,
+              .name = "mesh.shadow.layout"});
+    shadowSetLayout_ = std::move(shadow.setLayout);
+    shadowLayout_ = std::move(shadow.layout);
+    shadowPipeline_ = vk::createComputePipeline(
+        ctx, shadowLayout_, target.multisampled() ? "mesh_shadow.comp" : "mesh_shadow_single.comp", "mesh.shadow.pipeline");
+    nearest_ = vk::createSampler(ctx, VK_FILTER_NEAREST, false, "mesh.nearest.sampler");
+    depthPass_ = std::make_unique<MeshStagePass>(*this, false);
+    shadowMaskPass_ = std::make_unique<MeshStagePass>(*this, true);
+    resize();
     lightPipeline_ = vk::createGraphicsPipeline(
         ctx, {.layout = layout_,
               .shaders = {"mesh_light.vert"},
@@ -131,6 +180,17 @@ MeshPass::MeshPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
               .depthBiasSlope = 2.0f,
               .depthFormat = LightMaps::kDepthFormat,
               .name = "mesh.light_depth.pipeline"});
+}
+
+MeshPass::~MeshPass() = default;
+
+void MeshPass::resize()
+{
+    shadowMask_ = ctx_.createImage({.format = VK_FORMAT_R8G8B8A8_UNORM,
+                                    .extent = target_.extent(),
+                                    .usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                                    .name = "mesh.shadow_mask"});
+    shadowMaskTrack_ = {.image = shadowMask_.get()};
 }
 
 MeshPass::GpuMesh MeshPass::upload(const Mesh& mesh, const char* name, const std::vector<float>& scalp) const
@@ -166,8 +226,20 @@ void MeshPass::setSurface(const glm::mat4& model, const glm::vec3& albedo, float
 
 void MeshPass::declare(PassIo& io)
 {
-    lightMaps_->declareRead(io);
+    io.use(shadowMaskTrack_, Access::FragmentSampled);
     target_.declareDraw(io);
+}
+
+void MeshPass::declareDepth(PassIo& io)
+{
+    target_.declareDepth(io);
+}
+
+void MeshPass::declareShadowMask(PassIo& io)
+{
+    lightMaps_->declareRead(io, Access::ComputeSampled);
+    io.use(target_.depth(), Access::ComputeSampled);
+    io.use(shadowMaskTrack_, Access::ComputeWrite);
 }
 
 void MeshPass::draw(VkCommandBuffer cmd, const GpuMesh& mesh, const glm::mat4& model, const glm::vec3& albedo,
@@ -208,13 +280,57 @@ void MeshPass::recordFromLight(VkCommandBuffer cmd, FrameContext& frame)
         draw(cmd, sphereMesh_, placeSphere(sphere_), kSphereAlbedo, 0.4f);
 }
 
+void MeshPass::recordDepth(VkCommandBuffer cmd, FrameContext& frame)
+{
+    target_.beginDepthRendering(cmd);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depthPipeline_);
+    uniforms_.push(ctx_, cmd, layout_, frame.slot);
+    draw(cmd, head_, headTransform_ * model_, albedo_, roughness_);
+    if (sphere_.w > 0.0f)
+        draw(cmd, sphereMesh_, placeSphere(sphere_), kSphereAlbedo, 0.4f);
+    if (marker_.w > 0.0f)
+        draw(cmd, sphereMesh_, placeSphere(marker_), kMarkerAlbedo, 0.2f);
+    target_.endRendering(cmd);
+}
+
+void MeshPass::recordShadowMask(VkCommandBuffer cmd, FrameContext& frame)
+{
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, shadowPipeline_);
+    VkDescriptorBufferInfo frameInfo = uniforms_.descriptor(frame.slot);
+    VkDescriptorImageInfo mask{VK_NULL_HANDLE, shadowMask_.view(), VK_IMAGE_LAYOUT_GENERAL};
+    VkDescriptorImageInfo depth{nearest_, target_.depthImage().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    std::vector<VkWriteDescriptorSet> writes = {
+        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstBinding = gpu::kMeshBindingFrame, .descriptorCount = 1,
+         .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, .pBufferInfo = &frameInfo},
+        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstBinding = gpu::kMeshBindingShadowMask, .descriptorCount = 1,
+         .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, .pImageInfo = &mask},
+        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstBinding = gpu::kMeshBindingDepth, .descriptorCount = 1,
+         .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, .pImageInfo = &depth}};
+    for (const VkWriteDescriptorSet& w : lightMaps_->descriptorWrites())
+        writes.push_back(w);
+    ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, shadowLayout_, 0, uint32_t(writes.size()), writes.data());
+    VkExtent2D e = target_.extent();
+    gpu::MeshShadowPush push{.inverseViewProjection = inverseViewProjection_,
+                             .width = e.width,
+                             .height = e.height,
+                             .samples = uint32_t(target_.samples()),
+                             .pad = 0};
+    vkCmdPushConstants(cmd, shadowLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdDispatch(cmd, vk::groupCount(e.width, 8), vk::groupCount(e.height, 8), 1);
+}
+
 void MeshPass::record(VkCommandBuffer cmd, FrameContext& frame)
 {
     target_.beginRendering(cmd, clearColor_);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
     uniforms_.push(ctx_, cmd, layout_, frame.slot);
-    std::array<VkWriteDescriptorSet, 4> maps = lightMaps_->descriptorWrites();
-    ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, uint32_t(maps.size()), maps.data());
+    VkDescriptorImageInfo mask{nearest_, shadowMask_.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet maskWrite{.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                   .dstBinding = gpu::kMeshBindingShadowMask,
+                                   .descriptorCount = 1,
+                                   .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                   .pImageInfo = &mask};
+    ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &maskWrite);
     draw(cmd, head_, headTransform_ * model_, albedo_, roughness_);
     if (sphere_.w > 0.0f)
         draw(cmd, sphereMesh_, placeSphere(sphere_), kSphereAlbedo, 0.4f);

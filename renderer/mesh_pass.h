@@ -1,7 +1,11 @@
-// renderer/mesh_pass.h: draws opaque triangle meshes (the head, the collision sphere) into the
-// render target with the plain surface shading of shaders/shared/lighting.h, shadowed by the
-// light's maps, the head's scalp painted under the hair; and the same meshes' depth from the
-// light for the shadow pass.
+// renderer/mesh_pass.h: draws opaque triangle meshes (the head, the collision sphere, the light's
+// marker) into the render target with the plain surface shading of shaders/shared/lighting.h,
+// shadowed by the light's maps, the head's scalp painted under the hair; and the same meshes'
+// depth from the light for the shadow pass. Three passes of the frame:
+//   meshes.depth   the meshes' depth alone (no fragment shader)
+//   meshes.shadow  compute: each pixel's light visibility at that depth, the shadow mask
+//                  (mesh_shadow.comp: the PCF and deep opacity taps run on every unit of the GPU)
+//   meshes         the shading, one shadow-mask texel per fragment, depth tested against the first
 #pragma once
 
 #include "assets/mesh.h"
@@ -12,6 +16,7 @@
 
 #include <glm/glm.hpp>
 
+#include <memory>
 #include <vector>
 
 namespace wisp {
@@ -24,8 +29,8 @@ class FrameUniforms;
 class LightMaps;
 
 // The scalp under a groom, per vertex of the head (0..1): 1 within the roots' typical spacing of a
-// root, fading to 0 at two and a half times it (the hairline), so the painted scalp
-// covers where hair grows and a little past it. Head space, as the strands' rest pose.
+// root, fading to 0 at two and a half times it (the hairline), so the painted scalp covers where
+// hair grows and a little past it. Head space, as the strands' rest pose.
 std::vector<float> scalpCoverage(const Mesh& head, const StrandSet& strands);
 // The scalp is painted the hair's colour times this (RenderSettings::scalpPaint says how strongly).
 inline constexpr float kScalpDarkening = 0.45f;
@@ -33,6 +38,7 @@ inline constexpr float kScalpDarkening = 0.45f;
 class MeshPass : public Pass {
 public:
     MeshPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& uniforms);
+    ~MeshPass() override;
     const char* name() const override { return "meshes"; }
     void declare(PassIo& io) override;
     void record(VkCommandBuffer cmd, FrameContext& frame) override;
@@ -57,9 +63,22 @@ public:
     void setHeadTransform(const glm::mat4& transform) { headTransform_ = transform; }
     // The user's collision sphere (xyz centre, w radius; 0 hides it): drawn, and casts shadows.
     void setSphere(const glm::vec4& sphere) { sphere_ = sphere; }
+    const glm::vec4& sphere() const { return sphere_; }
     // A small bright ball where the light comes from (radius 0 hides it); casts no shadow.
     void setLightMarker(const glm::vec3& position, float radius) { marker_ = glm::vec4(position, radius); }
+    // The camera's clip -> world this frame (the shadow mask places each pixel's depth with it).
+    void setInverseViewProjection(const glm::mat4& m) { inverseViewProjection_ = m; }
+    // The passes that run before this one: the depth, then the shadow mask.
+    Pass* depthPass() { return depthPass_.get(); }
+    Pass* shadowMaskPass() { return shadowMaskPass_.get(); }
+    TrackedImage& shadowMask() { return shadowMaskTrack_; }  // rewritten every frame
+    // Recreates the shadow mask at the target's size; the device must be idle.
+    void resize();
 
+    void declareDepth(PassIo& io);
+    void recordDepth(VkCommandBuffer cmd, FrameContext& frame);
+    void declareShadowMask(PassIo& io);
+    void recordShadowMask(VkCommandBuffer cmd, FrameContext& frame);
 private:
     const vk::Context& ctx_;
     RenderTarget& target_;
@@ -68,6 +87,15 @@ private:
     vk::PipelineLayout layout_;
     vk::Pipeline pipeline_;
     vk::Pipeline lightPipeline_;  // depth only, from the light
+    vk::Pipeline depthPipeline_;  // depth only, from the camera
+    vk::DescriptorSetLayout shadowSetLayout_;
+    vk::PipelineLayout shadowLayout_;
+    vk::Pipeline shadowPipeline_;  // mesh_shadow.comp
+    vk::Sampler nearest_;
+    vk::Image shadowMask_;
+    TrackedImage shadowMaskTrack_;
+    std::unique_ptr<Pass> depthPass_, shadowMaskPass_;
+    glm::mat4 inverseViewProjection_{1.0f};
     LightMaps* lightMaps_ = nullptr;
     struct GpuMesh {
         vk::Buffer vertices;

@@ -185,7 +185,17 @@ OitResolvePass::OitResolvePass(const vk::Context& ctx, Oit& oit) : ctx_(ctx), oi
               .name = "oit.resolve.layout"});
     setLayout_ = std::move(layout.setLayout);
     layout_ = std::move(layout.layout);
-    pipeline_ = vk::createComputePipeline(ctx, layout_, "oit_resolve.comp", "oit.resolve.pipeline");
+    pipeline_ = vk::createComputePipeline(ctx, layout_, "oit_resolve.comp", "oit.resolve.pipeline", {k_});
+}
+
+void OitResolvePass::setK(uint32_t k, FrameContext& frame)
+{
+    k = std::clamp(k, 1u, gpu::kMaxOitK);
+    if (k == k_)
+        return;
+    k_ = k;
+    frame.retire(std::move(pipeline_));
+    pipeline_ = vk::createComputePipeline(ctx_, layout_, "oit_resolve.comp", "oit.resolve.pipeline", {k_});
 }
 
 void OitResolvePass::declare(PassIo& io)
@@ -223,13 +233,13 @@ void OitResolvePass::record(VkCommandBuffer cmd, FrameContext&)
     vkCmdDispatch(cmd, vk::groupCount(e.width, 8), vk::groupCount(e.height, 8), 1);
 }
 
-OitCompositePass::OitCompositePass(const vk::Context& ctx, Oit& oit, RenderTarget& target)
-    : ctx_(ctx), oit_(oit), target_(target)
+CompositePass::CompositePass(const vk::Context& ctx, RenderTarget& target, const char* name)
+    : ctx_(ctx), target_(target), name_(name)
 {
-    sampler_ = vk::createSampler(ctx, VK_FILTER_NEAREST, false, "oit.composite.sampler");
+    sampler_ = vk::createSampler(ctx, VK_FILTER_NEAREST, false, "composite.sampler");
     vk::PipelineLayoutBundle layout = vk::createPipelineLayout(
         ctx, {.bindings = {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}},
-              .name = "oit.composite.layout"});
+              .name = "composite.layout"});
     setLayout_ = std::move(layout.setLayout);
     layout_ = std::move(layout.layout);
     pipeline_ = vk::createGraphicsPipeline(ctx, {.layout = layout_,
@@ -241,20 +251,20 @@ OitCompositePass::OitCompositePass(const vk::Context& ctx, Oit& oit, RenderTarge
                                                  .colorFormat = RenderTarget::kColorFormat,
                                                  .depthFormat = RenderTarget::kDepthFormat,
                                                  .samples = target.samples(),
-                                                 .name = "oit.composite.pipeline"});
+                                                 .name = "composite.pipeline"});
 }
 
-void OitCompositePass::declare(PassIo& io)
+void CompositePass::declare(PassIo& io)
 {
-    io.use(oit_.color(), Access::FragmentSampled);
+    io.use(*track_, Access::FragmentSampled);
     target_.declareDraw(io);
 }
 
-void OitCompositePass::record(VkCommandBuffer cmd, FrameContext&)
+void CompositePass::record(VkCommandBuffer cmd, FrameContext&)
 {
     target_.beginRendering(cmd, glm::vec3(0.0f));
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
-    VkDescriptorImageInfo image{sampler_, oit_.colorImage().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkDescriptorImageInfo image{sampler_, image_->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkWriteDescriptorSet write{.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
                                .dstBinding = 0,
                                .descriptorCount = 1,

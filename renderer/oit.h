@@ -4,7 +4,7 @@
 //   hair         (hair_oit.frag) each fragment takes a node from the pool and links it in
 //   oit.resolve    a compute pass sorts each pixel's nearest k and blends its list into one colour
 //                  (compute runs on every unit of the GPU; an H100 runs graphics on few of them)
-//   oit.composite  a full-screen pass lays that colour over the target
+//   oit.composite  a full-screen pass lays that colour over the target (CompositePass)
 //   oit.stats      copies the counters to the host: fragments stored and those the full pool dropped
 // The pool holds nodesPerPixel x the target's pixels (automatic: 24 per pixel, at least 8M nodes); it is sized up front and checked against
 // the device's limits, so a too-large request is a clear error, and an overflowing frame loses
@@ -108,7 +108,9 @@ public:
     const char* name() const override { return "oit.resolve"; }
     void declare(PassIo& io) override;
     void record(VkCommandBuffer cmd, FrameContext& frame) override;
-    void setK(uint32_t k) { k_ = k; }
+    // oit_k, a specialization constant of the resolve (its lists stay in registers): a new value
+    // builds the pipeline again, the old one retired to `frame`.
+    void setK(uint32_t k, FrameContext& frame);
 
 private:
     const vk::Context& ctx_;
@@ -119,17 +121,26 @@ private:
     uint32_t k_ = 8;
 };
 
-class OitCompositePass : public Pass {
+// Lays a premultiplied hair image (the OIT resolve's, or the compute rasterizer's) over the target.
+class CompositePass : public Pass {
 public:
-    OitCompositePass(const vk::Context& ctx, Oit& oit, RenderTarget& target);
-    const char* name() const override { return "oit.composite"; }
+    CompositePass(const vk::Context& ctx, RenderTarget& target, const char* name);
+    const char* name() const override { return name_; }
+    // The image to lay over (set before each frame it changes; tracked, sampled in fragments).
+    void setSource(TrackedImage* track, const vk::Image* image)
+    {
+        track_ = track;
+        image_ = image;
+    }
     void declare(PassIo& io) override;
     void record(VkCommandBuffer cmd, FrameContext& frame) override;
 
 private:
     const vk::Context& ctx_;
-    Oit& oit_;
     RenderTarget& target_;
+    const char* name_;
+    TrackedImage* track_ = nullptr;
+    const vk::Image* image_ = nullptr;
     vk::DescriptorSetLayout setLayout_;
     vk::PipelineLayout layout_;
     vk::Pipeline pipeline_;

@@ -38,7 +38,8 @@ void RenderTarget::resize(VkExtent2D extent)
                                   .name = "target.color.msaa"});
     depth_ = ctx.createImage({.format = kDepthFormat,
                               .extent = extent,
-                              .usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                              .usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                       VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
                               .samples = samples_,
                               .name = "target.depth"});
     resolved_ = ctx.createImage({.format = kColorFormat,
@@ -71,8 +72,10 @@ void RenderTarget::declareDraw(PassIo& io)
 
 void RenderTarget::beginRendering(VkCommandBuffer cmd, const glm::vec3& clearColor)
 {
-    VkAttachmentLoadOp load = cleared_ ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
-    cleared_ = true;
+    VkAttachmentLoadOp load = colorCleared_ ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
+    VkAttachmentLoadOp depthLoad = depthCleared_ ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
+    colorCleared_ = true;
+    depthCleared_ = true;
     VkRenderingAttachmentInfo color{.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
                                     .imageView = multisampled() ? color_.view() : resolved_.view(),
                                     .imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
@@ -87,7 +90,7 @@ void RenderTarget::beginRendering(VkCommandBuffer cmd, const glm::vec3& clearCol
     VkRenderingAttachmentInfo depth{.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
                                     .imageView = depth_.view(),
                                     .imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                                    .loadOp = load,
+                                    .loadOp = depthLoad,
                                     .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
                                     .clearValue = {.depthStencil = {1.0f, 0}}};
     VkRenderingInfo info{.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
@@ -95,6 +98,31 @@ void RenderTarget::beginRendering(VkCommandBuffer cmd, const glm::vec3& clearCol
                          .layerCount = 1,
                          .colorAttachmentCount = 1,
                          .pColorAttachments = &color,
+                         .pDepthAttachment = &depth};
+    vkCmdBeginRendering(cmd, &info);
+    VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent_.width), static_cast<float>(extent_.height), 0.0f, 1.0f};
+    VkRect2D scissor{{0, 0}, extent_};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
+void RenderTarget::declareDepth(PassIo& io)
+{
+    io.use(depthTrack_, Access::DepthAttachment);
+}
+
+void RenderTarget::beginDepthRendering(VkCommandBuffer cmd)
+{
+    VkRenderingAttachmentInfo depth{.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
+                                    .imageView = depth_.view(),
+                                    .imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                                    .loadOp = depthCleared_ ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR,
+                                    .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
+                                    .clearValue = {.depthStencil = {1.0f, 0}}};
+    depthCleared_ = true;
+    VkRenderingInfo info{.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
+                         .renderArea = {{0, 0}, extent_},
+                         .layerCount = 1,
                          .pDepthAttachment = &depth};
     vkCmdBeginRendering(cmd, &info);
     VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent_.width), static_cast<float>(extent_.height), 0.0f, 1.0f};

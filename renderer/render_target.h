@@ -35,9 +35,19 @@ public:
     // Begins dynamic rendering; the first pass to draw after beginFrame() clears.
     void beginRendering(VkCommandBuffer cmd, const glm::vec3& clearColor);
     void endRendering(VkCommandBuffer cmd);
-    void beginFrame() { cleared_ = false; }
+    // A pass that draws depth alone (no colour attachment: nothing to clear or resolve).
+    void declareDepth(PassIo& io);
+    void beginDepthRendering(VkCommandBuffer cmd);
+    void beginFrame()
+    {
+        colorCleared_ = false;
+        depthCleared_ = false;
+    }
 
     TrackedImage& result() { return resolvedTrack_; }  // single-sample, sRGB
+    // The meshes' depth (multisampled like the colour), which the compute hair path reads.
+    TrackedImage& depth() { return depthTrack_; }
+    const vk::Image& depthImage() const { return depth_; }
     const vk::Image& resultImage() const { return resolved_; }
     std::vector<TrackedImage*> transientImages();
 
@@ -49,7 +59,8 @@ private:
     vk::Image depth_;
     vk::Image resolved_;
     TrackedImage colorTrack_, depthTrack_, resolvedTrack_;
-    bool cleared_ = false;
+    bool colorCleared_ = false;
+    bool depthCleared_ = false;
 };
 
 // Copies the render target's result into a host-visible buffer (tightly packed RGBA8).

@@ -86,6 +86,13 @@ gpu::FrameParams pack(const RenderSettings& s, const OrbitCamera& camera, VkExte
     return p;
 }
 
+HairRaster resolveHairRaster(HairRaster setting, VkPhysicalDeviceType deviceType)
+{
+    if (setting != HairRaster::Auto)
+        return setting;
+    return deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? HairRaster::Graphics : HairRaster::Compute;
+}
+
 Renderer::Renderer(const vk::Context& ctx, const RenderSettings& settings, uint32_t framesInFlight)
     : ctx_(ctx), settings_(settings), uniforms_(ctx, framesInFlight), framesInFlight_(framesInFlight)
 {
@@ -113,8 +120,11 @@ void Renderer::resize(VkExtent2D extent)
     settings_.width = extent.width;
     settings_.height = extent.height;
     target_->resize(extent);
+    meshPass_->resize();
     if (oit_)
         oit_->resize(extent, settings_.transparency.oitNodesPerPixel);
+    if (strandRaster_)
+        strandRaster_->resize();
 }
 
 std::vector<TrackedImage*> Renderer::transientImages()
@@ -124,12 +134,15 @@ std::vector<TrackedImage*> Renderer::transientImages()
         list.push_back(&oit_->color());
     for (TrackedImage* image : lightMaps_->transientImages())
         list.push_back(image);
+    if (strandRaster_)
+        list.push_back(&strandRaster_->color());
+    list.push_back(&meshPass_->shadowMask());
     return list;
 }
 
 OitStats Renderer::oitStats(uint32_t slot) const
 {
-    return oit_ ? oit_->stats(slot) : OitStats{};
+    return oit_ && hairRaster() == HairRaster::Graphics ? oit_->stats(slot) : OitStats{};
 }
 
 bool Renderer::growOit(const OitStats& overflowed)
@@ -154,6 +167,13 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
     frameParams.headTransform = headTransform_;
     frameParams.hair = material_;
     uniforms_.write(frame.slot, frameParams);
+    frameParams_ = frameParams;
+    meshPass_->setInverseViewProjection(glm::inverse(frameParams.viewProjection));
+    lightMaps_->setHeadKey({.lightViewProjection = frameParams.lightViewProjection,
+                            .headTransform = headTransform_,
+                            .sphere = meshPass_->sphere(),
+                            .enabled = settings_.shadows.enabled ? 1u : 0u,
+                            .size = lightMaps_->size()});
     float sceneRadius = 0.5f * lightFit_.scene.diagonal();
     meshPass_->setLightMarker(lightFit_.scene.center() + 0.75f * sceneRadius * settings_.light.direction(),
                               showLightMarker_ ? 0.025f * sceneRadius : 0.0f);
@@ -164,7 +184,7 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
     }
     opacityPass_->setEnabled(settings_.shadows.enabled && settings_.shadows.domLayers > 0);
     if (oitResolve_)
-        oitResolve_->setK(settings_.transparency.oitK);
+        oitResolve_->setK(settings_.transparency.oitK, frame);
     if (!hairPass_)
         return;
     const StrandSettings& s = settings_.strands;
@@ -202,6 +222,55 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
     light.lodStrands = std::max(1.0f, push.lodStrands * settings_.shadows.strandFraction);
     light.lodWidthScale = push.lodWidthScale * std::sqrt(push.lodStrands / light.lodStrands);
     hairPass_->setLightPush(light);
+    if (hairRaster() != HairRaster::Compute)
+        return;
+
+    // The compute path draws the same strands from the same parameters.
+    makeStrandRaster();
+    headShadowPass_->setEnabled(settings_.shadows.enabled);
+    strandComposite_->setSource(&strandRaster_->color(), &strandRaster_->colorImage());
+    auto rasterPush = [&](const gpu::HairPush& p) {
+        gpu::StrandRasterPush r{};
+        r.guideCount = p.guideCount;
+        r.verticesPerStrand = p.verticesPerStrand;
+        r.strandsPerGuide = p.strandsPerGuide;
+        r.drawnPerGuide = std::min(p.strandsPerGuide, uint32_t(std::ceil(p.lodStrands)));
+        r.divisions = p.divisions;
+        r.interpolation = p.interpolation;
+        r.clumpRadius = p.clumpRadius;
+        r.deviation = p.deviation;
+        r.width = p.width * p.lodWidthScale;
+        r.lodStrands = p.lodStrands;
+        r.oitK = settings_.transparency.oitK;
+        r.domLayers = settings_.shadows.domLayers;
+        return r;
+    };
+    gpu::StrandRasterPush lightRaster = rasterPush(light);
+    if (!settings_.shadows.enabled)
+        lightRaster.drawnPerGuide = 0;  // the maps are only cleared
+    strandRaster_->prepare(frame, rasterPush(push), lightRaster, &hairPass_->lutInfo());
+}
+
+void Renderer::makeStrandRaster()
+{
+    if (strandRaster_)
+        return;
+    strandRaster_ = std::make_unique<StrandRaster>(ctx_, *target_, uniforms_, *lightMaps_, *solver_, guideTriangles_,
+                                                   framesInFlight_);
+    headShadowPass_ = std::make_unique<ShadowPass>(*lightMaps_, *meshPass_, nullptr);
+    headShadowPass_->setHairDepth(false);
+    strandComposite_ = std::make_unique<CompositePass>(ctx_, *target_, "hair.composite");
+}
+
+HairRaster Renderer::hairRaster() const
+{
+    return resolveHairRaster(settings_.hairRaster, ctx_.report().type);
+}
+
+RasterStats Renderer::rasterStats(uint32_t slot) const
+{
+    return strandRaster_ && hairPass_ && hairRaster() == HairRaster::Compute ? strandRaster_->stats(slot)
+                                                                              : RasterStats{};
 }
 
 void Renderer::attachHair(GpuSolver& solver, const StrandSet& strands, float unitsPerMetre)
@@ -221,7 +290,8 @@ void Renderer::attachHair(GpuSolver& solver, const StrandSet& strands, float uni
                                      settings_.transparency.oitAutoNodes);
         oitClear_ = std::make_unique<OitClearPass>(*oit_);
         oitResolve_ = std::make_unique<OitResolvePass>(ctx_, *oit_);
-        oitComposite_ = std::make_unique<OitCompositePass>(ctx_, *oit_, *target_);
+        oitComposite_ = std::make_unique<CompositePass>(ctx_, *target_, "oit.composite");
+        oitComposite_->setSource(&oit_->color(), &oit_->colorImage());
         oitStats_ = std::make_unique<OitStatsPass>(*oit_);
         hairPass_->setOit(oit_.get());
     }
@@ -236,6 +306,10 @@ void Renderer::attachHair(GpuSolver& solver, const StrandSet& strands, float uni
     lightFit_.unitsPerMetre = unitsPerMetre;
     guideCount_ = uint32_t(strands.strandCount());
     verticesPerStrand_ = strands.verticesPerStrand;
+    solver_ = &solver;
+    guideTriangles_ = guideTriangles(strands);
+    if (hairRaster() == HairRaster::Compute)
+        makeStrandRaster();  // (else made the first time a frame draws with it)
     unitsPerMetre_ = unitsPerMetre;
 }
 
@@ -261,17 +335,35 @@ std::vector<Pass*> Renderer::passes()
     std::vector<Pass*> list;
     if (physicsPass_)
         list.push_back(physicsPass_.get());
-    list.push_back(shadowPass_.get());
-    list.push_back(opacityPass_.get());
-    if (oitClear_)
-        list.push_back(oitClear_.get());
-    list.push_back(meshPass_.get());
-    if (hairPass_)
-        list.push_back(hairPass_.get());
-    if (oitResolve_) {
-        list.push_back(oitResolve_.get());
-        list.push_back(oitComposite_.get());
-        list.push_back(oitStats_.get());
+    if (hairPass_ && hairRaster() == HairRaster::Compute) {
+        using Stage = StrandRaster::Stage;
+        list.push_back(strandRaster_->pass(Stage::Clear));
+        list.push_back(headShadowPass_.get());
+        for (Stage stage : StrandRaster::kLightStages)
+            if (stage != Stage::Clear)
+                list.push_back(strandRaster_->pass(stage));
+        list.push_back(meshPass_->depthPass());
+        list.push_back(meshPass_->shadowMaskPass());
+        list.push_back(meshPass_.get());
+        for (Stage stage : StrandRaster::kCameraStages)
+            list.push_back(strandRaster_->pass(stage));
+        list.push_back(strandComposite_.get());
+        list.push_back(strandRaster_->pass(Stage::Stats));
+    } else {
+        list.push_back(shadowPass_.get());
+        list.push_back(opacityPass_.get());
+        if (oitClear_)
+            list.push_back(oitClear_.get());
+        list.push_back(meshPass_->depthPass());
+        list.push_back(meshPass_->shadowMaskPass());
+        list.push_back(meshPass_.get());
+        if (hairPass_)
+            list.push_back(hairPass_.get());
+        if (oitResolve_) {
+            list.push_back(oitResolve_.get());
+            list.push_back(oitComposite_.get());
+            list.push_back(oitStats_.get());
+        }
     }
     if (guidePass_ && settings_.strands.showGuides)
         list.push_back(guidePass_.get());

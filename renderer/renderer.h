@@ -19,6 +19,7 @@
 #include "renderer/physics_pass.h"
 #include "renderer/render_target.h"
 #include "renderer/settings.h"
+#include "renderer/strand_raster.h"
 #include "shading/hair_bsdf.h"
 
 #include <memory>
@@ -38,6 +39,11 @@ struct LightFit {
     Bounds scene;
     float unitsPerMetre = 1.0f;
 };
+
+// What hair_raster=auto draws with on a device of this type: compute wherever the GPU runs
+// compute on more of its units than graphics (every GPU measured), the tessellation path on CPU
+// drivers.
+HairRaster resolveHairRaster(HairRaster setting, VkPhysicalDeviceType deviceType);
 
 // Turns the human-facing settings and the camera into the GPU's per-frame block, all but the hair
 // material (`hair`: the Renderer packs it when the look changes, not every frame).
@@ -72,13 +78,21 @@ public:
     void prepare(FrameContext& frame, const OrbitCamera& camera, float timeSeconds);
     std::vector<Pass*> passes();
     std::vector<TrackedImage*> transientImages();
-    // Fragments the OIT lists held and dropped in the last completed frame of `slot` (zeros in MSAA mode).
+    // Fragments the OIT lists held and dropped in the last completed frame of `slot` (zeros in MSAA
+    // mode or when the hair is drawn in compute).
     OitStats oitStats(uint32_t slot) const;
     // After a frame that overflowed the automatic OIT pool: grows it (the device must be idle), so
     // the next frame drops nothing; false when it cannot (the user's pool, or the device's limit).
     bool growOit(const OitStats& overflowed);
+    // The compute path's counts of the last completed frame of `slot` (zeros when it is not used).
+    RasterStats rasterStats(uint32_t slot) const;
+    // How the hair is drawn now (hair_raster, auto resolved for the device).
+    HairRaster hairRaster() const;
 
     RenderTarget& target() { return *target_; }
+    StrandRaster* strandRaster() { return strandRaster_.get(); }
+    // The per-frame block prepare() last wrote (the tests' CPU twins take it as their input).
+    const gpu::FrameParams& frameParams() const { return frameParams_; }
     LightMaps& lightMaps() { return *lightMaps_; }
     RenderSettings& settings() { return settings_; }
     const Bounds& sceneBounds() const { return bounds_; }
@@ -99,8 +113,15 @@ private:
     std::unique_ptr<Oit> oit_;
     std::unique_ptr<OitClearPass> oitClear_;
     std::unique_ptr<OitResolvePass> oitResolve_;
-    std::unique_ptr<OitCompositePass> oitComposite_;
+    std::unique_ptr<CompositePass> oitComposite_;
     std::unique_ptr<OitStatsPass> oitStats_;
+    // The compute path (made the first time a frame draws with it) and what it adds to the frame.
+    std::unique_ptr<StrandRaster> strandRaster_;
+    std::unique_ptr<ShadowPass> headShadowPass_;  // the head's depth alone: the hair's maps come from compute
+    std::unique_ptr<CompositePass> strandComposite_;
+    GpuSolver* solver_ = nullptr;
+    std::vector<glm::uvec4> guideTriangles_;
+    void makeStrandRaster();
     uint32_t guideCount_ = 0;
     uint32_t verticesPerStrand_ = 0;
     float unitsPerMetre_ = 1.0f;
@@ -113,6 +134,7 @@ private:
     shading::HairParams lutParams_;  // what the hair pass's lookup tables were built for
     std::optional<shading::HairParams> materialParams_;  // what `material_` was packed from
     gpu::HairMaterial material_{};
+    gpu::FrameParams frameParams_{};
 };
 
 }  // namespace wisp

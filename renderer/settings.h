@@ -87,6 +87,10 @@ struct TransparencySettings {
     float hairOpacity = 0.85f;        // opacity of a strand that covers its pixel (oit, deep opacity)
 };
 
+// How the hair is drawn: the tessellation and geometry stages (hair_pass.cpp), or entirely in
+// compute (strand_raster.cpp); auto picks the faster on the device (resolveHairRaster).
+enum class HairRaster { Graphics, Compute, Auto };
+
 struct RenderSettings {
     uint32_t width = 1280;
     uint32_t height = 720;
@@ -102,6 +106,7 @@ struct RenderSettings {
     // The scalp under the hair painted a darkened hair colour, this strongly (0: bare skin, 1: fully):
     // production grooms do, so that skin does not show between strands and along partings.
     float scalpPaint = 0.9f;
+    HairRaster hairRaster = HairRaster::Auto;
     StrandSettings strands;
     ShadowSettings shadows;
     TransparencySettings transparency;

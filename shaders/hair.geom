@@ -49,7 +49,7 @@ void main()
 
     for (int i = 0; i < 2; ++i) {
         vec4 c = i == 0 ? c0 : c1;
-        float worldWidth = push.width * push.lodWidthScale * (1.0 - 0.85 * inT[i]);
+        float worldWidth = strandWidthAt(push.width * push.lodWidthScale, inT[i]);
         float pixels = worldWidth * pixelsPerUnit / c.w;
         float drawn = max(pixels, push.minPixelWidth);
         float coverage = pixels / drawn;

@@ -39,22 +39,13 @@ vec3 guidePoint(uint guide, uint i)
 }
 
 // The guide's curve at t: position and (unnormalized) tangent.
-void evaluateGuide(uint guide, float t, out vec3 p, out vec3 tangent)
+CurvePoint evaluateGuide(uint guide, float t)
 {
     uint V = push.verticesPerStrand;
     uint seg = curveSegment(t, V);
-    float u = curveLocal(t, V, seg);
-    Bezier b = catmullRomBezier(guidePoint(guide, seg == 0u ? 0u : seg - 1u), guidePoint(guide, seg),
-                                guidePoint(guide, seg + 1u), guidePoint(guide, min(seg + 2u, V - 1u)));
-    p = bezierPoint(b, u);
-    tangent = bezierTangent(b, u);
-}
-
-vec3 pushOutOfColliders(vec3 p)
-{
-    for (uint c = 0u; c < sim.colliderCount; ++c)
-        p = pushOutOfCollider(sim.colliders[c], frame.headTransform, p);
-    return p;
+    return guideCurvePoint(guidePoint(guide, seg == 0u ? 0u : seg - 1u), guidePoint(guide, seg),
+                           guidePoint(guide, seg + 1u), guidePoint(guide, min(seg + 2u, V - 1u)),
+                           curveLocal(t, V, seg));
 }
 
 void main()
@@ -63,32 +54,23 @@ void main()
     float t = (float(patchDivisionBase) + gl_TessCoord.x * float(patchDivisions)) / float(push.divisions);
     uint guide = patchGuide;
 
-    vec3 p, tangent;
-    evaluateGuide(guide, t, p, tangent);
+    CurvePoint g = evaluateGuide(guide, t);
+    CurvePoint g1 = g, g2 = g;
     if (strandIsMulti(push.interpolation, s)) {
         uvec4 tri = triangles[guide];
-        vec3 w = triangleWeights(guide, s);
-        vec3 p1, t1, p2, t2;
-        evaluateGuide(tri.y, t, p1, t1);
-        evaluateGuide(tri.z, t, p2, t2);
-        p = w.x * p + w.y * p1 + w.z * p2;
-        tangent = w.x * tangent + w.y * t1 + w.z * t2;
+        g1 = evaluateGuide(tri.y, t);
+        g2 = evaluateGuide(tri.z, t);
     }
-    vec3 T = normalize(tangent);
-    mat3 f = strandFrame(T);
-    if (!strandIsMulti(push.interpolation, s)) {
-        vec2 d = discOffset(guide, s);
-        p += push.clumpRadius * clumpTaper(t) * (d.x * f[1] + d.y * f[2]);
-    }
-    float a = deviationAngle(guide, s);
-    p += push.deviation * deviationProfile(guide, s, t) * (cos(a) * f[1] + sin(a) * f[2]);
+    CurvePoint point = placeStrandPoint(g, g1, g2, guide, s, t, push.interpolation, push.clumpRadius, push.deviation);
+    vec3 p = point.position;
     // Every generated strand is kept out of the head's colliders: blends of two outside points,
     // and offsets across a guide lying on the scalp, would otherwise fall inside the head.
     if (s != 0u)
-        p = pushOutOfColliders(p);
+        for (uint c = 0u; c < sim.colliderCount; ++c)
+            p = pushOutOfCollider(sim.colliders[c], frame.headTransform, p);
 
     outWorld = p;
-    outTangent = T;
+    outTangent = point.tangent;
     outT = t;
     outStrand = guide * push.strandsPerGuide + s;
     outLodAlpha = lodAlpha(s, push.lodStrands);

@@ -1,6 +1,8 @@
 #version 460
 // mesh.frag: shades the head (its scalp painted under the hair) with one directional key light plus a hemisphere ambient
-// (shared/lighting.h), shadowed by the head and the hair (light_visibility.glsl), tone-mapped; the target is sRGB so the hardware encodes the output.
+// (shared/lighting.h), shadowed by the head and the hair as the shadow mask has it for this pixel
+// (mesh_shadow.comp evaluated light_visibility.glsl in compute), tone-mapped; the target is sRGB
+// so the hardware encodes the output.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/frame_params.h"
 #include "shared/mesh_params.h"
@@ -8,7 +10,7 @@
 
 layout(set = 0, binding = kFrameParamsBinding) uniform FrameBlock { FrameParams frame; };
 layout(push_constant) uniform PushBlock { MeshPush push; };
-#include "light_visibility.glsl"
+layout(set = 0, binding = kMeshBindingShadowMask) uniform sampler2D shadowMask;
 
 
 layout(location = 0) in vec3 inWorldPosition;
@@ -22,8 +24,9 @@ void main()
     vec3 v = normalize(frame.cameraPosition - inWorldPosition);
     if (dot(n, v) < 0.0)
         n = -n;  // back faces seen through open meshes shade like their front
-    float visibility = lightVisibility(inWorldPosition, gl_FragCoord.xy, frame.shadowBias);
-    // The scalp under the hair is painted a darkened hair colour, fading out past the hairline.
+    vec2 parts = texelFetch(shadowMask, ivec2(gl_FragCoord.xy), 0).rg;
+    float visibility = parts.x * parts.y;
+    // The scalp under the hair is painted a darkened hair colour, fading out past the hairline,
     // and matte: a scalp under hair has no highlight of its own.
     float scalp = push.scalpStrength * clamp(inScalp, 0.0, 1.0);
     vec3 albedo = mix(push.albedo, push.scalpAlbedo, scalp);

@@ -12,6 +12,10 @@ layout(location = kMeshLocationScalp) in float inScalp;
 layout(set = 0, binding = kFrameParamsBinding) uniform FrameBlock { FrameParams frame; };
 layout(push_constant) uniform PushBlock { MeshPush push; };
 
+// The depth pass and the shading pass compute the same depths bit for bit (the shading tests
+// LESS_OR_EQUAL against the first), whatever else each pipeline leaves out.
+invariant gl_Position;
+
 layout(location = 0) out vec3 outWorldPosition;
 layout(location = 1) out vec3 outWorldNormal;
 layout(location = 2) out float outScalp;

@@ -10,6 +10,21 @@ GPU_CONST uint kMeshLocationPosition = 0;  // vec3, asset units
 GPU_CONST uint kMeshLocationNormal = 1;    // vec3, unit length
 GPU_CONST uint kMeshLocationScalp = 2;     // float, 0..1: how much hair grows here (the painted scalp)
 
+// The shadow mask (mesh_shadow.comp writes it, mesh.frag reads it): per pixel, the key light's
+// visibility at the nearest mesh surface, x the head's shadow and y the hair's transmittance.
+GPU_CONST uint kMeshBindingShadowMask = 8;  // mesh.frag: sampler2D; mesh_shadow.comp: image2D rgba8
+GPU_CONST uint kMeshBindingDepth = 9;       // mesh_shadow.comp: the meshes' depth (sampler2D[MS])
+GPU_CONST uint kMeshBindingFrame = 0;       // mesh_shadow.comp: FrameParams (= kFrameParamsBinding)
+
+// Push constants of mesh_shadow.comp.
+struct MeshShadowPush {
+    mat4 inverseViewProjection;  // clip -> world, to place each pixel's depth
+    uint width;                  // pixels
+    uint height;
+    uint samples;                // of the meshes' depth
+    uint pad;
+};
+
 struct MeshPush {
     mat4  model;          // object -> world
     vec3  albedo;         // linear RGB diffuse reflectance, 0..1

@@ -7,6 +7,7 @@
 #ifdef __cplusplus
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <glm/gtc/packing.hpp>
 #define GPU_NAMESPACE_BEGIN namespace gpu {
 #define GPU_NAMESPACE_END }
 #define GPU_FN inline
@@ -19,6 +20,7 @@ using uvec2 = glm::uvec2;
 using uvec3 = glm::uvec3;
 using ivec3 = glm::ivec3;
 using uvec4 = glm::uvec4;
+using ivec2 = glm::ivec2;
 using mat3 = glm::mat3;
 using mat4 = glm::mat4;
 using uint = std::uint32_t;
@@ -32,6 +34,7 @@ using glm::normalize;
 using glm::pow;
 using glm::abs;
 using glm::floor;
+using glm::ceil;
 using glm::fract;
 using glm::sqrt;
 using glm::sin;
@@ -40,8 +43,12 @@ using glm::acos;
 using glm::asin;
 using glm::log;
 using glm::exp;
+using glm::exp2;
 using glm::transpose;
 using glm::length;
+using glm::packUnorm4x8;
+using glm::bitCount;
+using glm::unpackUnorm4x8;
 GPU_NAMESPACE_END
 #else
 #define GPU_NAMESPACE_BEGIN

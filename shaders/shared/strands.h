@@ -98,6 +98,22 @@ GPU_FN vec3 bezierTangent(Bezier b, float u)
     return 3.0f * v * v * (b.b1 - b.b0) + 6.0f * v * u * (b.b2 - b.b1) + 3.0f * u * u * (b.b3 - b.b2);
 }
 
+// A point of a curve and its (unnormalized) tangent.
+struct CurvePoint {
+    vec3 position;
+    vec3 tangent;
+};
+
+// The guide's C1 curve at u in [0, 1] within segment p0..p1 (pPrev and pNext its neighbours).
+GPU_FN CurvePoint guideCurvePoint(vec3 pPrev, vec3 p0, vec3 p1, vec3 pNext, float u)
+{
+    Bezier b = catmullRomBezier(pPrev, p0, p1, pNext);
+    CurvePoint c;
+    c.position = bezierPoint(b, u);
+    c.tangent = bezierTangent(b, u);
+    return c;
+}
+
 // Which segment a parameter t in [0, 1] falls in, and where in it.
 GPU_FN uint curveSegment(float t, uint V)
 {
@@ -191,6 +207,42 @@ GPU_FN float deviationProfile(uint guide, uint s, float t)
 GPU_FN float deviationAngle(uint guide, uint s)
 {
     return 6.2831853f * hashToUnit(hashUint(guide * 613u + s * 7727u + 55u));
+}
+
+// Point t of strand s of `guide`, before it is pushed out of the colliders: `g` is the guide's curve
+// at t, `g1` and `g2` its two neighbours' (read only by multi-strand interpolation). A multi strand
+// blends the three with barycentric weights; a single strand is offset in the guide's clump disc;
+// then the random deviation. Returns the position and the unit tangent. The tessellation path
+// (hair.tese) and the compute path (strands_generate.comp) both place their strands with this.
+GPU_FN CurvePoint placeStrandPoint(CurvePoint g, CurvePoint g1, CurvePoint g2, uint guide, uint s, float t,
+                                   uint interpolation, float clumpRadius, float deviation)
+{
+    vec3 p = g.position;
+    vec3 tangent = g.tangent;
+    bool multi = strandIsMulti(interpolation, s);
+    if (multi) {
+        vec3 w = triangleWeights(guide, s);
+        p = w.x * p + w.y * g1.position + w.z * g2.position;
+        tangent = w.x * tangent + w.y * g1.tangent + w.z * g2.tangent;
+    }
+    vec3 T = normalize(tangent);
+    mat3 f = strandFrame(T);
+    if (!multi) {
+        vec2 d = discOffset(guide, s);
+        p += clumpRadius * clumpTaper(t) * (d.x * f[1] + d.y * f[2]);
+    }
+    float a = deviationAngle(guide, s);
+    p += deviation * deviationProfile(guide, s, t) * (cos(a) * f[1] + sin(a) * f[2]);
+    CurvePoint placed;
+    placed.position = p;
+    placed.tangent = T;
+    return placed;
+}
+
+// The drawn width of a strand at t (asset units): tapering to 15% at the tip.
+GPU_FN float strandWidthAt(float rootWidth, float t)
+{
+    return rootWidth * (1.0f - 0.85f * t);
 }
 
 // ---- Level of detail ----------------------------------------------------------------------------

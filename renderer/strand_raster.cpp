@@ -1,0 +1,509 @@
+// renderer/strand_raster.cpp: the compute path's buffers, pipelines and passes (what each stage
+// declares and records; the kernels are shaders/strands_*.comp).
+#include "renderer/strand_raster.h"
+
+#include "gpu/check.h"
+#include "gpu/context.h"
+#include "gpu/frame.h"
+#include "gpu/pipeline.h"
+#include "physics/gpu_solver.h"
+#include "renderer/frame_uniforms.h"
+#include "renderer/light_maps.h"
+#include "renderer/render_target.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace wisp {
+
+static_assert(sizeof(gpu::StrandRasterPush) == 80, "StrandRasterPush must fit the 128 bytes of push constants");
+static_assert(sizeof(gpu::RasterCounters) == 32);
+
+namespace {
+
+constexpr uint32_t kMaxGroupsPerDimension = 65535;  // maxComputeWorkGroupCount's guaranteed minimum
+
+const char* stageName(StrandRaster::Stage stage)
+{
+    switch (stage) {
+    case StrandRaster::Stage::Clear: return "strands.clear";
+    case StrandRaster::Stage::LightGenerate: return "strands.light";
+    case StrandRaster::Stage::LightDepth: return "light.depth";
+    case StrandRaster::Stage::LightOpacity: return "light.opacity";
+    case StrandRaster::Stage::LightResolve: return "light.resolve";
+    case StrandRaster::Stage::LightCopy: return "light.copy";
+    case StrandRaster::Stage::Generate: return "strands.generate";
+    case StrandRaster::Stage::Depth: return "strands.depth";
+    case StrandRaster::Stage::Count: return "strands.count";
+    case StrandRaster::Stage::ScanBlocks: return "strands.scan.blocks";
+    case StrandRaster::Stage::ScanTotals: return "strands.scan.totals";
+    case StrandRaster::Stage::ScanOffsets: return "strands.scan.offsets";
+    case StrandRaster::Stage::Write: return "strands.write";
+    case StrandRaster::Stage::Resolve: return "strands.resolve";
+    case StrandRaster::Stage::Stats: return "strands.stats";
+    }
+    return "strands";
+}
+
+// One stage of the compute path as a pass of the frame.
+class StagePass : public Pass {
+public:
+    StagePass(StrandRaster& raster, StrandRaster::Stage stage) : raster_(raster), stage_(stage) {}
+    const char* name() const override { return stageName(stage_); }
+    void declare(PassIo& io) override { raster_.declare(stage_, io); }
+    void record(VkCommandBuffer cmd, FrameContext& frame) override { raster_.record(stage_, cmd, frame); }
+
+private:
+    StrandRaster& raster_;
+    StrandRaster::Stage stage_;
+};
+
+VkWriteDescriptorSet bufferWrite(uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* info)
+{
+    return {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+            .dstBinding = binding,
+            .descriptorCount = 1,
+            .descriptorType = type,
+            .pBufferInfo = info};
+}
+
+VkWriteDescriptorSet imageWrite(uint32_t binding, VkDescriptorType type, const VkDescriptorImageInfo* info)
+{
+    return {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+            .dstBinding = binding,
+            .descriptorCount = 1,
+            .descriptorType = type,
+            .pImageInfo = info};
+}
+
+constexpr uint32_t kScanBlockThreads = 256;  // strands_scan.comp's blocks: 4 counts a thread
+
+}  // namespace
+
+StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUniforms& uniforms, LightMaps& maps,
+                           GpuSolver& solver, const std::vector<glm::uvec4>& triangles, uint32_t framesInFlight)
+    : ctx_(ctx), target_(target), uniforms_(uniforms), maps_(maps), solver_(solver)
+{
+    constexpr VkShaderStageFlags kCompute = VK_SHADER_STAGE_COMPUTE_BIT;
+    constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    constexpr VkDescriptorType kSampler = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    constexpr VkDescriptorType kImage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    vk::PipelineLayoutBundle layout = vk::createPipelineLayout(
+        ctx, {.bindings = {{gpu::kRasterBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCompute},
+                           {gpu::kRasterBindingSim, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCompute},
+                           {gpu::kRasterBindingPositions, kStorage, kCompute},
+                           {gpu::kRasterBindingTriangles, kStorage, kCompute},
+                           {gpu::kBindingShadowHead, kSampler, kCompute},
+                           {gpu::kBindingShadowHair, kSampler, kCompute},
+                           {gpu::kBindingHairDepth, kSampler, kCompute},
+                           {gpu::kBindingOpacity, kSampler, kCompute},
+                           {gpu::kRasterBindingLut, kSampler, kCompute},
+                           {gpu::kRasterBindingVertices, kStorage, kCompute},
+                           {gpu::kRasterBindingColors, kStorage, kCompute},
+                           {gpu::kRasterBindingCounts, kStorage, kCompute},
+                           {gpu::kRasterBindingOffsets, kStorage, kCompute},
+                           {gpu::kRasterBindingFragments, kStorage, kCompute},
+                           {gpu::kRasterBindingCounters, kStorage, kCompute},
+                           {gpu::kRasterBindingMeshDepth, kSampler, kCompute},
+                           {gpu::kRasterBindingHairColor, kImage, kCompute},
+                           {gpu::kRasterBindingLightDepth, kStorage, kCompute},
+                           {gpu::kRasterBindingLightOpacity, kStorage, kCompute},
+                           {gpu::kRasterBindingOpacityImage, kImage, kCompute},
+                           {gpu::kRasterBindingDepthRange, kStorage, kCompute},
+                           {gpu::kRasterBindingBlockSums, kStorage, kCompute}},
+              .pushConstantBytes = sizeof(gpu::StrandRasterPush),
+              .pushConstantStages = kCompute,
+              .name = "strands.layout"});
+    setLayout_ = std::move(layout.setLayout);
+    layout_ = std::move(layout.layout);
+    generatePipeline_ = vk::createComputePipeline(ctx, layout_, "strands_generate.comp", "strands.generate.pipeline");
+    generateLightPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_generate_light.comp", "strands.light.pipeline");
+    const char* single = target.multisampled() ? "" : "_single";
+    depthPipeline_ = vk::createComputePipeline(ctx, layout_, std::string("strands_depth") + single + ".comp",
+                                               "strands.depth.pipeline");
+    countPipeline_ = vk::createComputePipeline(ctx, layout_, std::string("strands_fragments") + single + ".comp",
+                                               "strands.count.pipeline", {/*kWrite=*/0});
+    writePipeline_ = vk::createComputePipeline(ctx, layout_, std::string("strands_fragments") + single + ".comp",
+                                               "strands.write.pipeline", {/*kWrite=*/1});
+    scanBlocksPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_scan.comp", "strands.scan.blocks.pipeline",
+                                                    {/*kPhase=*/0, kScanBlockThreads});
+    scanTotalsPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_scan.comp", "strands.scan.totals.pipeline",
+                                                    {/*kPhase=*/1, gpu::kRasterScanGroupSize});
+    scanOffsetsPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_scan.comp", "strands.scan.offsets.pipeline",
+                                                     {/*kPhase=*/2, kScanBlockThreads});
+    lightDepthPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_light.comp", "light.depth.pipeline", {/*kOpacity=*/0});
+    lightOpacityPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_light.comp", "light.opacity.pipeline", {/*kOpacity=*/1});
+    lightResolvePipeline_ = vk::createComputePipeline(ctx, layout_, "strands_light_resolve.comp", "light.resolve.pipeline");
+    depthSampler_ = vk::createSampler(ctx, VK_FILTER_NEAREST, false, "strands.depth.sampler");
+
+    triangles_ = ctx.createBufferWithData({.size = triangles.size() * sizeof(glm::uvec4), .usage = vk::kStorage,
+                                           .name = "strands.triangles"},
+                                          triangles.data(), triangles.size() * sizeof(glm::uvec4));
+    allocate(counters_, sizeof(gpu::RasterCounters), vk::kStorage | vk::kTransferDst | vk::kTransferSrc,
+             "strands.counters", nullptr);
+    for (uint32_t i = 0; i < framesInFlight; ++i) {
+        readback_.push_back(ctx.createBuffer({.size = sizeof(gpu::RasterCounters),
+                                              .usage = vk::kTransferDst,
+                                              .memory = vk::Memory::Readback,
+                                              .name = "strands.counters.readback"}));
+        std::memset(readback_.back().mapped(), 0, sizeof(gpu::RasterCounters));
+    }
+    for (int s = 0; s <= int(Stage::Stats); ++s)
+        passes_.push_back(std::make_unique<StagePass>(*this, Stage(s)));
+    resize();
+}
+
+StrandRaster::~StrandRaster() = default;
+
+void StrandRaster::allocate(Storage& storage, uint64_t bytes, VkBufferUsageFlags usage, const char* name,
+                            FrameContext* frame)
+{
+    if (frame && storage.buffer)
+        frame->retire(std::move(storage.buffer));
+    storage.buffer = ctx_.createBuffer({.size = std::max<uint64_t>(bytes, 16), .usage = usage, .name = name});
+    storage.track = {.buffer = storage.buffer};
+}
+
+void StrandRaster::resize()
+{
+    VkExtent2D e = target_.extent();
+    uint64_t pixels = uint64_t(e.width) * e.height;
+    uint64_t blocks = (pixels + 1 + gpu::kRasterScanBlock - 1) / gpu::kRasterScanBlock;
+    allocate(counts_, (pixels + 1) * 4, vk::kStorage | vk::kTransferDst, "strands.counts", nullptr);
+    allocate(offsets_, (pixels + 1) * 4, vk::kStorage | vk::kTransferSrc, "strands.offsets", nullptr);
+    allocate(depthRange_, pixels * 8, vk::kStorage, "strands.depth_range", nullptr);
+    allocate(blockSums_, blocks * 4, vk::kStorage, "strands.block_sums", nullptr);
+    // The count past the last pixel is always 0 (its offset is the total): zeroed once.
+    ctx_.submitAndWait([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, counts_.buffer, 0, VK_WHOLE_SIZE, 0); });
+    color_ = ctx_.createImage({.format = VK_FORMAT_R16G16B16A16_SFLOAT,
+                               .extent = e,
+                               .usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                        VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                               .name = "strands.color"});
+    colorTrack_ = {.image = color_.get()};
+}
+
+void StrandRaster::setFragmentCapacity(uint64_t fragments)
+{
+    forcedCapacity_ = fragments;
+    fragmentCapacity_ = 0;
+    fragments_.buffer.reset();
+    for (vk::Buffer& b : readback_)  // what earlier frames needed is forgotten
+        std::memset(b.mapped(), 0, sizeof(gpu::RasterCounters));
+}
+
+StrandRaster::Storage& StrandRaster::storage(Buffer which)
+{
+    switch (which) {
+    case Buffer::Vertices: return vertices_;
+    case Buffer::Colors: return colors_;
+    case Buffer::LightVertices: return lightVertices_;
+    case Buffer::LightColors: return lightColors_;
+    case Buffer::Offsets: return offsets_;
+    case Buffer::Fragments: return fragments_;
+    case Buffer::Counters: return counters_;
+    case Buffer::LightDepth: return lightDepth_;
+    case Buffer::LightOpacity: return lightOpacity_;
+    }
+    return counters_;
+}
+
+Pass* StrandRaster::pass(Stage stage)
+{
+    return passes_[size_t(stage)].get();
+}
+
+RasterStats StrandRaster::stats(uint32_t slot) const
+{
+    gpu::RasterCounters c{};
+    std::memcpy(&c, readback_.at(slot).mapped(), sizeof(c));
+    return {.segments = c.segments, .fragments = c.fragments, .capacity = c.capacity, .overflow = c.overflow,
+            .maxPixel = c.maxPixel};
+}
+
+void StrandRaster::prepare(FrameContext& frame, gpu::StrandRasterPush camera, gpu::StrandRasterPush light,
+                           const VkDescriptorImageInfo* lut)
+{
+    lut_ = lut;
+    VkExtent2D e = target_.extent();
+    uint64_t cameraVertices = uint64_t(camera.guideCount) * camera.drawnPerGuide * (camera.divisions + 1);
+    uint64_t lightVertices = uint64_t(light.guideCount) * light.drawnPerGuide * (light.divisions + 1);
+    if (!vertices_.buffer || vertices_.buffer.size() < cameraVertices * sizeof(glm::vec4)) {
+        allocate(vertices_, cameraVertices * sizeof(glm::vec4), vk::kStorage | vk::kTransferSrc, "strands.vertices", &frame);
+        allocate(colors_, cameraVertices * 4, vk::kStorage | vk::kTransferSrc, "strands.colors", &frame);
+    }
+    if (!lightVertices_.buffer || lightVertices_.buffer.size() < lightVertices * sizeof(glm::vec4)) {
+        allocate(lightVertices_, lightVertices * sizeof(glm::vec4), vk::kStorage | vk::kTransferSrc, "strands.light_vertices", &frame);
+        allocate(lightColors_, lightVertices * 4, vk::kStorage | vk::kTransferSrc, "strands.light_colors", &frame);
+    }
+    if (lightSize_ != maps_.size()) {
+        lightSize_ = maps_.size();
+        uint64_t texels = uint64_t(lightSize_) * lightSize_;
+        allocate(lightDepth_, texels * 4, vk::kStorage | vk::kTransferDst | vk::kTransferSrc, "strands.light_depth", &frame);
+        allocate(lightOpacity_, texels * 16, vk::kStorage | vk::kTransferDst | vk::kTransferSrc, "strands.light_opacity", &frame);
+    }
+    // The fragments: room for what this slot's last frame needed (it has completed), with some to
+    // spare; at first a few per segment. Never past what one buffer may hold.
+    uint64_t segments = uint64_t(camera.guideCount) * camera.drawnPerGuide * camera.divisions;
+    uint64_t limit = std::min<uint64_t>(ctx_.report().maxStorageBufferRange, 0xffffffffull) / 8;
+    uint64_t wanted = forcedCapacity_ > 0 ? forcedCapacity_
+                                          : std::max(kMinFragments, segments * kInitialFragmentsPerSegment);
+    RasterStats last = stats(frame.slot);
+    if (last.fragments > fragmentCapacity_)
+        wanted = std::max(wanted, last.fragments + last.fragments / 4);
+    wanted = std::min(wanted, limit);
+    if (wanted > fragmentCapacity_ || !fragments_.buffer) {
+        fragmentCapacity_ = std::max(wanted, fragmentCapacity_);
+        allocate(fragments_, fragmentCapacity_ * 8, vk::kStorage | vk::kTransferSrc, "strands.fragments", &frame);
+    }
+    // oit_k is the resolve's specialization constant.
+    uint32_t k = std::clamp(camera.oitK, 1u, gpu::kMaxOitK);
+    if (k != pipelineK_) {
+        if (resolvePipeline_)
+            frame.retire(std::move(resolvePipeline_));
+        resolvePipeline_ = vk::createComputePipeline(ctx_, layout_, "strands_resolve.comp", "strands.resolve.pipeline", {k});
+        pipelineK_ = k;
+    }
+
+    uint64_t pixels = uint64_t(e.width) * e.height;
+    camera.fromLight = 0;
+    camera.segmentCount = uint32_t(segments);
+    camera.targetWidth = e.width;
+    camera.targetHeight = e.height;
+    camera.samples = uint32_t(target_.samples());
+    camera.fragmentCapacity = uint32_t(fragmentCapacity_);
+    camera.scanBlocks = uint32_t((pixels + 1 + gpu::kRasterScanBlock - 1) / gpu::kRasterScanBlock);
+    camera.oitK = k;
+    light.fromLight = 1;
+    light.segmentCount = uint32_t(uint64_t(light.guideCount) * light.drawnPerGuide * light.divisions);
+    light.targetWidth = lightSize_;
+    light.targetHeight = lightSize_;
+    camera_ = camera;
+    light_ = light;
+}
+
+void StrandRaster::declare(Stage stage, PassIo& io)
+{
+    switch (stage) {
+    case Stage::Clear:
+        io.use(lightDepth_.track, Access::TransferDst);
+        io.use(lightOpacity_.track, Access::TransferDst);
+        io.use(counters_.track, Access::TransferDst);
+        break;
+    case Stage::LightGenerate:
+        io.use(solver_.positionsTrack(), Access::ComputeRead);
+        io.use(lightVertices_.track, Access::ComputeWrite);
+        io.use(lightColors_.track, Access::ComputeWrite);
+        break;
+    case Stage::LightDepth:  // (one shader with light.opacity: it binds, never touches, the opacity)
+        io.use(lightVertices_.track, Access::ComputeRead);
+        io.use(lightColors_.track, Access::ComputeRead);
+        io.use(lightDepth_.track, Access::ComputeWrite);
+        io.use(lightOpacity_.track, Access::ComputeRead);
+        break;
+    case Stage::LightOpacity:
+        io.use(lightVertices_.track, Access::ComputeRead);
+        io.use(lightColors_.track, Access::ComputeRead);
+        io.use(lightDepth_.track, Access::ComputeRead);
+        io.use(lightOpacity_.track, Access::ComputeWrite);
+        break;
+    case Stage::LightResolve:
+        io.use(lightOpacity_.track, Access::ComputeRead);
+        io.use(maps_.opacity(), Access::ComputeWrite);
+        break;
+    case Stage::LightCopy:
+        io.use(lightDepth_.track, Access::TransferSrc);
+        io.use(maps_.hairDepth(), Access::TransferDst);
+        break;
+    case Stage::Generate:
+        io.use(solver_.positionsTrack(), Access::ComputeRead);
+        maps_.declareRead(io, Access::ComputeSampled);
+        io.use(vertices_.track, Access::ComputeWrite);
+        io.use(colors_.track, Access::ComputeWrite);
+        break;
+    case Stage::Depth:
+        io.use(target_.depth(), Access::ComputeSampled);
+        io.use(depthRange_.track, Access::ComputeWrite);
+        io.use(counts_.track, Access::ComputeWrite);
+        break;
+    case Stage::Count:  // (one shader with strands.write: it binds, never touches, the offsets and fragments)
+    case Stage::Write:
+        io.use(vertices_.track, Access::ComputeRead);
+        io.use(colors_.track, Access::ComputeRead);
+        io.use(depthRange_.track, Access::ComputeRead);
+        io.use(target_.depth(), Access::ComputeSampled);
+        io.use(counts_.track, Access::ComputeWrite);
+        io.use(offsets_.track, Access::ComputeRead);
+        io.use(fragments_.track, Access::ComputeWrite);
+        io.use(counters_.track, Access::ComputeWrite);
+        break;
+    case Stage::ScanBlocks:
+    case Stage::ScanTotals:
+    case Stage::ScanOffsets:
+        io.use(counts_.track, Access::ComputeWrite);
+        io.use(offsets_.track, Access::ComputeWrite);
+        io.use(blockSums_.track, Access::ComputeWrite);
+        io.use(counters_.track, Access::ComputeWrite);
+        break;
+    case Stage::Resolve:
+        io.use(offsets_.track, Access::ComputeRead);
+        io.use(fragments_.track, Access::ComputeRead);
+        io.use(counters_.track, Access::ComputeWrite);
+        io.use(colorTrack_, Access::ComputeWrite);
+        break;
+    case Stage::Stats:
+        io.use(counters_.track, Access::TransferSrc);
+        break;
+    }
+}
+
+void StrandRaster::dispatch(VkCommandBuffer cmd, VkPipeline pipeline, const gpu::StrandRasterPush& push,
+                            const std::vector<VkWriteDescriptorSet>& writes, uint32_t x, uint32_t y)
+{
+    if (x == 0 || y == 0)
+        return;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, uint32_t(writes.size()), writes.data());
+    vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdDispatch(cmd, x, y, 1);
+}
+
+void StrandRaster::dispatchLinear(VkCommandBuffer cmd, VkPipeline pipeline, const gpu::StrandRasterPush& push,
+                                  const std::vector<VkWriteDescriptorSet>& writes, uint64_t items, uint32_t groupSize)
+{
+    // Rows of at most kMaxGroupsPerDimension groups; the kernels number their items
+    // x + y * (groups per row * group size) and skip those past the end.
+    uint64_t groups = (items + groupSize - 1) / groupSize;
+    uint32_t x = uint32_t(std::min<uint64_t>(groups, kMaxGroupsPerDimension));
+    uint32_t y = x == 0 ? 0 : uint32_t((groups + x - 1) / x);
+    dispatch(cmd, pipeline, push, writes, x, y);
+}
+
+void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
+{
+    constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    auto whole = [](const Storage& s) { return VkDescriptorBufferInfo{s.buffer, 0, VK_WHOLE_SIZE}; };
+    VkDescriptorBufferInfo frameInfo = uniforms_.descriptor(frame.slot);
+    VkDescriptorBufferInfo simInfo{solver_.params(), 0, VK_WHOLE_SIZE};
+    VkDescriptorBufferInfo positions{solver_.positions(), 0, VK_WHOLE_SIZE};
+    VkDescriptorBufferInfo triangles{triangles_, 0, VK_WHOLE_SIZE};
+    VkDescriptorBufferInfo vertices = whole(vertices_), colors = whole(colors_);
+    VkDescriptorBufferInfo lightVertices = whole(lightVertices_), lightColors = whole(lightColors_);
+    VkDescriptorBufferInfo counts = whole(counts_), offsets = whole(offsets_), fragments = whole(fragments_);
+    VkDescriptorBufferInfo counters = whole(counters_), depthRange = whole(depthRange_), blockSums = whole(blockSums_);
+    VkDescriptorBufferInfo lightDepth = whole(lightDepth_), lightOpacity = whole(lightOpacity_);
+    VkDescriptorImageInfo meshDepth{depthSampler_, target_.depthImage().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    auto frameWrite = bufferWrite(gpu::kRasterBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frameInfo);
+    uint64_t cameraVertices = uint64_t(camera_.guideCount) * camera_.drawnPerGuide * (camera_.divisions + 1);
+    uint64_t lightVertexCount = uint64_t(light_.guideCount) * light_.drawnPerGuide * (light_.divisions + 1);
+
+    switch (stage) {
+    case Stage::Clear: {
+        vkCmdFillBuffer(cmd, lightDepth_.buffer, 0, VK_WHOLE_SIZE, 0x3f800000u);  // 1.0f: nothing in front
+        vkCmdFillBuffer(cmd, lightOpacity_.buffer, 0, VK_WHOLE_SIZE, 0);
+        vkCmdFillBuffer(cmd, counters_.buffer, 0, VK_WHOLE_SIZE, 0);
+        break;
+    }
+    case Stage::LightGenerate:
+    case Stage::Generate: {
+        bool fromLight = stage == Stage::LightGenerate;
+        std::vector<VkWriteDescriptorSet> writes = {
+            frameWrite, bufferWrite(gpu::kRasterBindingSim, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &simInfo),
+            bufferWrite(gpu::kRasterBindingPositions, kStorage, &positions),
+            bufferWrite(gpu::kRasterBindingTriangles, kStorage, &triangles),
+            bufferWrite(gpu::kRasterBindingVertices, kStorage, fromLight ? &lightVertices : &vertices),
+            bufferWrite(gpu::kRasterBindingColors, kStorage, fromLight ? &lightColors : &colors)};
+        if (!fromLight) {
+            for (const VkWriteDescriptorSet& w : maps_.descriptorWrites())
+                writes.push_back(w);
+            writes.push_back(imageWrite(gpu::kRasterBindingLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, lut_));
+        }
+        dispatchLinear(cmd, fromLight ? generateLightPipeline_.get() : generatePipeline_.get(), fromLight ? light_ : camera_, writes,
+                       fromLight ? lightVertexCount : cameraVertices, gpu::kRasterGroupSize);
+        break;
+    }
+    case Stage::LightDepth:
+    case Stage::LightOpacity: {
+        std::vector<VkWriteDescriptorSet> writes = {
+            frameWrite, bufferWrite(gpu::kRasterBindingVertices, kStorage, &lightVertices),
+            bufferWrite(gpu::kRasterBindingColors, kStorage, &lightColors),
+            bufferWrite(gpu::kRasterBindingLightDepth, kStorage, &lightDepth),
+            bufferWrite(gpu::kRasterBindingLightOpacity, kStorage, &lightOpacity)};
+        dispatchLinear(cmd, stage == Stage::LightDepth ? lightDepthPipeline_.get() : lightOpacityPipeline_.get(), light_, writes,
+                       light_.segmentCount, gpu::kRasterGroupSize);
+        break;
+    }
+    case Stage::LightResolve: {
+        VkDescriptorImageInfo opacityImage{VK_NULL_HANDLE, maps_.opacityImage().view(), VK_IMAGE_LAYOUT_GENERAL};
+        std::vector<VkWriteDescriptorSet> writes = {
+            bufferWrite(gpu::kRasterBindingLightOpacity, kStorage, &lightOpacity),
+            imageWrite(gpu::kRasterBindingOpacityImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &opacityImage)};
+        dispatch(cmd, lightResolvePipeline_, light_, writes, vk::groupCount(lightSize_, 8), vk::groupCount(lightSize_, 8));
+        break;
+    }
+    case Stage::LightCopy: {
+        VkBufferImageCopy region{.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1},
+                                 .imageExtent = {lightSize_, lightSize_, 1}};
+        vkCmdCopyBufferToImage(cmd, lightDepth_.buffer, maps_.hairDepthImage().get(),
+                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+        break;
+    }
+    case Stage::Depth: {
+        std::vector<VkWriteDescriptorSet> writes = {
+            imageWrite(gpu::kRasterBindingMeshDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &meshDepth),
+            bufferWrite(gpu::kRasterBindingDepthRange, kStorage, &depthRange),
+            bufferWrite(gpu::kRasterBindingCounts, kStorage, &counts)};
+        dispatch(cmd, depthPipeline_, camera_, writes, vk::groupCount(camera_.targetWidth, 8),
+                 vk::groupCount(camera_.targetHeight, 8));
+        break;
+    }
+    case Stage::Count:
+    case Stage::Write: {
+        std::vector<VkWriteDescriptorSet> writes = {
+            bufferWrite(gpu::kRasterBindingVertices, kStorage, &vertices),
+            bufferWrite(gpu::kRasterBindingColors, kStorage, &colors),
+            bufferWrite(gpu::kRasterBindingCounts, kStorage, &counts),
+            bufferWrite(gpu::kRasterBindingOffsets, kStorage, &offsets),
+            bufferWrite(gpu::kRasterBindingFragments, kStorage, &fragments),
+            bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters),
+            bufferWrite(gpu::kRasterBindingDepthRange, kStorage, &depthRange),
+            imageWrite(gpu::kRasterBindingMeshDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &meshDepth)};
+        dispatchLinear(cmd, stage == Stage::Count ? countPipeline_.get() : writePipeline_.get(), camera_, writes,
+                       camera_.segmentCount, gpu::kRasterGroupSize);
+        break;
+    }
+    case Stage::ScanBlocks:
+    case Stage::ScanTotals:
+    case Stage::ScanOffsets: {
+        std::vector<VkWriteDescriptorSet> writes = {bufferWrite(gpu::kRasterBindingCounts, kStorage, &counts),
+                                                    bufferWrite(gpu::kRasterBindingOffsets, kStorage, &offsets),
+                                                    bufferWrite(gpu::kRasterBindingBlockSums, kStorage, &blockSums),
+                                                    bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters)};
+        if (stage == Stage::ScanTotals)
+            dispatch(cmd, scanTotalsPipeline_, camera_, writes, 1);
+        else
+            dispatchLinear(cmd, stage == Stage::ScanBlocks ? scanBlocksPipeline_.get() : scanOffsetsPipeline_.get(),
+                           camera_, writes, camera_.scanBlocks, 1);
+        break;
+    }
+    case Stage::Resolve: {
+        VkDescriptorImageInfo color{VK_NULL_HANDLE, color_.view(), VK_IMAGE_LAYOUT_GENERAL};
+        std::vector<VkWriteDescriptorSet> writes = {
+            bufferWrite(gpu::kRasterBindingOffsets, kStorage, &offsets),
+            bufferWrite(gpu::kRasterBindingFragments, kStorage, &fragments),
+            bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters),
+            imageWrite(gpu::kRasterBindingHairColor, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &color)};
+        dispatch(cmd, resolvePipeline_, camera_, writes, vk::groupCount(camera_.targetWidth, 8),
+                 vk::groupCount(camera_.targetHeight, 8));
+        break;
+    }
+    case Stage::Stats: {
+        VkBufferCopy region{0, 0, sizeof(gpu::RasterCounters)};
+        vkCmdCopyBuffer(cmd, counters_.buffer, readback_.at(frame.slot), 1, &region);
+        vk::transferToHostBarrier(cmd);
+        break;
+    }
+    }
+}
+
+}  // namespace wisp

@@ -1,0 +1,152 @@
+// renderer/strand_raster.h: the hair drawn entirely in compute (hair_raster=compute), beside the
+// tessellation path (hair_pass.h), from the same guides and the same strand functions. It owns the
+// strand vertices, the pixels' fragment buffer, the light's accumulation buffers and the hair
+// image, and runs as a list of passes (each declares what it touches, so the frame derives every
+// barrier):
+//   strands.clear         transfer: the light's depth to 1 and opacity to 0, the counters
+//   strands.light         the light's strands (fewer, wider: shadow_strands), projected into its map
+//   light.depth           the hair's first depth from the light (atomicMin per texel)
+//   light.opacity         the deep opacity layers (fixed-point atomicAdd per texel and layer)
+//   light.resolve         the layers into the opacity image
+//   light.copy            the depth copied into the hair depth map
+//     (then the meshes, which read those maps)
+//   strands.generate      the camera's strands: placed, projected, shaded per vertex
+//   strands.depth         each pixel's nearest and farthest mesh depth sample; its count zeroed
+//   strands.count         each segment's fragments counted at their pixels
+//   strands.scan.blocks   the counts' prefix sum: each block's total,
+//   strands.scan.totals   the blocks' offsets and the total against the capacity,
+//   strands.scan.offsets  each pixel's first slot
+//   strands.write         each fragment written to its pixel's next slot
+//   strands.resolve       per pixel: the nearest k sorted and the rest blended (the lists'
+//                         semantics), one write
+//   hair.composite        the hair image over the target
+//   strands.stats         the counters to the host
+// The kernels are shaders/strands_*.comp over shaders/shared/strand_raster.h; their C++ twin is
+// renderer/strand_raster_reference.h. The fragment buffer grows when a frame needs more (the
+// overflowing frame's fragments are counted, never written out of bounds); headless pictures
+// render again.
+#pragma once
+
+#include "gpu/handle.h"
+#include "gpu/pass.h"
+#include "gpu/resources.h"
+#include "shaders/shared/strand_raster.h"
+
+#include <glm/glm.hpp>
+
+#include <array>
+#include <memory>
+#include <vector>
+
+namespace wisp {
+
+namespace vk {
+class Context;
+}
+struct FrameContext;
+class RenderTarget;
+class FrameUniforms;
+class GpuSolver;
+class LightMaps;
+
+// One frame's counts (zeros until a frame has completed).
+struct RasterStats {
+    uint64_t segments = 0;   // segments on screen
+    uint64_t fragments = 0;  // fragments the pixels held (what the buffer needed)
+    uint64_t capacity = 0;   // fragments the buffer held
+    uint64_t overflow = 0;   // fragments that did not fit: dropped that frame, the buffer grows for the next
+    uint64_t maxPixel = 0;   // the most fragments one pixel held
+};
+
+class StrandRaster {
+public:
+    enum class Stage {
+        Clear, LightGenerate, LightDepth, LightOpacity, LightResolve, LightCopy,
+        Generate, Depth, Count, ScanBlocks, ScanTotals, ScanOffsets, Write, Resolve, Stats
+    };
+    static constexpr std::array<Stage, 6> kLightStages = {Stage::Clear,        Stage::LightGenerate, Stage::LightDepth,
+                                                          Stage::LightOpacity, Stage::LightResolve,  Stage::LightCopy};
+    static constexpr std::array<Stage, 8> kCameraStages = {Stage::Generate,   Stage::Depth,      Stage::Count,
+                                                           Stage::ScanBlocks, Stage::ScanTotals, Stage::ScanOffsets,
+                                                           Stage::Write,      Stage::Resolve};
+    // The fragment buffer holds at least this many fragments, and starts at
+    // kInitialFragmentsPerSegment per segment drawn.
+    static constexpr uint64_t kMinFragments = 1u << 18;
+    static constexpr uint64_t kInitialFragmentsPerSegment = 8;
+
+    // `triangles`: each guide and its two neighbours (guideTriangles), for multi-strand interpolation.
+    StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUniforms& uniforms, LightMaps& maps,
+                 GpuSolver& solver, const std::vector<glm::uvec4>& triangles, uint32_t framesInFlight);
+    ~StrandRaster();
+
+    // This frame's strands for the camera and for the light (kernel parameters; sizes and
+    // capacities are filled in here), the lookup tables' descriptor (owned by the hair pass) and
+    // oit_k. Buffers too small for them are replaced (the old ones retired to `frame`), and the
+    // fragment buffer grows to what this slot's last frame needed.
+    void prepare(FrameContext& frame, gpu::StrandRasterPush camera, gpu::StrandRasterPush light,
+                 const VkDescriptorImageInfo* lut);
+    // Recreates what depends on the target's size; the device must be idle.
+    void resize();
+
+    Pass* pass(Stage stage);
+    TrackedImage& color() { return colorTrack_; }  // the hair, premultiplied RGBA16F
+    const vk::Image& colorImage() const { return color_; }
+    RasterStats stats(uint32_t slot) const;
+    uint64_t fragmentCapacity() const { return fragmentCapacity_; }
+
+    // The buffers, for tests that read them back (tests/test_strand_raster.cpp).
+    enum class Buffer { Vertices, Colors, LightVertices, LightColors, Offsets, Fragments, Counters, LightDepth, LightOpacity };
+    TrackedBuffer& track(Buffer which) { return storage(which).track; }
+    const vk::Buffer& buffer(Buffer which) { return storage(which).buffer; }
+    const gpu::StrandRasterPush& cameraPush() const { return camera_; }
+    const gpu::StrandRasterPush& lightPush() const { return light_; }
+    // Test hook: the fragment buffer is remade this small, and grows from there only as overflow
+    // makes it. The device must be idle.
+    void setFragmentCapacity(uint64_t fragments);
+
+    void declare(Stage stage, PassIo& io);
+    void record(Stage stage, VkCommandBuffer cmd, FrameContext& frame);
+
+private:
+    struct Storage {
+        vk::Buffer buffer;
+        TrackedBuffer track;
+    };
+    Storage& storage(Buffer which);
+    void allocate(Storage& storage, uint64_t bytes, VkBufferUsageFlags usage, const char* name, FrameContext* frame);
+    void dispatch(VkCommandBuffer cmd, VkPipeline pipeline, const gpu::StrandRasterPush& push,
+                  const std::vector<VkWriteDescriptorSet>& writes, uint32_t x, uint32_t y = 1);
+    // Groups of `groupSize` for `items` items, in rows of at most 65535 workgroups.
+    void dispatchLinear(VkCommandBuffer cmd, VkPipeline pipeline, const gpu::StrandRasterPush& push,
+                        const std::vector<VkWriteDescriptorSet>& writes, uint64_t items, uint32_t groupSize);
+
+    const vk::Context& ctx_;
+    RenderTarget& target_;
+    FrameUniforms& uniforms_;
+    LightMaps& maps_;
+    GpuSolver& solver_;
+    vk::DescriptorSetLayout setLayout_;
+    vk::PipelineLayout layout_;
+    vk::Pipeline generatePipeline_, generateLightPipeline_, depthPipeline_, countPipeline_, writePipeline_;
+    vk::Pipeline scanBlocksPipeline_, scanTotalsPipeline_, scanOffsetsPipeline_, resolvePipeline_;
+    vk::Pipeline lightDepthPipeline_, lightOpacityPipeline_, lightResolvePipeline_;
+    uint32_t pipelineK_ = 0;  // the oit_k the resolve pipeline was built for
+    vk::Sampler depthSampler_;  // the meshes' depth, fetched by texel
+    vk::Buffer triangles_;
+    Storage vertices_, colors_;            // the camera's strand vertices
+    Storage lightVertices_, lightColors_;  // the light's
+    Storage counts_, offsets_, fragments_, counters_, depthRange_, blockSums_;
+    Storage lightDepth_, lightOpacity_;
+    std::vector<vk::Buffer> readback_;  // counters, one per frame in flight
+    vk::Image color_;
+    TrackedImage colorTrack_;
+    uint64_t fragmentCapacity_ = 0;
+    uint64_t forcedCapacity_ = 0;
+    uint32_t lightSize_ = 0;
+    gpu::StrandRasterPush camera_{};
+    gpu::StrandRasterPush light_{};
+    const VkDescriptorImageInfo* lut_ = nullptr;
+    std::vector<std::unique_ptr<Pass>> passes_;  // one per Stage
+};
+
+}  // namespace wisp

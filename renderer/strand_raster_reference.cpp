@@ -1,0 +1,191 @@
+// renderer/strand_raster_reference.cpp: the compute strand renderer's CPU twin (see the header).
+// Each loop body is its kernel's main() over the same shared functions; only the addressing and
+// the atomics (here plain adds, mins and appends) differ.
+#include "renderer/strand_raster_reference.h"
+
+#include "shaders/shared/strand_shading.h"
+#include "shaders/shared/strands.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+namespace wisp::reference {
+
+namespace {
+
+gpu::CurvePoint evaluateGuide(const std::vector<glm::vec3>& guides, uint32_t V, uint32_t guide, float t)
+{
+    uint32_t seg = gpu::curveSegment(t, V);
+    auto point = [&](uint32_t i) { return guides[size_t(guide) * V + i]; };
+    return gpu::guideCurvePoint(point(seg == 0 ? 0 : seg - 1), point(seg), point(seg + 1),
+                                point(std::min(seg + 2, V - 1)), gpu::curveLocal(t, V, seg));
+}
+
+uint32_t firstVertex(const gpu::StrandRasterPush& push, uint32_t segment)
+{
+    return segment / push.divisions * (push.divisions + 1) + segment % push.divisions;
+}
+
+}  // namespace
+
+StrandVertices generateStrands(const gpu::StrandRasterPush& push, const gpu::FrameParams& frame,
+                               const gpu::SimParams& sim, const std::vector<glm::vec3>& guides,
+                               const std::vector<glm::uvec4>& triangles)
+{
+    uint32_t perStrand = push.divisions + 1;
+    size_t count = size_t(push.guideCount) * push.drawnPerGuide * perStrand;
+    StrandVertices out;
+    out.positions.resize(count);
+    out.colors.resize(count);
+    for (uint32_t id = 0; id < count; ++id) {
+        uint32_t drawn = id / perStrand;
+        uint32_t i = id % perStrand;
+        uint32_t guide = drawn / push.drawnPerGuide;
+        uint32_t s = drawn % push.drawnPerGuide;
+        float t = float(i) / float(push.divisions);
+        gpu::CurvePoint g = evaluateGuide(guides, push.verticesPerStrand, guide, t);
+        gpu::CurvePoint g1 = g, g2 = g;
+        if (gpu::strandIsMulti(push.interpolation, s)) {
+            g1 = evaluateGuide(guides, push.verticesPerStrand, triangles[guide].y, t);
+            g2 = evaluateGuide(guides, push.verticesPerStrand, triangles[guide].z, t);
+        }
+        gpu::CurvePoint point =
+            gpu::placeStrandPoint(g, g1, g2, guide, s, t, push.interpolation, push.clumpRadius, push.deviation);
+        glm::vec3 p = point.position;
+        if (s != 0)
+            for (uint32_t c = 0; c < sim.colliderCount; ++c)
+                p = gpu::pushOutOfCollider(sim.colliders[c], frame.headTransform, p);
+
+        uint32_t strand = guide * push.strandsPerGuide + s;
+        float alpha = frame.hairOpacity * gpu::lodAlpha(s, push.lodStrands);
+        float worldWidth = gpu::strandWidthAt(push.width, t);
+        if (push.fromLight != 0) {
+            out.positions[id] = gpu::projectStrandVertex(frame.lightViewProjection, glm::vec2(frame.shadowMapSize), p,
+                                                         worldWidth, frame.lightTexelsPerUnit);
+            out.colors[id] = gpu::packFragmentColor(glm::vec3(0.0f), alpha);
+            continue;
+        }
+        glm::vec2 size(frame.viewportWidth, frame.viewportHeight);
+        float pixelsPerUnit = std::abs(frame.projection[1][1]) * 0.5f * size.y;
+        out.positions[id] = gpu::projectStrandVertex(frame.viewProjection, size, p, worldWidth, pixelsPerUnit);
+        glm::vec3 color = gpu::shadeStrandPoint(frame, p, point.tangent, t, strand, glm::vec2(1.0f), glm::vec3(0.0f));
+        out.colors[id] = gpu::packFragmentColor(color, alpha);
+    }
+    return out;
+}
+
+std::vector<std::vector<Fragment>> pixelFragments(const gpu::StrandRasterPush& push, const StrandVertices& strands,
+                                                  const std::vector<float>& meshDepth, uint32_t* segments)
+{
+    std::vector<std::vector<Fragment>> out(size_t(push.targetWidth) * push.targetHeight);
+    uint32_t drawnSegments = 0;
+    for (uint32_t segment = 0; segment < push.segmentCount; ++segment) {
+        uint32_t v = firstVertex(push, segment);
+        glm::vec4 a = strands.positions[v], b = strands.positions[v + 1];
+        if (!(a.w >= 0.0f && b.w >= 0.0f && std::min(a.z, b.z) >= 0.0f && std::max(a.z, b.z) <= 1.0f))
+            continue;
+        ++drawnSegments;
+        gpu::RasterSegment s = gpu::makeRasterSegment(glm::vec2(a), glm::vec2(b), a.w, b.w);
+        glm::vec4 colorA = gpu::unpackFragmentColor(strands.colors[v]);
+        glm::vec4 colorB = gpu::unpackFragmentColor(strands.colors[v + 1]);
+        float reach = gpu::ribbonReach(s);
+        int y0 = std::max(int(std::ceil(std::min(a.y, b.y) - reach - 0.5f)), 0);
+        int y1 = std::min(int(std::floor(std::max(a.y, b.y) + reach - 0.5f)), int(push.targetHeight) - 1);
+        for (int y = y0; y <= y1; ++y) {
+            glm::vec2 span = gpu::ribbonRowSpan(s, float(y) + 0.5f);
+            int x0 = std::max(int(std::ceil(span.x - 0.5f)), 0);
+            int x1 = std::min(int(std::floor(span.y - 0.5f)), int(push.targetWidth) - 1);
+            for (int x = x0; x <= x1; ++x) {
+                glm::vec2 hit = gpu::segmentCoverage(s, glm::vec2(float(x), float(y)) + 0.5f);
+                if (hit.x <= 0.0f)
+                    continue;
+                float depth = glm::mix(a.z, b.z, hit.y);
+                size_t p = size_t(y) * push.targetWidth + size_t(x);
+                if (!(depth <= meshDepth[p]))
+                    continue;
+                glm::vec4 c = glm::mix(colorA, colorB, hit.y);
+                float alpha = c.w * hit.x;
+                if (alpha < 0.5f / 255.0f)
+                    continue;
+                out[p].push_back({depth, gpu::packFragmentColor(glm::vec3(c), alpha)});
+            }
+        }
+    }
+    if (segments)
+        *segments = drawnSegments;
+    return out;
+}
+
+std::vector<glm::vec4> resolvePixels(const gpu::StrandRasterPush& push, const std::vector<std::vector<Fragment>>& pixels)
+{
+    uint32_t k = std::clamp(push.oitK, 1u, gpu::kMaxOitK);
+    std::vector<glm::vec4> out(pixels.size());
+    for (size_t p = 0; p < pixels.size(); ++p) {
+        gpu::PixelFragments f = gpu::emptyPixelFragments();
+        for (const Fragment& fragment : pixels[p])
+            gpu::insertFragment(f, k, fragment.depth, fragment.color);
+        out[p] = gpu::resolveFragments(f, k);
+    }
+    return out;
+}
+
+LightMaps rasterLight(const gpu::StrandRasterPush& push, const gpu::FrameParams& frame, const StrandVertices& strands)
+{
+    size_t texels = size_t(push.targetWidth) * push.targetHeight;
+    LightMaps out;
+    out.depth.assign(texels, std::bit_cast<uint32_t>(1.0f));
+    out.opacity.assign(texels, glm::uvec4(0));
+    for (int pass = 0; pass < 2; ++pass) {
+        bool opacity = pass == 1;
+        for (uint32_t segment = 0; segment < push.segmentCount; ++segment) {
+            uint32_t v = firstVertex(push, segment);
+            glm::vec4 a = strands.positions[v], b = strands.positions[v + 1];
+            if (a.w < 0.0f || b.w < 0.0f)
+                continue;
+            float alpha = 0.5f * (glm::unpackUnorm4x8(strands.colors[v]).w + glm::unpackUnorm4x8(strands.colors[v + 1]).w);
+            gpu::RasterSegment s = gpu::makeRasterSegment(glm::vec2(a), glm::vec2(b), a.w, b.w);
+            gpu::RasterSegment reach =
+                opacity ? s : gpu::makeRasterSegment(glm::vec2(a), glm::vec2(b), std::max(a.w, 0.5f), std::max(b.w, 0.5f));
+            float extent = gpu::ribbonReach(reach);
+            int y0 = std::max(int(std::ceil(std::min(a.y, b.y) - extent - 0.5f)), 0);
+            int y1 = std::min(int(std::floor(std::max(a.y, b.y) + extent - 0.5f)), int(push.targetHeight) - 1);
+            for (int y = y0; y <= y1; ++y) {
+                glm::vec2 span = gpu::ribbonRowSpan(reach, float(y) + 0.5f);
+                int x0 = std::max(int(std::ceil(span.x - 0.5f)), 0);
+                int x1 = std::min(int(std::floor(span.y - 0.5f)), int(push.targetWidth) - 1);
+                for (int x = x0; x <= x1; ++x) {
+                    glm::ivec2 texel(x, y);
+                    if (texel.x < 0 || texel.y < 0 || texel.x >= int(push.targetWidth) ||
+                        texel.y >= int(push.targetHeight))
+                        continue;
+                    size_t index = size_t(texel.y) * push.targetWidth + size_t(texel.x);
+                    glm::vec2 centre = glm::vec2(texel) + 0.5f;
+                    if (!opacity) {
+                        glm::vec2 d = centre - s.a;
+                        float u = glm::dot(d, s.dir);
+                        float t = s.len > 0.0f ? std::clamp(u / s.len, 0.0f, 1.0f) : 0.0f;
+                        float across = std::abs(s.dir.x * d.y - s.dir.y * d.x);
+                        if (u < 0.0f || u > s.len || across > std::max(glm::mix(s.ha, s.hb, t), 0.5f))
+                            continue;
+                        uint32_t bits = std::bit_cast<uint32_t>(std::max(glm::mix(a.z, b.z, t), 0.0f));
+                        out.depth[index] = std::min(out.depth[index], bits);
+                        continue;
+                    }
+                    glm::vec2 hit = gpu::segmentCoverage(s, centre);
+                    if (hit.x <= 0.0f)
+                        continue;
+                    float z0 = std::bit_cast<float>(out.depth[index]);
+                    float depth = glm::mix(a.z, b.z, hit.y);
+                    uint32_t layers = std::clamp(push.domLayers, 1u, gpu::kMaxDomLayers);
+                    uint32_t layer = std::min(uint32_t(std::max(depth - z0, 0.0f) / std::max(frame.domSpacing, 1e-12f)),
+                                              layers - 1);
+                    out.opacity[index][int(layer)] += uint32_t(alpha * hit.x * gpu::kOpacityFixedScale + 0.5f);
+                }
+            }
+        }
+    }
+    return out;
+}
+
+}  // namespace wisp::reference

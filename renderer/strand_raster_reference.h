@@ -1,0 +1,56 @@
+// renderer/strand_raster_reference.h: the compute strand renderer's kernels in plain C++, over the
+// same shared math (shaders/shared/strands.h, strand_shading.h, strand_raster.h): each function is
+// the twin of one kernel, one loop where the kernel has one thread per item. The tests run both on
+// the same input and compare (tests/test_strand_raster.cpp). No Vulkan.
+#pragma once
+
+#include "shaders/shared/frame_params.h"
+#include "shaders/shared/sim.h"
+#include "shaders/shared/strand_raster.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace wisp::reference {
+
+struct StrandVertices {
+    std::vector<glm::vec4> positions;  // StrandVertex: x, y pixels, depth, half width (< 0: not drawn)
+    std::vector<uint32_t> colors;      // packFragmentColor(rgb, opacity)
+};
+
+// strands_generate.comp (and _light with push.fromLight): `guides` holds the guide vertices in
+// strand-major order (guide * V + i). Shading with the light's visibility at 1 (the twin does not
+// sample the light's maps: compare with shadows off) and the karis or kajiya model.
+StrandVertices generateStrands(const gpu::StrandRasterPush& push, const gpu::FrameParams& frame,
+                               const gpu::SimParams& sim, const std::vector<glm::vec3>& guides,
+                               const std::vector<glm::uvec4>& triangles);
+
+// One fragment as strands_fragments.comp writes it: its depth and its packed colour and opacity.
+struct Fragment {
+    float depth = 0.0f;
+    uint32_t color = 0;
+    bool operator<(const Fragment& o) const { return depth != o.depth ? depth < o.depth : color < o.color; }
+    bool operator==(const Fragment& o) const { return depth == o.depth && color == o.color; }
+};
+
+// strands_depth.comp, strands_fragments.comp (count and write) and the scan: every pixel's
+// fragments (row-major), given the meshes' depth (one sample per pixel, row-major), each pixel's
+// in the order the segments come (the kernels' order is the atomics'); `segments` receives the
+// segments drawn.
+std::vector<std::vector<Fragment>> pixelFragments(const gpu::StrandRasterPush& push, const StrandVertices& strands,
+                                                  const std::vector<float>& meshDepth, uint32_t* segments = nullptr);
+
+// strands_resolve.comp: the premultiplied hair of every pixel.
+std::vector<glm::vec4> resolvePixels(const gpu::StrandRasterPush& push, const std::vector<std::vector<Fragment>>& pixels);
+
+struct LightMaps {
+    std::vector<uint32_t> depth;          // float bits per texel: the hair's first depth (1 where none)
+    std::vector<glm::uvec4> opacity;      // fixed-point opacity per texel and layer
+};
+
+// strands_light.comp, both variants (the light's strands from generateStrands with fromLight).
+LightMaps rasterLight(const gpu::StrandRasterPush& push, const gpu::FrameParams& frame, const StrandVertices& strands);
+
+}  // namespace wisp::reference

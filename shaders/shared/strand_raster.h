@@ -1,0 +1,364 @@
+// shaders/shared/strand_raster.h: the compute strand renderer's interface and pure math, one copy
+// for its kernels (shaders/strands_*.comp) and their C++ twin (renderer/strand_raster_reference.cpp).
+// The frame, in compute (hair_raster=compute), after the physics and the meshes' depth:
+//   generate   one thread per strand vertex: the strand's point (shared/strands.h, as hair.tese
+//              places it), projected to the screen (or the light's map) with its half width in
+//              pixels, shaded there (shared/strand_shading.h: shading along the strand, not per
+//              pixel) and packed with its opacity
+//   depth      one thread per pixel: the nearest and farthest of the meshes' depth samples; the
+//              pixel's fragment count zeroed
+//   count      one thread per segment (two consecutive vertices): every pixel its ribbon can reach
+//              (ribbonRowSpan, row by row) covered analytically (segmentCoverage: the exact area of
+//              the ribbon over the pixel across it, times the overlap along it) and depth-tested
+//              against the meshes (each MSAA sample); each fragment that stays counted at its pixel
+//   scan       the counts' exclusive prefix sum (blocks, their totals, the offsets): each pixel's
+//              first slot in one fragment buffer, the total against its capacity; the counts
+//              become write cursors
+//   write      the same walk again, each fragment (depth, colour and opacity) written to its slot:
+//              every pixel's fragments side by side, binned by prefix sums, no cap per pixel
+//   resolve    one thread per pixel: its fragments kept as the list resolve keeps them, the
+//              nearest k sorted and the rest blended as one order-independent layer
+//              (insertFragment / resolveFragments, shared with oit_resolve.comp); one write
+//   light      from the light, the same generated segments (fewer, wider: shadow_strands) are
+//              rasterized one thread per segment into the hair's depth (atomicMin) and then the
+//              deep opacity layers (fixed-point atomicAdd: sums commute, so frames repeat bit for bit)
+// Nothing is dropped silently: fragments past the buffer's capacity are counted, and the renderer
+// grows it for the next frame. Conventions: screen positions in pixels, (0, 0) the top-left
+// corner of the top-left pixel, pixel centres at + 0.5; depth as the depth buffer holds it (0 near,
+// 1 far); colours tone-mapped linear RGB.
+#ifndef WISP_SHARED_STRAND_RASTER_H
+#define WISP_SHARED_STRAND_RASTER_H
+#include "prelude.h"
+#include "shadows.h"
+
+GPU_NAMESPACE_BEGIN
+
+#ifdef __cplusplus
+#define GPU_INOUT(T) T&
+#else
+#define GPU_INOUT(T) inout T
+#endif
+
+GPU_CONST uint kRasterGroupSize = 64u;      // threads of the per-vertex and per-segment kernels
+GPU_CONST uint kRasterScanBlock = 1024u;    // counts one scan workgroup sums (256 threads, 4 each)
+GPU_CONST uint kRasterScanGroupSize = 1024u;  // threads of the scan of the blocks' totals
+
+// Bindings (each kernel pushes the ones it reads; 4..7 are the light's maps of shared/shadows.h).
+GPU_CONST uint kRasterBindingFrame = 0;        // uniform FrameParams
+GPU_CONST uint kRasterBindingSim = 1;          // uniform SimParams (colliders)
+GPU_CONST uint kRasterBindingPositions = 2;    // the solver's positions (interleaved slots, sim.h)
+GPU_CONST uint kRasterBindingTriangles = 3;    // uvec4 per guide: the guide and its two neighbours
+GPU_CONST uint kRasterBindingLut = 8;          // sampler2DArray: the lookup mode's tables
+GPU_CONST uint kRasterBindingVertices = 9;     // vec4 per strand vertex: StrandVertex
+GPU_CONST uint kRasterBindingColors = 10;      // uint per strand vertex: packed colour and opacity
+GPU_CONST uint kRasterBindingCounts = 11;      // uint per pixel: fragments (count), then write cursors
+GPU_CONST uint kRasterBindingOffsets = 12;     // uint per pixel + 1: its first fragment slot, the total last
+GPU_CONST uint kRasterBindingFragments = 13;   // uvec2 per fragment: depth bits, packed colour and opacity
+GPU_CONST uint kRasterBindingCounters = 14;    // RasterCounters
+GPU_CONST uint kRasterBindingMeshDepth = 15;   // sampler2DMS (sampler2D with one sample): the meshes' depth
+GPU_CONST uint kRasterBindingHairColor = 16;   // image2D rgba16f: the hair, premultiplied
+GPU_CONST uint kRasterBindingLightDepth = 17;  // uint per light texel: the hair's first depth (float bits)
+GPU_CONST uint kRasterBindingLightOpacity = 18;// uint x 4 per light texel: opacity layers, fixed point
+GPU_CONST uint kRasterBindingOpacityImage = 19;// image2D rgba16f: the deep opacity layers, as shaders read them
+GPU_CONST uint kRasterBindingDepthRange = 20;  // vec2 per pixel: the nearest and farthest mesh depth sample
+GPU_CONST uint kRasterBindingBlockSums = 21;   // uint per scan block: its counts' total, then its offset
+
+// Fixed point of the light's opacity sums (integer units per unit of opacity).
+GPU_CONST float kOpacityFixedScale = 1024.0f;
+// Fixed point of a pixel's blended tail (sums of alpha x colour, alpha and -log(1 - alpha)).
+GPU_CONST float kTailFixedScale = 4096.0f;
+GPU_CONST uint kTailSaturate = 0x7fffffffu;
+GPU_CONST float kRasterFarDepth = 2.0f;  // an empty slot of the nearest list: behind everything
+
+// Push constants of every compute-raster kernel.
+struct StrandRasterPush {
+    uint  guideCount;
+    uint  verticesPerStrand;  // V of the guides
+    uint  strandsPerGuide;    // S as set (the strand's identity: guide * S + s, as hair.tese has it)
+    uint  drawnPerGuide;      // strands generated per guide this frame: ceil(LOD strands) <= S
+    uint  divisions;          // D segments per strand (D + 1 vertices)
+    uint  interpolation;      // kInterpolation* (strands.h)
+    float clumpRadius;        // asset units
+    float deviation;          // asset units
+    float width;              // strand width at the root, asset units, LOD's scale included
+    float lodStrands;         // strands per guide after LOD (continuous)
+    uint  fromLight;          // 1: generate for the light's maps (orthographic, no shading)
+    uint  segmentCount;       // guideCount * drawnPerGuide * D
+    uint  targetWidth;        // pixels of the picture (or texels of the light's map) per row
+    uint  targetHeight;
+    uint  samples;            // MSAA samples of the meshes' depth
+    uint  fragmentCapacity;   // fragments the fragment buffer holds
+    uint  domLayers;          // deep opacity layers (light opacity kernel)
+    uint  scanBlocks;         // ceil((pixels + 1) / kRasterScanBlock)
+    uint  oitK;               // nearest fragments kept sorted (the resolve's specialization constant)
+    uint  pad0;
+};
+
+// What the kernels count, copied back to the host each frame.
+struct RasterCounters {
+    uint fragments;  // fragments the pixels held this frame (what the buffer needed)
+    uint capacity;   // fragments the buffer holds
+    uint overflow;   // fragments that did not fit (dropped this frame; the renderer grows the buffer)
+    uint segments;   // segments on screen, in front of the camera
+    uint maxPixel;   // the most fragments one pixel held
+    uint pad0;
+    uint pad1;
+    uint pad2;
+};
+
+// One strand vertex as the rasterizer reads it: where it is on the screen and how wide.
+// position.xy pixels, .z depth (0 near .. 1 far), .w half the ribbon's width in pixels;
+// w < 0 marks a vertex that is not drawn (behind the camera, or a strand LOD left out).
+// Its colour is a second word: packUnorm4x8(vec4(sqrt(rgb), opacity)), as OIT nodes store it.
+
+// The per-vertex, per-segment and per-block kernels are dispatched in rows of at most 65535
+// workgroups (the dispatch limit every device has); a thread's number counts whole rows first.
+GPU_FN uint linearInvocation(uvec3 global, uint threadsPerRow)
+{
+    return global.x + global.y * threadsPerRow;
+}
+
+// ---- Projection ------------------------------------------------------------------------------
+
+// A world point seen through `viewProjection` onto a `size` pixel target, with its world width.
+// Orthographic (the light) or perspective (the camera) alike: x, y in pixels, z the depth, w the
+// half width in pixels; w = -1 when the point is behind the eye.
+GPU_FN vec4 projectStrandVertex(mat4 viewProjection, vec2 size, vec3 world, float worldWidth, float pixelsPerUnitAtW1)
+{
+    vec4 c = viewProjection * vec4(world, 1.0f);
+    if (c.w <= 1e-6f)
+        return vec4(0.0f, 0.0f, 0.0f, -1.0f);
+    vec3 ndc = vec3(c) / c.w;
+    vec2 xy = (vec2(ndc) * 0.5f + 0.5f) * size;
+    return vec4(xy.x, xy.y, ndc.z, 0.5f * worldWidth * pixelsPerUnitAtW1 / c.w);
+}
+
+// ---- Coverage --------------------------------------------------------------------------------
+
+// A unit pixel seen along the unit direction n: the distribution of n . (x - centre) over the
+// pixel's area is a trapezoid (the box's projection) whose support is |n.x| + |n.y| wide. This is
+// its cumulative distribution at x: the share of the pixel lying on the near side of the line
+// n . (x - centre) = x. Exact, so a straight ribbon's coverage below is exact too.
+GPU_FN float pixelFootprintCdf(float x, float a, float b)
+{
+    // a >= b >= 0: the larger and smaller of |n.x|, |n.y| (a >= 1/sqrt(2)). The trapezoid's
+    // density is 1 / a on its plateau (half width (a - b) / 2) and falls linearly to 0 over b on
+    // each side; what lies beyond |x| is q^2 / (2ab) on the ramp plus (r - q) / a on the plateau,
+    // with r = s - |x| the distance to the support's end s = (a + b) / 2 and q = min(r, b).
+    float r = max(0.5f * (a + b) - abs(x), 0.0f);
+    float q = min(r, b);
+    float beyond = q * q / (2.0f * a * max(b, 1e-7f)) + (r - q) / a;
+    return x >= 0.0f ? 1.0f - beyond : beyond;
+}
+
+// A segment prepared for coverage tests (in screen pixels).
+struct RasterSegment {
+    vec2  a;         // start
+    vec2  dir;       // unit direction (x axis when degenerate)
+    float len;       // length, pixels
+    float ha;        // half width at the start and the end, pixels
+    float hb;
+    float footA;     // max(|dir.x|, |dir.y|) and min: the pixel's footprint across and along
+    float footB;
+};
+
+GPU_FN RasterSegment makeRasterSegment(vec2 a, vec2 b, float ha, float hb)
+{
+    RasterSegment s;
+    vec2 d = b - a;
+    float len = length(d);
+    s.a = a;
+    s.dir = len > 1e-6f ? d / len : vec2(1.0f, 0.0f);
+    s.len = len;
+    s.ha = ha;
+    s.hb = hb;
+    s.footA = max(abs(s.dir.x), abs(s.dir.y));
+    s.footB = min(abs(s.dir.x), abs(s.dir.y));
+    return s;
+}
+
+// How much of the pixel centred at `pixel` the segment's ribbon covers, in [0, 1], and where along
+// the segment (t in [0, 1]) the pixel's centre projects. Across the ribbon the coverage is exact
+// for a straight band of the width at t (the footprint's cumulative distribution at both edges);
+// along it, the pixel's footprint overlapping [0, len]; their product. The overlaps along of
+// consecutive segments of a strand add up to one where they join, and the coverage integrates to
+// the ribbon's area over any pixel grid (tests/test_strand_raster.cpp checks both against exact
+// polygon areas).
+GPU_FN vec2 segmentCoverage(RasterSegment s, vec2 pixel)
+{
+    vec2 d = pixel - s.a;
+    float u = dot(d, s.dir);
+    float v = s.dir.x * d.y - s.dir.y * d.x;
+    float t = s.len > 0.0f ? clamp(u / s.len, 0.0f, 1.0f) : 0.0f;
+    float h = mix(s.ha, s.hb, t);
+    float across = pixelFootprintCdf(v + h, s.footA, s.footB) - pixelFootprintCdf(v - h, s.footA, s.footB);
+    float along = pixelFootprintCdf(s.len - u, s.footA, s.footB) - pixelFootprintCdf(-u, s.footA, s.footB);
+    return vec2(clamp(across * along, 0.0f, 1.0f), t);
+}
+
+// ---- Where a segment reaches --------------------------------------------------------------------
+
+// The x range of the pixel centres on the row of centres at height cy that the segment's ribbon
+// can cover: within its widest half width plus the pixel's footprint (s = (footA + footB) / 2)
+// across the segment, and within s of its ends along it (a rectangle: each side a slab, each slab
+// an interval of x on the row). Exactly where segmentCoverage can be above zero; empty (x > y)
+// when the row misses the rectangle.
+GPU_FN vec2 ribbonRowSpan(RasterSegment seg, float cy)
+{
+    float s = 0.5f * (seg.footA + seg.footB) + 1e-4f;
+    float across = max(seg.ha, seg.hb) + s;
+    float y = cy - seg.a.y;
+    float lo = -1e30f;
+    float hi = 1e30f;
+    // across: v = dir.x * y - dir.y * (x - a.x), |v| <= across
+    if (abs(seg.dir.y) > 1e-6f) {
+        float x0 = (seg.dir.x * y - across) / seg.dir.y;
+        float x1 = (seg.dir.x * y + across) / seg.dir.y;
+        lo = max(lo, min(x0, x1));
+        hi = min(hi, max(x0, x1));
+    } else if (abs(y) > across) {
+        return vec2(1.0f, 0.0f);
+    }
+    // along: u = dir.x * (x - a.x) + dir.y * y, -s <= u <= len + s
+    if (abs(seg.dir.x) > 1e-6f) {
+        float x0 = (-s - seg.dir.y * y) / seg.dir.x;
+        float x1 = (seg.len + s - seg.dir.y * y) / seg.dir.x;
+        lo = max(lo, min(x0, x1));
+        hi = min(hi, max(x0, x1));
+    } else if (seg.dir.y * y < -s || seg.dir.y * y > seg.len + s) {
+        return vec2(1.0f, 0.0f);
+    }
+    return vec2(lo + seg.a.x, hi + seg.a.x);
+}
+
+// How far beyond its ends, in y, a segment's ribbon can reach a pixel centre.
+GPU_FN float ribbonReach(RasterSegment seg)
+{
+    return max(seg.ha, seg.hb) + seg.footA + seg.footB;
+}
+
+// ---- Order-independent blending (the nearest k sorted, the rest as one layer) ----------------
+
+// Fragments order by depth, ties by their colour bits, so equal depths sort the same whatever
+// order they arrive in.
+GPU_FN bool fragmentFarther(float da, uint ca, float db, uint cb)
+{
+    return da != db ? da > db : ca > cb;
+}
+
+GPU_FN vec4 unpackFragmentColor(uint c)
+{
+    vec4 v = unpackUnorm4x8(c);
+    return vec4(vec3(v) * vec3(v), v.w);  // stored as sqrt(rgb)
+}
+
+GPU_FN uint packFragmentColor(vec3 rgb, float alpha)
+{
+    return packUnorm4x8(vec4(sqrt(clamp(rgb, vec3(0.0f), vec3(1.0f))), clamp(alpha, 0.0f, 1.0f)));
+}
+
+// A pixel's fragments so far: the nearest kMaxOitK (sorted, nearest first; empty slots at
+// kRasterFarDepth), and the tail behind them as fixed-point sums (integer sums commute, so the
+// result does not depend on the order the fragments came in).
+struct PixelFragments {
+    float depth[kMaxOitK];
+    uint color[kMaxOitK];
+    uint tailR;       // sum of alpha * r
+    uint tailG;
+    uint tailB;
+    uint tailAlpha;   // sum of alpha
+    uint tailClear;   // sum of -log(1 - alpha): the tail lets exp(-sum) through
+};
+
+GPU_FN PixelFragments emptyPixelFragments()
+{
+    PixelFragments f;
+    for (uint i = 0u; i < kMaxOitK; ++i) {
+        f.depth[i] = kRasterFarDepth;
+        f.color[i] = 0u;
+    }
+    f.tailR = 0u;
+    f.tailG = 0u;
+    f.tailB = 0u;
+    f.tailAlpha = 0u;
+    f.tailClear = 0u;
+    return f;
+}
+
+GPU_FN uint saturatingAdd(uint sum, float value)
+{
+    uint v = uint(clamp(value, 0.0f, 65536.0f) * kTailFixedScale + 0.5f);
+    return min(sum, kTailSaturate - v) + v;
+}
+
+GPU_FN void addToTail(GPU_INOUT(PixelFragments) f, uint color)
+{
+    vec4 c = unpackFragmentColor(color);
+    f.tailR = saturatingAdd(f.tailR, c.w * c.x);
+    f.tailG = saturatingAdd(f.tailG, c.w * c.y);
+    f.tailB = saturatingAdd(f.tailB, c.w * c.z);
+    f.tailAlpha = saturatingAdd(f.tailAlpha, c.w);
+    f.tailClear = saturatingAdd(f.tailClear, -log(1.0f - min(c.w, 0.999f)));
+}
+
+// Adds a fragment: it takes its place among the nearest k (after every kept fragment not farther
+// than it), the kept ones behind it move back one, and whatever falls out of the last kept slot
+// (or the fragment itself, when it is behind all k) joins the tail. Written as independent
+// comparisons and moves with constant indices, not a chain of swaps: the lists stay in registers
+// and the steps do not wait on one another.
+GPU_FN void insertFragment(GPU_INOUT(PixelFragments) f, uint k, float depth, uint color)
+{
+    uint position = 0u;
+    for (uint i = 0u; i < kMaxOitK; ++i)
+        position += i < k && !fragmentFarther(f.depth[i], f.color[i], depth, color) ? 1u : 0u;
+    if (position >= k) {
+        addToTail(f, color);  // behind all k kept (most fragments, once k are kept)
+        return;
+    }
+    float lastDepth = kRasterFarDepth;
+    uint lastColor = 0u;
+    for (uint i = 0u; i < kMaxOitK; ++i) {
+        if (i + 1u == k) {
+            lastDepth = f.depth[i];
+            lastColor = f.color[i];
+        }
+    }
+    for (uint i = kMaxOitK - 1u; i > 0u; --i) {
+        if (i < k && i > position) {
+            f.depth[i] = f.depth[i - 1u];
+            f.color[i] = f.color[i - 1u];
+        }
+    }
+    for (uint i = 0u; i < kMaxOitK; ++i) {
+        if (i == position) {
+            f.depth[i] = depth;
+            f.color[i] = color;
+        }
+    }
+    if (lastDepth < kRasterFarDepth)
+        addToTail(f, lastColor);
+}
+
+GPU_FN vec4 resolveFragments(PixelFragments f, uint k)
+{
+    vec3 color = vec3(0.0f);
+    float transmittance = 1.0f;
+    for (uint i = 0u; i < kMaxOitK; ++i) {
+        if (i < k && f.depth[i] < kRasterFarDepth) {
+            vec4 c = unpackFragmentColor(f.color[i]);
+            color += transmittance * c.w * vec3(c);
+            transmittance *= 1.0f - c.w;
+        }
+    }
+    if (f.tailAlpha > 0u) {
+        vec3 mean = vec3(float(f.tailR), float(f.tailG), float(f.tailB)) / float(f.tailAlpha);
+        float clear = exp(-float(f.tailClear) / kTailFixedScale);
+        color += transmittance * (1.0f - clear) * mean;
+        transmittance *= clear;
+    }
+    return vec4(color, 1.0f - transmittance);
+}
+
+GPU_NAMESPACE_END
+
+#endif

@@ -1,0 +1,103 @@
+#version 460
+// strands_fragments.comp: one thread per strand segment; every pixel its ribbon can reach, row by
+// row (ribbonRowSpan), is covered analytically (segmentCoverage) and tested against the meshes'
+// depth (the share of MSAA samples in front scales the coverage, so the head's silhouette stays
+// antialiased); the colour and opacity interpolate the two vertices' (shaded along the strand by
+// strands_generate.comp). Specialization constant 0 chooses:
+//   false (strands.count): each fragment that stays is counted at its pixel (atomicAdd)
+//   true  (strands.write): written to its pixel's next slot, offsets[pixel] + a cursor (the counts,
+//                          zeroed by the scan); slots past the buffer's capacity are skipped (the
+//                          scan counted them as overflow)
+// Both variants make exactly the same decisions (the same arithmetic on the same input).
+// Segments with an end behind the camera or outside the depth range are not drawn.
+// With RASTER_SINGLE_SAMPLE (strands_fragments_single.comp) the meshes' depth has one sample.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/strand_raster.h"
+
+layout(local_size_x = 64) in;  // kRasterGroupSize
+layout(constant_id = 0) const bool kWrite = false;
+layout(push_constant) uniform PushBlock { StrandRasterPush push; };
+layout(set = 0, binding = kRasterBindingVertices, std430) readonly buffer Vertices { vec4 vertices[]; };
+layout(set = 0, binding = kRasterBindingColors, std430) readonly buffer Colors { uint colors[]; };
+layout(set = 0, binding = kRasterBindingCounts, std430) buffer Counts { uint counts[]; };
+layout(set = 0, binding = kRasterBindingOffsets, std430) readonly buffer Offsets { uint offsets[]; };
+layout(set = 0, binding = kRasterBindingFragments, std430) writeonly buffer Fragments { uvec2 fragments[]; };
+layout(set = 0, binding = kRasterBindingCounters, std430) buffer Counters { RasterCounters counters; };
+layout(set = 0, binding = kRasterBindingDepthRange, std430) readonly buffer DepthRange { vec2 depthRange[]; };
+#ifdef RASTER_SINGLE_SAMPLE
+layout(set = 0, binding = kRasterBindingMeshDepth) uniform sampler2D meshDepth;
+#else
+layout(set = 0, binding = kRasterBindingMeshDepth) uniform sampler2DMS meshDepth;
+#endif
+
+shared uint groupSegments;
+
+void main()
+{
+    if (gl_LocalInvocationIndex == 0u)
+        groupSegments = 0u;
+    barrier();
+
+    uint segment = linearInvocation(gl_GlobalInvocationID, gl_NumWorkGroups.x * gl_WorkGroupSize.x);
+    bool drawn = false;
+    if (segment < push.segmentCount) {
+        uint v = segment / push.divisions * (push.divisions + 1u) + segment % push.divisions;
+        vec4 a = vertices[v];
+        vec4 b = vertices[v + 1u];
+        drawn = a.w >= 0.0 && b.w >= 0.0 && min(a.z, b.z) >= 0.0 && max(a.z, b.z) <= 1.0;
+        if (drawn) {
+            RasterSegment s = makeRasterSegment(a.xy, b.xy, a.w, b.w);
+            vec4 colorA = unpackFragmentColor(colors[v]);
+            vec4 colorB = unpackFragmentColor(colors[v + 1u]);
+            float reach = ribbonReach(s);
+            int y0 = max(int(ceil(min(a.y, b.y) - reach - 0.5)), 0);
+            int y1 = min(int(floor(max(a.y, b.y) + reach - 0.5)), int(push.targetHeight) - 1);
+            uint samples = push.samples;
+#ifdef RASTER_SINGLE_SAMPLE
+            samples = 1u;
+#endif
+            for (int y = y0; y <= y1; ++y) {
+                vec2 span = ribbonRowSpan(s, float(y) + 0.5);
+                int x0 = max(int(ceil(span.x - 0.5)), 0);
+                int x1 = min(int(floor(span.y - 0.5)), int(push.targetWidth) - 1);
+                for (int x = x0; x <= x1; ++x) {
+                    vec2 hit = segmentCoverage(s, vec2(float(x), float(y)) + 0.5);
+                    if (hit.x <= 0.0)
+                        continue;
+                    float depth = mix(a.z, b.z, hit.y);
+                    uint p = uint(y) * push.targetWidth + uint(x);
+                    vec2 range = depthRange[p];
+                    uint front = depth <= range.x ? samples : 0u;
+                    if (depth > range.x && depth <= range.y) {  // at a mesh's edge: each sample
+                        for (uint m = 0u; m < samples; ++m) {
+#ifdef RASTER_SINGLE_SAMPLE
+                            float d = texelFetch(meshDepth, ivec2(x, y), 0).r;
+#else
+                            float d = texelFetch(meshDepth, ivec2(x, y), int(m)).r;
+#endif
+                            front += depth <= d ? 1u : 0u;
+                        }
+                    }
+                    if (front == 0u)
+                        continue;
+                    vec4 c = mix(colorA, colorB, hit.y);
+                    float alpha = c.w * hit.x * float(front) / float(samples);
+                    if (alpha < 0.5 / 255.0)
+                        continue;  // below what the fragment's 8 bits of alpha hold
+                    if (kWrite) {
+                        uint slot = offsets[p] + atomicAdd(counts[p], 1u);
+                        if (slot < push.fragmentCapacity)
+                            fragments[slot] = uvec2(floatBitsToUint(depth), packFragmentColor(c.rgb, alpha));
+                    } else {
+                        atomicAdd(counts[p], 1u);
+                    }
+                }
+            }
+        }
+    }
+    if (!kWrite && drawn)
+        atomicAdd(groupSegments, 1u);
+    barrier();
+    if (!kWrite && gl_LocalInvocationIndex == 0u && groupSegments > 0u)
+        atomicAdd(counters.segments, groupSegments);
+}

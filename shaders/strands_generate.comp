@@ -1,0 +1,87 @@
+#version 460
+// strands_generate.comp: the compute path's strands, one thread per strand vertex (D + 1 per
+// strand, strands of a guide side by side, so neighbouring threads read the same guide). Each
+// point is placed as the tessellation path places it (shared/strands.h placeStrandPoint: the
+// guide's C1 Bezier, single or multi interpolation, deviations, then out of the colliders),
+// projected, and for the camera shaded there (shared/strand_shading.h, with the light's
+// visibility read from its maps as hair.tese reads it). With STRANDS_FROM_LIGHT
+// (strands_generate_light.comp) the points are projected into the light's maps, unshaded.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/frame_params.h"
+#include "shared/strand_raster.h"
+#include "shared/strand_shading.h"
+#include "shared/strands.h"
+
+layout(local_size_x = 64) in;  // kRasterGroupSize
+layout(push_constant) uniform PushBlock { StrandRasterPush push; };
+layout(set = 0, binding = kRasterBindingFrame) uniform FrameBlock { FrameParams frame; };
+layout(set = 0, binding = kRasterBindingSim) uniform SimBlock { SimParams sim; };
+layout(set = 0, binding = kRasterBindingPositions, std430) readonly buffer Positions { vec4 positions[]; };
+layout(set = 0, binding = kRasterBindingTriangles, std430) readonly buffer Triangles { uvec4 triangles[]; };
+layout(set = 0, binding = kRasterBindingVertices, std430) writeonly buffer Vertices { vec4 vertices[]; };
+layout(set = 0, binding = kRasterBindingColors, std430) writeonly buffer Colors { uint colors[]; };
+#ifndef STRANDS_FROM_LIGHT
+layout(set = 0, binding = kRasterBindingLut) uniform sampler2DArray hairLut;
+#include "light_visibility.glsl"
+#endif
+
+vec3 guidePoint(uint guide, uint i)
+{
+    return positions[vertexSlot(guide, i, push.verticesPerStrand)].xyz;
+}
+
+CurvePoint evaluateGuide(uint guide, float t)
+{
+    uint V = push.verticesPerStrand;
+    uint seg = curveSegment(t, V);
+    return guideCurvePoint(guidePoint(guide, seg == 0u ? 0u : seg - 1u), guidePoint(guide, seg),
+                           guidePoint(guide, seg + 1u), guidePoint(guide, min(seg + 2u, V - 1u)),
+                           curveLocal(t, V, seg));
+}
+
+void main()
+{
+    uint id = linearInvocation(gl_GlobalInvocationID, gl_NumWorkGroups.x * gl_WorkGroupSize.x);
+    uint perStrand = push.divisions + 1u;
+    if (id >= push.guideCount * push.drawnPerGuide * perStrand)
+        return;
+    uint drawn = id / perStrand;
+    uint i = id % perStrand;
+    uint guide = drawn / push.drawnPerGuide;
+    uint s = drawn % push.drawnPerGuide;
+    float t = float(i) / float(push.divisions);
+
+    CurvePoint g = evaluateGuide(guide, t);
+    CurvePoint g1 = g, g2 = g;
+    if (strandIsMulti(push.interpolation, s)) {
+        uvec4 tri = triangles[guide];
+        g1 = evaluateGuide(tri.y, t);
+        g2 = evaluateGuide(tri.z, t);
+    }
+    CurvePoint point = placeStrandPoint(g, g1, g2, guide, s, t, push.interpolation, push.clumpRadius, push.deviation);
+    vec3 p = point.position;
+    if (s != 0u)
+        for (uint c = 0u; c < sim.colliderCount; ++c)
+            p = pushOutOfCollider(sim.colliders[c], frame.headTransform, p);
+
+    uint strand = guide * push.strandsPerGuide + s;
+    float alpha = frame.hairOpacity * lodAlpha(s, push.lodStrands);
+    float worldWidth = strandWidthAt(push.width, t);
+#ifdef STRANDS_FROM_LIGHT
+    vertices[id] = projectStrandVertex(frame.lightViewProjection, vec2(frame.shadowMapSize), p, worldWidth,
+                                       frame.lightTexelsPerUnit);
+    colors[id] = packFragmentColor(vec3(0.0), alpha);
+#else
+    vec2 size = vec2(frame.viewportWidth, frame.viewportHeight);
+    float pixelsPerUnit = abs(frame.projection[1][1]) * 0.5 * size.y;  // at w = 1
+    vertices[id] = projectStrandVertex(frame.viewProjection, size, p, worldWidth, pixelsPerUnit);
+    // As hair.tese: about a strand's depth of bias for the hair's own depth map, the PCF disk
+    // turned per strand.
+    vec2 noise = vec2(float(strand % 251u), float(strand / 251u % 241u)) + 17.0 * t;
+    vec2 visibility = lightVisibilityParts(p, noise, 4.0 * frame.shadowBias);
+    vec3 lut = vec3(0.0);
+    if (frame.shadingModel == kShadingLut)
+        lut = hairShadeLut(hairLut, point.tangent, frame.lightDirection, normalize(frame.cameraPosition - p));
+    colors[id] = packFragmentColor(shadeStrandPoint(frame, p, point.tangent, t, strand, visibility, lut), alpha);
+#endif
+}

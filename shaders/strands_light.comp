@@ -1,0 +1,77 @@
+#version 460
+// strands_light.comp: the hair in the light's maps, one thread per segment of the light's strands
+// (strands_generate_light.comp: fewer and wider, the same coverage). The thread walks the texels
+// the ribbon can touch, row by row (ribbonRowSpan). Specialization constant 0 chooses the map:
+//   false (light.depth):   the hair's first depth, atomicMin over the float's bits (depths are
+//                          positive, so their bits order as the numbers do), on every texel whose
+//                          centre lies within the ribbon, at least a texel wide (as rasterization does)
+//   true  (light.opacity): each texel's covered share x the strand's opacity, added in fixed point
+//                          to the deep opacity layer its depth falls in behind the first depth
+//                          (Yuksel & Keyser 2008; shared/shadows.h domLayerMask)
+#extension GL_GOOGLE_include_directive : require
+#include "shared/frame_params.h"
+#include "shared/strand_raster.h"
+
+layout(local_size_x = 64) in;  // kRasterGroupSize
+layout(constant_id = 0) const bool kOpacity = false;
+layout(push_constant) uniform PushBlock { StrandRasterPush push; };
+layout(set = 0, binding = kRasterBindingFrame) uniform FrameBlock { FrameParams frame; };
+layout(set = 0, binding = kRasterBindingVertices, std430) readonly buffer Vertices { vec4 vertices[]; };
+layout(set = 0, binding = kRasterBindingColors, std430) readonly buffer Colors { uint colors[]; };
+layout(set = 0, binding = kRasterBindingLightDepth, std430) buffer LightDepth { uint lightDepth[]; };
+layout(set = 0, binding = kRasterBindingLightOpacity, std430) buffer LightOpacity { uint lightOpacity[]; };
+
+void touch(RasterSegment s, float za, float zb, float alpha, ivec2 texel)
+{
+    if (texel.x < 0 || texel.y < 0 || texel.x >= int(push.targetWidth) || texel.y >= int(push.targetHeight))
+        return;
+    uint index = uint(texel.y) * push.targetWidth + uint(texel.x);
+    vec2 centre = vec2(texel) + 0.5;
+    if (!kOpacity) {
+        vec2 d = centre - s.a;
+        float u = dot(d, s.dir);
+        float t = s.len > 0.0 ? clamp(u / s.len, 0.0, 1.0) : 0.0;
+        float across = abs(s.dir.x * d.y - s.dir.y * d.x);
+        if (u < 0.0 || u > s.len || across > max(mix(s.ha, s.hb, t), 0.5))
+            return;
+        atomicMin(lightDepth[index], floatBitsToUint(max(mix(za, zb, t), 0.0)));
+        return;
+    }
+    vec2 hit = segmentCoverage(s, centre);
+    if (hit.x <= 0.0)
+        return;
+    float z0 = uintBitsToFloat(lightDepth[index]);
+    float depth = mix(za, zb, hit.y);
+    uint layers = clamp(push.domLayers, 1u, kMaxDomLayers);
+    uint layer = min(uint(max(depth - z0, 0.0) / max(frame.domSpacing, 1e-12)), layers - 1u);
+    uint add = uint(alpha * hit.x * kOpacityFixedScale + 0.5);
+    if (add > 0u)
+        atomicAdd(lightOpacity[index * 4u + layer], add);
+}
+
+void main()
+{
+    uint segment = linearInvocation(gl_GlobalInvocationID, gl_NumWorkGroups.x * gl_WorkGroupSize.x);
+    if (segment >= push.segmentCount)
+        return;
+    uint v = segment / push.divisions * (push.divisions + 1u) + segment % push.divisions;
+    vec4 a = vertices[v];
+    vec4 b = vertices[v + 1u];
+    if (a.w < 0.0 || b.w < 0.0)
+        return;
+    float alpha = 0.5 * (unpackUnorm4x8(colors[v]).w + unpackUnorm4x8(colors[v + 1u]).w);
+    RasterSegment s = makeRasterSegment(a.xy, b.xy, a.w, b.w);
+    // The texels the ribbon can reach, row by row: as covered (opacity), or at least a texel wide
+    // (depth, as rasterization draws thin ribbons).
+    RasterSegment reach = kOpacity ? s : makeRasterSegment(a.xy, b.xy, max(a.w, 0.5), max(b.w, 0.5));
+    float extent = ribbonReach(reach);
+    int y0 = max(int(ceil(min(a.y, b.y) - extent - 0.5)), 0);
+    int y1 = min(int(floor(max(a.y, b.y) + extent - 0.5)), int(push.targetHeight) - 1);
+    for (int y = y0; y <= y1; ++y) {
+        vec2 span = ribbonRowSpan(reach, float(y) + 0.5);
+        int x0 = max(int(ceil(span.x - 0.5)), 0);
+        int x1 = min(int(floor(span.y - 0.5)), int(push.targetWidth) - 1);
+        for (int x = x0; x <= x1; ++x)
+            touch(s, a.z, b.z, alpha, ivec2(x, y));
+    }
+}

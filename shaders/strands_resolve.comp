@@ -1,0 +1,52 @@
+#version 460
+// strands_resolve.comp: one thread per pixel: its fragments (side by side in the fragment buffer,
+// from offsets[pixel] to offsets[pixel + 1], as far as the buffer holds them) kept as the list
+// resolve keeps them, the nearest oit_k sorted and the rest blended as one order-independent layer
+// (shared/strand_raster.h insertFragment / resolveFragments; oit_k is specialization constant 0,
+// so the lists stay in registers); the pixel's premultiplied hair written once. hair.composite
+// lays the picture over the target.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/strand_raster.h"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(constant_id = 0) const uint kOitK = 8u;
+layout(push_constant) uniform PushBlock { StrandRasterPush push; };
+layout(set = 0, binding = kRasterBindingOffsets, std430) readonly buffer Offsets { uint offsets[]; };
+layout(set = 0, binding = kRasterBindingFragments, std430) readonly buffer Fragments { uvec2 fragments[]; };
+layout(set = 0, binding = kRasterBindingCounters, std430) buffer Counters { RasterCounters counters; };
+layout(set = 0, binding = kRasterBindingHairColor, rgba16f) uniform writeonly image2D hairColor;
+
+shared uint groupMost;
+
+void main()
+{
+    if (gl_LocalInvocationIndex == 0u)
+        groupMost = 0u;
+    barrier();
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    bool inside = pixel.x < int(push.targetWidth) && pixel.y < int(push.targetHeight);
+    if (inside) {
+        uint p = uint(pixel.y) * push.targetWidth + uint(pixel.x);
+        uint begin = min(offsets[p], push.fragmentCapacity);
+        uint end = min(offsets[p + 1u], push.fragmentCapacity);
+        const uint k = kOitK;  // 1 .. kMaxOitK (the renderer clamps it)
+        PixelFragments f = emptyPixelFragments();
+        // Eight loads in flight before the first insert: a pixel of thousands of fragments would
+        // otherwise wait on memory once per fragment.
+        const uint kAhead = 8u;
+        for (uint i = begin; i < end; i += kAhead) {
+            uvec2 batch[kAhead];
+            for (uint j = 0u; j < kAhead; ++j)
+                batch[j] = i + j < end ? fragments[i + j] : uvec2(floatBitsToUint(kRasterFarDepth), 0u);
+            for (uint j = 0u; j < kAhead; ++j)
+                if (i + j < end)
+                    insertFragment(f, k, uintBitsToFloat(batch[j].x), batch[j].y);
+        }
+        imageStore(hairColor, pixel, resolveFragments(f, k));
+        if (end > begin)
+            atomicMax(groupMost, end - begin);
+    }
+    barrier();
+    if (gl_LocalInvocationIndex == 0u && groupMost > 0u)
+        atomicMax(counters.maxPixel, groupMost);
+}

@@ -1,0 +1,452 @@
+// tests/test_strand_raster.cpp: the compute strand renderer on the device. Every kernel against
+// its CPU twin (renderer/strand_raster_reference.h) on the same input: the generated strands, the
+// pixels' fragments, the resolved pixels, the light's depth and opacity; then the whole path
+// against the tessellation path on the same scenes (how much the hair changes each 8 x 8 block
+// correlates, and adds up to about the same), determinism, and a fragment buffer that overflows,
+// is counted and grows.
+#include "app/headless.h"
+#include "gpu/frame.h"
+#include "gpu/pipeline.h"
+#include "physics/gpu_solver.h"
+#include "physics/hair_scene.h"
+#include "renderer/renderer.h"
+#include "renderer/strand_raster.h"
+#include "renderer/strand_raster_reference.h"
+#include "app/hair_options.h"
+#include "small_scene.h"
+#include "test_support.h"
+
+#include <glm/gtc/packing.hpp>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <memory>
+
+using namespace wisp;
+
+namespace {
+
+using Buffer = StrandRaster::Buffer;
+struct uvec2Fragment {  // as strands.write stores a fragment
+    uint32_t depth;     // float bits
+    uint32_t color;
+};
+constexpr Buffer kReadBuffers[] = {Buffer::Vertices,    Buffer::Colors,    Buffer::LightVertices,
+                                   Buffer::LightColors, Buffer::Offsets,   Buffer::Fragments,
+                                   Buffer::Counters,    Buffer::LightDepth, Buffer::LightOpacity};
+
+// Copies the compute path's buffers, its hair image and the meshes' depth (one sample) to the host
+// at the end of the frame that made them.
+class RasterReadback : public Pass {
+public:
+    RasterReadback(const vk::Context& ctx, StrandRaster& raster, RenderTarget& target)
+        : raster_(raster), target_(target), extent_(target.extent())
+    {
+        for (Buffer b : kReadBuffers)
+            copies_[b] = ctx.createBuffer({.size = raster.buffer(b).size(), .usage = vk::kTransferDst,
+                                           .memory = vk::Memory::Readback, .name = "test.raster.readback"});
+        VkExtent2D e = target.extent();
+        color_ = ctx.createBuffer({.size = uint64_t(e.width) * e.height * 8, .usage = vk::kTransferDst,
+                                   .memory = vk::Memory::Readback, .name = "test.raster.color"});
+        depth_ = ctx.createBuffer({.size = uint64_t(e.width) * e.height * 4, .usage = vk::kTransferDst,
+                                   .memory = vk::Memory::Readback, .name = "test.raster.depth"});
+    }
+    const char* name() const override { return "test.readback"; }
+    void declare(PassIo& io) override
+    {
+        for (Buffer b : kReadBuffers)
+            io.use(raster_.track(b), Access::TransferSrc);
+        io.use(raster_.color(), Access::TransferSrc);
+        io.use(target_.depth(), Access::TransferSrc);
+    }
+    void record(VkCommandBuffer cmd, FrameContext&) override
+    {
+        for (Buffer b : kReadBuffers) {
+            VkBufferCopy region{0, 0, raster_.buffer(b).size()};
+            vkCmdCopyBuffer(cmd, raster_.buffer(b), copies_[b], 1, &region);
+        }
+        VkExtent2D e = target_.extent();
+        VkBufferImageCopy color{.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageExtent = {e.width, e.height, 1}};
+        vkCmdCopyImageToBuffer(cmd, raster_.colorImage().get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, color_, 1, &color);
+        VkBufferImageCopy depth{.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1}, .imageExtent = {e.width, e.height, 1}};
+        vkCmdCopyImageToBuffer(cmd, target_.depthImage().get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, depth_, 1, &depth);
+        vk::transferToHostBarrier(cmd);
+    }
+    template <typename T>
+    std::vector<T> read(Buffer b, size_t count) const
+    {
+        std::vector<T> out(count);
+        std::memcpy(out.data(), copies_.at(b).mapped(), count * sizeof(T));
+        return out;
+    }
+    // (These two, once the frame is done, may outlive the renderer.)
+    std::vector<glm::vec4> color() const
+    {
+        VkExtent2D e = extent_;
+        std::vector<glm::vec4> out(size_t(e.width) * e.height);
+        const uint32_t* words = static_cast<const uint32_t*>(color_.mapped());
+        for (size_t i = 0; i < out.size(); ++i)
+            out[i] = glm::vec4(glm::unpackHalf2x16(words[2 * i]), glm::unpackHalf2x16(words[2 * i + 1]));
+        return out;
+    }
+    std::vector<float> depth() const
+    {
+        VkExtent2D e = extent_;
+        std::vector<float> out(size_t(e.width) * e.height);
+        std::memcpy(out.data(), depth_.mapped(), out.size() * 4);
+        return out;
+    }
+
+private:
+    StrandRaster& raster_;
+    RenderTarget& target_;
+    VkExtent2D extent_;
+    std::map<Buffer, vk::Buffer> copies_;
+    vk::Buffer color_, depth_;
+};
+
+// One compute-path frame of the small scene, its buffers read back, with the inputs the twins need.
+struct RasterFrame {
+    std::unique_ptr<RasterReadback> readback;
+    gpu::FrameParams frame{};
+    gpu::SimParams sim{};
+    gpu::StrandRasterPush camera{}, light{};
+    std::vector<glm::vec3> guides;
+    std::vector<glm::uvec4> triangles;
+
+    reference::StrandVertices strands(bool fromLight) const
+    {
+        const gpu::StrandRasterPush& p = fromLight ? light : camera;
+        size_t n = size_t(p.guideCount) * p.drawnPerGuide * (p.divisions + 1);
+        return {readback->read<glm::vec4>(fromLight ? Buffer::LightVertices : Buffer::Vertices, n),
+                readback->read<uint32_t>(fromLight ? Buffer::LightColors : Buffer::Colors, n)};
+    }
+};
+
+RasterFrame renderRasterFrame(const vk::Context& ctx, const HairScene& scene, RenderSettings s)
+{
+    s.hairRaster = HairRaster::Compute;
+    s.samples = 1;  // the meshes' depth read back as one sample per pixel
+    Renderer renderer(ctx, s, 1);
+    renderer.setHead(scene.head);
+    SimSetup setup = makeSimSetup(SimSettings{}, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
+    GpuSolver solver(ctx, scene.strands, setup, glm::mat4(1.0f));
+    renderer.attachHair(solver, scene.strands, scene.unitsPerMetre);
+    Frame frame(ctx, 1);
+    OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(s.width) / float(s.height));
+    FrameContext& fc = frame.begin(renderer.transientImages());
+    renderer.prepare(fc, camera, 0.0f);
+    RasterFrame out;
+    out.readback = std::make_unique<RasterReadback>(ctx, *renderer.strandRaster(), renderer.target());
+    std::vector<Pass*> passes = renderer.passes();
+    passes.push_back(out.readback.get());
+    frame.run(fc, passes);
+    frame.submit(fc);
+    frame.waitIdle();
+    out.frame = renderer.frameParams();
+    out.sim = solver.setup().params;
+    out.camera = renderer.strandRaster()->cameraPush();
+    out.light = renderer.strandRaster()->lightPush();
+    for (const glm::vec4& p : solver.readState().positions)
+        out.guides.push_back(glm::vec3(p));
+    out.triangles = guideTriangles(scene.strands);
+    return out;
+}
+
+void expectSameStrands(const reference::StrandVertices& gpu, const reference::StrandVertices& cpu, bool colors)
+{
+    ASSERT_EQ(gpu.positions.size(), cpu.positions.size());
+    size_t drawn = 0;
+    int worstColor = 0;
+    for (size_t i = 0; i < gpu.positions.size(); ++i) {
+        glm::vec4 g = gpu.positions[i], c = cpu.positions[i];
+        ASSERT_EQ(g.w < 0.0f, c.w < 0.0f) << "vertex " << i;
+        if (c.w < 0.0f)
+            continue;
+        ++drawn;
+        ASSERT_NEAR(g.x, c.x, 2e-3f) << "vertex " << i;
+        ASSERT_NEAR(g.y, c.y, 2e-3f) << "vertex " << i;
+        ASSERT_NEAR(g.z, c.z, 1e-5f) << "vertex " << i;
+        ASSERT_NEAR(g.w, c.w, 1e-4f * std::max(1.0f, c.w)) << "vertex " << i;
+        glm::uvec4 gc = glm::uvec4(glm::unpackUnorm4x8(gpu.colors[i]) * 255.0f + 0.5f);
+        glm::uvec4 cc = glm::uvec4(glm::unpackUnorm4x8(cpu.colors[i]) * 255.0f + 0.5f);
+        for (int ch = colors ? 0 : 3; ch < 4; ++ch)
+            worstColor = std::max(worstColor, std::abs(int(gc[ch]) - int(cc[ch])));
+    }
+    EXPECT_GT(drawn, gpu.positions.size() / 2);
+    EXPECT_LE(worstColor, 1) << "packed colours and opacities differ by at most their last bit";
+}
+
+}  // namespace
+
+TEST(StrandRaster, CameraKernelsMatchTheirCpuTwin)
+{
+    vk::Context ctx(test::validatedOptions());
+    HairScene scene = test::smallHairScene(60);
+    for (Interpolation interpolation : {Interpolation::Single, Interpolation::Multi}) {
+        for (ShadingModel model : {ShadingModel::Karis, ShadingModel::Kajiya}) {
+            SCOPED_TRACE(interpolation == Interpolation::Single ? "single" : "multi");
+            SCOPED_TRACE(model == ShadingModel::Karis ? "karis" : "kajiya");
+            RenderSettings s = test::smallRenderSettings();
+            s.shadows.enabled = false;  // the twin shades with the light unoccluded
+            s.strands.interpolation = interpolation;
+            s.hair.model = model;
+            RasterFrame f = renderRasterFrame(ctx, scene, s);
+
+            // strands.generate
+            reference::StrandVertices gpuStrands = f.strands(false);
+            expectSameStrands(gpuStrands, reference::generateStrands(f.camera, f.frame, f.sim, f.guides, f.triangles), true);
+
+            // strands.depth, strands.count, the scan and strands.write, from the GPU's own vertices
+            uint32_t segments = 0;
+            std::vector<std::vector<reference::Fragment>> cpu =
+                reference::pixelFragments(f.camera, gpuStrands, f.readback->depth(), &segments);
+            size_t pixels = cpu.size();
+            std::vector<uint32_t> offsets = f.readback->read<uint32_t>(Buffer::Offsets, pixels + 1);
+            gpu::RasterCounters counters = f.readback->read<gpu::RasterCounters>(Buffer::Counters, 1)[0];
+            EXPECT_EQ(counters.segments, segments);
+            EXPECT_GT(segments, 1000u);
+            EXPECT_EQ(counters.fragments, offsets[pixels]);
+            EXPECT_EQ(counters.overflow, 0u);
+            std::vector<uvec2Fragment> raw = f.readback->read<uvec2Fragment>(Buffer::Fragments, offsets[pixels]);
+            std::vector<std::vector<reference::Fragment>> gpuPixels(pixels);
+            size_t total = 0, differentCounts = 0, worstColor = 0, most = 0;
+            double worstDepth = 0.0;
+            for (size_t p = 0; p < pixels; ++p) {
+                ASSERT_LE(offsets[p], offsets[p + 1]) << "pixel " << p;
+                for (uint32_t i = offsets[p]; i < offsets[p + 1]; ++i)
+                    gpuPixels[p].push_back({std::bit_cast<float>(raw[i].depth), raw[i].color});
+                total += cpu[p].size();
+                most = std::max(most, gpuPixels[p].size());
+                if (gpuPixels[p].size() != cpu[p].size()) {
+                    ++differentCounts;
+                    continue;
+                }
+                std::vector<reference::Fragment> a = gpuPixels[p], b = cpu[p];
+                std::sort(a.begin(), a.end());  // written in any order by the atomics
+                std::sort(b.begin(), b.end());
+                for (size_t i = 0; i < a.size(); ++i) {
+                    worstDepth = std::max(worstDepth, double(std::abs(a[i].depth - b[i].depth)));
+                    glm::ivec4 ca = glm::ivec4(glm::unpackUnorm4x8(a[i].color) * 255.0f + 0.5f);
+                    glm::ivec4 cb = glm::ivec4(glm::unpackUnorm4x8(b[i].color) * 255.0f + 0.5f);
+                    for (int ch = 0; ch < 4; ++ch)
+                        worstColor = std::max<size_t>(worstColor, size_t(std::abs(ca[ch] - cb[ch])));
+                }
+            }
+            EXPECT_GT(total, 10000u);
+            EXPECT_NEAR(double(offsets[pixels]), double(total), 1e-4 * double(total));
+            EXPECT_LE(differentCounts, pixels / 10000) << "a coverage on the edge of a threshold, at most";
+            EXPECT_LT(worstDepth, 1e-6);
+            EXPECT_LE(worstColor, 1u);
+            EXPECT_EQ(counters.maxPixel, most);
+
+            // strands.resolve, from the GPU's own fragments: the same pixels; from the twin's: close
+            std::vector<glm::vec4> gpu = f.readback->color();
+            std::vector<glm::vec4> same = reference::resolvePixels(f.camera, gpuPixels);
+            std::vector<glm::vec4> twin = reference::resolvePixels(f.camera, cpu);
+            double worstSame = 0.0, worstTwin = 0.0, sumTwin = 0.0;
+            size_t hair = 0;
+            for (size_t i = 0; i < pixels; ++i) {
+                for (int ch = 0; ch < 4; ++ch) {
+                    worstSame = std::max(worstSame, double(std::abs(gpu[i][ch] - same[i][ch])));
+                    worstTwin = std::max(worstTwin, double(std::abs(gpu[i][ch] - twin[i][ch])));
+                    sumTwin += std::abs(gpu[i][ch] - twin[i][ch]);
+                }
+                hair += twin[i].w > 0.0f ? 1 : 0;
+            }
+            EXPECT_GT(hair, pixels / 20) << "the hair covers part of the picture";
+            EXPECT_LT(worstSame, 2e-3) << "RGBA16F rounding only";
+            EXPECT_LT(worstTwin, 0.05) << "a fragment's 8-bit step, or one fragment more or less at an edge";
+            EXPECT_LT(sumTwin / double(pixels * 4), 2e-4);
+        }
+    }
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
+TEST(StrandRaster, LightKernelsMatchTheirCpuTwin)
+{
+    vk::Context ctx(test::validatedOptions());
+    HairScene scene = test::smallHairScene(60);
+    RenderSettings s = test::smallRenderSettings();
+    s.shadows.mapSize = 256;
+    RasterFrame f = renderRasterFrame(ctx, scene, s);
+
+    reference::StrandVertices gpuStrands = f.strands(true);
+    expectSameStrands(gpuStrands, reference::generateStrands(f.light, f.frame, f.sim, f.guides, f.triangles), false);
+
+    reference::LightMaps cpu = reference::rasterLight(f.light, f.frame, gpuStrands);
+    size_t texels = size_t(f.light.targetWidth) * f.light.targetHeight;
+    std::vector<uint32_t> depth = f.readback->read<uint32_t>(Buffer::LightDepth, texels);
+    std::vector<glm::uvec4> opacity = f.readback->read<glm::uvec4>(Buffer::LightOpacity, texels);
+    size_t hair = 0, worst = 0;
+    double gpuSum = 0.0, cpuSum = 0.0;
+    for (size_t t = 0; t < texels; ++t) {
+        float g = std::bit_cast<float>(depth[t]), c = std::bit_cast<float>(cpu.depth[t]);
+        ASSERT_EQ(g < 1.0f, c < 1.0f) << "texel " << t << ": hair in one map only";
+        ASSERT_NEAR(g, c, 1e-6f) << "texel " << t;
+        hair += c < 1.0f ? 1 : 0;
+        for (int l = 0; l < 4; ++l) {
+            worst = std::max<size_t>(worst, size_t(std::abs(int64_t(opacity[t][l]) - int64_t(cpu.opacity[t][l]))));
+            gpuSum += opacity[t][l];
+            cpuSum += cpu.opacity[t][l];
+        }
+    }
+    EXPECT_GT(hair, texels / 50) << "the hair covers part of the light's map";
+    EXPECT_GT(cpuSum, 0.0);
+    EXPECT_NEAR(gpuSum, cpuSum, 1e-4 * cpuSum);
+    EXPECT_LE(worst, 8u) << "a few fixed-point units of 1/1024 (one rounding per covered texel)";
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
+// ---- The whole path against the tessellation path ----------------------------------------------
+
+namespace {
+
+// How much the hair changes each 8 x 8 block of the picture (against the picture without hair):
+// the sum of absolute RGB differences, per block.
+std::vector<double> hairBlocks(const Picture& hair, const Picture& bare)
+{
+    uint32_t bx = hair.width / 8, by = hair.height / 8;
+    std::vector<double> blocks(size_t(bx) * by, 0.0);
+    for (uint32_t y = 0; y < by * 8; ++y)
+        for (uint32_t x = 0; x < bx * 8; ++x)
+            for (int c = 0; c < 3; ++c) {
+                size_t i = (size_t(y) * hair.width + x) * 4 + size_t(c);
+                blocks[size_t(y / 8) * bx + x / 8] += std::abs(int(hair.rgba[i]) - int(bare.rgba[i]));
+            }
+    return blocks;
+}
+
+struct Agreement {
+    double correlation = 0.0;
+    double totalRatio = 0.0;  // compute's total change over graphics'
+};
+
+Agreement agreement(const Picture& graphics, const Picture& compute, const Picture& bare)
+{
+    std::vector<double> a = hairBlocks(graphics, bare), b = hairBlocks(compute, bare);
+    double ma = 0.0, mb = 0.0;
+    for (size_t i = 0; i < a.size(); ++i) {
+        ma += a[i];
+        mb += b[i];
+    }
+    double sa = ma, sb = mb;
+    ma /= double(a.size());
+    mb /= double(b.size());
+    double cov = 0.0, va = 0.0, vb = 0.0;
+    for (size_t i = 0; i < a.size(); ++i) {
+        cov += (a[i] - ma) * (b[i] - mb);
+        va += (a[i] - ma) * (a[i] - ma);
+        vb += (b[i] - mb) * (b[i] - mb);
+    }
+    return {cov / std::sqrt(va * vb), sb / sa};
+}
+
+struct EquivalenceCase {
+    const char* name;
+    void (*adjust)(RenderSettings&);
+    bool loadedGroom = false;
+};
+
+Picture renderWith(const vk::Context& ctx, const HairScene& scene, RenderSettings s, HairRaster raster)
+{
+    s.hairRaster = raster;
+    return test::renderHair(ctx, scene, s);
+}
+
+}  // namespace
+
+class RasterEquivalence : public ::testing::TestWithParam<EquivalenceCase> {};
+
+TEST_P(RasterEquivalence, TheComputePathDrawsWhatTheTessellationPathDraws)
+{
+    const EquivalenceCase& c = GetParam();
+    vk::Context ctx(test::validatedOptions());
+    HairScene scene;
+    if (c.loadedGroom) {
+        WISP_REQUIRE_DATA(head, "sintel-lite/sintel_lite.obj");
+        WISP_REQUIRE_DATA(hair, "sintel-lite/sintel_hair_228x32.tfx");
+        HairOptions options;
+        options.hairFiles = {hair.string()};
+        options.apply();
+        scene = options.buildScene(head.string());
+    } else {
+        scene = test::smallHairScene(300);
+    }
+    RenderSettings s = test::smallRenderSettings();
+    s.width = 320;
+    s.height = 240;
+    c.adjust(s);
+    Picture graphics = renderWith(ctx, scene, s, HairRaster::Graphics);
+    Picture compute = renderWith(ctx, scene, s, HairRaster::Compute);
+    Picture bare = renderPicture(ctx, scene.head, s);  // the same frame without hair
+    Agreement a = agreement(graphics, compute, bare);
+    std::printf("[ %s ] block correlation %.4f, total ratio %.4f\n", c.name, a.correlation, a.totalRatio);
+    EXPECT_GE(a.correlation, 0.95);
+    EXPECT_NEAR(a.totalRatio, 1.0, 0.2);
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Scenes, RasterEquivalence,
+    ::testing::Values(EquivalenceCase{"grown", [](RenderSettings&) {}},
+                      EquivalenceCase{"single", [](RenderSettings& s) { s.strands.interpolation = Interpolation::Single; }},
+                      EquivalenceCase{"multi", [](RenderSettings& s) { s.strands.interpolation = Interpolation::Multi; }},
+                      EquivalenceCase{"kajiya", [](RenderSettings& s) { s.hair.model = ShadingModel::Kajiya; }},
+                      EquivalenceCase{"lut", [](RenderSettings& s) { s.hair.model = ShadingModel::Lut; }},
+                      EquivalenceCase{"backlit",
+                                      [](RenderSettings& s) {
+                                          s.light.azimuthDeg = 160.0f;
+                                          s.light.elevationDeg = 20.0f;
+                                          applyHairPreset(s.hair, "blonde");
+                                      }},
+                      EquivalenceCase{"loaded", [](RenderSettings&) {}, true}),
+    [](const ::testing::TestParamInfo<EquivalenceCase>& param) { return std::string(param.param.name); });
+
+TEST(StrandRaster, TwoRendersAreIdentical)
+{
+    vk::Context ctx(test::validatedOptions());
+    HairScene scene = test::smallHairScene(200);
+    RenderSettings s = test::smallRenderSettings();
+    Picture a = renderWith(ctx, scene, s, HairRaster::Compute);
+    Picture b = renderWith(ctx, scene, s, HairRaster::Compute);
+    EXPECT_EQ(a.rgba, b.rgba);
+    EXPECT_GT(a.raster.fragments, 1000u);
+    EXPECT_GT(a.raster.maxPixel, 1u);
+    EXPECT_EQ(a.raster.overflow, 0u);
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
+TEST(StrandRaster, AFullFragmentBufferIsCountedAndGrowsForTheNextFrame)
+{
+    vk::Context ctx(test::validatedOptions());
+    HairScene scene = test::smallHairScene(150);
+    RenderSettings s = test::smallRenderSettings();
+    s.hairRaster = HairRaster::Compute;
+    Picture reference = test::renderHair(ctx, scene, s);
+
+    Renderer renderer(ctx, s, 1);
+    renderer.setHead(scene.head);
+    SimSetup setup = makeSimSetup(SimSettings{}, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
+    GpuSolver solver(ctx, scene.strands, setup, glm::mat4(1.0f));
+    renderer.attachHair(solver, scene.strands, scene.unitsPerMetre);
+    Frame frame(ctx, 1);
+    OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(s.width) / float(s.height));
+    // A first frame sizes the fragment buffer; then it is made far too small.
+    renderFrame(ctx, renderer, frame, camera);
+    renderer.strandRaster()->setFragmentCapacity(1000);
+    Picture small = renderFrame(ctx, renderer, frame, camera);
+    EXPECT_EQ(small.raster.capacity, 1000u);
+    EXPECT_GT(small.raster.fragments, 1000u);
+    EXPECT_EQ(small.raster.overflow, small.raster.fragments - 1000u) << "every fragment past the capacity is counted";
+    EXPECT_NE(small.rgba, reference.rgba) << "the fragments that did not fit are missing";
+    Picture grown = renderFrame(ctx, renderer, frame, camera);
+    EXPECT_GE(grown.raster.capacity, small.raster.fragments);
+    EXPECT_EQ(grown.raster.overflow, 0u);
+    EXPECT_EQ(grown.rgba, reference.rgba) << "once grown, nothing is missing";
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}

@@ -1,0 +1,210 @@
+// tests/test_strand_raster_math.cpp: the compute strand renderer's shared math on the CPU
+// (shaders/shared/strand_raster.h): analytic coverage against exact polygon areas, seamless joints,
+// the row spans holding everything covered, and the per-pixel fragment lists (the nearest k sorted, the rest blended) against a plain sort, in any arrival order.
+#include "shaders/shared/strand_raster.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+#include <vector>
+
+
+
+namespace {
+
+// The exact area of a convex polygon clipped to the unit pixel [x, x + 1] x [y, y + 1]
+// (Sutherland-Hodgman against its four edges, then the shoelace formula).
+double clippedArea(std::vector<glm::dvec2> poly, double x, double y)
+{
+    auto clip = [&](auto inside, auto cross) {
+        std::vector<glm::dvec2> out;
+        for (size_t i = 0; i < poly.size(); ++i) {
+            glm::dvec2 a = poly[i], b = poly[(i + 1) % poly.size()];
+            bool ia = inside(a), ib = inside(b);
+            if (ia)
+                out.push_back(a);
+            if (ia != ib)
+                out.push_back(cross(a, b));
+        }
+        poly = out;
+    };
+    auto atX = [](double cx) {
+        return [cx](glm::dvec2 a, glm::dvec2 b) { return a + (b - a) * ((cx - a.x) / (b.x - a.x)); };
+    };
+    auto atY = [](double cy) {
+        return [cy](glm::dvec2 a, glm::dvec2 b) { return a + (b - a) * ((cy - a.y) / (b.y - a.y)); };
+    };
+    clip([&](glm::dvec2 p) { return p.x >= x; }, atX(x));
+    clip([&](glm::dvec2 p) { return p.x <= x + 1; }, atX(x + 1));
+    clip([&](glm::dvec2 p) { return p.y >= y; }, atY(y));
+    clip([&](glm::dvec2 p) { return p.y <= y + 1; }, atY(y + 1));
+    double area = 0.0;
+    for (size_t i = 0; i < poly.size(); ++i) {
+        glm::dvec2 a = poly[i], b = poly[(i + 1) % poly.size()];
+        area += a.x * b.y - b.x * a.y;
+    }
+    return std::abs(area) * 0.5;
+}
+
+// The ribbon of a segment of constant half width h: a rectangle.
+std::vector<glm::dvec2> ribbon(glm::dvec2 a, glm::dvec2 b, double h)
+{
+    glm::dvec2 d = glm::normalize(b - a);
+    glm::dvec2 n(-d.y, d.x);
+    return {a + h * n, b + h * n, b - h * n, a - h * n};
+}
+
+float coverage(glm::vec2 a, glm::vec2 b, float h, int x, int y)
+{
+    return gpu::segmentCoverage(gpu::makeRasterSegment(a, b, h, h), glm::vec2(float(x), float(y)) + 0.5f).x;
+}
+
+}  // namespace
+
+TEST(RasterCoverage, AxisAlignedRibbonsAreExact)
+{
+    struct Case {
+        glm::vec2 a, b;
+        float h;
+    };
+    for (Case c : {Case{{2.3f, 5.4f}, {9.7f, 5.4f}, 0.35f}, Case{{4.5f, 1.2f}, {4.5f, 8.9f}, 1.3f},
+                   Case{{9.1f, 3.3f}, {1.6f, 3.3f}, 0.05f}}) {
+        for (int y = 0; y < 12; ++y)
+            for (int x = 0; x < 12; ++x) {
+                double exact = clippedArea(ribbon(c.a, c.b, c.h), x, y);
+                EXPECT_NEAR(coverage(c.a, c.b, c.h, x, y), exact, 1e-5) << "pixel " << x << ", " << y;
+            }
+    }
+}
+
+TEST(RasterCoverage, EveryAngleIsExactAcrossTheRibbonAndSumsToItsArea)
+{
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    for (int trial = 0; trial < 60; ++trial) {
+        float angle = 6.2831853f * unit(rng);
+        float len = 4.0f + 20.0f * unit(rng);
+        float h = trial % 3 == 0 ? 0.04f + 0.2f * unit(rng) : 0.3f + 2.0f * unit(rng);  // thin and wide strands
+        glm::vec2 a(32.0f + unit(rng), 32.0f + unit(rng));  // the whole ribbon inside the 64² pixels summed
+        glm::vec2 b = a + len * glm::vec2(std::cos(angle), std::sin(angle));
+        std::vector<glm::dvec2> rect = ribbon(a, b, h);
+        double sum = 0.0, worstInside = 0.0;
+        gpu::RasterSegment s = gpu::makeRasterSegment(a, b, h, h);
+        for (int y = 0; y < 64; ++y)
+            for (int x = 0; x < 64; ++x) {
+                float cov = coverage(a, b, h, x, y);
+                ASSERT_GE(cov, 0.0f);
+                ASSERT_LE(cov, 1.0f);
+                sum += cov;
+                // Away from the ends the along-overlap is whole and the coverage is the band's: exact.
+                glm::vec2 centre(float(x) + 0.5f, float(y) + 0.5f);
+                float u = glm::dot(centre - s.a, s.dir);
+                if (u > 1.0f && u < len - 1.0f)
+                    worstInside = std::max(worstInside, std::abs(double(cov) - clippedArea(rect, x, y)));
+            }
+        EXPECT_LT(worstInside, 1e-4) << "trial " << trial << ": across the ribbon the coverage is its exact area";
+        EXPECT_NEAR(sum, 2.0 * h * len, 0.01 * 2.0 * h * len + 0.02) << "trial " << trial << ": thin strands add up";
+    }
+}
+
+TEST(RasterCoverage, ConsecutiveSegmentsJoinWithoutSeamOrOverlap)
+{
+    // A strand's two straight segments cover the pixels at their joint as the one segment does.
+    glm::vec2 a(2.2f, 3.1f), b(9.4f, 6.3f), c(16.6f, 9.5f);
+    for (int y = 0; y < 14; ++y)
+        for (int x = 0; x < 20; ++x) {
+            float two = coverage(a, b, 0.4f, x, y) + coverage(b, c, 0.4f, x, y);
+            EXPECT_NEAR(two, coverage(a, c, 0.4f, x, y), 2e-5f) << "pixel " << x << ", " << y;
+        }
+}
+
+TEST(RasterReach, RowSpansHoldEveryCoveredPixelAndLittleElse)
+{
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> pos(-4.0f, 20.0f), width(0.02f, 2.5f);
+    int spanned = 0, covered = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+        glm::vec2 a(pos(rng), pos(rng)), b(pos(rng), pos(rng));
+        if (trial % 5 == 0)
+            b.y = a.y;  // horizontal
+        if (trial % 6 == 0)
+            b.x = a.x;  // vertical
+        if (trial % 7 == 0)
+            b = a + glm::vec2(0.3f, 0.2f);  // shorter than a pixel
+        gpu::RasterSegment s = gpu::makeRasterSegment(a, b, width(rng), width(rng));
+        float reach = gpu::ribbonReach(s);
+        for (int y = -8; y < 28; ++y) {
+            glm::vec2 span = gpu::ribbonRowSpan(s, float(y) + 0.5f);
+            bool rowReached = float(y) + 0.5f >= std::min(a.y, b.y) - reach && float(y) + 0.5f <= std::max(a.y, b.y) + reach;
+            for (int x = -8; x < 28; ++x) {
+                glm::vec2 centre(float(x) + 0.5f, float(y) + 0.5f);
+                bool inSpan = span.x <= centre.x && centre.x <= span.y;
+                spanned += inSpan ? 1 : 0;
+                if (gpu::segmentCoverage(s, centre).x <= 0.0f)
+                    continue;
+                ++covered;
+                EXPECT_TRUE(inSpan) << "trial " << trial << ": covered pixel " << x << ", " << y << " outside its row's span";
+                EXPECT_TRUE(rowReached) << "trial " << trial << ": covered pixel " << x << ", " << y << " beyond the reach";
+            }
+        }
+    }
+    EXPECT_GT(covered, 1000);
+    EXPECT_LT(spanned, covered + covered / 4) << "the spans hold little more than the covered pixels";
+}
+
+TEST(RasterFragments, TheNearestKAreSortedAndTheRestBlendedWhateverTheOrder)
+{
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    for (uint32_t k : {1u, 4u, 8u, 16u}) {
+        for (int trial = 0; trial < 20; ++trial) {
+            struct Fragment {
+                float depth;
+                uint32_t color;
+            };
+            std::vector<Fragment> fragments;
+            int n = 1 + int(unit(rng) * 60.0f);
+            for (int i = 0; i < n; ++i)
+                fragments.push_back({unit(rng), gpu::packFragmentColor(glm::vec3(unit(rng), unit(rng), unit(rng)),
+                                                                       0.05f + 0.9f * unit(rng))});
+            gpu::PixelFragments f = gpu::emptyPixelFragments();
+            for (const Fragment& x : fragments)
+                gpu::insertFragment(f, k, x.depth, x.color);
+            glm::vec4 result = gpu::resolveFragments(f, k);
+            std::shuffle(fragments.begin(), fragments.end(), rng);
+            gpu::PixelFragments g = gpu::emptyPixelFragments();
+            for (const Fragment& x : fragments)
+                gpu::insertFragment(g, k, x.depth, x.color);
+            EXPECT_EQ(gpu::resolveFragments(g, k), result) << "k " << k << ": the arrival order changed the pixel";
+
+            // The definition, in double precision: sort, composite the nearest k front to back,
+            // then the rest as one layer (alpha-weighted mean colour, 1 - prod(1 - alpha)).
+            std::sort(fragments.begin(), fragments.end(),
+                      [](const Fragment& a, const Fragment& b) { return gpu::fragmentFarther(b.depth, b.color, a.depth, a.color); });
+            glm::dvec3 color(0.0);
+            double transmittance = 1.0, tailWeight = 0.0, tailClear = 1.0;
+            glm::dvec3 tailColor(0.0);
+            for (size_t i = 0; i < fragments.size(); ++i) {
+                glm::vec4 c = gpu::unpackFragmentColor(fragments[i].color);
+                if (i < k) {
+                    color += transmittance * double(c.w) * glm::dvec3(glm::vec3(c));
+                    transmittance *= 1.0 - double(c.w);
+                } else {
+                    tailColor += double(c.w) * glm::dvec3(glm::vec3(c));
+                    tailWeight += c.w;
+                    tailClear *= 1.0 - std::min(double(c.w), 0.999);
+                }
+            }
+            if (tailWeight > 0.0) {
+                color += transmittance * (1.0 - tailClear) * tailColor / tailWeight;
+                transmittance *= tailClear;
+            }
+            for (int ch = 0; ch < 3; ++ch)
+                EXPECT_NEAR(result[ch], color[ch], 3e-3) << "k " << k << " channel " << ch;
+            EXPECT_NEAR(result.w, 1.0 - transmittance, 3e-3) << "k " << k;
+        }
+    }
+}
