@@ -5,6 +5,7 @@
 #include "app/bsdf_command.h"
 #include "app/headless.h"
 #include "app/image_io.h"
+#include "app/inspect.h"
 #include "app/hair_options.h"
 #include "app/record.h"
 #include "app/scene.h"
@@ -108,6 +109,8 @@ HairScene buildCheckedScene(const GlobalOptions& g, const HairOptions& h, const 
     HairScene scene = h.buildScene(head);
     if (!h.hairFiles.empty())
         check(scene.strands.strandCount());
+    for (const std::string& w : scene.warnings)
+        std::fprintf(stderr, "wisp: warning: %s\n", w.c_str());
     return scene;
 }
 
@@ -313,23 +316,6 @@ int runInfo(bool json)
     return 0;
 }
 
-int runInspect(const std::string& file)
-{
-    std::string ext = std::filesystem::path(file).extension().string();
-    if (ext == ".tfx" || ext == ".hair") {
-        std::cout << describeHairAsset(loadHairAsset(file)).dump() << "\n";
-        return 0;
-    }
-    Mesh mesh = loadMesh(file);
-    Bounds b = mesh.bounds();
-    nlohmann::json out = {{"kind", "mesh"},
-                          {"vertices", mesh.sourceVertices},
-                          {"triangles", mesh.triangleCount()},
-                          {"bbox", {{b.min.x, b.min.y, b.min.z}, {b.max.x, b.max.y, b.max.z}}}};
-    std::cout << out.dump() << "\n";
-    return 0;
-}
-
 struct RenderOptions {
     std::string out;
     std::string headFile;
@@ -404,6 +390,9 @@ int runRender(const GlobalOptions& g, RenderOptions& o)
         return status;  // a picture made with validation errors is not trusted: nothing written
     writePng(o.out, picture.width, picture.height, picture.rgba);
     std::cout << o.out << "\n";
+    if (!o.noHair)
+        for (const std::string& line : describeLoadedHair(scene))
+            std::cout << line << "\n";
     if (!picture.hairCounts.empty())
         std::cout << picture.hairCounts << "\n";
     if (picture.raster.capacity > 0) {
@@ -418,9 +407,7 @@ int runRender(const GlobalOptions& g, RenderOptions& o)
     if (picture.oit.capacity > 0) {
         std::cout << "oit: " << picture.oit.fragments << " hair fragments, pool of " << picture.oit.capacity << "\n";
         if (picture.oit.overflow > 0)
-            std::cerr << "wisp: warning: the OIT pool was full: " << picture.oit.overflow << " of "
-                      << picture.oit.fragments
-                      << " hair fragments were dropped; raise oit_nodes_per_pixel (--set oit_nodes_per_pixel=N)\n";
+            std::cerr << "wisp: warning: " << oitOverflowAdvice(picture.oit, o.settings.width, o.settings.height) << "\n";
     }
     return 0;
 }
@@ -561,11 +548,7 @@ int runCli(int argc, char** argv)
     CLI::App* info = app.add_subcommand("info", "list Vulkan devices and the features Wisp uses");
     info->add_flag("--json", infoJson, "print JSON instead of text");
 
-    std::string inspectFile;
-    CLI::App* inspect = app.add_subcommand("inspect", "print what a hair or mesh file holds, as one JSON object");
-    inspect->add_option("file", inspectFile,
-                        "a hair file (.tfx: TressFX 2/3/4, .hair: cyHair) or a mesh (.obj through tinyobjloader, others through assimp)")
-        ->required();
+    std::function<int()> runInspect = addInspectCommand(app);
 
     // CLI11 reports a mistyped command only as "a subcommand is required": name it instead.
     for (int i = 1; i < argc; ++i) {
@@ -603,6 +586,8 @@ int runCli(int argc, char** argv)
 
     try {
         if (int status = runBsdf(); status >= 0)
+            return status;
+        if (int status = runInspect(); status >= 0)
             return status;
         // A scene first, then the command line over it: the scene's values go into the variables
         // the options write, and the command line is parsed again, so what it names wins.
@@ -712,8 +697,6 @@ int runCli(int argc, char** argv)
         }
         if (*info)
             return runInfo(infoJson);
-        if (*inspect)
-            return runInspect(inspectFile);
     } catch (const UserError& e) {
         std::fprintf(stderr, "wisp: %s\n", e.what());
         return kExitUserError;

@@ -25,23 +25,24 @@ HairScene HairOptions::buildScene(const std::filesystem::path& headPath) const
     for (const std::string& file : hairFiles) {
         HairPartSource part{.file = file, .placement = std::nullopt, .settings = styledPartDefaults()};
         part.settings.name = std::filesystem::path(file).stem().string();
-        if (hairScale > 0.0f || !hairOffset.empty() || zUp || mirrorZ) {
-            HairAsset probe = loadHairAsset(file);
-            HairPlacement placement = autoPlacement(probe, head.mesh.bounds());
-            if (hairScale > 0.0f)
-                placement.scale = hairScale;
-            if (!hairOffset.empty())
-                placement.offset = glm::vec3(hairOffset[0], hairOffset[1], hairOffset[2]);
-            placement.zUpToYUp = zUp.value_or(placement.zUpToYUp);
-            placement.mirrorZ = mirrorZ.value_or(placement.mirrorZ);
-            part.placement = placement;
-        }
         parts.push_back(part);
     }
-    HairScene scene = buildLoadedScene(std::move(head), parts, growth.verticesPerStrand);
+    HairScene scene = buildLoadedScene(std::move(head), parts, growth.verticesPerStrand, placementRequest());
     overrideParts(scene.strands);
     return scene;
 }
+PlacementRequest HairOptions::placementRequest() const
+{
+    PlacementRequest r;
+    if (hairScale > 0.0f)
+        r.scale = hairScale;
+    if (!hairOffset.empty())
+        r.offset = glm::vec3(hairOffset[0], hairOffset[1], hairOffset[2]);
+    r.zUp = zUp;
+    r.mirrorZ = mirrorZ;
+    return r;
+}
+
 void HairOptions::overrideParts(StrandSet& strands) const
 {
     for (PartSettings& p : strands.parts) {
@@ -110,10 +111,13 @@ void HairOptions::apply()
 {
     // CLI11 reads "nan" and "inf" as numbers: every value of these lists must be finite.
     auto requireFinite = [](const char* option, const std::vector<float>& values, const char* form) {
+        // "the first value", not "value 1" (which reads as the number 1).
+        static const char* const kOrdinals[] = {"first", "second", "third", "fourth"};
         for (size_t i = 0; i < values.size(); ++i)
             if (!std::isfinite(values[i]))
-                throw UserError(std::string(option) + ": value " + std::to_string(i + 1) + " is not a finite number (" +
-                                form + ")");
+                throw UserError(std::string(option) + ": the " +
+                                (i < 4 ? std::string(kOrdinals[i]) : std::to_string(i + 1) + "th") + " value (" +
+                                std::to_string(values[i]) + ") is not a finite number (" + form + ")");
     };
     requireFinite("--sphere", sphere, "x,y,z,r in the head's units");
     requireFinite("--wind", wind, "x,y,z in m/s^2");

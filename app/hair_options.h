@@ -41,6 +41,8 @@ struct HairOptions {
     // The head with grown guides, or with the hair files as parts (each with its placement and
     // per-part overrides applied).
     HairScene buildScene(const std::filesystem::path& headPath) const;
+    // What --hair-scale, --hair-offset, --hair-z-up and --hair-mirror-z fix of the placement.
+    PlacementRequest placementRequest() const;
     void overrideParts(StrandSet& strands) const;
     // "PART:key=value,...", PART a part's index or name; keys global, local, damping, drag.
     static void applyPartOverride(std::vector<PartSettings>& parts, const std::string& spec);

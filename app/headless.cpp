@@ -33,17 +33,25 @@ std::string describeMemory(const MemorySample& start, const MemorySample& end)
 
 Picture renderFrame(const vk::Context& ctx, Renderer& renderer, Frame& frame, const OrbitCamera& camera)
 {
-    ReadbackPass readback(ctx, renderer.target());
-    std::vector<TrackedImage*> transient = renderer.transientImages();
-    FrameContext& fc = frame.begin(transient);
-    renderer.prepare(fc, camera, 0.0f);
-    std::vector<Pass*> passes = renderer.passes();
-    passes.push_back(&readback);
-    frame.run(fc, passes);
-    frame.submit(fc);
-    frame.waitIdle();
-    VkExtent2D e = renderer.target().extent();
-    return {e.width, e.height, readback.pixels(), "", renderer.oitStats(fc.slot), renderer.rasterStats(fc.slot)};
+    // A frame that overflowed the automatic OIT pool is drawn again with the pool grown (the
+    // physics has no steps left by then, so it draws the same moment); each try at least half
+    // as large again, within the device's limits.
+    for (int attempt = 0;; ++attempt) {
+        ReadbackPass readback(ctx, renderer.target());
+        std::vector<TrackedImage*> transient = renderer.transientImages();
+        FrameContext& fc = frame.begin(transient);
+        renderer.prepare(fc, camera, 0.0f);
+        std::vector<Pass*> passes = renderer.passes();
+        passes.push_back(&readback);
+        frame.run(fc, passes);
+        frame.submit(fc);
+        frame.waitIdle();
+        OitStats oit = renderer.oitStats(fc.slot);
+        if (oit.overflow > 0 && attempt < 8 && renderer.growOit(oit))
+            continue;
+        VkExtent2D e = renderer.target().extent();
+        return {e.width, e.height, readback.pixels(), "", oit, renderer.rasterStats(fc.slot)};
+    }
 }
 
 TimedSteps timedSteps(const SceneTimeline& timeline, const SimSetup& setup, const Bounds& head, float unitsPerMetre,
@@ -130,7 +138,8 @@ Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSett
             picture.hairCounts += "drawn as " + std::to_string(uint64_t(c.guides) * c.lengthChunks * c.strandChunks) +
                                   " patches of up to " + std::to_string(c.strandsPerPatch) + " strands x " +
                                   std::to_string((c.divisions + c.lengthChunks - 1) / c.lengthChunks) +
-                                  " divisions (" + std::to_string(c.strandChunks) + " instances)";
+                                  " divisions (" + std::to_string(c.strandChunks) + " instances, " +
+                                  std::to_string(c.draws()) + " draws)";
     }
     return picture;
 }
@@ -164,8 +173,14 @@ std::vector<PassTiming> profileFrames(const vk::Context& ctx, const Head& head, 
         frame.run(fc, passes);
         frame.submit(fc);
         frame.waitIdle();
+        OitStats lists = renderer.oitStats(fc.slot);
+        if (lists.overflow > 0 && renderer.growOit(lists)) {
+            if (n >= warmup)
+                --n;  // the pool grew: this frame is not timed, one more is
+            continue;
+        }
         if (oit)
-            *oit = renderer.oitStats(fc.slot);
+            *oit = lists;
         if (raster)
             *raster = renderer.rasterStats(fc.slot);
         if (n < warmup)

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <unistd.h>
 #include <map>
 #include <iostream>
 
@@ -169,11 +170,21 @@ int runSimulate(const SimulateOptions& o, const HairScene& scene)
         motion.sphere = [&keys](float t) { return keys.at(t).sphere; };
         motion.wind = [&keys](float t) { return keys.at(t).wind; };
     }
+    // On a terminal one line rewritten in place; in a log (stderr not a terminal) a line of its own
+    // every 10%, never lines run together by carriage returns.
+    bool tty = isatty(STDERR_FILENO) != 0;
+    uint32_t lastLogged = 0;
     SimulationReport r = simulateHeadless(ctx, scene, o.sim, o.steps, motion, o.sampleEvery, [&](uint32_t done) {
-        if (!o.json)
+        if (o.json)
+            return;
+        if (tty) {
             std::fprintf(stderr, "\rsimulate: %u / %u steps", done, o.steps);
+        } else if (done == o.steps || done - lastLogged >= std::max(1u, o.steps / 10)) {
+            std::fprintf(stderr, "simulate: %u / %u steps\n", done, o.steps);
+            lastLogged = done;
+        }
     });
-    if (!o.json)
+    if (!o.json && tty)
         std::fprintf(stderr, "\n");
 
     SimSetup setup = makeSimSetup(o.sim, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
@@ -212,6 +223,7 @@ int runSimulate(const SimulateOptions& o, const HairScene& scene)
                           {"grid_resolution", o.sim.gridResolution},
                           {"colliders", scene.colliders.size()},
                           {"colliders_fitted", scene.collidersFitted},
+                          {"loaded_hair", loadedHairJson(scene)},
                           {"device", ctx.report().name}};
     if (o.json) {
         std::cout << out.dump() << "\n";
@@ -223,6 +235,8 @@ int runSimulate(const SimulateOptions& o, const HairScene& scene)
                     "  non-finite resets %u\n  kinetic energy    %.4g (last)\n  GPU time per step %.4f ms\n",
                     double(r.last.maxStretch), double(r.last.maxPenetration / diagonal), double(r.last.rootDrift),
                     r.nonfiniteResets, double(r.last.kineticEnergy), r.gpuMsPerStep);
+        for (const std::string& line : describeLoadedHair(scene))
+            std::printf("  %s\n", line.c_str());
         std::printf("  worst over %zu samples: stretch %.3g, penetration %.3g, root drift %.3g\n  memory            %s\n",
                     r.energy.size(), double(r.worst.maxStretch), double(r.worst.maxPenetration / diagonal),
                     double(r.worst.rootDrift), describeMemory(r.memoryStart, r.memoryEnd).c_str());

@@ -414,6 +414,10 @@ int runWindow(const WindowOptions& options)
         if (solver) {
             HairDrawCounts c = renderer->hairCounts();
             OitStats oit = renderer->oitStats(framesDrawn % kFramesInFlight);
+            if (oit.overflow > 0 && oit.automatic && oit.capacity < oit.limit) {
+                frame.waitIdle();  // the automatic pool grows for the next frame
+                renderer->growOit(oit);
+            }
             panel.counts.push_back("guides " + std::to_string(c.guides) + " x " + std::to_string(options.scene->strands.verticesPerStrand) +
                                    " vertices, simulated");
             panel.counts.push_back("strands drawn " + std::to_string(c.strands()) + " (" + std::to_string(c.strandsPerGuide) +

@@ -91,6 +91,7 @@ void CpuSolver::integrateStrand(uint32_t s, const SimStep& step)
     bool prevPinned = true;
     vec3 prevShift(0.0f);  // see sim_integrate.comp: local shape stays out of the velocity
     mat3 frame = R;
+    bool bothEnds = info.pinnedTip != 0u && info.pinnedRoot < V - 1u;
 
     for (uint32_t i = 1; i < V; ++i) {
         uint32_t g = base + i;
@@ -142,6 +143,69 @@ void CpuSolver::integrateStrand(uint32_t s, const SimStep& step)
     positions[base + V - 1] = vec4(prevP, positions[base + V - 1].w);
     velocities[base + V - 1] = vec4((prevP - prevX - prevShift) / dt, 0.0f);
     tangents[base + V - 1] = vec4(lastTangent, 0.0f);
+
+    // Both ends pinned: the strand bends at two vertices so that its end lands on the pinned tip,
+    // its three parts moving rigidly (sim.h); a moved vertex keeps no velocity against its move.
+    if (bothEnds) {
+        auto move = [&](uint32_t i, vec3 p) {
+            uint32_t g = base + i;
+            velocities[g] = vec4(constrainedVelocity(vec3(velocities[g]), p - vec3(positions[g]), dt), 0.0f);
+            positions[g] = vec4(p, positions[g].w);
+            finite = finite && isFinite3(p);
+        };
+        auto at = [&](uint32_t i) { return vec3(positions[base + i]); };
+        uint32_t anchor = info.pinnedRoot - 1u;  // the last pinned root vertex
+        uint32_t span = V - 1u - anchor;
+        vec3 a = at(anchor), tip = at(V - 1u);
+        float d = length(tip - a);
+        if (span == 2u) {  // one free vertex: where the spheres around a and the tip meet
+            move(V - 2u, twoLinkJoint(a, tip, rest_[base + V - 2u].segmentLength, rest_[base + V - 1u].segmentLength, at(V - 2u)));
+        } else {
+            vec3 end = ftlProject(at(V - 2u), tip, rest_[base + V - 1u].segmentLength);  // where FTL puts the tip
+            // The bends: a third and two thirds along, unless their parts cannot reach the tip or
+            // one part's chord is tiny (a curled loop's middle: its direction would be rounding);
+            // then the pair whose parts reach it with the longest shortest chord (the kernel
+            // searches in the same order).
+            uint32_t m1 = std::max(anchor + span / 3u, anchor + 1u);
+            uint32_t m2 = std::max(anchor + (2u * span) / 3u, m1 + 1u);
+            auto shortest = [&](uint32_t i1, uint32_t i2) {
+                vec3 q1 = at(i1), q2 = at(i2);
+                if (bendTarget(length(tip - q1), length(q1 - a), length(q2 - q1), length(end - q2), d) < 0.0f)
+                    return -1.0f;
+                return std::min(std::min(length(q1 - a), length(q2 - q1)), length(end - q2));
+            };
+            float best = shortest(m1, m2);
+            if (best < kBendMinChord * length(end - a) / 3.0f)
+                for (uint32_t i1 = anchor + 1u; i1 < V - 2u; ++i1)
+                    for (uint32_t i2 = i1 + 1u; i2 < V - 1u; ++i2)
+                        if (float c = shortest(i1, i2); c > best) {
+                            best = c;
+                            m1 = i1;
+                            m2 = i2;
+                        }
+            vec3 p1 = at(m1), p2 = at(m2);
+            float l1 = length(p1 - a), l2 = length(p2 - p1), l3 = length(end - p2);
+            float target12 = bendTarget(length(tip - p1), l1, l2, l3, d);
+
+            if (target12 >= 0.0f && l1 > 1e-12f && l2 > 1e-12f && l3 > 1e-12f) {
+                vec3 b1 = twoLinkJoint(a, tip, l1, target12, p1);
+                vec3 b2 = twoLinkJoint(b1, tip, l2, l3, p2);
+                mat3 r1 = rotationBetween((p1 - a) / l1, normalize(b1 - a));
+                mat3 r2 = rotationBetween((p2 - p1) / l2, normalize(b2 - b1));
+                mat3 r3 = rotationBetween((end - p2) / l3, normalize(tip - b2));
+                for (uint32_t i = m2 + 1u; i < V - 1u; ++i)
+                    move(i, b2 + r3 * (at(i) - p2));
+                for (uint32_t i = m1 + 1u; i <= m2; ++i)
+                    move(i, b1 + r2 * (at(i) - p1));
+                for (uint32_t i = info.pinnedRoot; i <= m1; ++i)
+                    move(i, a + r1 * (at(i) - a));
+            }
+        }
+        for (uint32_t i = 0; i < V; ++i) {
+            uint32_t j = std::min(i + 1u, V - 1u);
+            tangents[base + i] = vec4(normalize(at(j) - at(j - 1u)), 0.0f);
+        }
+    }
 
     if (!finite) {
         for (uint32_t i = 0; i < V; ++i) {

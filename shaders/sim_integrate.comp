@@ -10,7 +10,9 @@
 //      d_{i+1}; l_i is the local-shape displacement, kept out of the velocity: the pull moves only the
 //      child (it is not momentum-conserving), and fed into the velocity it pumps energy into the hair
 //      (measured: hair never came to rest); as a pure position correction it holds the style and settles;
-//   5. a strand with any non-finite value is reset to its rest pose and counted.
+//   5. a strand pinned at both ends (TressFX bothEndsImmovable) bends at two vertices, its three
+//      parts moving rigidly, so that its end lands on the pinned tip (sim.h), every segment kept;
+//   6. a strand with any non-finite value is reset to its rest pose and counted.
 // Vertex i-1 is finished (written) while vertex i is processed, so no per-strand arrays are needed.
 //
 // The variant with kSplatToGrid (the step's last substep) also splats the hair-hair grid for its
@@ -165,6 +167,26 @@ vec3 pushOut(vec3 p)
     return p;
 }
 
+// The shortest chord of the three parts a strand pinned at both ends would bend into at vertices
+// i1 < i2, or -1 when they cannot reach its tip (sim.h bendTarget).
+float bendChord(uint base, vec3 a, vec3 tipP, vec3 end, float d, uint i1, uint i2)
+{
+    vec3 q1 = positions[base + i1 * kSimStrandBlock].xyz;
+    vec3 q2 = positions[base + i2 * kSimStrandBlock].xyz;
+    if (bendTarget(length(tipP - q1), length(q1 - a), length(q2 - q1), length(end - q2), d) < 0.0)
+        return -1.0;
+    return min(min(length(q1 - a), length(q2 - q1)), length(end - q2));
+}
+
+// Moves vertex i of the strand at `base` to p, as an inelastic constraint (constrainedVelocity).
+void moveVertex(uint base, uint i, vec3 p, inout bool finite)
+{
+    uint g = base + i * kSimStrandBlock;
+    velocities[g].xyz = constrainedVelocity(velocities[g].xyz, p - positions[g].xyz, params.dt);
+    positions[g].xyz = p;
+    finite = finite && isFinite3(p);
+}
+
 void main()
 {
     uint s = gl_GlobalInvocationID.x;
@@ -186,6 +208,10 @@ void main()
     bool prevPinned = true;
     vec3 prevShift = vec3(0.0);  // the parent's local-shape displacement (kept out of its velocity)
     mat3 frame = R;  // the parent's frame for local shape: head axes transported along the strand
+    // A strand with both ends pinned is finished after the bends below: its splat and tangents
+    // wait for them.
+    bool bothEnds = info.pinnedTip != 0u && info.pinnedRoot < V - 1u;
+    bool splatNow = kSplatToGrid && !bothEnds;
 
     for (uint i = 1u; i < V; ++i) {
         uint g = base + i * kSimStrandBlock;
@@ -227,7 +253,7 @@ void main()
         positions[parent].xyz = prevP;
         velocities[parent].xyz = prevV;
         vec3 actualDir = normalize(p - prevP);  // |p - prevP| = L_i > 0 after FTL
-        if (kSplatToGrid) {
+        if (splatNow) {
             splatVertex(prevP, prevV);
             tangents[parent] = vec4(actualDir, 0.0);
         }
@@ -244,11 +270,71 @@ void main()
     vec3 tipV = (prevP - prevX - prevShift) / dt;
     positions[tip].xyz = prevP;
     velocities[tip].xyz = tipV;
-    if (kSplatToGrid) {
+    if (splatNow) {
         tangents[tip] = vec4(lastTangent, 0.0);
         splatVertex(prevP, tipV);
         if (runOpen)
             flushRun();
+    }
+
+    // Both ends pinned: the strand bends at two vertices so that its end lands on the pinned tip,
+    // its three parts moving rigidly (sim.h); a moved vertex keeps no velocity against its move.
+    if (bothEnds) {
+        uint anchor = info.pinnedRoot - 1u;  // the last pinned root vertex
+        uint span = V - 1u - anchor;
+        vec3 a = positions[base + anchor * kSimStrandBlock].xyz;
+        vec3 tipP = positions[tip].xyz;
+        float d = length(tipP - a);
+        if (span == 2u) {  // one free vertex: where the spheres around a and the tip meet
+            uint g = base + (V - 2u) * kSimStrandBlock;
+            moveVertex(base, V - 2u, twoLinkJoint(a, tipP, rest[g].segmentLength, rest[tip].segmentLength, positions[g].xyz), finite);
+        } else {
+            vec3 end = ftlProject(positions[base + (V - 2u) * kSimStrandBlock].xyz, tipP, rest[tip].segmentLength);
+            // The bends: a third and two thirds along, unless their parts cannot reach the tip or
+            // one part's chord is tiny; then the pair that reaches it with the longest shortest chord
+            // (CpuSolver searches in the same order).
+            uint m1 = max(anchor + span / 3u, anchor + 1u);
+            uint m2 = max(anchor + (2u * span) / 3u, m1 + 1u);
+            float best = bendChord(base, a, tipP, end, d, m1, m2);
+            if (best < kBendMinChord * length(end - a) / 3.0)
+                for (uint i1 = anchor + 1u; i1 < V - 2u; ++i1)
+                    for (uint i2 = i1 + 1u; i2 < V - 1u; ++i2) {
+                        float c = bendChord(base, a, tipP, end, d, i1, i2);
+                        if (c > best) {
+                            best = c;
+                            m1 = i1;
+                            m2 = i2;
+                        }
+                    }
+            vec3 p1 = positions[base + m1 * kSimStrandBlock].xyz;
+            vec3 p2 = positions[base + m2 * kSimStrandBlock].xyz;
+            float l1 = length(p1 - a), l2 = length(p2 - p1), l3 = length(end - p2);
+            float target = bendTarget(length(tipP - p1), l1, l2, l3, d);
+            if (target >= 0.0 && l1 > 1e-12 && l2 > 1e-12 && l3 > 1e-12) {
+                vec3 b1 = twoLinkJoint(a, tipP, l1, target, p1);
+                vec3 b2 = twoLinkJoint(b1, tipP, l2, l3, p2);
+                mat3 r1 = rotationBetween((p1 - a) / l1, normalize(b1 - a));
+                mat3 r2 = rotationBetween((p2 - p1) / l2, normalize(b2 - b1));
+                mat3 r3 = rotationBetween((end - p2) / l3, normalize(tipP - b2));
+                for (uint i = m2 + 1u; i < V - 1u; ++i)
+                    moveVertex(base, i, b2 + r3 * (positions[base + i * kSimStrandBlock].xyz - p2), finite);
+                for (uint i = m1 + 1u; i <= m2; ++i)
+                    moveVertex(base, i, b1 + r2 * (positions[base + i * kSimStrandBlock].xyz - p1), finite);
+                for (uint i = info.pinnedRoot; i <= m1; ++i)
+                    moveVertex(base, i, a + r1 * (positions[base + i * kSimStrandBlock].xyz - a), finite);
+            }
+        }
+        if (kSplatToGrid) {
+            for (uint i = 0u; i < V; ++i) {
+                uint g = base + i * kSimStrandBlock;
+                uint j = min(i + 1u, V - 1u);
+                vec3 along = positions[base + j * kSimStrandBlock].xyz - positions[base + (j - 1u) * kSimStrandBlock].xyz;
+                tangents[g] = vec4(normalize(along), 0.0);
+                splatVertex(positions[g].xyz, velocities[g].xyz);
+            }
+            if (runOpen)
+                flushRun();
+        }
     }
 
     if (!finite) {

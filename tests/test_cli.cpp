@@ -2,6 +2,7 @@
 // every bad-input path: one line on stderr naming what and where, exit status 2, nothing written;
 // a lost device (injected): its own exit status, and what was written is complete.
 #include "core/error.h"
+#include "groom_files.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -205,6 +206,32 @@ TEST(BadInput, ViewWithoutDisplayPointsToRender)
     expectUserError(r, "wisp render");
 }
 
+TEST(BadInput, ADegenerateHeadIsRefusedByEveryCommand)
+{
+    TempDir dir;
+    writeFile(dir / "point.obj", "v 1 2 3\nv 1 2 3\nv 1 2 3\nf 1 2 3\n");
+    std::string head = " --head '" + (dir / "point.obj").string() + "'";
+    std::vector<std::string> commands = {"simulate --steps 2 --guides 5",
+                                         "render --guides 5 --width 64 --height 48 --out '" + (dir / "a.png").string() + "'",
+                                         "render --no-hair --width 64 --height 48 --out '" + (dir / "b.png").string() + "'"};
+    for (const std::string& command : commands)
+        expectUserError(runWisp(command + head), "the mesh is degenerate: all its 3 vertices lie at one point");
+    EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "b.png"));
+    expectUserError(runWisp("inspect '" + (dir / "point.obj").string() + "'"), "degenerate");
+}
+
+TEST(Cli, ProgressInALogIsWholeLines)
+{
+    // stderr is a pipe here, not a terminal: progress comes as lines of their own, not run
+    // together by carriage returns.
+    auto r = runWisp("simulate --guides 5 --steps 20 --sample-every 2");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err.find('\r'), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("simulate: 20 / 20 steps\n"), std::string::npos) << r.err;
+    EXPECT_LE(std::count(r.err.begin(), r.err.end(), '\n'), 11) << r.err;
+}
+
 TEST(BadInput, InspectMissingFile)
 {
     expectUserError(runWisp("inspect /nonexistent/x.obj"), "/nonexistent/x.obj");
@@ -342,11 +369,11 @@ TEST(BadInput, NonFiniteAndAbsurdNumbersAreRangeErrors)
 
 TEST(BadInput, SphereWindAndOffsetMustBeFinite)
 {
-    expectUserError(runWisp("simulate --steps 1 --sphere nan,0,0,1"), "--sphere: value 1 is not a finite number");
-    expectUserError(runWisp("simulate --steps 1 --sphere 0,0,0,inf"), "--sphere: value 4 is not a finite number");
-    expectUserError(runWisp("simulate --steps 1 --wind nan,0,0"), "--wind: value 1 is not a finite number");
+    expectUserError(runWisp("simulate --steps 1 --sphere nan,0,0,1"), "--sphere: the first value (nan) is not a finite number");
+    expectUserError(runWisp("simulate --steps 1 --sphere 0,0,0,inf"), "--sphere: the fourth value (inf) is not a finite number");
+    expectUserError(runWisp("simulate --steps 1 --wind nan,0,0"), "--wind: the first value (nan) is not a finite number");
     expectUserError(runWisp("simulate --steps 1 --wind 1e9,0,0"), "--wind");
-    expectUserError(runWisp("simulate --steps 1 --hair-offset 0,nan,0"), "--hair-offset: value 2");
+    expectUserError(runWisp("simulate --steps 1 --hair-offset 0,nan,0"), "--hair-offset: the second value (nan) is not a finite number");
 }
 
 TEST(BadInput, DrawnStrandsPast32BitsAreRefusedBeforeGrowing)
@@ -690,6 +717,27 @@ TEST(Sweep, TinyGridWritesAWellFormedCsvAndCharts)
     EXPECT_NE(rows[3].find(",60,"), std::string::npos) << rows[3];  // 20 guides x 3 strands
     for (const char* chart : {"fps.png", "passes.png"})
         EXPECT_GT(std::filesystem::file_size(dir / "s" / chart), 1000u) << chart;
+}
+
+TEST(BadInput, ASweepFailingAtItsSecondPointLeavesNoFolder)
+{
+    // The second point's pool (1024 x 1024 x 256 nodes of 12 bytes) is more than the device
+    // allows; the first point has run by then (a loaded groom is checked per point, once loaded).
+    // Nothing half-written: no folder, and a folder that was already there keeps what it held.
+    TempDir dir;
+    wisp::test::writeTfx4(dir / "groom.tfx", wisp::test::grownStrands(5, 4, [](glm::vec3 p) { return p; }));
+    std::string args = " --hair '" + (dir / "groom.tfx").string() +
+                       "' --vary oit_nodes_per_pixel=1,256 --width 1024 --height 1024 --warmup 0 --frames 1 --set shadow_size=64";
+    auto r = runWisp("sweep --out '" + (dir / "s").string() + "'" + args);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find("point 2/2"), std::string::npos) << r.err;  // the progress lines, then one error line
+    EXPECT_NE(r.err.find("\nwisp: the OIT fragment pool"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "s"));
+    std::filesystem::create_directories(dir / "mine");
+    writeFile(dir / "mine" / "notes.txt", "kept");
+    EXPECT_EQ(runWisp("sweep --out '" + (dir / "mine").string() + "'" + args).status, 2);
+    EXPECT_EQ(readFile(dir / "mine" / "notes.txt"), "kept");
+    EXPECT_FALSE(std::filesystem::exists(dir / "mine" / "results.csv"));
 }
 
 TEST(BadInput, SweepVaryValuesAreChecked)

@@ -86,14 +86,14 @@ TEST(Limits, SphereWindAndOffsetMustBeFinite)
         return errorOf([&] { h.apply(); });
     };
     float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
-    EXPECT_NE(applied([&](HairOptions& h) { h.sphere = {nan, 0, 0, 1}; }).find("--sphere: value 1"), std::string::npos);
-    EXPECT_NE(applied([&](HairOptions& h) { h.sphere = {0, 0, 0, inf}; }).find("--sphere: value 4"), std::string::npos);
+    EXPECT_NE(applied([&](HairOptions& h) { h.sphere = {nan, 0, 0, 1}; }).find("--sphere: the first value (nan)"), std::string::npos);
+    EXPECT_NE(applied([&](HairOptions& h) { h.sphere = {0, 0, 0, inf}; }).find("--sphere: the fourth value (inf)"), std::string::npos);
     EXPECT_NE(applied([&](HairOptions& h) { h.sphere = {0, 0, 0, -1}; }).find("radius"), std::string::npos);
     EXPECT_NE(applied([&](HairOptions& h) { h.sphere = {0, 0, 0, 0}; }).find("radius"), std::string::npos);
-    EXPECT_NE(applied([&](HairOptions& h) { h.wind = {nan, 0, 0}; }).find("--wind: value 1"), std::string::npos);
-    EXPECT_NE(applied([&](HairOptions& h) { h.wind = {0, -inf, 0}; }).find("--wind: value 2"), std::string::npos);
+    EXPECT_NE(applied([&](HairOptions& h) { h.wind = {nan, 0, 0}; }).find("--wind: the first value (nan)"), std::string::npos);
+    EXPECT_NE(applied([&](HairOptions& h) { h.wind = {0, -inf, 0}; }).find("--wind: the second value (-inf)"), std::string::npos);
     EXPECT_NE(applied([&](HairOptions& h) { h.wind = {0, 0, 1e9f}; }).find("out of range"), std::string::npos);
-    EXPECT_NE(applied([&](HairOptions& h) { h.hairOffset = {0, 0, nan}; }).find("--hair-offset: value 3"), std::string::npos);
+    EXPECT_NE(applied([&](HairOptions& h) { h.hairOffset = {0, 0, nan}; }).find("--hair-offset: the third value (nan)"), std::string::npos);
     EXPECT_EQ(applied([&](HairOptions& h) {
                   h.sphere = {0, 1, 0, 0.5f};
                   h.wind = {-kMaxWind, 0, kMaxWind};
