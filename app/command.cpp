@@ -62,6 +62,8 @@ HairScene buildCheckedScene(const GlobalOptions& g, const SessionOptions& o, con
     HairScene scene = h.buildScene(o.settings);
     if (!h.noHair && !h.hairFiles.empty())
         check(scene.strands.strandCount());
+    for (const std::string& w : scene.warnings)
+        std::fprintf(stderr, "wisp: warning: %s\n", w.c_str());
     return scene;
 }
 

@@ -1,10 +1,11 @@
 // app/commands.h: every command of `wisp`, each registering itself on the command line as
-// app/command.h says (`bsdf`, which needs no device, is app/bsdf_command.h). runCli (app/cli.cpp)
-// adds them in this order, which `wisp --help` lists.
+// app/command.h says (`bsdf`, which needs no device, is app/bsdf_command.h; `inspect` is
+// app/inspect.h). runCli (app/cli.cpp) adds them in this order, which `wisp --help` lists.
 #pragma once
 
 #include "app/bsdf_command.h"
 #include "app/command.h"
+#include "app/inspect.h"
 
 namespace wisp {
 
@@ -15,6 +16,5 @@ CommandRun addRecordCommand(CLI::App& app, const GlobalOptions& global);    // r
 CommandRun addSweepCommand(CLI::App& app, const GlobalOptions& global);     // sweep_command.cpp
 CommandRun addSettingsCommand(CLI::App& app);                               // settings_command.cpp
 CommandRun addInfoCommand(CLI::App& app);                                   // info_command.cpp
-CommandRun addInspectCommand(CLI::App& app);                                // inspect_command.cpp
 
 }  // namespace wisp

@@ -32,20 +32,21 @@ HairScene HairSource::buildScene(const Settings& settings) const
     for (const std::string& file : hairFiles) {
         HairPartSource part{.file = file, .placement = std::nullopt, .settings = styledPartDefaults()};
         part.settings.name = std::filesystem::path(file).stem().string();
-        if (hairScale > 0.0f || hairOffset || zUp || mirrorZ) {
-            HairAsset probe = loadHairAsset(file);
-            HairPlacement placement = autoPlacement(probe, head.mesh.bounds());
-            if (hairScale > 0.0f)
-                placement.scale = hairScale;
-            if (hairOffset)
-                placement.offset = *hairOffset;
-            placement.zUpToYUp = zUp.value_or(placement.zUpToYUp);
-            placement.mirrorZ = mirrorZ.value_or(placement.mirrorZ);
-            part.placement = placement;
-        }
         parts.push_back(part);
     }
-    return buildLoadedScene(std::move(head), parts, settings.growth.verticesPerStrand);
+    return buildLoadedScene(std::move(head), parts, settings.growth.verticesPerStrand, placementRequest());
+}
+
+PlacementRequest HairSource::placementRequest() const
+{
+    PlacementRequest r;
+    if (hairScale > 0.0f)
+        r.scale = hairScale;
+    if (hairOffset)
+        r.offset = *hairOffset;
+    r.zUp = zUp;
+    r.mirrorZ = mirrorZ;
+    return r;
 }
 
 std::vector<PartSettings> HairSource::partsFor(const std::vector<PartSettings>& asBuilt, const SimSettings& sim) const

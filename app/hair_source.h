@@ -38,6 +38,8 @@ struct HairSource {
     // The head with grown guides (or none with noHair), or with the hair files as parts, each
     // placed; each part's parameters as grown or loaded (a HairSession applies partsFor()).
     HairScene buildScene(const Settings& settings) const;
+    // What --hair-scale, --hair-offset, --hair-z-up and --hair-mirror-z fix of the placement.
+    PlacementRequest placementRequest() const;
     // Each part's simulation parameters: as grown or loaded (`asBuilt`), then every part's values
     // from the settings (global_stiffness ...), then the per-part overrides.
     std::vector<PartSettings> partsFor(const std::vector<PartSettings>& asBuilt, const SimSettings& sim) const;

@@ -32,17 +32,25 @@ std::string describeMemory(const MemorySample& start, const MemorySample& end)
 
 Picture renderFrame(const vk::Context& ctx, Renderer& renderer, Frame& frame, const OrbitCamera& camera)
 {
-    ReadbackPass readback(ctx, renderer.target());
-    std::vector<TrackedImage*> transient = renderer.transientImages();
-    FrameContext& fc = frame.begin(transient);
-    renderer.prepare(fc, camera, 0.0f);
-    std::vector<Pass*> passes = renderer.passes();
-    passes.push_back(&readback);
-    frame.run(fc, passes);
-    frame.submit(fc);
-    frame.waitIdle();
-    VkExtent2D e = renderer.target().extent();
-    return {e.width, e.height, readback.pixels(), "", renderer.oitStats(fc.slot), renderer.rasterStats(fc.slot)};
+    // A frame that overflowed the automatic OIT pool is drawn again with the pool grown (the
+    // physics has no steps left by then, so it draws the same moment); each try at least half
+    // as large again, within the device's limits.
+    for (int attempt = 0;; ++attempt) {
+        ReadbackPass readback(ctx, renderer.target());
+        std::vector<TrackedImage*> transient = renderer.transientImages();
+        FrameContext& fc = frame.begin(transient);
+        renderer.prepare(fc, camera, 0.0f);
+        std::vector<Pass*> passes = renderer.passes();
+        passes.push_back(&readback);
+        frame.run(fc, passes);
+        frame.submit(fc);
+        frame.waitIdle();
+        OitStats oit = renderer.oitStats(fc.slot);
+        if (oit.overflow > 0 && attempt < 8 && renderer.growOit(oit))
+            continue;
+        VkExtent2D e = renderer.target().extent();
+        return {e.width, e.height, readback.pixels(), "", oit, renderer.rasterStats(fc.slot)};
+    }
 }
 
 OrbitCamera poseFrame(Renderer& renderer, const SceneTimeline& timeline, double seconds, const OrbitCamera& framing)
@@ -81,7 +89,7 @@ std::string describeHairCounts(const Renderer& renderer)
     return text + "drawn as " + std::to_string(uint64_t(c.guides) * c.lengthChunks * c.strandChunks) +
            " patches of up to " + std::to_string(c.strandsPerPatch) + " strands x " +
            std::to_string((c.divisions + c.lengthChunks - 1) / c.lengthChunks) + " divisions (" +
-           std::to_string(c.strandChunks) + " instances)";
+           std::to_string(c.strandChunks) + " instances, " + std::to_string(c.draws()) + " draws)";
 }
 
 Picture renderPicture(const vk::Context& ctx, HairSession& session, const RenderSettings& settings, uint32_t frames, float fps)
@@ -133,8 +141,14 @@ std::vector<PassTiming> profileFrames(const vk::Context& ctx, HairSession& sessi
         frame.run(fc, passes);
         frame.submit(fc);
         frame.waitIdle();
+        OitStats lists = renderer.oitStats(fc.slot);
+        if (lists.overflow > 0 && renderer.growOit(lists)) {
+            if (n >= warmup)
+                --n;  // the pool grew: this frame is not timed, one more is
+            continue;
+        }
         if (oit)
-            *oit = renderer.oitStats(fc.slot);
+            *oit = lists;
         if (raster)
             *raster = renderer.rasterStats(fc.slot);
         if (n < warmup)

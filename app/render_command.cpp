@@ -85,6 +85,8 @@ int run(const GlobalOptions& g, const RenderCommand& c)
     const RenderSettings& settings = o.settings.render;
     HairScene scene = buildCheckedScene(g, o, &settings);
     vk::Context ctx(contextOptions(g));
+    // What loading the hair did (placement, short strands), printed after the picture.
+    std::vector<std::string> loaded = o.source.noHair ? std::vector<std::string>{} : describeLoadedHair(scene);
     Picture picture;
     try {
         HairSession session(ctx, std::move(scene), o.settings.sim, o.timeline, o.source);
@@ -97,6 +99,8 @@ int run(const GlobalOptions& g, const RenderCommand& c)
         return status;  // a picture made with validation errors is not trusted: nothing written
     writePng(c.outFile, picture.width, picture.height, picture.rgba);
     std::cout << c.outFile << "\n";
+    for (const std::string& line : loaded)
+        std::cout << line << "\n";
     if (!picture.hairCounts.empty())
         std::cout << picture.hairCounts << "\n";
     if (picture.raster.capacity > 0) {
@@ -111,9 +115,7 @@ int run(const GlobalOptions& g, const RenderCommand& c)
     if (picture.oit.capacity > 0) {
         std::cout << "oit: " << picture.oit.fragments << " hair fragments, pool of " << picture.oit.capacity << "\n";
         if (picture.oit.overflow > 0)
-            std::cerr << "wisp: warning: the OIT pool was full: " << picture.oit.overflow << " of "
-                      << picture.oit.fragments
-                      << " hair fragments were dropped; raise oit_nodes_per_pixel (--set oit_nodes_per_pixel=N)\n";
+            std::cerr << "wisp: warning: " << oitOverflowAdvice(picture.oit, settings.width, settings.height) << "\n";
     }
     return 0;
 }

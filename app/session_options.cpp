@@ -98,8 +98,8 @@ SessionOptions SessionCommandLine::resolve() const
     if (given("--sphere")) {
         std::vector<double> v = parseNumbers(sphere_, 4, "x,y,z,r", kPositionRange, "head units", "--sphere");
         if (!(v[3] > 0.0 && v[3] <= kRadiusRange.max))
-            throw UserError("--sphere: the radius (value 4) must be > 0 and at most " + std::to_string(int(kRadiusRange.max)) +
-                            " head units, got " + sphere_.substr(sphere_.rfind(',') + 1));
+            throw UserError("--sphere: the fourth value, the radius (" + sphere_.substr(sphere_.rfind(',') + 1) +
+                            "), must be > 0 and at most " + std::to_string(int(kRadiusRange.max)) + " head units");
         o.source.sphere = glm::vec4(float(v[0]), float(v[1]), float(v[2]), float(v[3]));
     }
     if (uses_.draws) {

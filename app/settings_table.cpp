@@ -82,12 +82,23 @@ std::string jsonTypeName(const Json& v)
     throw UserError(where + ": " + why);
 }
 
-// Reads one number of `text`; "nan", "inf" and 1e400 are refused.
-double readNumber(std::string_view text, const std::string& where)
+// How a refused value is named: itself ('wide', 0), or, one of several ("x,y,z"), "the second
+// value (nan)" ("value 2" would read as the number 2). `ordinal`: 0 alone, else 1, 2, ...
+std::string valueName(const std::string& value, size_t ordinal, bool quoted)
+{
+    static const char* const kOrdinals[] = {"first", "second", "third", "fourth"};
+    if (ordinal == 0)
+        return quoted ? "'" + value + "'" : value;
+    std::string nth = ordinal <= 4 ? kOrdinals[ordinal - 1] : std::to_string(ordinal) + "th";
+    return "the " + nth + " value (" + value + ")";
+}
+
+// Reads one number of `text` (the `ordinal`-th of several, 0: alone); "nan", "inf" and 1e400 are refused.
+double readNumber(std::string_view text, const std::string& where, size_t ordinal = 0)
 {
     double v = 0.0;
     auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-    std::string quoted = "'" + std::string(text) + "'";
+    std::string quoted = valueName(std::string(text), ordinal, true);
     if (text.empty() || end != text.data() + text.size() || (ec != std::errc() && ec != std::errc::result_out_of_range))
         fail(where, quoted + " is not a number");
     if (ec == std::errc::result_out_of_range || !std::isfinite(v))
@@ -108,14 +119,15 @@ std::vector<std::string_view> split(std::string_view text)
     }
 }
 
-void checkNumber(const SettingSpec& spec, double v, const std::string& where)
+void checkNumber(const SettingSpec& spec, double v, const std::string& where, size_t ordinal = 0)
 {
+    std::string shown = valueName(numberText(v), ordinal, false);
     if (!std::isfinite(v))
-        fail(where, "is not a finite number");
+        fail(where, shown + " is not a finite number");
     if (!spec.range.contains(v))
-        fail(where, numberText(v) + " is out of range: allowed " + rangeText(spec.range, spec.unit));
+        fail(where, shown + " is out of range: allowed " + rangeText(spec.range, spec.unit));
     if (spec.type == SettingType::Integer && v != std::floor(v))
-        fail(where, numberText(v) + " is not a whole number");
+        fail(where, shown + " is not a whole number");
 }
 
 // ---- Binding a table entry to the field it lives in ----------------------------------------
@@ -548,7 +560,7 @@ void checkSetting(const SettingSpec& spec, const SettingValue& v, const std::str
     case SettingType::Vector:
     case SettingType::Color:
         for (int i = 0; i < 3; ++i)
-            checkNumber(spec, v.vector[i], where + ": value " + std::to_string(i + 1));
+            checkNumber(spec, v.vector[i], where, size_t(i) + 1);
         break;
     }
 }
@@ -588,7 +600,7 @@ SettingValue parseSetting(const SettingSpec& spec, std::string_view text, const 
             fail(where, quoted + " is not three numbers " +
                             (spec.type == SettingType::Color ? std::string("r,g,b") : std::string("x,y,z")));
         for (int i = 0; i < 3; ++i)
-            v.vector[i] = readNumber(parts[size_t(i)], where + ": value " + std::to_string(i + 1));
+            v.vector[i] = readNumber(parts[size_t(i)], where, size_t(i) + 1);
         break;
     }
     }
@@ -687,11 +699,12 @@ Json settingJson(const SettingSpec& spec, const SettingValue& v)
     return nullptr;
 }
 
-double parseNumber(std::string_view text, const Range& range, const std::string& unit, const std::string& where)
+double parseNumber(std::string_view text, const Range& range, const std::string& unit, const std::string& where,
+                   size_t ordinal)
 {
-    double v = readNumber(text, where);
+    double v = readNumber(text, where, ordinal);
     if (!range.contains(v))
-        fail(where, numberText(v) + " is out of range: allowed " + rangeText(range, unit));
+        fail(where, valueName(numberText(v), ordinal, false) + " is out of range: allowed " + rangeText(range, unit));
     return v;
 }
 
@@ -703,7 +716,7 @@ std::vector<double> parseNumbers(std::string_view text, size_t count, const char
         fail(where, "'" + std::string(text) + "' is not " + std::to_string(count) + " numbers " + form);
     std::vector<double> out;
     for (size_t i = 0; i < count; ++i)
-        out.push_back(parseNumber(parts[i], range, unit, where + ": value " + std::to_string(i + 1)));
+        out.push_back(parseNumber(parts[i], range, unit, where, i + 1));
     return out;
 }
 

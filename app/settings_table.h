@@ -95,7 +95,8 @@ std::string settingNames();
 // Reading and checking values. Every failure throws UserError "WHERE: WHY", WHY the same words for
 // every front end: "0 is out of range: allowed 1 .. 4096", "'cubic' is not allowed: single |
 // multi | mixed", "'wide' is not a number", "2.5 is not a whole number". Vectors name the value
-// ("WHERE: value 3: ...", or in JSON the element's pointer "WHERE/2: ...").
+// ("WHERE: the third value (1e+09) is out of range: ...", or in JSON the element's pointer
+// "WHERE/2: 1e+09 is out of range: ...").
 SettingValue parseSetting(const SettingSpec& spec, std::string_view text, const std::string& where);
 SettingValue settingFromJson(const SettingSpec& spec, const nlohmann::ordered_json& json, const std::string& where);
 void checkSetting(const SettingSpec& spec, const SettingValue& value, const std::string& where);
@@ -104,8 +105,10 @@ std::string settingText(const SettingSpec& spec, const SettingValue& value);
 nlohmann::ordered_json settingJson(const SettingSpec& spec, const SettingValue& value);
 
 // Numbers that are not settings (a sphere, a groom's placement), read with the same words: one
-// number, or `count` of them comma-separated ("x,y,z"; each failure names "value I").
-double parseNumber(std::string_view text, const Range& range, const std::string& unit, const std::string& where);
+// number (`ordinal` 0), or `count` of them comma-separated ("x,y,z"; a failure names "the second
+// value (nan)").
+double parseNumber(std::string_view text, const Range& range, const std::string& unit, const std::string& where,
+                   size_t ordinal = 0);
 std::vector<double> parseNumbers(std::string_view text, size_t count, const char* form, const Range& range,
                                  const std::string& unit, const std::string& where);
 

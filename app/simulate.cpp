@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <unistd.h>
 #include <map>
 #include <iostream>
 
@@ -162,11 +163,21 @@ int runSimulate(const vk::Context& ctx, HairSession& session, const SimulateOpti
         }
         return ctx.validationMessages() > 0 ? kExitInternalError : 0;
     }
+    // On a terminal one line rewritten in place; in a log (stderr not a terminal) a line of its own
+    // every 10%, never lines run together by carriage returns.
+    bool tty = isatty(STDERR_FILENO) != 0;
+    uint32_t lastLogged = 0;
     SimulationReport r = simulateHeadless(ctx, session, o.steps, o.sampleEvery, [&](uint32_t done) {
-        if (!o.json)
+        if (o.json)
+            return;
+        if (tty) {
             std::fprintf(stderr, "\rsimulate: %u / %u steps", done, o.steps);
+        } else if (done == o.steps || done - lastLogged >= std::max(1u, o.steps / 10)) {
+            std::fprintf(stderr, "simulate: %u / %u steps\n", done, o.steps);
+            lastLogged = done;
+        }
     });
-    if (!o.json)
+    if (!o.json && tty)
         std::fprintf(stderr, "\n");
 
     const SimSetup& setup = session.setup();
@@ -205,6 +216,7 @@ int runSimulate(const vk::Context& ctx, HairSession& session, const SimulateOpti
                           {"grid_resolution", sim.gridResolution},
                           {"colliders", scene.colliders.size()},
                           {"colliders_fitted", scene.collidersFitted},
+                          {"loaded_hair", loadedHairJson(scene)},
                           {"device", ctx.report().name},
                           {"settings", settingsJson(o.settings)}};
     if (o.json) {
@@ -217,6 +229,8 @@ int runSimulate(const vk::Context& ctx, HairSession& session, const SimulateOpti
                     "  non-finite resets %u\n  kinetic energy    %.4g (last)\n  GPU time per step %.4f ms\n",
                     double(r.last.maxStretch), double(r.last.maxPenetration / diagonal), double(r.last.rootDrift),
                     r.nonfiniteResets, double(r.last.kineticEnergy), r.gpuMsPerStep);
+        for (const std::string& line : describeLoadedHair(scene))
+            std::printf("  %s\n", line.c_str());
         std::printf("  worst over %zu samples: stretch %.3g, penetration %.3g, root drift %.3g\n  memory            %s\n",
                     r.energy.size(), double(r.worst.maxStretch), double(r.worst.maxPenetration / diagonal),
                     double(r.worst.rootDrift), describeMemory(r.memoryStart, r.memoryEnd).c_str());

@@ -36,12 +36,47 @@ SweepAxis parseSweepAxis(const std::string& spec, const Settings& base)
     return axis;
 }
 
+namespace {
+
+// The output folder: created for the sweep, and removed again (with whatever it holds) when the
+// sweep fails before it is done, so a failed sweep leaves nothing behind. A folder that was
+// already there stays, less what the sweep put into it.
+class OutputFolder {
+public:
+    explicit OutputFolder(const std::filesystem::path& dir) : dir_(dir)
+    {
+        std::error_code ec;
+        existed_ = std::filesystem::is_directory(dir_, ec);
+        std::filesystem::create_directories(dir_, ec);
+        if (ec || !std::filesystem::is_directory(dir_))
+            throw UserError("--out " + dir_.string() + ": cannot create the folder");
+    }
+    ~OutputFolder()
+    {
+        if (done_)
+            return;
+        std::error_code ec;
+        if (!existed_)
+            std::filesystem::remove_all(dir_, ec);
+        else
+            for (const char* name : {"results.csv", "fps.png", "passes.png"})
+                std::filesystem::remove(dir_ / name, ec);
+    }
+    OutputFolder(const OutputFolder&) = delete;
+    OutputFolder& operator=(const OutputFolder&) = delete;
+    void keep() { done_ = true; }
+
+private:
+    std::filesystem::path dir_;
+    bool existed_ = false;
+    bool done_ = false;
+};
+
+}  // namespace
+
 int runSweep(const vk::Context& ctx, const SweepOptions& o, const SessionOptions& base)
 {
-    std::error_code ec;
-    std::filesystem::create_directories(o.outDir, ec);
-    if (ec || !std::filesystem::is_directory(o.outDir))
-        throw UserError("--out " + o.outDir.string() + ": cannot create the folder");
+    OutputFolder folder(o.outDir);
     size_t points = 1;
     for (const SweepAxis& a : o.axes)
         points *= a.values.size();
@@ -96,10 +131,12 @@ int runSweep(const vk::Context& ctx, const SweepOptions& o, const SessionOptions
     // results.csv appears whole or not at all.
     std::filesystem::path csvPath = o.outDir / "results.csv";
     writeFileAtomically(csvPath, csv.str());
+    folder.keep();  // the results are whole: the charts failing below leaves them
     std::printf("%s\n", csvPath.string().c_str());
 
     // The chart script: beside the executable (a bundle), else in the source tree.
     std::filesystem::path plot = std::filesystem::path(WISP_SOURCE_DIR) / "scripts" / "plot_sweep.py";
+    std::error_code ec;
     std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
     if (!ec && std::filesystem::exists(exe.parent_path() / "plot_sweep.py"))
         plot = exe.parent_path() / "plot_sweep.py";

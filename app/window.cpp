@@ -299,6 +299,10 @@ void Window::buildPanel(const std::vector<std::string>& scriptedSets)
     if (session_.hasHair()) {
         HairDrawCounts c = renderer_->hairCounts();
         OitStats oit = renderer_->oitStats(framesDrawn_ % kFramesInFlight);
+        if (oit.overflow > 0 && oit.automatic && oit.capacity < oit.limit) {
+            frame_.waitIdle();  // the automatic pool grows for the next frame
+            renderer_->growOit(oit);
+        }
         panel.counts.push_back("guides " + std::to_string(c.guides) + " x " +
                                std::to_string(session_.scene().strands.verticesPerStrand) + " vertices, simulated");
         panel.counts.push_back("strands drawn " + std::to_string(c.strands()) + " (" + std::to_string(c.strandsPerGuide) +

@@ -88,12 +88,36 @@ public:
     }
 
     // `what` needs `bytes` (spelt out as `formula`) starting at `offset`: fail unless they are there.
+    // The message names where they start and end and where the file ends, so the numbers cannot
+    // read as contradictory ("needs 96 bytes but the file has 391").
     void need(uint64_t offset, uint64_t bytes, const std::string& what, const std::string& formula = "") const
     {
         if (offset <= size() && bytes <= size() - offset)
             return;
         std::string amount = formula.empty() ? str(bytes) : formula + " = " + str(bytes);
-        fail(offset, what + " needs " + amount + " bytes but the file ends after " + str(size()) + " bytes");
+        fail(offset, what + " needs " + amount + " bytes from byte " + str(offset) + " to byte " + str(offset + bytes) +
+                         ", but the file ends at byte " + str(size()));
+    }
+
+    // The header's other sections (offset, name, where the header holds that offset): the block of
+    // `bytes` at `offset` must end before the first of them that starts after it, or the header
+    // claims more than the block holds (a count too large reads the next section as points).
+    struct Section {
+        uint32_t offset;
+        const char* name;
+        uint64_t at;
+    };
+    void fitsBefore(uint64_t offset, uint64_t bytes, uint64_t strideBytes, uint64_t count, const std::string& counted,
+                    std::initializer_list<Section> sections) const
+    {
+        for (const Section& next : sections) {
+            if (next.offset <= offset || offset + bytes <= next.offset)
+                continue;
+            fail(next.at, "the header's " + counted + " need positions from byte " + str(offset) + " to byte " +
+                              str(offset + bytes) + ", but its " + next.name + " start at byte " + str(next.offset) +
+                              " (the offset at byte " + str(next.at) + "): the positions hold " +
+                              str((next.offset - offset) / strideBytes) + " of the " + str(count) + " strands it claims");
+        }
     }
 
     uint32_t u32(uint64_t at) const
@@ -145,6 +169,13 @@ HairAsset loadTfx3(const BinaryFile& file)
                                            "-byte header");
     file.need(offset, uint64_t(strands) * perStrand * kTfx3Stride, "vertex data",
               str(strands) + "*" + str(perStrand) + "*" + str(kTfx3Stride));
+    file.fitsBefore(offset, uint64_t(strands) * perStrand * kTfx3Stride, uint64_t(perStrand) * kTfx3Stride, strands,
+                    str(strands) + " strands of " + str(perStrand) + " vertices",
+                    {{file.u32(148), "per-strand thicknesses", 148},
+                     {file.u32(152), "per-strand texture coordinates", 152},
+                     {file.u32(156), "per-vertex colours", 156},
+                     {file.u32(160), "guide hair indices", 160},
+                     {file.u32(164), "per-vertex texture coordinates", 164}});
 
     HairAsset asset;
     asset.format = HairFormat::Tfx3;
@@ -172,6 +203,12 @@ HairAsset loadTfx4(const BinaryFile& file)
         file.fail(12, "vertex offset " + str(offset) + " lies inside the " + str(kTfx4HeaderBytes) + "-byte header");
     file.need(offset, uint64_t(strands) * perStrand * kTfx4Stride, "vertex data",
               str(strands) + "*" + str(perStrand) + "*" + str(kTfx4Stride));
+    file.fitsBefore(offset, uint64_t(strands) * perStrand * kTfx4Stride, uint64_t(perStrand) * kTfx4Stride, strands,
+                    str(strands) + " strands of " + str(perStrand) + " vertices",
+                    {{file.u32(16), "strand texture coordinates", 16},
+                     {file.u32(20), "vertex texture coordinates", 20},
+                     {file.u32(24), "strand thicknesses", 24},
+                     {file.u32(28), "vertex colours", 28}});
 
     HairAsset asset;
     asset.format = HairFormat::Tfx4;
@@ -658,6 +695,14 @@ glm::vec3 applyPlacement(const HairPlacement& placement, glm::vec3 point)
     if (placement.zUpToYUp)
         p = glm::vec3(p.x, p.z, -p.y);
     return p + placement.offset;
+}
+
+float strandLength(const std::vector<glm::vec3>& points)
+{
+    double length = 0.0;
+    for (size_t k = 1; k < points.size(); ++k)
+        length += glm::length(glm::dvec3(points[k]) - glm::dvec3(points[k - 1]));
+    return float(length);
 }
 
 nlohmann::json describeHairAsset(const HairAsset& asset)

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
@@ -140,6 +141,15 @@ Head loadHead(const std::filesystem::path& path)
         head.description.units = "file";
     }
     head.mesh = loadMesh(head.description.meshPath);
+    // A head must have depth: colliders are fitted to it and hair grows on and around it.
+    glm::vec3 size = head.mesh.bounds().size();
+    float largest = std::max({size.x, size.y, size.z});
+    const char* axes[3] = {"x", "y", "z"};
+    for (int axis = 0; axis < 3; ++axis)
+        if (!(size[axis] > 1e-4f * largest))
+            throw UserError(head.description.meshPath.string() + ": the head is flat: its extent along " + axes[axis] +
+                            " is " + std::to_string(size[axis]) + " of " + std::to_string(largest) +
+                            " (a head needs width, height and depth)");
     return head;
 }
 

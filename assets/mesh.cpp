@@ -139,8 +139,14 @@ void checkObj(const std::filesystem::path& path, std::istream& in)
     std::string line;
     size_t lineNumber = 0;
     long positions = 0, texcoords = 0, normals = 0;
+    std::streamoff lineStart = 0;
     while (objLine(in, line)) {
         ++lineNumber;
+        // A NUL byte: binary data (an executable, an image, a binary mesh named .obj), not OBJ text.
+        if (size_t nul = line.find('\0'); nul != std::string::npos)
+            badFile(path, lineNumber, "byte " + std::to_string(lineStart + std::streamoff(nul)) +
+                                          " is a NUL: the file holds binary data, not OBJ text");
+        lineStart = in.tellg();
         std::vector<std::string> args = objWords(line);
         if (args.empty() || args.front()[0] == '#')
             continue;
@@ -231,6 +237,26 @@ Mesh loadWithAssimp(const std::filesystem::path& path)
 
 }  // namespace
 
+void checkNotDegenerate(const Mesh& mesh, const std::filesystem::path& path)
+{
+    double largest = 0.0;  // twice the largest triangle's area, in double (float squares overflow)
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        glm::dvec3 a = mesh.positions[mesh.indices[t]];
+        glm::dvec3 b = mesh.positions[mesh.indices[t + 1]];
+        glm::dvec3 c = mesh.positions[mesh.indices[t + 2]];
+        largest = std::max(largest, glm::length(glm::cross(b - a, c - a)));
+    }
+    if (largest > 0.0)
+        return;
+    Bounds b = mesh.bounds();
+    if (b.diagonal() == 0.0f)
+        throw UserError(path.string() + ": the mesh is degenerate: all its " + std::to_string(mesh.sourceVertices) +
+                        " vertices lie at one point (" + std::to_string(b.min.x) + ", " + std::to_string(b.min.y) + ", " +
+                        std::to_string(b.min.z) + ")");
+    throw UserError(path.string() + ": the mesh is degenerate: none of its " + std::to_string(mesh.triangleCount()) +
+                    " triangles has an area (its vertices lie on a line)");
+}
+
 Mesh parseObj(std::istream& file, const std::filesystem::path& path)
 {
     checkObj(path, file);
@@ -300,7 +326,9 @@ Mesh loadMesh(const std::filesystem::path& path)
         c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     Mesh mesh = ext == ".obj" ? loadObj(path) : loadWithAssimp(path);
     if (mesh.indices.empty())
-        throw UserError(path.string() + ": the mesh holds no triangles");
+        throw UserError(path.string() + ": the mesh holds no triangles (" + std::to_string(mesh.sourceVertices) +
+                        " vertices and no faces)");
+    checkNotDegenerate(mesh, path);
     return mesh;
 }
 

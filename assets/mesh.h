@@ -27,8 +27,11 @@ struct Mesh {
 };
 
 // Throws UserError naming the file (and line, for .obj) when it is missing, unreadable,
-// malformed or holds no triangles.
+// malformed, binary where text is expected, or holds no triangles or only triangles of no area.
 Mesh loadMesh(const std::filesystem::path& path);
+// Throws UserError naming `path` when no triangle of `mesh` has an area (all vertices at one
+// point or on one line): nothing can be framed, fitted or grown on it.
+void checkNotDegenerate(const Mesh& mesh, const std::filesystem::path& path);
 // An OBJ file's text from a stream (seekable: it is read twice, checked then parsed), as loadMesh
 // reads a .obj file; `source` names it in errors. The fuzz target uses it.
 Mesh parseObj(std::istream& in, const std::filesystem::path& source);

@@ -1,6 +1,8 @@
 // physics/colliders.cpp: ellipsoid conversion, penetration, automatic fit.
 #include "physics/colliders.h"
 
+#include "assets/placement.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -70,12 +72,16 @@ Ellipsoid fitBand(const Mesh& mesh, float yTop, float yBottom, float insideFract
 std::vector<Ellipsoid> fitColliders(const Mesh& mesh)
 {
     Bounds b = mesh.bounds();
-    float h = b.size().y;
-    float cut1 = b.max.y - 0.32f * h;
-    float cut2 = b.max.y - 0.5f * h;
-    Ellipsoid cranium = fitBand(mesh, b.max.y, cut1, 0.0f, "cranium");
+    // The head's height from its top to its neck (assets/placement.h): heads of any proportion,
+    // busts with shoulders or heads alone, are cut where they narrow, not at fixed fractions.
+    HeadRegion region = headRegion(mesh);
+    float head = std::max(region.top - region.neck, 1e-6f * b.size().y);
+    float craniumCut = region.top - 0.5f * head;  // above the eyes
+    float neckTop = region.neck + 0.25f * head, neckBottom = std::max(region.neck - 0.15f * head, b.min.y);
+    Ellipsoid cranium = fitBand(mesh, b.max.y, craniumCut, 0.0f, "cranium");
     // The skull: as wide and deep as the top band, as tall as it is wide, its top at the head's
-    // top; then scaled so that 98% of the vertices above its centre (the scalp) lie inside.
+    // top; then scaled so that 98% of the vertices above its centre (the scalp) lie inside. The
+    // scalp rule is derived from this one; inscribeColliders then pulls it inside the scalp.
     cranium.radii.y = 0.55f * (cranium.radii.x + cranium.radii.z);
     cranium.center.y = b.max.y - cranium.radii.y;
     std::vector<float> r;
@@ -87,7 +93,33 @@ std::vector<Ellipsoid> fitColliders(const Mesh& mesh)
         std::nth_element(r.begin(), r.begin() + std::ptrdiff_t(k), r.end());
         cranium.radii *= std::max(r[k], 1e-3f);
     }
-    return {cranium, fitBand(mesh, cut1, cut2, 0.9f, "neck"), fitBand(mesh, cut2, b.min.y, 0.0f, "shoulders")};
+    std::vector<Ellipsoid> out = {cranium, fitBand(mesh, neckTop, neckBottom, 0.9f, "neck")};
+    if (neckBottom > b.min.y + 1e-6f * b.size().y)  // a bust: its shoulders
+        out.push_back(fitBand(mesh, neckBottom, b.min.y, 0.0f, "shoulders"));
+    return out;
+}
+
+void inscribeColliders(std::vector<Ellipsoid>& colliders, const Mesh& mesh, const std::vector<uint32_t>& scalp,
+                       float tolerance)
+{
+    std::vector<uint8_t> onScalp(mesh.positions.size(), 0);
+    for (uint32_t t : scalp)
+        for (int c = 0; c < 3; ++c)
+            onScalp[mesh.indices[3 * t + c]] = 1;
+    for (Ellipsoid& e : colliders) {
+        glm::mat3 R = rotationFromDegrees(e.rotationDeg);
+        float scale = 1.0f;
+        for (size_t v = 0; v < mesh.positions.size(); ++v) {
+            if (!onScalp[v])
+                continue;
+            glm::vec3 d = mesh.positions[v] - e.center;
+            float distance = glm::length(d);
+            float radius = glm::length((glm::transpose(R) * d) / e.radii);  // 1 on the surface
+            if (radius < scale && distance > 0.0f)
+                scale = std::min(scale, radius * (1.0f + tolerance / distance));
+        }
+        e.radii *= std::max(scale, 0.05f);
+    }
 }
 
 void shrinkCollidersToRestPose(std::vector<Ellipsoid>& colliders, const StrandSet& strands)

@@ -16,14 +16,23 @@ glm::mat3 rotationFromDegrees(const glm::vec3& xyzDegrees);  // R = Rz * Ry * Rx
 // How far `p` (head space) lies inside the deepest collider; 0 when outside all.
 float penetrationDepth(const std::vector<gpu::Ellipsoid>& colliders, const glm::vec3& p);
 
-// Fits ellipsoids to a bust-like mesh with no description (y up, face toward +z):
-//  - "cranium": as wide and deep as the vertices in the top 32% of the height, as tall as it is
+// Fits ellipsoids to a bust-like mesh with no description (y up, face toward +z), cut where the
+// head narrows into the neck (assets/placement.h headRegion), not at fixed fractions of the height:
+//  - "cranium": as wide and deep as the vertices in the top half of the head, as tall as it is
 //    wide, its top at the mesh's top, then scaled uniformly so that 98% of the vertices above its
-//    centre lie inside (hair rests on the skull, not in it);
-//  - "neck": the vertices between 32% and 50% from the top, fitted the same way;
-//  - "shoulders": the lower half, fitted the same way but not scaled up (it only stops hair
-//    falling through the body).
+//    centre lie inside (inscribeColliders then pulls it inside the scalp);
+//  - "neck": the vertices around the neck, fitted the same way to hold 90% of them;
+//  - "shoulders" (a bust): everything below, fitted the same way but not scaled up.
 std::vector<Ellipsoid> fitColliders(const Mesh& mesh);
+
+// Hair grows from the scalp, so the scalp must lie outside every collider, or grown roots start
+// inside one and the solver pushes their first segments against FTL from the first step (loose
+// fitted colliders: penetration 4% of the diagonal on a scan head). Each collider shrinks
+// (uniformly about its centre) until no vertex of the scalp triangles lies deeper than `tolerance`
+// inside it.
+void inscribeColliders(std::vector<Ellipsoid>& colliders, const Mesh& mesh, const std::vector<uint32_t>& scalpTriangles,
+                       float tolerance);
+inline constexpr float kInscribedTolerance = 0.0025f;  // of the head's bounding-box diagonal
 
 // A styled groom's rest pose must start outside the colliders, or they fight its style: each
 // collider shrinks (uniformly about its centre) until 99% of the strands' free rest vertices lie

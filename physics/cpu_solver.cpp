@@ -4,6 +4,37 @@
 // shared grid math (shaders/shared/sim.h).
 #include "physics/cpu_solver.h"
 
+#include <vector>
+
+namespace gpu {
+
+// The strand's vertices as sim_strand.h reaches them: strand-major, vertex i at base + i.
+struct StrandRef {
+    std::vector<vec4>* positions;
+    std::vector<vec4>* velocities;
+    const std::vector<RestVertex>* rest;
+    uint base;
+};
+inline vec3 strandPosition(const StrandRef& s, uint i)
+{
+    return vec3((*s.positions)[s.base + i]);
+}
+inline vec3 strandVelocity(const StrandRef& s, uint i)
+{
+    return vec3((*s.velocities)[s.base + i]);
+}
+inline void strandSetVertex(const StrandRef& s, uint i, vec3 p, vec3 v)
+{
+    (*s.velocities)[s.base + i] = vec4(v, 0.0f);
+    (*s.positions)[s.base + i] = vec4(p, (*s.positions)[s.base + i].w);
+}
+inline float strandRestLength(const StrandRef& s, uint i)
+{
+    return (*s.rest)[s.base + i].segmentLength;
+}
+
+}  // namespace gpu
+
 #include "shaders/shared/sim_strand.h"
 
 #include <algorithm>
@@ -63,6 +94,13 @@ void CpuSolver::integrateStrand(uint32_t s, const SimStep& step)
                                     rest_[g - 1].position));
     }
     write(base + V - 1, strandWalkTip(params, step, walk));
+    if (pinnedAtBothEnds(strands_.strands[s], V)) {
+        strandBend(params, step, StrandRef{&positions, &velocities, &rest_, base}, strands_.strands[s], V, walk.finite);
+        for (uint32_t i = 0; i < V; ++i) {
+            uint32_t j = std::min(i + 1u, V - 1u);
+            tangents[base + i] = vec4(normalize(vec3(positions[base + j]) - vec3(positions[base + j - 1u])), 0.0f);
+        }
+    }
 
     if (!walk.finite) {
         for (uint32_t i = 0; i < V; ++i) {

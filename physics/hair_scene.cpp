@@ -4,7 +4,11 @@
 #include "core/error.h"
 #include "physics/colliders.h"
 
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <utility>
 
@@ -21,6 +25,9 @@ void prepareHead(HairScene& scene)
         scene.collidersFitted = true;
     }
     scene.scalp = scene.head.description.scalp ? *scene.head.description.scalp : defaultScalpRule(scene.colliders.front());
+    if (scene.collidersFitted)  // the scalp outside them, within a quarter of a percent of the head
+        inscribeColliders(scene.colliders, scene.head.mesh, scalpTriangles(scene.head.mesh, scene.scalp),
+                          kInscribedTolerance * scene.head.mesh.bounds().diagonal());
     scene.gpuColliders.clear();
     for (const Ellipsoid& e : scene.colliders)
         scene.gpuColliders.push_back(toGpu(e));
@@ -51,12 +58,24 @@ PartSettings styledPartDefaults()
 }
 
 HairScene buildLoadedScene(const std::filesystem::path& headFile, const std::vector<HairPartSource>& parts,
-                           uint32_t verticesPerStrand)
+                           uint32_t verticesPerStrand, const PlacementRequest& request)
 {
-    return buildLoadedScene(loadHead(headFile), parts, verticesPerStrand);
+    return buildLoadedScene(loadHead(headFile), parts, verticesPerStrand, request);
 }
 
-HairScene buildLoadedScene(Head head, const std::vector<HairPartSource>& parts, uint32_t verticesPerStrand)
+namespace {
+
+std::string percent(float fraction)
+{
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.1f%%", double(100.0f * fraction));
+    return text;
+}
+
+}  // namespace
+
+HairScene buildLoadedScene(Head head, const std::vector<HairPartSource>& parts, uint32_t verticesPerStrand,
+                           const PlacementRequest& request)
 {
     if (parts.empty())
         throw std::invalid_argument("buildLoadedScene: no hair files");
@@ -67,20 +86,64 @@ HairScene buildLoadedScene(Head head, const std::vector<HairPartSource>& parts, 
     scene.head = std::move(head);
     prepareHead(scene);
     scene.strands.verticesPerStrand = verticesPerStrand;
-    Bounds headBounds = scene.head.mesh.bounds();
+
+    std::vector<HairAsset> assets;
+    assets.reserve(parts.size());
+    uint64_t strandCount = 0;
+    for (uint32_t index = 0; index < parts.size(); ++index) {
+        assets.push_back(loadHairAsset(parts[index].file));
+        strandCount += assets.back().strands.size();
+        if (strandCount > kMaxGuides)
+            throw UserError(parts[index].file.string() + ": " + std::to_string(assets.back().strands.size()) + " strands" +
+                            (index > 0 ? " (" + std::to_string(strandCount) + " with the parts before it)" : std::string()) +
+                            ", more than the " + std::to_string(kMaxGuides) + " guides Wisp simulates");
+    }
+
+    // One placement for the whole groom, from the roots of the parts that have none of their own.
+    std::vector<glm::vec3> roots;
+    Bounds groomBounds;
+    bool firstPoint = true;
+    for (size_t index = 0; index < parts.size(); ++index) {
+        if (parts[index].placement)
+            continue;
+        for (const HairStrand& strand : assets[index].strands) {
+            roots.push_back(strand.points.front());
+            for (const glm::vec3& p : strand.points) {
+                groomBounds.min = firstPoint ? p : glm::min(groomBounds.min, p);
+                groomBounds.max = firstPoint ? p : glm::max(groomBounds.max, p);
+                firstPoint = false;
+            }
+        }
+    }
+    if (!roots.empty()) {
+        const HairAsset& lead = assets[size_t(std::find_if(parts.begin(), parts.end(),
+                                                            [](const HairPartSource& p) { return !p.placement; }) -
+                                              parts.begin())];
+        HairPlacement defaults{.scale = 1.0f, .offset = glm::vec3(0.0f), .zUpToYUp = lead.zUp, .mirrorZ = lead.mirroredZ};
+        scene.placement = placeGroom(roots, groomBounds, defaults, scene.head.mesh, request);
+        const GroomPlacement& placed = *scene.placement;
+        std::string where = "the groom's roots are not on the head: " + placed.describe() + " leaves " +
+                            percent(1.0f - placed.fit.onSurface) + " of them farther than " + percent(kRootOnSurface) +
+                            " of the head's size from its surface (median " + percent(placed.fit.median) + ")";
+        const std::string& file = parts.front().file.string();
+        if (placed.method != GroomPlacement::Method::Given && !placed.fit.onHead())
+            throw UserError(file + ": " + where +
+                            "; place it by hand with --hair-scale S, --hair-offset X,Y,Z, --hair-z-up true|false and "
+                            "--hair-mirror-z true|false (in a scene: hair's scale, offset, z_up, mirror_z)");
+        if (!placed.fit.onHead())
+            scene.warnings.push_back(file + ": " + where);
+    }
+
+    float headDiagonal = scene.head.mesh.bounds().diagonal();
+    scene.loaded.shortThreshold = shortStrandLength(headDiagonal, verticesPerStrand);
     for (uint32_t index = 0; index < parts.size(); ++index) {
         const HairPartSource& source = parts[index];
-        HairAsset asset = loadHairAsset(source.file);
-        HairPlacement placement = source.placement ? *source.placement : autoPlacement(asset, headBounds);
+        const HairAsset& asset = assets[index];
+        HairPlacement placement = source.placement ? *source.placement : scene.placement->placement;
         PartSettings settings = source.settings;
         if (settings.name.empty() || settings.name == PartSettings{}.name)
             settings.name = source.file.stem().string();
         scene.strands.parts.push_back(settings);
-        uint64_t strandCount = scene.strands.strandCount() + asset.strands.size();
-        if (strandCount > kMaxGuides)
-            throw UserError(source.file.string() + ": " + std::to_string(asset.strands.size()) + " strands" +
-                            (index > 0 ? " (" + std::to_string(strandCount) + " with the parts before it)" : std::string()) +
-                            ", more than the " + std::to_string(kMaxGuides) + " guides Wisp simulates");
         for (size_t s = 0; s < asset.strands.size(); ++s) {
             const HairStrand& strand = asset.strands[s];
             std::vector<glm::vec3> placed;
@@ -93,14 +156,64 @@ HairScene buildLoadedScene(Head head, const std::vector<HairPartSource>& parts, 
                                     " is not finite once placed (scale " + std::to_string(placement.scale) +
                                     "): its coordinates are too large");
             }
-            scene.strands.add(resampleStrand(placed, verticesPerStrand), index, strand.pinnedRoot, strand.pinnedTip);
+            float length = strandLength(placed);
+            if (!std::isfinite(length))
+                throw UserError(source.file.string() + ": strand " + std::to_string(s) + " (of " +
+                                std::to_string(asset.strands.size()) +
+                                " in the file) is too long for floats once placed: its length overflows");
+            if (!(length > 0.0f)) {
+                ++scene.loaded.dropped;  // every point at one place: nothing to draw or simulate
+                continue;
+            }
+            bool rigid = length < scene.loaded.shortThreshold;
+            scene.loaded.rigid += rigid ? 1 : 0;
+            scene.loaded.pinnedTips += strand.pinnedTip && !rigid ? 1 : 0;
+            std::vector<glm::vec3> points = resampleStrand(placed, verticesPerStrand);
+            for (size_t i = 1; i < points.size(); ++i)
+                if (!(glm::length(points[i] - points[i - 1]) > 0.0f))
+                    throw UserError(source.file.string() + ": strand " + std::to_string(s) + " (of " +
+                                    std::to_string(asset.strands.size()) + " in the file) is " + std::to_string(length) +
+                                    " long, too short to split into " + std::to_string(verticesPerStrand - 1) +
+                                    " segments in floats at its position");
+            scene.strands.add(points, index, rigid ? verticesPerStrand : strand.pinnedRoot, strand.pinnedTip && !rigid);
         }
     }
+    if (scene.strands.strandCount() == 0)
+        throw UserError(parts.front().file.string() + ": every strand has no length: nothing to draw or simulate");
     shrinkCollidersToRestPose(scene.colliders, scene.strands);
     scene.gpuColliders.clear();
     for (const Ellipsoid& e : scene.colliders)
         scene.gpuColliders.push_back(toGpu(e));
     return scene;
+}
+
+std::vector<std::string> describeLoadedHair(const HairScene& scene)
+{
+    std::vector<std::string> out;
+    if (!scene.placement)
+        return out;
+    const RootFit& fit = scene.placement->fit;
+    out.push_back("hair placement: " + scene.placement->describe() + "; roots: median " + percent(fit.median) +
+                  " of the head's size from its surface, " + percent(fit.onSurface) + " within " + percent(kRootOnSurface));
+    char threshold[32];
+    std::snprintf(threshold, sizeof(threshold), "%.3g", double(scene.loaded.shortThreshold));
+    out.push_back("hair strands: " + std::to_string(scene.strands.strandCount()) + " simulated, " +
+                  std::to_string(scene.loaded.rigid) + " of them kept rigid (shorter than " + threshold +
+                  " head units), " + std::to_string(scene.loaded.dropped) + " dropped (no length), " +
+                  std::to_string(scene.loaded.pinnedTips) + " pinned at both ends");
+    return out;
+}
+
+nlohmann::json loadedHairJson(const HairScene& scene)
+{
+    if (!scene.placement)
+        return nullptr;
+    return {{"placement", scene.placement->toJson()},
+            {"short_strands", {{"shorter_than", scene.loaded.shortThreshold},
+                               {"kept_rigid", scene.loaded.rigid},
+                               {"dropped_zero_length", scene.loaded.dropped}}},
+            {"pinned_tips", scene.loaded.pinnedTips},
+            {"warnings", scene.warnings}};
 }
 
 }  // namespace wisp

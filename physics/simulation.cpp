@@ -136,7 +136,8 @@ SimMetrics measure(const SimState& state, const std::vector<glm::vec4>& previous
             }
             if (pinned)
                 m.rootDrift = std::max(m.rootDrift, glm::length(p - glm::vec3(step.headTransform * glm::vec4(strands.rest[g], 1.0f))));
-            if (i > 0) {
+            bool parentPinned = i > 0 && (i - 1 < info.pinnedRoot);
+            if (i > 0 && !(pinned && parentPinned)) {  // a segment between two pinned vertices is rigid, not simulated
                 float rest = glm::length(strands.rest[g] - strands.rest[g - 1]);
                 float now = glm::length(p - glm::vec3(state.positions[g - 1]));
                 m.maxStretch = std::max(m.maxStretch, std::abs(now - rest) / rest);

@@ -72,7 +72,7 @@ struct SimState {
 SimState initialState(const StrandSet& strands, const glm::mat4& headTransform);
 
 struct SimMetrics {
-    float maxStretch = 0.0f;       // max |length - rest| / rest over all segments
+    float maxStretch = 0.0f;       // max |length - rest| / rest over the simulated segments (not those between pinned vertices)
     float maxPenetration = 0.0f;   // deepest vertex inside any collider (or the sphere), asset units
     float rootDrift = 0.0f;        // max distance of a pinned vertex from where the head puts it
     // 0.5 sum |dx/dt|² over the last step (unit mass per vertex): the motion a viewer sees. Not

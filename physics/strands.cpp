@@ -25,7 +25,7 @@ void StrandSet::add(const std::vector<glm::vec3>& points, uint32_t part, uint32_
     }
     uint32_t index = static_cast<uint32_t>(strands.size());
     strands.push_back({.part = part,
-                       .pinnedRoot = std::clamp<uint32_t>(pinnedRoot, 1, verticesPerStrand - 1),
+                       .pinnedRoot = std::clamp<uint32_t>(pinnedRoot, 1, verticesPerStrand),  // V: rigid
                        .pinnedTip = pinnedTip ? 1u : 0u,
                        .seed = gpu::hashUint(index * 2654435761u + 17u)});
     rest.insert(rest.end(), points.begin(), points.end());
@@ -83,19 +83,21 @@ std::vector<glm::uvec4> guideTriangles(const StrandSet& strands)
         glm::ivec3 c = cellOf(p);
         uint32_t best[2] = {s, s};
         float bestD[2] = {1e30f, 1e30f};
-        // Grow the search ring until two neighbours are found and no closer one can lie outside it.
+        size_t seen = 0;  // other guides looked at: once all of them, nothing closer is left
+        // Grow the search ring until two neighbours are found and no closer one can lie outside it
+        // (the ring clamped to the grid: roots on a line or a plane make a grid one cell thick).
         for (int r = 1;; ++r) {
-            for (int z = c.z - r; z <= c.z + r; ++z)
-                for (int y = c.y - r; y <= c.y + r; ++y)
-                    for (int x = c.x - r; x <= c.x + r; ++x) {
-                        if (x < 0 || y < 0 || z < 0 || x >= dims.x || y >= dims.y || z >= dims.z)
-                            continue;
-                        bool shell = std::max({std::abs(x - c.x), std::abs(y - c.y), std::abs(z - c.z)}) >= r - 1;
-                        if (r > 1 && !shell)
+            for (int z = std::max(c.z - r, 0); z <= std::min(c.z + r, dims.z - 1); ++z)
+                for (int y = std::max(c.y - r, 0); y <= std::min(c.y + r, dims.y - 1); ++y)
+                    for (int x = std::max(c.x - r, 0); x <= std::min(c.x + r, dims.x - 1); ++x) {
+                        int ring = std::max({std::abs(x - c.x), std::abs(y - c.y), std::abs(z - c.z)});
+                        if (r > 1 && ring < r - 1)
                             continue;  // inner cells were searched in earlier rings
+                        bool first = r == 1 || ring == r;  // a cell of ring r - 1 is looked at again
                         for (uint32_t o : grid[key({x, y, z})]) {
                             if (o == s)
                                 continue;
+                            seen += first ? 1 : 0;
                             float d = glm::length(strands.rest[size_t(o) * V] - p);
                             if (d < bestD[0] && o != best[0] && o != best[1]) {
                                 best[1] = best[0];
@@ -110,7 +112,7 @@ std::vector<glm::uvec4> guideTriangles(const StrandSet& strands)
                     }
             bool covered = c.x - r <= 0 && c.y - r <= 0 && c.z - r <= 0 && c.x + r >= dims.x - 1 &&
                            c.y + r >= dims.y - 1 && c.z + r >= dims.z - 1;
-            if ((bestD[1] < 1e29f && bestD[1] <= float(r - 1) * cell) || covered)
+            if ((bestD[1] < 1e29f && bestD[1] <= float(r - 1) * cell) || covered || seen + 1 >= n)
                 break;
         }
         out[s] = glm::uvec4(s, bestD[0] < 1e29f ? best[0] : s, bestD[1] < 1e29f ? best[1] : s, 0u);

@@ -39,12 +39,6 @@ void OrbitCamera::zoom(float factor)
     fitPlanes();
 }
 
-void OrbitCamera::fitPlanes(float targetOffset)
-{
-    nearPlane = std::max(distance - kNearReach * sceneRadius - targetOffset, kMinNearFraction * distance);
-    farPlane = distance + kFarReach * sceneRadius + targetOffset;
-}
-
 void OrbitCamera::pan(float dxUnits, float dyUnits)
 {
     glm::mat4 v = view();

@@ -6,6 +6,8 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
+
 namespace wisp {
 
 struct OrbitCamera {
@@ -30,7 +32,12 @@ struct OrbitCamera {
     // target: near just short of the scene's front (what depth precision depends on is far / near,
     // so it scales with the scene: a head in centimetres is drawn as one in metres), never nearer
     // than kMinNearFraction of the distance; far past its back.
-    void fitPlanes(float targetOffset = 0.0f);
+    // (Inline: scene files pose cameras without linking the renderer.)
+    void fitPlanes(float targetOffset = 0.0f)
+    {
+        nearPlane = std::max(distance - kNearReach * sceneRadius - targetOffset, kMinNearFraction * distance);
+        farPlane = distance + kFarReach * sceneRadius + targetOffset;
+    }
     static constexpr float kNearReach = 3.0f;          // scene radii in front of the centre kept in view
     static constexpr float kFarReach = 8.0f;           // and behind it
     static constexpr float kMinNearFraction = 0.02f;  // of the distance

@@ -38,6 +38,7 @@ HairDrawCounts hairDrawCounts(uint32_t guides, const StrandSettings& s)
     uint32_t divisionsPerPatch = (s.divisions + c.lengthChunks - 1) / c.lengthChunks;
     c.strandsPerPatch = std::clamp(s.maxPatchVertices / (divisionsPerPatch + 1), 1u, gpu::kMaxTessLevel);
     c.strandChunks = (s.strandsPerGuide + c.strandsPerPatch - 1) / c.strandsPerPatch;
+    c.patchesPerDraw = std::max(1u, gpu::kMaxTessVerticesPerDraw / (c.strandsPerPatch * (divisionsPerPatch + 1)));
     return c;
 }
 
@@ -230,7 +231,11 @@ void HairPass::draw(VkCommandBuffer cmd, FrameContext& frame, VkPipeline pipelin
                            VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT | VK_SHADER_STAGE_GEOMETRY_BIT |
                            VK_SHADER_STAGE_FRAGMENT_BIT,
                        0, sizeof(push), &push);
-    vkCmdDraw(cmd, counts_.guides * counts_.lengthChunks, counts_.strandChunks, 0, 0);
+    // Consecutive patches in draws of at most patchesPerDraw (hair.vert reads gl_VertexIndex,
+    // which counts from the draw's first vertex, so the split changes nothing else).
+    uint32_t patches = counts_.guides * counts_.lengthChunks;
+    for (uint32_t first = 0; first < patches; first += counts_.patchesPerDraw)
+        vkCmdDraw(cmd, std::min(counts_.patchesPerDraw, patches - first), counts_.strandChunks, first, 0);
 }
 
 void HairPass::recordFromLight(VkCommandBuffer cmd, FrameContext& frame, LightDraw which)

@@ -33,6 +33,10 @@ struct HairDrawCounts {
     uint32_t lengthChunks = 0;      // patches along a strand: ceil(divisions / 64)
     uint32_t strandsPerPatch = 0;   // lines a patch holds: <= 64 and <= maxPatchVertices / (divisions + 1)
     uint32_t strandChunks = 0;      // instances: ceil(strands per guide / strandsPerPatch)
+    uint32_t patchesPerDraw = 0;    // patches one draw holds: its tessellated vertices per instance
+                                    // stay within gpu::kMaxTessVerticesPerDraw
+    uint64_t patches() const { return uint64_t(guides) * lengthChunks; }
+    uint64_t draws() const { return patchesPerDraw ? (patches() + patchesPerDraw - 1) / patchesPerDraw : 0; }
     uint64_t strands() const { return uint64_t(guides) * strandsPerGuide; }
     uint64_t segments() const { return strands() * divisions; }
 };

@@ -10,7 +10,9 @@
 #include "shaders/shared/mesh_params.h"
 #include "shaders/shared/shadows.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -18,15 +20,16 @@
 
 namespace wisp {
 
-static_assert(sizeof(gpu::MeshPush) == 80, "MeshPush: mat4 + vec3 + float");
+static_assert(sizeof(gpu::MeshPush) == 96, "MeshPush: mat4 + vec3 + float + vec3 + float");
 
 namespace {
 
 struct MeshVertex {
     glm::vec3 position;
     glm::vec3 normal;
+    float scalp;  // 0..1, kMeshLocationScalp
 };
-static_assert(sizeof(MeshVertex) == 24);
+static_assert(sizeof(MeshVertex) == 28);
 static_assert(sizeof(gpu::MeshShadowPush) == 80);
 
 // One of the passes before the shading (MeshPass::depthPass, shadowMaskPass).
@@ -46,6 +49,58 @@ private:
 };
 
 }  // namespace
+
+std::vector<float> scalpCoverage(const Mesh& head, const StrandSet& strands)
+{
+    std::vector<float> out(head.positions.size(), 0.0f);
+    size_t n = strands.strandCount();
+    if (n == 0)
+        return out;
+    uint32_t V = strands.verticesPerStrand;
+    std::vector<glm::vec3> roots(n);
+    Bounds b{strands.rest[0], strands.rest[0]};
+    for (size_t s = 0; s < n; ++s) {
+        roots[s] = strands.rest[s * V];
+        b.min = glm::min(b.min, roots[s]);
+        b.max = glm::max(b.max, roots[s]);
+    }
+    // A hash grid of the roots, cells of about two roots each.
+    glm::vec3 size = glm::max(b.size(), glm::vec3(1e-6f * std::max(b.diagonal(), 1e-6f)));
+    float cell = std::max(std::sqrt((size.x * size.y + size.y * size.z + size.z * size.x) * 2.0f / float(n)), 1e-4f * b.diagonal());
+    glm::ivec3 dims = glm::min(glm::ivec3(size / cell) + 1, glm::ivec3(256));
+    glm::vec3 step = size / glm::vec3(dims) + glm::vec3(1e-12f);
+    auto cellOf = [&](glm::vec3 p) { return glm::clamp(glm::ivec3(glm::floor((p - b.min) / step)), glm::ivec3(0), dims - 1); };
+    std::vector<std::vector<uint32_t>> grid(size_t(dims.x) * dims.y * dims.z);
+    auto key = [&](glm::ivec3 c) { return (size_t(c.z) * dims.y + c.y) * dims.x + c.x; };
+    for (uint32_t s = 0; s < n; ++s)
+        grid[key(cellOf(roots[s]))].push_back(s);
+    auto nearest = [&](glm::vec3 p, uint32_t skip, float within) {
+        float best = within;
+        glm::ivec3 lo = cellOf(p - glm::vec3(within)), hi = cellOf(p + glm::vec3(within));
+        for (int z = lo.z; z <= hi.z; ++z)
+            for (int y = lo.y; y <= hi.y; ++y)
+                for (int x = lo.x; x <= hi.x; ++x)
+                    for (uint32_t o : grid[key({x, y, z})])
+                        if (o != skip)
+                            best = std::min(best, glm::length(roots[o] - p));
+        return best;
+    };
+    // The roots' typical spacing: the median distance to the nearest other root (of up to 2,000).
+    std::vector<float> spacing;
+    for (size_t s = 0; s < n; s += std::max<size_t>(1, n / 2000))
+        spacing.push_back(nearest(roots[s], uint32_t(s), 4.0f * cell));
+    std::nth_element(spacing.begin(), spacing.begin() + std::ptrdiff_t(spacing.size() / 2), spacing.end());
+    float typical = std::max(spacing[spacing.size() / 2], 1e-6f * b.diagonal());
+    if (n == 1)
+        typical = 0.01f * std::max(head.bounds().diagonal(), 1e-6f);
+    float inner = 1.0f * typical, outer = 2.5f * typical;
+    for (size_t v = 0; v < out.size(); ++v) {
+        float d = nearest(head.positions[v], UINT32_MAX, outer);
+        float t = std::clamp((d - inner) / (outer - inner), 0.0f, 1.0f);
+        out[v] = 1.0f - t * t * (3.0f - 2.0f * t);
+    }
+    return out;
+}
 
 MeshPass::MeshPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& uniforms)
     : ctx_(ctx), target_(target), uniforms_(uniforms)
@@ -72,7 +127,9 @@ MeshPass::MeshPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
         .attributes = {{.location = gpu::kMeshLocationPosition, .format = VK_FORMAT_R32G32B32_SFLOAT,
                         .offset = offsetof(MeshVertex, position)},
                        {.location = gpu::kMeshLocationNormal, .format = VK_FORMAT_R32G32B32_SFLOAT,
-                        .offset = offsetof(MeshVertex, normal)}},
+                        .offset = offsetof(MeshVertex, normal)},
+                       {.location = gpu::kMeshLocationScalp, .format = VK_FORMAT_R32_SFLOAT,
+                        .offset = offsetof(MeshVertex, scalp)}},
         .cullMode = VK_CULL_MODE_NONE,  // meshes from the wild are not always closed or consistently wound
         .depthWrite = false,            // the depth pass has written it; the same surfaces pass LESS_OR_EQUAL
         .colorFormat = RenderTarget::kColorFormat,
@@ -115,7 +172,9 @@ MeshPass::MeshPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
               .attributes = {{.location = gpu::kMeshLocationPosition, .format = VK_FORMAT_R32G32B32_SFLOAT,
                               .offset = offsetof(MeshVertex, position)},
                              {.location = gpu::kMeshLocationNormal, .format = VK_FORMAT_R32G32B32_SFLOAT,
-                              .offset = offsetof(MeshVertex, normal)}},
+                              .offset = offsetof(MeshVertex, normal)},
+                             {.location = gpu::kMeshLocationScalp, .format = VK_FORMAT_R32_SFLOAT,
+                              .offset = offsetof(MeshVertex, scalp)}},
               .cullMode = VK_CULL_MODE_NONE,
               .depthBiasConstant = 2.0f,  // keeps lit surfaces from shadowing themselves (acne)
               .depthBiasSlope = 2.0f,
@@ -134,11 +193,11 @@ void MeshPass::resize()
     shadowMaskTrack_ = {.image = shadowMask_.get()};
 }
 
-MeshPass::GpuMesh MeshPass::upload(const Mesh& mesh, const char* name) const
+MeshPass::GpuMesh MeshPass::upload(const Mesh& mesh, const char* name, const std::vector<float>& scalp) const
 {
     std::vector<MeshVertex> vertices(mesh.positions.size());
     for (size_t i = 0; i < vertices.size(); ++i)
-        vertices[i] = {mesh.positions[i], mesh.normals[i]};
+        vertices[i] = {mesh.positions[i], mesh.normals[i], i < scalp.size() ? scalp[i] : 0.0f};
     std::string base = name;
     GpuMesh out;
     out.vertices = ctx_.createBufferWithData(
@@ -151,11 +210,11 @@ MeshPass::GpuMesh MeshPass::upload(const Mesh& mesh, const char* name) const
     return out;
 }
 
-void MeshPass::setMesh(const Mesh& mesh)
+void MeshPass::setMesh(const Mesh& mesh, const std::vector<float>& scalp)
 {
-    head_ = upload(mesh, "mesh.head");
+    head_ = upload(mesh, "mesh.head", scalp);
     if (sphereMesh_.indexCount == 0)
-        sphereMesh_ = upload(makeSphereMesh(), "mesh.sphere");
+        sphereMesh_ = upload(makeSphereMesh(), "mesh.sphere", {});
 }
 
 void MeshPass::setSurface(const glm::mat4& model, const glm::vec3& albedo, float roughness)
@@ -188,7 +247,8 @@ void MeshPass::draw(VkCommandBuffer cmd, const GpuMesh& mesh, const glm::mat4& m
 {
     if (mesh.indexCount == 0)
         return;
-    gpu::MeshPush push{.model = model, .albedo = albedo, .roughness = roughness};
+    gpu::MeshPush push{.model = model, .albedo = albedo, .roughness = roughness, .scalpAlbedo = scalpAlbedo_,
+                       .scalpStrength = scalpStrength_};
     vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push), &push);
     VkDeviceSize offset = 0;
     VkBuffer vb = mesh.vertices;

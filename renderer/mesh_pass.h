@@ -1,7 +1,7 @@
 // renderer/mesh_pass.h: draws opaque triangle meshes (the head, the collision sphere, the light's
 // marker) into the render target with the plain surface shading of shaders/shared/lighting.h,
-// shadowed by the light's maps; and the same meshes' depth from the light for the shadow pass.
-// Three passes of the frame:
+// shadowed by the light's maps, the head's scalp painted under the hair; and the same meshes'
+// depth from the light for the shadow pass. Three passes of the frame:
 //   meshes.depth   the meshes' depth alone (no fragment shader)
 //   meshes.shadow  compute: each pixel's light visibility at that depth, the shadow mask
 //                  (mesh_shadow.comp: the PCF and deep opacity taps run on every unit of the GPU)
@@ -9,6 +9,7 @@
 #pragma once
 
 #include "assets/mesh.h"
+#include "physics/strands.h"
 #include "gpu/pass.h"
 #include "gpu/handle.h"
 #include "gpu/resources.h"
@@ -16,6 +17,7 @@
 #include <glm/glm.hpp>
 
 #include <memory>
+#include <vector>
 
 namespace wisp {
 
@@ -25,6 +27,13 @@ class Context;
 class RenderTarget;
 class FrameUniforms;
 class LightMaps;
+
+// The scalp under a groom, per vertex of the head (0..1): 1 within the roots' typical spacing of a
+// root, fading to 0 at two and a half times it (the hairline), so the painted scalp covers where
+// hair grows and a little past it. Head space, as the strands' rest pose.
+std::vector<float> scalpCoverage(const Mesh& head, const StrandSet& strands);
+// The scalp is painted the hair's colour times this (RenderSettings::scalpPaint says how strongly).
+inline constexpr float kScalpDarkening = 0.45f;
 
 class MeshPass : public Pass {
 public:
@@ -39,7 +48,15 @@ public:
     // Draws the meshes' depth from the light into the rendering the caller has begun.
     void recordFromLight(VkCommandBuffer cmd, FrameContext& frame);
 
-    void setMesh(const Mesh& mesh);  // the head; uploads, call while the device is idle (load time)
+    // The head; uploads, call while the device is idle (load time). `scalp`: per vertex, 0..1, how
+    // much hair grows there (painted with setScalp's colour); empty: none.
+    void setMesh(const Mesh& mesh, const std::vector<float>& scalp = {});
+    // The colour the scalp under the hair is painted and how strongly (0: not at all).
+    void setScalp(const glm::vec3& albedo, float strength)
+    {
+        scalpAlbedo_ = albedo;
+        scalpStrength_ = strength;
+    }
     void setSurface(const glm::mat4& model, const glm::vec3& albedo, float roughness);
     void setClearColor(const glm::vec3& color) { clearColor_ = color; }
     // Where the head is this frame (rigid; its surface's model matrix applies first).
@@ -85,7 +102,7 @@ private:
         vk::Buffer indices;
         uint32_t indexCount = 0;
     };
-    GpuMesh upload(const Mesh& mesh, const char* name) const;
+    GpuMesh upload(const Mesh& mesh, const char* name, const std::vector<float>& scalp) const;
     GpuMesh head_;
     GpuMesh sphereMesh_;  // a unit sphere, scaled and placed for the sphere and the marker
     glm::mat4 headTransform_{1.0f};
@@ -94,6 +111,8 @@ private:
     glm::mat4 model_{1.0f};
     glm::vec3 albedo_{0.6f};
     float roughness_ = 0.5f;
+    glm::vec3 scalpAlbedo_{0.0f};
+    float scalpStrength_ = 0.0f;
     glm::vec3 clearColor_{0.0f};
     void draw(VkCommandBuffer cmd, const GpuMesh& mesh, const glm::mat4& model, const glm::vec3& albedo, float roughness);
 };

@@ -34,7 +34,22 @@ std::string mib(uint64_t bytes)
 
 }  // namespace
 
-Oit::Oit(const vk::Context& ctx, VkExtent2D extent, uint32_t nodesPerPixel, uint32_t framesInFlight) : ctx_(ctx)
+std::string oitOverflowAdvice(const OitStats& s, uint32_t width, uint32_t height)
+{
+    uint64_t pixels = std::max<uint64_t>(uint64_t(width) * height, 1);
+    std::string what = "the OIT pool was full: " + std::to_string(s.overflow) + " of " + std::to_string(s.fragments) +
+                       " hair fragments were dropped; ";
+    uint64_t needed = s.fragments + s.fragments / 8;  // the fragments with some to spare
+    if (!s.automatic && needed <= s.limit)
+        return what + "raise oit_nodes_per_pixel to " + std::to_string((needed + pixels - 1) / pixels) +
+               " (--set oit_nodes_per_pixel=N, or 0: automatic, grown as frames need)";
+    return what + "the device allows a pool of at most " + std::to_string(s.limit) + " nodes (" +
+           std::to_string(s.limit / pixels) + " per pixel here), fewer than this frame needs; use --set transparency=msaa "
+           "(no pool) or a smaller picture";
+}
+
+Oit::Oit(const vk::Context& ctx, VkExtent2D extent, uint32_t nodesPerPixel, uint32_t framesInFlight, uint64_t autoNodes)
+    : ctx_(ctx), autoNodes_(autoNodes)
 {
     for (uint32_t i = 0; i < framesInFlight; ++i)
         readback_.push_back(ctx.createBuffer({.size = sizeof(gpu::OitCounters),
@@ -46,31 +61,62 @@ Oit::Oit(const vk::Context& ctx, VkExtent2D extent, uint32_t nodesPerPixel, uint
     resize(extent, nodesPerPixel);
 }
 
-void Oit::resize(VkExtent2D extent, uint32_t requestedNodesPerPixel)
+uint64_t Oit::limitNodes() const
 {
-    uint64_t pixels = uint64_t(extent.width) * extent.height;
     const vk::DeviceReport& device = ctx_.report();
     // What one buffer may hold on this device, and at most half of its memory.
     uint64_t limit = device.maxStorageBufferRange;
     if (device.deviceLocalBytes > 0)
         limit = std::min<uint64_t>(limit, device.deviceLocalBytes / 2);
+    return std::min<uint64_t>(limit / sizeof(gpu::OitNode), gpu::kOitNil - 1);
+}
+
+void Oit::resize(VkExtent2D extent, uint32_t requestedNodesPerPixel)
+{
+    uint64_t pixels = uint64_t(extent.width) * extent.height;
+    const vk::DeviceReport& device = ctx_.report();
+    uint64_t limitBytes = limitNodes() * sizeof(gpu::OitNode);
     uint32_t nodesPerPixel = requestedNodesPerPixel;
     uint64_t nodes = pixels * nodesPerPixel;
-    if (nodesPerPixel == 0) {
+    automatic_ = nodesPerPixel == 0;
+    if (automatic_) {
         // Automatic: kAutoNodesPerPixel per pixel but never fewer than kAutoMinNodes (small
-        // pictures of a full head hold many fragments per pixel), within what the device allows.
-        uint64_t wanted = std::max<uint64_t>(pixels * kAutoNodesPerPixel, kAutoMinNodes);
-        nodes = std::max<uint64_t>(std::min<uint64_t>(wanted, limit / sizeof(gpu::OitNode)), pixels);
+        // pictures of a full head hold many fragments per pixel), or what a frame needed, within
+        // what the device allows.
+        uint64_t wanted = autoNodes_ > 0 ? autoNodes_ : std::max<uint64_t>(pixels * kAutoNodesPerPixel, kAutoMinNodes);
+        wanted = std::max(wanted, grownNodes_);
+        nodes = std::max<uint64_t>(std::min<uint64_t>(wanted, limitNodes()), pixels);
         nodesPerPixel = uint32_t((nodes + pixels - 1) / pixels);
     }
     uint64_t bytes = nodes * sizeof(gpu::OitNode);
-    if (nodes >= gpu::kOitNil || bytes > limit)
+    if (nodes >= gpu::kOitNil || bytes > limitBytes)
         throw UserError("the OIT fragment pool (" + std::to_string(extent.width) + " x " + std::to_string(extent.height) +
                         " pixels x " + std::to_string(std::max(nodesPerPixel, 1u)) + " nodes of " +
                         std::to_string(sizeof(gpu::OitNode)) + " bytes = " + mib(bytes) + ") is larger than '" +
-                        device.name + "' allows (" + mib(limit) +
+                        device.name + "' allows (" + mib(limitBytes) +
                         ": one storage buffer, at most half the device memory); lower oit_nodes_per_pixel or the "
                         "resolution, or use transparency=msaa");
+    allocate(extent, nodes, nodesPerPixel);
+}
+
+bool Oit::grow(const OitStats& overflowed)
+{
+    if (!automatic_ || overflowed.overflow == 0)
+        return false;
+    uint64_t wanted = std::max(overflowed.fragments + overflowed.fragments / 4, uint64_t(capacity_) + capacity_ / 2);
+    uint64_t nodes = std::min(wanted, limitNodes());
+    if (nodes <= capacity_)
+        return false;
+    grownNodes_ = nodes;
+    uint64_t pixels = uint64_t(extent_.width) * extent_.height;
+    allocate(extent_, nodes, uint32_t((nodes + pixels - 1) / pixels));
+    return true;
+}
+
+void Oit::allocate(VkExtent2D extent, uint64_t nodes, uint32_t)
+{
+    uint64_t pixels = uint64_t(extent.width) * extent.height;
+    uint64_t bytes = nodes * sizeof(gpu::OitNode);
     extent_ = extent;
     capacity_ = uint32_t(nodes);
     heads_ = ctx_.createBuffer({.size = pixels * sizeof(uint32_t),
@@ -94,7 +140,7 @@ OitStats Oit::stats(uint32_t slot) const
 {
     gpu::OitCounters c{};
     std::memcpy(&c, readback_.at(slot).mapped(), sizeof(c));
-    return {.fragments = c.allocated, .overflow = c.overflow, .capacity = capacity_};
+    return {.fragments = c.allocated, .overflow = c.overflow, .capacity = capacity_, .limit = limitNodes(), .automatic = automatic_};
 }
 
 void Oit::recordClear(VkCommandBuffer cmd) const

@@ -16,6 +16,7 @@
 #include "gpu/resources.h"
 #include "shaders/shared/shadows.h"
 
+#include <string>
 #include <vector>
 
 namespace wisp {
@@ -29,7 +30,15 @@ struct OitStats {
     uint64_t fragments = 0;  // fragments the hair produced last frame (stored + dropped)
     uint64_t overflow = 0;   // of those, dropped because the pool was full
     uint64_t capacity = 0;   // nodes in the pool
+    uint64_t limit = 0;      // the most nodes the device allows the pool (one buffer, half its memory)
+    bool automatic = true;   // sized by Wisp (oit_nodes_per_pixel=0), so it grows when a frame overflows
 };
+
+// What to tell a person whose frame dropped fragments: a pool of their own (oit_nodes_per_pixel)
+// that the device could make large enough: the value that would hold them; one the device cannot
+// make large enough (or the automatic pool at the device's limit): transparency=msaa or a
+// smaller picture.
+std::string oitOverflowAdvice(const OitStats& stats, uint32_t width, uint32_t height);
 
 class Oit {
 public:
@@ -46,11 +55,19 @@ public:
                (sizeof(uint32_t) + vk::formatBytes(kColorFormat) + nodes * sizeof(gpu::OitNode));
     }
 
-    // nodesPerPixel 0: automatic (kAutoNodesPerPixel, at least kAutoMinNodes, as the device allows).
-    Oit(const vk::Context& ctx, VkExtent2D extent, uint32_t nodesPerPixel, uint32_t framesInFlight);
+    // nodesPerPixel 0: automatic (kAutoNodesPerPixel, at least kAutoMinNodes, as the device allows;
+    // `autoNodes` > 0 starts it at that many nodes instead, for tests).
+    Oit(const vk::Context& ctx, VkExtent2D extent, uint32_t nodesPerPixel, uint32_t framesInFlight, uint64_t autoNodes = 0);
     // Re-sizes the lists and the pool; the device must be idle. Throws UserError when the pool
     // would pass the device's storage-buffer range or half its memory.
     void resize(VkExtent2D extent, uint32_t nodesPerPixel);
+    // An automatic pool that a frame overflowed grows to hold its fragments with a quarter to
+    // spare (at least half as large again), within the device's limit; the device must be idle.
+    // False when the pool is the user's (oit_nodes_per_pixel > 0) or already at the limit. A
+    // re-sized picture keeps the grown pool.
+    bool grow(const OitStats& overflowed);
+    // The most nodes this device allows the pool.
+    uint64_t limitNodes() const;
 
     TrackedBuffer& heads() { return headsTrack_; }
     TrackedBuffer& nodes() { return nodesTrack_; }
@@ -72,6 +89,10 @@ private:
     const vk::Context& ctx_;
     VkExtent2D extent_{};
     uint32_t capacity_ = 0;
+    bool automatic_ = true;
+    uint64_t autoNodes_ = 0;   // the automatic pool's start (0: kAutoNodesPerPixel, at least kAutoMinNodes)
+    uint64_t grownNodes_ = 0;  // what an overflowing frame grew the automatic pool to
+    void allocate(VkExtent2D extent, uint64_t nodes, uint32_t nodesPerPixel);
     vk::Buffer heads_, nodes_, counters_;
     vk::Image color_;
     TrackedImage colorTrack_;

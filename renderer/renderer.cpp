@@ -109,6 +109,7 @@ Renderer::Renderer(const vk::Context& ctx, const RenderSettings& settings, uint3
 
 void Renderer::setHead(const Head& head)
 {
+    headMesh_ = head.mesh;
     bounds_ = head.mesh.bounds();
     lightFit_.scene = bounds_;
     lodReferenceDistance_ = OrbitCamera::framing(bounds_, float(settings_.width) / float(settings_.height)).distance;
@@ -145,6 +146,11 @@ OitStats Renderer::oitStats(uint32_t slot) const
     return oit_ && hairRaster() == HairRaster::Graphics ? oit_->stats(slot) : OitStats{};
 }
 
+bool Renderer::growOit(const OitStats& overflowed)
+{
+    return oit_ && oit_->grow(overflowed);
+}
+
 void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float timeSeconds)
 {
     target_->beginFrame();
@@ -155,6 +161,9 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
         material_ = shading::packHairMaterial(look);
         materialParams_ = look;
     }
+    // The scalp under the hair: the hair's own colour (the reference's, from its absorption), darkened.
+    if (hairPass_)
+        meshPass_->setScalp(kScalpDarkening * shading::colorFromSigmaA(look.sigmaA, look.betaN), settings_.scalpPaint);
     gpu::FrameParams frameParams = pack(settings_, camera, target_->extent(), timeSeconds, lightFit_);
     frameParams.headTransform = headTransform_;
     frameParams.hair = material_;
@@ -267,6 +276,7 @@ RasterStats Renderer::rasterStats(uint32_t slot) const
 
 void Renderer::attachHair(GpuSolver& solver, const StrandSet& strands, float unitsPerMetre)
 {
+    meshPass_->setMesh(headMesh_, scalpCoverage(headMesh_, strands));
     physicsPass_ = std::make_unique<PhysicsPass>(solver);
     guidePass_ = std::make_unique<GuidePass>(ctx_, *target_, uniforms_, solver, uint32_t(strands.strandCount()),
                                              strands.verticesPerStrand);
@@ -277,7 +287,8 @@ void Renderer::attachHair(GpuSolver& solver, const StrandSet& strands, float uni
     shadowPass_ = std::make_unique<ShadowPass>(*lightMaps_, *meshPass_, hairPass_.get());
     opacityPass_ = std::make_unique<OpacityPass>(*lightMaps_, hairPass_.get());
     if (settings_.transparency.mode == Transparency::Oit) {
-        oit_ = std::make_unique<Oit>(ctx_, target_->extent(), settings_.transparency.oitNodesPerPixel, framesInFlight_);
+        oit_ = std::make_unique<Oit>(ctx_, target_->extent(), settings_.transparency.oitNodesPerPixel, framesInFlight_,
+                                     settings_.transparency.oitAutoNodes);
         oitClear_ = std::make_unique<OitClearPass>(*oit_);
         oitResolve_ = std::make_unique<OitResolvePass>(ctx_, *oit_);
         oitComposite_ = std::make_unique<CompositePass>(ctx_, *target_, "oit.composite");

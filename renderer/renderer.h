@@ -79,6 +79,9 @@ public:
     // Fragments the OIT lists held and dropped in the last completed frame of `slot` (zeros in MSAA
     // mode or when the hair is drawn in compute).
     OitStats oitStats(uint32_t slot) const;
+    // After a frame that overflowed the automatic OIT pool: grows it (the device must be idle), so
+    // the next frame drops nothing; false when it cannot (the user's pool, or the device's limit).
+    bool growOit(const OitStats& overflowed);
     // The compute path's counts of the last completed frame of `slot` (zeros when it is not used).
     RasterStats rasterStats(uint32_t slot) const;
     // How the hair is drawn now (hair_raster, auto resolved for the device).
@@ -122,6 +125,7 @@ private:
     float unitsPerMetre_ = 1.0f;
     float lodReferenceDistance_ = 1.0f;  // the default framing's distance: full detail at or nearer
     Bounds bounds_;
+    Mesh headMesh_;  // kept to paint its scalp once the hair is known
     LightFit lightFit_;
     glm::mat4 headTransform_{1.0f};
     bool showLightMarker_ = false;

@@ -63,7 +63,9 @@ enum class Transparency { Oit, Msaa };
 struct TransparencySettings {
     Transparency mode = Transparency::Oit;
     uint32_t oitK = 8;                // nearest fragments sorted per pixel; the rest blended unsorted
-    uint32_t oitNodesPerPixel = 0;    // fragment pool size per pixel of the target; 0: as the device allows, up to 24
+    uint32_t oitNodesPerPixel = 0;    // fragment pool size per pixel of the target; 0: automatic (24 per pixel, at least
+                                      // 8M nodes, grown when a frame overflows, within the device's limits)
+    uint64_t oitAutoNodes = 0;        // where the automatic pool starts, in nodes (0: the rule above; tests start it small)
     float hairOpacity = 0.85f;        // opacity of a strand that covers its pixel (oit, deep opacity)
 };
 
@@ -83,6 +85,9 @@ struct RenderSettings {
     float exposure = 1.0f;
     glm::vec3 headAlbedo{0.62f, 0.6f, 0.57f};        // mannequin grey-beige
     float headRoughness = 0.55f;
+    // The scalp under the hair painted a darkened hair colour, this strongly (0: bare skin, 1: fully):
+    // production grooms do, so that skin does not show between strands and along partings.
+    float scalpPaint = 0.9f;
     HairRaster hairRaster = HairRaster::Auto;
     StrandSettings strands;
     ShadowSettings shadows;

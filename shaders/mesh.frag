@@ -1,5 +1,5 @@
 #version 460
-// mesh.frag: shades the head with one directional key light plus a hemisphere ambient
+// mesh.frag: shades the head (its scalp painted under the hair) with one directional key light plus a hemisphere ambient
 // (shared/lighting.h), shadowed by the head and the hair as the shadow mask has it for this pixel
 // (mesh_shadow.comp evaluated light_visibility.glsl in compute), tone-mapped; the target is sRGB
 // so the hardware encodes the output.
@@ -15,6 +15,7 @@ layout(set = 0, binding = kMeshBindingShadowMask) uniform sampler2D shadowMask;
 
 layout(location = 0) in vec3 inWorldPosition;
 layout(location = 1) in vec3 inWorldNormal;
+layout(location = 2) in float inScalp;
 layout(location = 0) out vec4 outColor;
 
 void main()
@@ -25,9 +26,13 @@ void main()
         n = -n;  // back faces seen through open meshes shade like their front
     vec2 parts = texelFetch(shadowMask, ivec2(gl_FragCoord.xy), 0).rg;
     float visibility = parts.x * parts.y;
-    vec3 radiance = surfaceRadiance(n, frame.lightDirection, v, push.albedo, push.roughness,
+    // The scalp under the hair is painted a darkened hair colour, fading out past the hairline,
+    // and matte: a scalp under hair has no highlight of its own.
+    float scalp = push.scalpStrength * clamp(inScalp, 0.0, 1.0);
+    vec3 albedo = mix(push.albedo, push.scalpAlbedo, scalp);
+    vec3 radiance = surfaceRadiance(n, frame.lightDirection, v, albedo, mix(push.roughness, 1.0, scalp),
                                     frame.lightColor * frame.lightIntensity * visibility);
-    radiance += push.albedo * frame.ambientIntensity *
+    radiance += albedo * frame.ambientIntensity *
                 hemisphereAmbient(n, frame.skyColor, frame.groundColor);
     outColor = vec4(toneMapAces(radiance * frame.exposure), 1.0);
 }

@@ -7,6 +7,7 @@
 
 layout(location = kMeshLocationPosition) in vec3 inPosition;
 layout(location = kMeshLocationNormal) in vec3 inNormal;
+layout(location = kMeshLocationScalp) in float inScalp;
 
 layout(set = 0, binding = kFrameParamsBinding) uniform FrameBlock { FrameParams frame; };
 layout(push_constant) uniform PushBlock { MeshPush push; };
@@ -17,6 +18,7 @@ invariant gl_Position;
 
 layout(location = 0) out vec3 outWorldPosition;
 layout(location = 1) out vec3 outWorldNormal;
+layout(location = 2) out float outScalp;
 
 void main()
 {
@@ -24,6 +26,7 @@ void main()
     outWorldPosition = world.xyz;
     // Normal matrix: inverse transpose of the model's upper 3x3 (handles non-uniform scale).
     outWorldNormal = transpose(inverse(mat3(push.model))) * inNormal;
+    outScalp = inScalp;
 #ifdef MESH_FROM_LIGHT
     gl_Position = frame.lightViewProjection * world;  // the shadow pass (depth only)
 #else

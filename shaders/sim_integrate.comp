@@ -22,6 +22,29 @@
 #endif
 #include "sim_common.glsl"
 #include "grid_storage.glsl"
+
+// The strand's vertices as sim_strand.h reaches them: a strand is its root's slot, vertex i is
+// kSimStrandBlock slots further per vertex (gpu::vertexSlot).
+#define StrandRef uint
+vec3 strandPosition(uint base, uint i)
+{
+    return positions[base + i * kSimStrandBlock].xyz;
+}
+vec3 strandVelocity(uint base, uint i)
+{
+    return velocities[base + i * kSimStrandBlock].xyz;
+}
+void strandSetVertex(uint base, uint i, vec3 p, vec3 v)
+{
+    uint g = base + i * kSimStrandBlock;
+    velocities[g].xyz = v;
+    positions[g].xyz = p;
+}
+float strandRestLength(uint base, uint i)
+{
+    return rest[base + i * kSimStrandBlock].segmentLength;
+}
+
 #include "shared/sim_strand.h"
 
 layout(local_size_x = SIM_GROUP_SIZE) in;
@@ -126,14 +149,18 @@ void main()
         return;  // threads past the last strand write nothing
     uint V = params.verticesPerStrand;
     uint base = vertexSlot(s, 0u, V);  // vertex i is at base + i * kSimStrandBlock
-    StrandWalk walk = strandWalkBegin(strands[s], positions[base].xyz, rest[base].position);
+    StrandInfo info = strands[s];
+    StrandWalk walk = strandWalkBegin(info, positions[base].xyz, rest[base].position);
+    // A strand pinned at both ends is finished after its bend: its splat and tangents wait for it.
+    bool bothEnds = pinnedAtBothEnds(info, V);
+    bool splatNow = kSplatToGrid && !bothEnds;
     for (uint i = 1u; i < V; ++i) {
         uint g = base + i * kSimStrandBlock;
         uint parent = g - kSimStrandBlock;
         WalkedVertex done = strandWalkStep(walk, i, V, positions[g].xyz, velocities[g].xyz, rest[g], rest[parent].position);
         positions[parent].xyz = done.position;
         velocities[parent].xyz = done.velocity;
-        if (kSplatToGrid) {
+        if (splatNow) {
             splatVertex(done.position, done.velocity);
             tangents[parent] = vec4(done.tangent, 0.0);
         }
@@ -142,11 +169,26 @@ void main()
     WalkedVertex tip = strandWalkTip(walk);
     positions[last].xyz = tip.position;
     velocities[last].xyz = tip.velocity;
-    if (kSplatToGrid) {
+    if (splatNow) {
         tangents[last] = vec4(tip.tangent, 0.0);
         splatVertex(tip.position, tip.velocity);
         if (runOpen)
             flushRun();
+    }
+
+    if (bothEnds) {
+        strandBend(base, info, V, walk.finite);
+        if (kSplatToGrid) {
+            for (uint i = 0u; i < V; ++i) {
+                uint g = base + i * kSimStrandBlock;
+                uint j = min(i + 1u, V - 1u);
+                vec3 along = positions[base + j * kSimStrandBlock].xyz - positions[base + (j - 1u) * kSimStrandBlock].xyz;
+                tangents[g] = vec4(normalize(along), 0.0);
+                splatVertex(positions[g].xyz, velocities[g].xyz);
+            }
+            if (runOpen)
+                flushRun();
+        }
     }
 
     if (!walk.finite) {

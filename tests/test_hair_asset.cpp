@@ -434,7 +434,7 @@ TEST(HairErrors, Tfx3Broken)
     writeFile(dir / "short-header.tfx", good.data.substr(0, 100));
     expectBinaryError(dir / "short-header.tfx", "0", "header needs 296");
     writeFile(dir / "truncated.tfx", good.data.substr(0, good.data.size() - 5));
-    expectBinaryError(dir / "truncated.tfx", "296", "2*4*12 = 96 bytes");
+    expectBinaryError(dir / "truncated.tfx", "296", "2*4*12 = 96 bytes from byte 296 to byte 392, but the file ends at byte 387");
 
     Bytes magic = good;
     magic.data.replace(0, 4, Bytes().f32(3.5f).data);
@@ -465,7 +465,7 @@ TEST(HairErrors, Tfx4Broken)
     writeFile(dir / "short-header.tfx", good.data.substr(0, 20));
     expectBinaryError(dir / "short-header.tfx", "0", "header needs 160");
     writeFile(dir / "truncated.tfx", good.data.substr(0, good.data.size() - 1));
-    expectBinaryError(dir / "truncated.tfx", "160", "2*4*16 = 128 bytes");
+    expectBinaryError(dir / "truncated.tfx", "160", "2*4*16 = 128 bytes from byte 160 to byte 288, but the file ends at byte 287");
 
     Bytes magic = good;
     magic.data.replace(0, 4, Bytes().f32(2.0f).data);
@@ -477,7 +477,7 @@ TEST(HairErrors, Tfx4Broken)
     Bytes offset = good;
     offset.data.replace(12, 4, Bytes().u32(1u << 30).data);
     writeFile(dir / "offset.tfx", offset.data);
-    expectBinaryError(dir / "offset.tfx", std::to_string(1u << 30), "the file ends after");
+    expectBinaryError(dir / "offset.tfx", std::to_string(1u << 30), "but the file ends at byte");
 
     Bytes nan = good;
     nan.data.replace(160 + 16 * 6 + 8, 4, Bytes().f32(std::numeric_limits<float>::infinity()).data);
@@ -488,6 +488,40 @@ TEST(HairErrors, Tfx4Broken)
     expectBinaryError(dir / "zero.tfx", "4", "no strands");
     writeFile(dir / "per-strand.tfx", tfx4File(0, 4).data.replace(4, 8, Bytes().u32(1).u32(5000).data));
     expectBinaryError(dir / "per-strand.tfx", "8", "5000");
+}
+
+TEST(HairErrors, Tfx4HeaderClaimingMoreStrandsThanItsPositionsHold)
+{
+    // The header says 3 strands but its strand UVs start where the second strand's positions
+    // would: the third "strand" was read from the UV block. Its own offsets say where the
+    // positions end.
+    TempDir dir;
+    Bytes file = tfx4File(2, 4);
+    uint32_t uvAt = uint32_t(file.data.size());
+    for (int k = 0; k < 2 * 2 * 3 * 4; ++k)  // 2 strands' UVs, then padding: 4 x 16 bytes more
+        file.f32(0.25f);
+    file.data.replace(4, 4, Bytes().u32(3).data);
+    file.data.replace(16, 4, Bytes().u32(uvAt).data);
+    writeFile(dir / "claims.tfx", file.data);
+    expectBinaryError(dir / "claims.tfx", "16", "the positions hold 2 of the 3 strands it claims");
+    std::string e = errorOf(dir / "claims.tfx");
+    EXPECT_NE(e.find("strand texture coordinates start at byte " + std::to_string(uvAt)), std::string::npos) << e;
+    // The same header with its true count loads, the UVs ignored.
+    file.data.replace(4, 4, Bytes().u32(2).data);
+    writeFile(dir / "true.tfx", file.data);
+    EXPECT_EQ(loadHairAsset(dir / "true.tfx").strands.size(), 2u);
+}
+
+TEST(HairErrors, Tfx3HeaderClaimingMoreStrandsThanItsPositionsHold)
+{
+    TempDir dir;
+    Bytes file = tfx3File(2, 4);
+    uint32_t thicknessAt = uint32_t(file.data.size());
+    file.zeros(2 * 4 * 12);
+    file.data.replace(4, 4, Bytes().u32(4).data);
+    file.data.replace(148, 4, Bytes().u32(thicknessAt).data);
+    writeFile(dir / "claims.tfx", file.data);
+    expectBinaryError(dir / "claims.tfx", "148", "the positions hold 2 of the 4 strands it claims");
 }
 
 TEST(HairErrors, CyHairBroken)
@@ -517,7 +551,7 @@ TEST(HairErrors, CyHairBroken)
     Bytes many = cyHairFile({3, 2}, false);  // 2 strands of d_segments 3 = 8 points, only 7 written
     many.data.replace(8, 4, Bytes().u32(8).data);
     writeFile(dir / "many.hair", many.data);
-    expectBinaryError(dir / "many.hair", "128", "the file ends after");
+    expectBinaryError(dir / "many.hair", "128", "but the file ends at byte");
 
     Bytes nan = good;
     nan.data.replace(132 + 12 * 4 + 8, 4, Bytes().f32(std::numeric_limits<float>::quiet_NaN()).data);

@@ -98,6 +98,58 @@ TEST(StrandMath, DrawCountsSplitPastTheTessellationLimits)
     EXPECT_EQ(c.strandChunks, 2u);
 }
 
+TEST(StrandMath, GuideNeighboursOfFewGuidesOnALine)
+{
+    // Two guides whose roots differ along x only: the search grid is one cell thick and about a
+    // thousand long, and the second neighbour never exists. The search grew its ring to the whole
+    // grid through every cell of a cube (hours); now it ends once every other guide was seen.
+    StrandSet set;
+    set.verticesPerStrand = 4;
+    for (int s = 0; s < 2; ++s)
+        set.add({glm::vec3(0.2f * float(s), 1.5f, -1.0f), glm::vec3(0.2f * float(s), 1.0f, -1.0f),
+                 glm::vec3(0.2f * float(s), 0.5f, -1.0f), glm::vec3(0.2f * float(s), 0.0f, -1.0f)},
+                0, 1, false);
+    set.parts.push_back({});
+    std::vector<glm::uvec4> tri = guideTriangles(set);
+    ASSERT_EQ(tri.size(), 2u);
+    EXPECT_EQ(tri[0], glm::uvec4(0, 1, 0, 0));
+    EXPECT_EQ(tri[1], glm::uvec4(1, 0, 1, 0));
+    for (uint32_t s = 2; s < 7; ++s)  // and a few more on the line: the two nearest
+        set.add({glm::vec3(0.2f * float(s), 1.5f, -1.0f), glm::vec3(0.2f * float(s), 1.0f, -1.0f),
+                 glm::vec3(0.2f * float(s), 0.5f, -1.0f), glm::vec3(0.2f * float(s), 0.0f, -1.0f)},
+                0, 1, false);
+    tri = guideTriangles(set);
+    EXPECT_EQ(tri[3].x, 3u);
+    EXPECT_EQ(std::min(tri[3].y, tri[3].z), 2u);
+    EXPECT_EQ(std::max(tri[3].y, tri[3].z), 4u);
+}
+
+TEST(StrandMath, DrawsStayWithinTheTessellatedVerticesADrawMayHold)
+{
+    // Each instance of each draw tessellates at most kMaxTessVerticesPerDraw vertices (lavapipe
+    // indexes them with 16 bits), whatever the groom and the patch size.
+    for (uint32_t maxPatch : {26u, 128u, 1000u, 4160u})
+        for (uint32_t divisions : {1u, 24u, 64u, 200u})
+            for (uint32_t guides : {1u, 3000u, 100000u}) {
+                StrandSettings s;
+                s.strandsPerGuide = 32;
+                s.divisions = divisions;
+                s.maxPatchVertices = maxPatch;
+                HairDrawCounts c = hairDrawCounts(guides, s);
+                uint32_t divisionsPerPatch = (divisions + c.lengthChunks - 1) / c.lengthChunks;
+                uint64_t perPatch = uint64_t(c.strandsPerPatch) * (divisionsPerPatch + 1);
+                EXPECT_LE(c.patchesPerDraw * perPatch, uint64_t(gpu::kMaxTessVerticesPerDraw));
+                EXPECT_GT((c.patchesPerDraw + 1) * perPatch, uint64_t(gpu::kMaxTessVerticesPerDraw))
+                    << "no more draws than needed";
+                EXPECT_EQ(c.draws(), (c.patches() + c.patchesPerDraw - 1) / c.patchesPerDraw);
+            }
+    StrandSettings s;
+    s.strandsPerGuide = 5;
+    HairDrawCounts c = hairDrawCounts(3000, s);  // 3000 patches of 5 x 25 vertices
+    EXPECT_EQ(c.patchesPerDraw, 524u);           // 524 x 125 = 65,500
+    EXPECT_EQ(c.draws(), 6u);
+}
+
 // ---- On the device ------------------------------------------------------------------------------
 
 namespace {
@@ -210,6 +262,7 @@ TEST_P(HairRenderBoth, HairCoversTheScalpAndMoreStrandsCoverMore)
     HairScene scene = smallScene(300);
     RenderSettings s = imageSettings();
     s.hairRaster = GetParam();
+    s.scalpPaint = 0.0f;  // the strands' own coverage against the bare head (the paint is under every count)
     Picture bald = renderPicture(ctx, scene.head, s);
     s.strands.strandsPerGuide = 8;
     HairFrame fewer = renderHairFrame(ctx, scene, s);

@@ -141,6 +141,19 @@ TEST(HeadErrors, WrongShapeIsNamed)
     EXPECT_NE(errorOf(dir / "h.json").find("scalp.plane_point"), std::string::npos);
 }
 
+TEST(HeadErrors, AFlatHeadIsRefused)
+{
+    TempDir dir;
+    writeFile(dir / "flat.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n");
+    try {
+        loadHead(dir / "flat.obj");
+        FAIL() << "expected an error";
+    } catch (const UserError& e) {
+        EXPECT_NE(std::string(e.what()).find("flat.obj: the head is flat: its extent along z is 0"), std::string::npos)
+            << e.what();
+    }
+}
+
 TEST(HeadErrors, DescriptionNamingAMissingMesh)
 {
     TempDir dir;

@@ -82,14 +82,14 @@ TEST(Limits, SphereAndOffsetMustBeFiniteAndInRange)
     auto error = [](const std::string& text, size_t n) {
         return errorOf([&] { parseNumbers(text, n, "x,y,z,r", kPositionRange, "head units", "--sphere"); });
     };
-    EXPECT_NE(error("nan,0,0,1", 4).find("--sphere: value 1: 'nan' is not a finite number"), std::string::npos);
-    EXPECT_NE(error("0,0,0,inf", 4).find("--sphere: value 4"), std::string::npos);
-    EXPECT_NE(error("0,0,1e9,1", 4).find("--sphere: value 3: 1000000000 is out of range: allowed -10000 .. 10000 head units"),
+    EXPECT_NE(error("nan,0,0,1", 4).find("--sphere: the first value (nan) is not a finite number"), std::string::npos);
+    EXPECT_NE(error("0,0,0,inf", 4).find("--sphere: the fourth value (inf)"), std::string::npos);
+    EXPECT_NE(error("0,0,1e9,1", 4).find("--sphere: the third value (1000000000) is out of range: allowed -10000 .. 10000 head units"),
               std::string::npos);
     EXPECT_NE(error("0,0,1", 4).find("is not 4 numbers x,y,z,r"), std::string::npos);
     EXPECT_EQ(error("0,1,0,0.5", 4), "");
     Settings settings;
-    EXPECT_NE(errorOf([&] { applySetting(settings, "wind=nan,0,0"); }).find("--set wind: value 1: 'nan' is not a finite number"),
+    EXPECT_NE(errorOf([&] { applySetting(settings, "wind=nan,0,0"); }).find("--set wind: the first value (nan) is not a finite number"),
               std::string::npos);
     EXPECT_NE(errorOf([&] { applySetting(settings, "wind=0,0,1e9"); }).find("out of range"), std::string::npos);
     EXPECT_EQ(errorOf([&] { applySetting(settings, "wind=-100,0,100"); }), "");

@@ -148,6 +148,44 @@ TEST(MeshErrors, NoTrianglesIsAnError)
     EXPECT_NE(errorOf(dir / "empty.obj").find("no triangles"), std::string::npos);
 }
 
+TEST(MeshErrors, NoFacesSaysSo)
+{
+    TempDir dir;
+    writeFile(dir / "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    std::string e = errorOf(dir / "points.obj");
+    EXPECT_NE(e.find("3 vertices and no faces"), std::string::npos) << e;
+}
+
+TEST(MeshErrors, BinaryDataNamedObjIsNotOBJText)
+{
+    // An ELF executable passed as a head: it was "the mesh holds no triangles".
+    TempDir dir;
+    std::string elf("\x7f" "ELF\x02\x01\x01\0\0\0\0\0\0\0\0\0\x03\0>\0", 20);
+    writeFile(dir / "head.obj", elf + std::string(200, '\x01'));
+    std::string e = errorOf(dir / "head.obj");
+    EXPECT_NE(e.find("head.obj:1: byte 7 is a NUL: the file holds binary data, not OBJ text"), std::string::npos) << e;
+    writeFile(dir / "late.obj", std::string("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n# x") + '\0' + "y\n");
+    e = errorOf(dir / "late.obj");
+    EXPECT_NE(e.find("late.obj:5: byte 35 is a NUL"), std::string::npos) << e;
+}
+
+TEST(MeshErrors, DegenerateMeshesAreRefused)
+{
+    // Every vertex at one point: simulate printed -nan and render wrote a blank picture.
+    TempDir dir;
+    writeFile(dir / "point.obj", "v 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nf 1 2 3\nf 1 3 4\n");
+    std::string e = errorOf(dir / "point.obj");
+    EXPECT_NE(e.find("point.obj: the mesh is degenerate: all its 4 vertices lie at one point (1.0"), std::string::npos) << e;
+    writeFile(dir / "line.obj", "v 0 0 0\nv 1 1 1\nv 2 2 2\nf 1 2 3\n");
+    e = errorOf(dir / "line.obj");
+    EXPECT_NE(e.find("none of its 1 triangles has an area"), std::string::npos) << e;
+    writeFile(dir / "line.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                                "0 0 0\n0 0 0\n0 0 0\n3 0 1 2\n");
+    e = errorOf(dir / "line.ply");
+    EXPECT_NE(e.find("degenerate"), std::string::npos) << e;
+}
+
 TEST(MeshErrors, GarbageForAssimpNamesTheFile)
 {
     TempDir dir;

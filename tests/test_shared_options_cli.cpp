@@ -107,11 +107,11 @@ TEST(BadInput, OutOfRangePhysicsValues)
 
 TEST(BadInput, SphereWindAndOffsetMustBeFinite)
 {
-    expectUserError(runWisp("simulate --steps 1 --sphere nan,0,0,1"), "--sphere: value 1: 'nan' is not a finite number");
-    expectUserError(runWisp("simulate --steps 1 --sphere 0,0,0,inf"), "--sphere: value 4: 'inf' is not a finite number");
-    expectUserError(runWisp("simulate --steps 1 --wind nan,0,0"), "--wind: value 1: 'nan' is not a finite number");
+    expectUserError(runWisp("simulate --steps 1 --sphere nan,0,0,1"), "--sphere: the first value (nan) is not a finite number");
+    expectUserError(runWisp("simulate --steps 1 --sphere 0,0,0,inf"), "--sphere: the fourth value (inf) is not a finite number");
+    expectUserError(runWisp("simulate --steps 1 --wind nan,0,0"), "--wind: the first value (nan) is not a finite number");
     expectUserError(runWisp("simulate --steps 1 --wind 1e9,0,0"), "--wind");
-    expectUserError(runWisp("simulate --steps 1 --hair-offset 0,nan,0"), "--hair-offset: value 2");
+    expectUserError(runWisp("simulate --steps 1 --hair-offset 0,nan,0"), "--hair-offset: the second value (nan) is not a finite number");
 }
 
 TEST(BadInput, DrawnStrandsPast32BitsAreRefusedBeforeGrowing)
@@ -189,4 +189,19 @@ TEST(Cli, RenderLoadedHairInParts)
     EXPECT_EQ(j["parts"][0]["name"], "hair_front_16_guide");
     EXPECT_EQ(j["parts"][1]["name"], "hair_tail_16_guide");
     EXPECT_EQ(j["nonfinite_resets"], 0);
+}
+
+TEST(BadInput, ADegenerateHeadIsRefusedByEveryCommand)
+{
+    TempDir dir;
+    writeFile(dir / "point.obj", "v 1 2 3\nv 1 2 3\nv 1 2 3\nf 1 2 3\n");
+    std::string head = " --head '" + (dir / "point.obj").string() + "'";
+    std::vector<std::string> commands = {"simulate --steps 2 --guides 5",
+                                         "render --guides 5 --width 64 --height 48 --out '" + (dir / "a.png").string() + "'",
+                                         "render --no-hair --width 64 --height 48 --out '" + (dir / "b.png").string() + "'"};
+    for (const std::string& command : commands)
+        expectUserError(runWisp(command + head), "the mesh is degenerate: all its 3 vertices lie at one point");
+    EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "b.png"));
+    expectUserError(runWisp("inspect '" + (dir / "point.obj").string() + "'"), "degenerate");
 }

@@ -106,6 +106,22 @@ TEST(SimMath, WindActsAcrossTheStrandOnly)
     EXPECT_NEAR(gpu::valueNoise(3.50f, 9), gpu::valueNoise(3.51f, 9), 0.03f);
 }
 
+TEST(SimMath, TwoLinkJointKeepsBothLengths)
+{
+    glm::vec3 a(0.0f), b(1.5f, 0.0f, 0.0f);
+    for (glm::vec3 near : {glm::vec3(0.7f, -0.3f, 0.0f), glm::vec3(0.2f, 0.1f, 0.9f), glm::vec3(0.75f, 0.0f, 0.0f)}) {
+        glm::vec3 j = gpu::twoLinkJoint(a, b, 1.0f, 0.8f, near);
+        EXPECT_NEAR(glm::length(j - a), 1.0f, 1e-6f);
+        EXPECT_NEAR(glm::length(j - b), 0.8f, 1e-6f);
+    }
+    // The nearer of the circle's points: below the axis when asked from below.
+    EXPECT_LT(gpu::twoLinkJoint(a, b, 1.0f, 0.8f, glm::vec3(0.7f, -0.3f, 0.0f)).y, 0.0f);
+    // Taut: both segments share the stretch on the line.
+    glm::vec3 t = gpu::twoLinkJoint(a, glm::vec3(2.0f, 0.0f, 0.0f), 1.0f, 0.6f, glm::vec3(1.0f, 1.0f, 0.0f));
+    EXPECT_NEAR(t.x, 2.0f / 1.6f, 1e-6f);
+    EXPECT_NEAR(t.y, 0.0f, 1e-6f);
+}
+
 TEST(SimMath, FixedPointScaleCannotOverflow)
 {
     // The worst node sum, every vertex's full weight at the largest splat speed, stays below 2^62.
@@ -179,6 +195,53 @@ TEST(CpuReference, VelocityCorrectionUsesTheChildsCorrection)
     glm::vec3 d2 = p2 - predicted2;
     glm::vec3 expected = (p1 - glm::vec3(1, 0, 0)) / 0.1f - d2 / 0.1f;
     EXPECT_NEAR(glm::length(glm::vec3(state.velocities[1]) - expected), 0.0f, 1e-5f);
+}
+
+TEST(CpuReference, AStrandPinnedAtBothEndsKeepsEverySegment)
+{
+    // A loop hanging from the root to a pinned tip (TressFX bothEndsImmovable): FTL from the root
+    // alone stretched the last segment to the tip (measured on a real ponytail part: stretch 2 to
+    // 7.5, kinetic energy 1e7 within 10 steps). With the bend at the middle vertex (sim.h),
+    // every segment keeps its length under gravity and a turning head, and it settles after.
+    StrandSet strands;
+    strands.verticesPerStrand = 12;
+    strands.parts.push_back(PartSettings{});
+    for (int s = 0; s < 3; ++s) {
+        std::vector<glm::vec3> points;
+        for (int i = 0; i < 12; ++i) {
+            float u = float(i) / 11.0f;
+            // From (0, 0.1, 0) to (0.08, 0.1, 0), sagging 0.05 (arc 1.1 to 1.6 times the gap).
+            points.push_back(glm::vec3(0.08f * u, 0.1f - (0.03f + 0.01f * float(s)) * 4.0f * u * (1.0f - u), 0.01f * float(s)));
+        }
+        strands.add(points, 0, s == 2 ? 2u : 1u, true);
+    }
+    SimSettings settings;
+    settings.gridResolution = 8;
+    SimSetup setup = makeSimSetup(settings, strands, {}, 1.0f);
+    CpuSolver cpu(strands, setup, glm::mat4(1.0f));
+    std::vector<glm::vec4> previous;
+    gpu::SimStep step{};
+    float moving = 0.0f;
+    for (uint32_t k = 0; k < 600; ++k) {
+        previous = cpu.state().positions;
+        float t = float(k) / settings.stepHz;
+        glm::mat4 head = glm::rotate(glm::mat4(1.0f), k < 120 ? 0.5f * std::sin(6.0f * t) : 0.0f, glm::vec3(0, 1, 0));
+        step = makeStep(setup, head, glm::vec4(0.0f), t);
+        cpu.step(step);
+        SimMetrics m = measure(cpu.state(), previous, 1.0f / settings.stepHz, strands, setup, step);
+        ASSERT_LT(m.maxStretch, 1e-4f) << "step " << k;
+        ASSERT_LT(m.rootDrift, 1e-6f) << "step " << k;
+        if (k < 120)
+            moving = std::max(moving, m.kineticEnergy);
+        if (k == 599) {
+            EXPECT_LT(m.kineticEnergy, 1e-3f * moving) << "it settles once the head stops";
+        }
+    }
+    EXPECT_GT(moving, 1e-3f) << "the turning head moves it";
+    EXPECT_EQ(cpu.state().nonfiniteResets, 0u);
+    // The tip stays where the head puts it.
+    for (size_t s = 0; s < 3; ++s)
+        EXPECT_NEAR(glm::length(glm::vec3(cpu.state().positions[s * 12 + 11]) - strands.rest[s * 12 + 11]), 0.0f, 1e-6f);
 }
 
 TEST(CpuReference, GrownGroomKeepsItsInvariantsUnderEveryTerm)

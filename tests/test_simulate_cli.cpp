@@ -48,3 +48,14 @@ TEST(Cli, DeviceLostDuringSimulateExitsWithItsOwnStatus)
         EXPECT_TRUE(r.out.empty()) << r.out;  // no metrics of an unfinished run
     }
 }
+
+TEST(Cli, ProgressInALogIsWholeLines)
+{
+    // stderr is a pipe here, not a terminal: progress comes as lines of their own, not run
+    // together by carriage returns.
+    auto r = runWisp("simulate --guides 5 --steps 20 --sample-every 2");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err.find('\r'), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("simulate: 20 / 20 steps\n"), std::string::npos) << r.err;
+    EXPECT_LE(std::count(r.err.begin(), r.err.end(), '\n'), 11) << r.err;
+}

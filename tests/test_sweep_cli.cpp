@@ -1,6 +1,7 @@
 // tests/test_sweep_cli.cpp: `wisp sweep` through the real binary: a tiny grid's CSV and charts,
 // and --vary values checked before anything is written.
 #include "cli_support.h"
+#include "groom_files.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -56,4 +57,25 @@ TEST(BadInput, SweepVaryValuesAreChecked)
     expectUserError(runWisp("sweep --vary divisions" + out), "NAME=V1,V2");
     expectUserError(runWisp("sweep --vary divisions=4,,8" + out), "empty value");
     EXPECT_FALSE(std::filesystem::exists(dir / "s"));  // checked before anything is written
+}
+
+TEST(BadInput, ASweepFailingAtItsSecondPointLeavesNoFolder)
+{
+    // The second point's pool (1024 x 1024 x 256 nodes of 12 bytes) is more than the device
+    // allows; the first point has run by then (a loaded groom is checked per point, once loaded).
+    // Nothing half-written: no folder, and a folder that was already there keeps what it held.
+    TempDir dir;
+    wisp::test::writeTfx4(dir / "groom.tfx", wisp::test::grownStrands(5, 4, [](glm::vec3 p) { return p; }));
+    std::string args = " --hair '" + (dir / "groom.tfx").string() +
+                       "' --vary oit_nodes_per_pixel=1,256 --width 1024 --height 1024 --warmup 0 --frames 1 --set shadow_size=64";
+    auto r = runWisp("sweep --out '" + (dir / "s").string() + "'" + args);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find("point 2/2"), std::string::npos) << r.err;  // the progress lines, then one error line
+    EXPECT_NE(r.err.find("\nwisp: the OIT fragment pool"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "s"));
+    std::filesystem::create_directories(dir / "mine");
+    writeFile(dir / "mine" / "notes.txt", "kept");
+    EXPECT_EQ(runWisp("sweep --out '" + (dir / "mine").string() + "'" + args).status, 2);
+    EXPECT_EQ(readFile(dir / "mine" / "notes.txt"), "kept");
+    EXPECT_FALSE(std::filesystem::exists(dir / "mine" / "results.csv"));
 }

@@ -87,7 +87,7 @@ struct RestVertex {
 
 struct StrandInfo {
     uint part;        // index into SimParams.parts
-    uint pinnedRoot;  // leading vertices that follow the head rigidly (>= 1)
+    uint pinnedRoot;  // leading vertices that follow the head rigidly (>= 1; V: the whole strand, too short to simulate)
     uint pinnedTip;   // 1 when the tip is pinned too (TressFX bothEndsImmovable)
     uint seed;        // per-strand random seed (wind variation)
 };
@@ -313,6 +313,98 @@ GPU_FN float globalShapeWeight(float stiffness, uint i, uint V)
 {
     float u = float(i) / float(V - 1u);
     return stiffness * (1.0f - 0.75f * u);
+}
+
+// ---- Strands pinned at both ends ---------------------------------------------------------------
+// TressFX's bothEndsImmovable pins the tip as well as the root. Follow-the-leader from the root
+// alone keeps every segment but the last, which stretches to wherever the tip is pinned (measured:
+// stretch 2 to 7.5 and kinetic energy about 1e7 within 10 steps). Iterating FABRIK passes
+// (Aristidou and Lasenby 2011) from there converges too slowly on long strands (64 vertices: 2%
+// stretch after 8 passes, 0.06% after 32). Instead, after FTL the strand bends at two vertices,
+// m1 and m2, a third and two thirds of the way from the last pinned root vertex a to the tip: the
+// part a..m1 turns rigidly about a, the part m1..m2 and the part m2..tip move rigidly, so that m1
+// keeps its distance l1 from a, m2 its distances l2 from m1 and l3 from where FTL put the tip,
+// and the tip lands where it is pinned (three links between two fixed points: m1 goes where the
+// distance to the tip lets the last two links reach it, bendTarget, then m2 where they meet,
+// twoLinkJoint). Rigid parts keep every segment's length exactly; the root and tip follow the
+// head rigidly, so the distance between them is the rest pose's, which the strand reaches. Loops
+// whose ends nearly touch are solved too (one bend could not: its two parts must then be nearly
+// equal). Measured on a 64-vertex loop: stretch about 1e-5 (float rounding of the turns), and it
+// comes to rest (kinetic energy 1e-9) once the head stops.
+
+// The point at distance la from `a` and lb from `b` nearest `p` (on the circle where the two
+// spheres meet). When they do not meet the chain is taut: the point on the line between them that
+// shares the stretch between both segments; when one holds the other, the projection around `a`.
+GPU_FN vec3 twoLinkJoint(vec3 a, vec3 b, float la, float lb, vec3 p)
+{
+    vec3 ab = b - a;
+    float d = length(ab);
+    if (d < 1e-12f || d < abs(la - lb))
+        return ftlProject(a, p, la);
+    vec3 axis = ab / d;
+    if (d >= la + lb)
+        return a + axis * (d * la / (la + lb));
+    float along = (d * d + la * la - lb * lb) / (2.0f * d);  // from a, toward b
+    float radius = sqrt(max(la * la - along * along, 0.0f));
+    vec3 centre = a + along * axis;
+    vec3 w = p - centre;
+    w -= dot(w, axis) * axis;
+    float wl = length(w);
+    if (wl < 1e-12f) {  // p on the axis: any point of the circle; the one toward the largest other axis
+        vec3 helper = abs(axis.x) < 0.9f ? vec3(1.0f, 0.0f, 0.0f) : vec3(0.0f, 1.0f, 0.0f);
+        w = normalize(cross(axis, helper));
+    } else {
+        w /= wl;
+    }
+    return centre + radius * w;
+}
+
+// A rotation taking unit vector a to unit vector b at any angle, to float precision: the minimal
+// rotation, which loses precision as the vectors near opposite (its 1 / (1 + a.b)), composed with
+// a half turn about an axis across a when they are more than 90 degrees apart.
+GPU_FN mat3 rotationBetween(vec3 a, vec3 b)
+{
+    if (dot(a, b) >= 0.0f)
+        return minimalRotation(a, b);
+    vec3 helper = abs(a.x) < 0.9f ? vec3(1.0f, 0.0f, 0.0f) : vec3(0.0f, 1.0f, 0.0f);
+    vec3 u = normalize(cross(a, helper));
+    mat3 halfTurn = 2.0f * outerProduct(u, u) - mat3(1.0f);  // takes a to -a
+    return minimalRotation(-a, b) * halfTurn;
+}
+
+// The bends sit a third and two thirds along unless a part's chord is shorter than this share of
+// a third of the strand's span, or the parts cannot reach the tip; then every pair is tried.
+GPU_CONST float kBendMinChord = 0.2f;
+
+// Where the first bend m1 (l1 from a, `current` from the tip now) must go: its distance to the
+// tip, `d` from a, nearest `current` such that m1 stays l1 from a and the links l2, l3 still reach
+// the tip from it. Negative when no distance does (a chain too short for its ends).
+GPU_FN float bendTarget(float current, float l1, float l2, float l3, float d)
+{
+    float lo = max(abs(l2 - l3), abs(l1 - d));
+    float hi = min(l2 + l3, l1 + d);
+    if (lo > hi)
+        return -1.0f;
+    // A little inside the range: at its ends the joints fall on an axis, where the circle's radius
+    // is the square root of rounding (and the GPU and the CPU round differently).
+    float inset = 0.01f * (hi - lo);
+    return clamp(current, lo + inset, hi - inset);
+}
+
+// The bend is an inelastic constraint, like a contact: a vertex it moves by `move` over a substep
+// of dt loses the velocity that ran against the move, up to the move's own speed |move| / dt (what
+// the constraint cancelled), and keeps the rest. (Feeding the move into the velocity, as PBD does,
+// kept a loop jittering by millimetres a step at rest; leaving the velocity alone let gravity
+// build up a velocity of metres per second that the bend absorbed every substep; removing the
+// whole opposing part made a move of rounding size change the velocity.)
+GPU_FN vec3 constrainedVelocity(vec3 v, vec3 move, float dt)
+{
+    float len = length(move);
+    if (len < 1e-12f)
+        return v;
+    vec3 n = move / len;
+    float against = dot(v, n);
+    return against < 0.0f ? v + min(-against, len / dt) * n : v;
 }
 
 // ---- The hair-hair grid (Petrovic et al. 2005) ---------------------------------------------

@@ -11,12 +11,18 @@
 //      d_{i+1}; l_i is the local-shape displacement, kept out of the velocity: the pull moves only the
 //      child (it is not momentum-conserving), and fed into the velocity it pumps energy into the hair
 //      (measured: hair never came to rest); as a pure position correction it holds the style and settles;
-//   5. a strand with any non-finite value is reset to its rest pose (the caller writes it) and counted.
+//   5. a strand pinned at both ends (TressFX bothEndsImmovable) bends at two vertices after the walk,
+//      its three parts moving rigidly, so that its end lands on the pinned tip (strandBend, with
+//      sim.h's twoLinkJoint and bendTarget), every segment kept;
+//   6. a strand with any non-finite value is reset to its rest pose (the caller writes it) and counted.
 // Vertex i-1 is finished while vertex i is walked (StrandWalk carries what it needs), so no
 // per-strand arrays are needed.
 //
 // In GLSL the kernel's uniform block `params` (SimParams) and push constants `step` (SimStep) are
 // globals; in C++ they are the first parameters (SIM_CONTEXT declares them, SIM_ARGS passes them).
+// The bend reaches any vertex of its strand, so the includer defines first how (its addressing):
+// a type StrandRef naming one strand, and strandPosition(s, i), strandVelocity(s, i),
+// strandSetVertex(s, i, position, velocity) and strandRestLength(s, i) for its vertex i.
 #ifndef WISP_SHARED_SIM_STRAND_H
 #define WISP_SHARED_SIM_STRAND_H
 #include "sim.h"
@@ -170,6 +176,84 @@ GPU_FN WalkedVertex strandWalkTip(SIM_CONTEXT StrandWalk w)
     tip.velocity = (w.prevP - w.prevX - w.prevShift) / params.dt;
     tip.tangent = w.lastTangent;
     return tip;
+}
+
+// ---- A strand pinned at both ends ------------------------------------------------------------
+
+// Moves vertex i of strand s to p as an inelastic constraint (constrainedVelocity, sim.h).
+GPU_FN void bendMove(SIM_CONTEXT StrandRef s, uint i, vec3 p, GPU_INOUT(bool) finite)
+{
+    strandSetVertex(s, i, p, constrainedVelocity(strandVelocity(s, i), p - strandPosition(s, i), params.dt));
+    finite = finite && isFinite3(p);
+}
+
+// The shortest chord of the three parts strand s would bend into at vertices i1 < i2, or -1 when
+// they cannot reach its tip (bendTarget).
+GPU_FN float bendChord(StrandRef s, vec3 a, vec3 tipP, vec3 end, float d, uint i1, uint i2)
+{
+    vec3 q1 = strandPosition(s, i1);
+    vec3 q2 = strandPosition(s, i2);
+    if (bendTarget(length(tipP - q1), length(q1 - a), length(q2 - q1), length(end - q2), d) < 0.0f)
+        return -1.0f;
+    return min(min(length(q1 - a), length(q2 - q1)), length(end - q2));
+}
+
+// After the walk, a strand pinned at both ends (info.pinnedTip, free vertices between) bends at two
+// vertices so that its end lands on the pinned tip, its three parts moving rigidly (sim.h); a moved
+// vertex keeps no velocity against its move. `finite` turns false on a non-finite move.
+GPU_FN void strandBend(SIM_CONTEXT StrandRef s, StrandInfo info, uint V, GPU_INOUT(bool) finite)
+{
+    uint anchor = info.pinnedRoot - 1u;  // the last pinned root vertex
+    uint span = V - 1u - anchor;
+    vec3 a = strandPosition(s, anchor);
+    vec3 tipP = strandPosition(s, V - 1u);
+    float d = length(tipP - a);
+    if (span == 2u) {  // one free vertex: where the spheres around a and the tip meet
+        bendMove(SIM_ARGS s, V - 2u,
+                 twoLinkJoint(a, tipP, strandRestLength(s, V - 2u), strandRestLength(s, V - 1u), strandPosition(s, V - 2u)),
+                 finite);
+        return;
+    }
+    vec3 end = ftlProject(strandPosition(s, V - 2u), tipP, strandRestLength(s, V - 1u));  // where FTL put the tip
+    // The bends: a third and two thirds along, unless their parts cannot reach the tip or one
+    // part's chord is tiny (a curled loop's middle: its direction would be rounding); then the pair
+    // whose parts reach it with the longest shortest chord.
+    uint m1 = max(anchor + span / 3u, anchor + 1u);
+    uint m2 = max(anchor + (2u * span) / 3u, m1 + 1u);
+    float best = bendChord(s, a, tipP, end, d, m1, m2);
+    if (best < kBendMinChord * length(end - a) / 3.0f)
+        for (uint i1 = anchor + 1u; i1 < V - 2u; ++i1)
+            for (uint i2 = i1 + 1u; i2 < V - 1u; ++i2) {
+                float c = bendChord(s, a, tipP, end, d, i1, i2);
+                if (c > best) {
+                    best = c;
+                    m1 = i1;
+                    m2 = i2;
+                }
+            }
+    vec3 p1 = strandPosition(s, m1);
+    vec3 p2 = strandPosition(s, m2);
+    float l1 = length(p1 - a), l2 = length(p2 - p1), l3 = length(end - p2);
+    float target = bendTarget(length(tipP - p1), l1, l2, l3, d);
+    if (target >= 0.0f && l1 > 1e-12f && l2 > 1e-12f && l3 > 1e-12f) {
+        vec3 b1 = twoLinkJoint(a, tipP, l1, target, p1);
+        vec3 b2 = twoLinkJoint(b1, tipP, l2, l3, p2);
+        mat3 r1 = rotationBetween((p1 - a) / l1, normalize(b1 - a));
+        mat3 r2 = rotationBetween((p2 - p1) / l2, normalize(b2 - b1));
+        mat3 r3 = rotationBetween((end - p2) / l3, normalize(tipP - b2));
+        for (uint i = m2 + 1u; i < V - 1u; ++i)
+            bendMove(SIM_ARGS s, i, b2 + r3 * (strandPosition(s, i) - p2), finite);
+        for (uint i = m1 + 1u; i <= m2; ++i)
+            bendMove(SIM_ARGS s, i, b1 + r2 * (strandPosition(s, i) - p1), finite);
+        for (uint i = info.pinnedRoot; i <= m1; ++i)
+            bendMove(SIM_ARGS s, i, a + r1 * (strandPosition(s, i) - a), finite);
+    }
+}
+
+// True when strand `info` of V vertices is pinned at both ends with free vertices between.
+GPU_FN bool pinnedAtBothEnds(StrandInfo info, uint V)
+{
+    return info.pinnedTip != 0u && info.pinnedRoot < V - 1u;
 }
 
 // A vertex of a strand reset after a non-finite value: its rest position where the head puts it,

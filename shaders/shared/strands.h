@@ -16,9 +16,16 @@ GPU_NAMESPACE_BEGIN
 // strands or divisions than this come from more patches, never from a silently capped level.
 GPU_CONST uint kMaxTessLevel = 64u;
 // By default a patch emits at most this many vertices (its lines x (divisions + 1); the setting
-// max_patch_vertices changes it): lavapipe silently drops rasterized output from patches much
-// larger (measured: strands vanished at 32 x 25 = 800 and partly at 224, never at 96).
+// max_patch_vertices changes it). Bigger patches hardly help on the H100 (README); on lavapipe
+// they draw the same picture once draws keep within kMaxTessVerticesPerDraw (the strands once
+// lost from bigger patches were that limit, not the patch's size).
 GPU_CONST uint kMaxPatchVertices = 128u;
+// The tessellated vertices one instance of one draw may produce. Mesa's draw module (lavapipe)
+// indexes a draw's tessellation output with 16 bits: past 65,535 vertices per instance it
+// connects the wrong vertices and loses strands, by draw order (measured: 524 patches of 5 x 25
+// vertices draw every strand, 525 do not). So the hair pass splits its patches into draws of at
+// most this many vertices, on every device (a few draws more cost nothing measurable).
+GPU_CONST uint kMaxTessVerticesPerDraw = 65535u;
 
 // Bindings of the hair pass (one push-descriptor set).
 GPU_CONST uint kHairBindingFrame = 0;      // uniform FrameParams

@@ -1,0 +1,583 @@
+// assets/placement.cpp: closest points on a mesh (a bounding-volume hierarchy of its triangles),
+// the roots' distances to the head, and placing a groom: as in the file, in other units, or
+// fitted to the scalp (sphere fits of the roots and the cranium, then the roots moved onto the
+// surface by iterated closest points).
+#include "assets/placement.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+
+namespace wisp {
+
+namespace {
+
+// Closest point of triangle abc to p (Ericson, Real-Time Collision Detection, 5.1.5).
+glm::vec3 closestOnTriangle(glm::vec3 p, glm::vec3 a, glm::vec3 b, glm::vec3 c)
+{
+    glm::vec3 ab = b - a, ac = c - a, ap = p - a;
+    float d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+    if (d1 <= 0.0f && d2 <= 0.0f)
+        return a;
+    glm::vec3 bp = p - b;
+    float d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+    if (d3 >= 0.0f && d4 <= d3)
+        return b;
+    float vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f)
+        return a + ab * (d1 / (d1 - d3));
+    glm::vec3 cp = p - c;
+    float d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+    if (d6 >= 0.0f && d5 <= d6)
+        return c;
+    float vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0f && d2 >= 0.0f && d6 <= 0.0f)
+        return a + ac * (d2 / (d2 - d6));
+    float va = d3 * d6 - d5 * d4;
+    if (va <= 0.0f && (d4 - d3) >= 0.0f && (d5 - d6) >= 0.0f)
+        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    float denom = va + vb + vc;
+    if (!(std::abs(denom) > 0.0f))
+        return a;  // a degenerate triangle: its first corner
+    float v = vb / denom, w = vc / denom;
+    return a + ab * v + ac * w;
+}
+
+float boxDistance2(glm::vec3 p, glm::vec3 lo, glm::vec3 hi)
+{
+    glm::vec3 d = glm::max(glm::max(lo - p, p - hi), glm::vec3(0.0f));
+    return glm::dot(d, d);
+}
+
+// Solves the n x n system m x = r (row-major, n <= 4) by Gaussian elimination with partial
+// pivoting; false when it is singular.
+template <size_t N>
+bool solve(std::array<std::array<double, N>, N> m, std::array<double, N> r, std::array<double, N>& x)
+{
+    for (size_t col = 0; col < N; ++col) {
+        size_t pivot = col;
+        for (size_t row = col + 1; row < N; ++row)
+            if (std::abs(m[row][col]) > std::abs(m[pivot][col]))
+                pivot = row;
+        if (!(std::abs(m[pivot][col]) > 1e-12))
+            return false;
+        std::swap(m[pivot], m[col]);
+        std::swap(r[pivot], r[col]);
+        for (size_t row = col + 1; row < N; ++row) {
+            double f = m[row][col] / m[col][col];
+            for (size_t k = col; k < N; ++k)
+                m[row][k] -= f * m[col][k];
+            r[row] -= f * r[col];
+        }
+    }
+    for (size_t i = N; i-- > 0;) {
+        double s = r[i];
+        for (size_t k = i + 1; k < N; ++k)
+            s -= m[i][k] * x[k];
+        x[i] = s / m[i][i];
+    }
+    return true;
+}
+
+// Eigenvalues (descending) and eigenvectors (columns) of a symmetric 3x3 matrix (Jacobi).
+void symmetricEigen(glm::dmat3 a, glm::dvec3& values, glm::dmat3& vectors)
+{
+    vectors = glm::dmat3(1.0);
+    for (int sweep = 0; sweep < 32; ++sweep) {
+        double off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
+        if (off < 1e-30)
+            break;
+        for (int p = 0; p < 2; ++p)
+            for (int q = p + 1; q < 3; ++q) {
+                if (std::abs(a[p][q]) < 1e-300)
+                    continue;
+                double theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+                double t = (theta >= 0.0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1.0));
+                double c = 1.0 / std::sqrt(t * t + 1.0), s = t * c;
+                glm::dmat3 j(1.0);
+                j[p][p] = c;
+                j[q][q] = c;
+                j[q][p] = s;   // column q, row p
+                j[p][q] = -s;  // column p, row q
+                a = glm::transpose(j) * a * j;
+                vectors = vectors * j;
+            }
+    }
+    values = glm::dvec3(a[0][0], a[1][1], a[2][2]);
+    for (int i = 0; i < 2; ++i)  // sort descending
+        for (int k = 0; k < 2 - i; ++k)
+            if (values[k] < values[k + 1]) {
+                std::swap(values[k], values[k + 1]);
+                std::swap(vectors[k], vectors[k + 1]);
+            }
+}
+
+struct Sphere {
+    glm::vec3 centre{0.0f};
+    float radius = 0.0f;
+    // The points span enough of the sphere to pin its size down: a cap, not a patch or a strip
+    // (their second principal extent at least half the radius) and they lie on it (RMS distance
+    // under a tenth of the radius).
+    bool reliable = false;
+};
+
+// The least-squares sphere through points (algebraic fit: |x|^2 = 2 c.x + k), in coordinates
+// centred and scaled for conditioning. Points on a plane (a strip of roots along the midline)
+// leave the sphere undetermined: the circle in their plane is fitted instead, its centre and
+// radius the sphere's. None when the points lie on a line or the fit is degenerate.
+std::optional<Sphere> fitSphere(const std::vector<glm::vec3>& points)
+{
+    if (points.size() < 4)
+        return std::nullopt;
+    glm::dvec3 mean(0.0);
+    for (const glm::vec3& p : points)
+        mean += glm::dvec3(p);
+    mean /= double(points.size());
+    glm::dmat3 cov(0.0);
+    for (const glm::vec3& p : points) {
+        glm::dvec3 d = glm::dvec3(p) - mean;
+        cov += glm::outerProduct(d, d);
+    }
+    cov /= double(points.size());
+    glm::dvec3 values;
+    glm::dmat3 axes;
+    symmetricEigen(cov, values, axes);
+    if (!(values[0] > 0.0) || values[1] < 1e-4 * values[0])
+        return std::nullopt;  // a line (or a point)
+    double scale = std::sqrt(values[0]);
+    bool planar = values[2] < 0.02 * values[0];
+    Sphere out;
+    if (!planar) {
+        std::array<std::array<double, 4>, 4> m{};
+        std::array<double, 4> r{}, x{};
+        for (const glm::vec3& p : points) {
+            glm::dvec3 q = (glm::dvec3(p) - mean) / scale;
+            std::array<double, 4> row{2.0 * q.x, 2.0 * q.y, 2.0 * q.z, 1.0};
+            double rhs = glm::dot(q, q);
+            for (size_t i = 0; i < 4; ++i) {
+                for (size_t k = 0; k < 4; ++k)
+                    m[i][k] += row[i] * row[k];
+                r[i] += row[i] * rhs;
+            }
+        }
+        if (!solve<4>(m, r, x))
+            return std::nullopt;
+        glm::dvec3 c(x[0], x[1], x[2]);
+        double r2 = x[3] + glm::dot(c, c);
+        if (!(r2 > 0.0))
+            return std::nullopt;
+        out.centre = glm::vec3(mean + c * scale);
+        out.radius = float(std::sqrt(r2) * scale);
+    } else {
+        glm::dvec3 e1 = axes[0], e2 = axes[1];
+        std::array<std::array<double, 3>, 3> m{};
+        std::array<double, 3> r{}, x{};
+        for (const glm::vec3& p : points) {
+            glm::dvec3 q = (glm::dvec3(p) - mean) / scale;
+            double u = glm::dot(q, e1), v = glm::dot(q, e2);
+            std::array<double, 3> row{2.0 * u, 2.0 * v, 1.0};
+            double rhs = u * u + v * v;
+            for (size_t i = 0; i < 3; ++i) {
+                for (size_t k = 0; k < 3; ++k)
+                    m[i][k] += row[i] * row[k];
+                r[i] += row[i] * rhs;
+            }
+        }
+        if (!solve<3>(m, r, x))
+            return std::nullopt;
+        double r2 = x[2] + x[0] * x[0] + x[1] * x[1];
+        if (!(r2 > 0.0))
+            return std::nullopt;
+        out.centre = glm::vec3(mean + (x[0] * e1 + x[1] * e2) * scale);
+        out.radius = float(std::sqrt(r2) * scale);
+    }
+    // A nearly flat patch fits a sphere far larger than itself: no curvature to match.
+    if (!std::isfinite(out.radius) || out.radius > 20.0f * float(scale))
+        return std::nullopt;
+    double residual = 0.0;
+    for (const glm::vec3& p : points) {
+        double d = glm::length(glm::dvec3(p) - glm::dvec3(out.centre)) - double(out.radius);
+        residual += d * d;
+    }
+    residual = std::sqrt(residual / double(points.size()));
+    out.reliable = !planar && 2.0 * std::sqrt(values[1]) >= 0.5 * double(out.radius) && residual < 0.1 * double(out.radius);
+    return out;
+}
+
+// The axis fixes of a placement (mirror, then z-up to y-up), without scale or offset.
+glm::vec3 orient(const HairPlacement& p, glm::vec3 v)
+{
+    HairPlacement axesOnly = p;
+    axesOnly.scale = 1.0f;
+    axesOnly.offset = glm::vec3(0.0f);
+    return applyPlacement(axesOnly, v);
+}
+
+// Up to `most` of the roots, evenly spaced in the list (deterministic).
+std::vector<glm::vec3> subsample(const std::vector<glm::vec3>& roots, size_t most)
+{
+    if (roots.size() <= most)
+        return roots;
+    std::vector<glm::vec3> out;
+    out.reserve(most);
+    for (size_t k = 0; k < most; ++k)
+        out.push_back(roots[k * roots.size() / most]);
+    return out;
+}
+
+std::vector<glm::vec3> placed(const HairPlacement& p, const std::vector<glm::vec3>& roots)
+{
+    std::vector<glm::vec3> out;
+    out.reserve(roots.size());
+    for (const glm::vec3& r : roots)
+        out.push_back(applyPlacement(p, r));
+    return out;
+}
+
+// Moves the placement's offset so that the roots settle onto the surface: iterated closest points,
+// translation only, each step by the mean move of the nearest 70% (the rest may belong elsewhere).
+void settleOnSurface(HairPlacement& p, const std::vector<glm::vec3>& roots, const MeshDistance& head)
+{
+    std::vector<std::pair<float, glm::vec3>> moves(roots.size());
+    for (int iteration = 0; iteration < 12; ++iteration) {
+        for (size_t k = 0; k < roots.size(); ++k) {
+            glm::vec3 q = applyPlacement(p, roots[k]);
+            MeshDistance::Closest c = head.closest(q);
+            moves[k] = {c.distance, c.point - q};
+        }
+        size_t keep = std::max<size_t>(1, moves.size() * 7 / 10);
+        std::nth_element(moves.begin(), moves.begin() + std::ptrdiff_t(keep - 1), moves.end(),
+                         [](const auto& a, const auto& b) { return a.first < b.first; });
+        glm::vec3 mean(0.0f);
+        for (size_t k = 0; k < keep; ++k)
+            mean += moves[k].second;
+        p.offset += mean / float(keep);
+    }
+}
+
+// Whether placement a fits the roots better than b: more of them on the surface, then nearer. A
+// placement that turns the format's up axis must do clearly better (a tenth more of the roots on
+// the surface): a groom of another head fits imperfectly either way, and the format says which
+// way is up.
+bool better(const RootFit& a, bool aTurned, const RootFit& b, bool bTurned)
+{
+    float margin = aTurned == bTurned ? 0.0f : aTurned ? 0.1f : -0.1f;
+    if (std::abs(a.onSurface - (b.onSurface + margin)) > 1e-6f)
+        return a.onSurface > b.onSurface + margin;
+    return a.median < b.median;
+}
+
+std::string number(float v)
+{
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.4g", double(v));
+    return text;
+}
+
+}  // namespace
+
+HeadRegion headRegion(const Mesh& mesh)
+{
+    Bounds b = mesh.bounds();
+    HeadRegion r{b.max.y, b.min.y};
+    constexpr int kSlices = 48;
+    float height = b.size().y;
+    if (!(height > 0.0f))
+        return r;
+    std::array<float, kSlices> lo, hi;
+    lo.fill(INFINITY);
+    hi.fill(-INFINITY);
+    for (const glm::vec3& v : mesh.positions) {
+        int k = std::clamp(int((b.max.y - v.y) / height * kSlices), 0, kSlices - 1);  // 0: the top slice
+        lo[size_t(k)] = std::min(lo[size_t(k)], v.x);
+        hi[size_t(k)] = std::max(hi[size_t(k)], v.x);
+    }
+    auto width = [&](int k) { return hi[size_t(k)] >= lo[size_t(k)] ? hi[size_t(k)] - lo[size_t(k)] : 0.0f; };
+    // From the top down: the skull widens to its widest; once a slice is clearly narrower (the jaw,
+    // the neck) the narrowest slice follows, until the width passes the skull's by far (the
+    // shoulders). That narrowest slice is the neck.
+    int widest = 0, neck = -1, k = 0;
+    bool shoulders = false;
+    for (; k < kSlices && width(k) >= 0.85f * width(widest); ++k)
+        widest = width(k) > width(widest) ? k : widest;
+    for (; k < kSlices; ++k) {
+        if (width(k) > 1.3f * width(widest)) {
+            shoulders = true;
+            break;
+        }
+        if (neck < 0 || width(k) < width(neck))
+            neck = k;
+    }
+    // Without shoulders below (a head alone) the neck is the bottom.
+    if (neck >= 0 && shoulders)
+        r.neck = b.max.y - (float(neck) + 0.5f) / kSlices * height;
+    return r;
+}
+
+// ---- MeshDistance ---------------------------------------------------------------------------------
+
+MeshDistance::MeshDistance(const Mesh& mesh) : mesh_(mesh)
+{
+    uint32_t triangles = uint32_t(mesh.triangleCount());
+    order_.resize(triangles);
+    std::iota(order_.begin(), order_.end(), 0u);
+    std::vector<glm::vec3> centroids(triangles);
+    for (uint32_t t = 0; t < triangles; ++t)
+        centroids[t] = (mesh.positions[mesh.indices[3 * t]] + mesh.positions[mesh.indices[3 * t + 1]] +
+                        mesh.positions[mesh.indices[3 * t + 2]]) /
+                       3.0f;
+    nodes_.reserve(2 * size_t(triangles) / 2 + 1);
+    if (triangles > 0)
+        build(0, triangles, centroids);
+}
+
+uint32_t MeshDistance::build(uint32_t begin, uint32_t end, std::vector<glm::vec3>& centroids)
+{
+    uint32_t index = uint32_t(nodes_.size());
+    nodes_.push_back({});
+    glm::vec3 lo(INFINITY), hi(-INFINITY), clo(INFINITY), chi(-INFINITY);
+    for (uint32_t k = begin; k < end; ++k) {
+        uint32_t t = order_[k];
+        for (int c = 0; c < 3; ++c) {
+            lo = glm::min(lo, mesh_.positions[mesh_.indices[3 * t + c]]);
+            hi = glm::max(hi, mesh_.positions[mesh_.indices[3 * t + c]]);
+        }
+        clo = glm::min(clo, centroids[t]);
+        chi = glm::max(chi, centroids[t]);
+    }
+    nodes_[index].lo = lo;
+    nodes_[index].hi = hi;
+    constexpr uint32_t kLeaf = 4;
+    glm::vec3 extent = chi - clo;
+    if (end - begin <= kLeaf || !(std::max({extent.x, extent.y, extent.z}) > 0.0f)) {
+        nodes_[index].first = begin;
+        nodes_[index].count = end - begin;
+        return index;
+    }
+    int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+    uint32_t middle = begin + (end - begin) / 2;
+    std::nth_element(order_.begin() + begin, order_.begin() + middle, order_.begin() + end,
+                     [&](uint32_t a, uint32_t b) { return centroids[a][axis] < centroids[b][axis]; });
+    build(begin, middle, centroids);
+    uint32_t right = build(middle, end, centroids);
+    nodes_[index].first = right;
+    nodes_[index].count = 0;
+    return index;
+}
+
+MeshDistance::Closest MeshDistance::closest(glm::vec3 p) const
+{
+    Closest best{p, INFINITY};
+    if (nodes_.empty())
+        return best;
+    float best2 = INFINITY;
+    uint32_t stack[64];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const Node& node = nodes_[stack[--top]];
+        if (boxDistance2(p, node.lo, node.hi) >= best2)
+            continue;
+        if (node.count > 0) {
+            for (uint32_t k = node.first; k < node.first + node.count; ++k) {
+                uint32_t t = order_[k];
+                glm::vec3 q = closestOnTriangle(p, mesh_.positions[mesh_.indices[3 * t]], mesh_.positions[mesh_.indices[3 * t + 1]],
+                                                mesh_.positions[mesh_.indices[3 * t + 2]]);
+                float d2 = glm::dot(q - p, q - p);
+                if (d2 < best2) {
+                    best2 = d2;
+                    best.point = q;
+                }
+            }
+            continue;
+        }
+        uint32_t left = uint32_t(&node - nodes_.data()) + 1, right = node.first;
+        float dl = boxDistance2(p, nodes_[left].lo, nodes_[left].hi);
+        float dr = boxDistance2(p, nodes_[right].lo, nodes_[right].hi);
+        if (top + 2 > 64)
+            continue;  // deeper than any tree of 2^32 triangles: cannot happen
+        if (dl < dr) {  // the nearer child is popped first
+            stack[top++] = right;
+            stack[top++] = left;
+        } else {
+            stack[top++] = left;
+            stack[top++] = right;
+        }
+    }
+    best.distance = std::sqrt(best2);
+    return best;
+}
+
+// ---- Roots against the head ------------------------------------------------------------------------
+
+RootFit measureRoots(const std::vector<glm::vec3>& roots, const MeshDistance& head, float headDiagonal)
+{
+    RootFit fit;
+    fit.roots = roots.size();
+    if (roots.empty() || !(headDiagonal > 0.0f))
+        return fit;
+    std::vector<float> d;
+    d.reserve(roots.size());
+    size_t on = 0;
+    for (const glm::vec3& r : roots) {
+        float f = head.closest(r).distance / headDiagonal;
+        d.push_back(std::isfinite(f) ? f : INFINITY);
+        on += d.back() <= kRootOnSurface ? 1 : 0;
+    }
+    std::sort(d.begin(), d.end());
+    fit.median = d[d.size() / 2];
+    fit.p90 = d[std::min(d.size() - 1, d.size() * 9 / 10)];
+    fit.max = d.back();
+    fit.onSurface = float(on) / float(roots.size());
+    return fit;
+}
+
+// ---- Placing a groom ---------------------------------------------------------------------------------
+
+std::string GroomPlacement::describe() const
+{
+    std::string how = method == Method::File    ? "as in the file"
+                      : method == Method::Units ? "in the head's units"
+                      : method == Method::Fitted ? "fitted to the scalp"
+                                                 : "as given";
+    std::string text = how + ": scale " + number(placement.scale) + ", offset (" + number(placement.offset.x) + ", " +
+                       number(placement.offset.y) + ", " + number(placement.offset.z) + ")";
+    text += placement.zUpToYUp ? ", z-up turned y-up" : ", y-up";
+    if (placement.mirrorZ)
+        text += ", z mirrored";
+    return text;
+}
+
+nlohmann::json GroomPlacement::toJson() const
+{
+    const char* how = method == Method::File    ? "file"
+                      : method == Method::Units ? "units"
+                      : method == Method::Fitted ? "fitted"
+                                                 : "given";
+    return {{"method", how},
+            {"scale", placement.scale},
+            {"offset", {placement.offset.x, placement.offset.y, placement.offset.z}},
+            {"up_axis", placement.zUpToYUp ? "z" : "y"},
+            {"mirror_z", placement.mirrorZ},
+            {"roots", {{"count", fit.roots},
+                       {"median", fit.median},
+                       {"p90", fit.p90},
+                       {"max", fit.max},
+                       {"on_surface", fit.onSurface},
+                       {"on_surface_within", kRootOnSurface},
+                       {"unit", "fraction of the head's bounding-box diagonal"}}}};
+}
+
+GroomPlacement placeGroom(const std::vector<glm::vec3>& roots, const Bounds& groomBounds, const HairPlacement& defaults,
+                          const Mesh& head, const PlacementRequest& request)
+{
+    MeshDistance distance(head);
+    Bounds headBounds = head.bounds();
+    float diagonal = headBounds.diagonal();
+    std::vector<glm::vec3> sample = subsample(roots, 1500);
+    auto evaluate = [&](const HairPlacement& p) { return measureRoots(placed(p, sample), distance, diagonal); };
+
+    // The power-of-ten scale of units that clearly differ (autoPlacement's rule).
+    HairAsset probe;
+    probe.strands.push_back({.points = {groomBounds.min, groomBounds.max}});
+    float unitScale = autoPlacement(probe, headBounds).scale;
+
+    std::vector<bool> ups = request.zUp ? std::vector<bool>{*request.zUp}
+                                        : std::vector<bool>{defaults.zUpToYUp, !defaults.zUpToYUp};
+    std::vector<bool> mirrors = request.mirrorZ ? std::vector<bool>{*request.mirrorZ}
+                                                : std::vector<bool>{defaults.mirrorZ, !defaults.mirrorZ};
+
+    GroomPlacement best;
+    if (request.placesByHand()) {
+        best.method = GroomPlacement::Method::Given;
+        best.placement.scale = request.scale.value_or(unitScale);
+        best.placement.offset = request.offset.value_or(glm::vec3(0.0f));
+        best.placement.zUpToYUp = ups.front();
+        best.placement.mirrorZ = mirrors.front();
+        best.fit = measureRoots(placed(best.placement, roots), distance, diagonal);
+        return best;
+    }
+
+    // As in the file (in the head's units): either up axis, either handedness.
+    bool first = true;
+    for (bool up : ups)
+        for (bool mirror : mirrors) {
+            HairPlacement p{.scale = unitScale, .offset = glm::vec3(0.0f), .zUpToYUp = up, .mirrorZ = mirror};
+            RootFit fit = evaluate(p);
+            if (first || better(fit, up != defaults.zUpToYUp, best.fit, best.placement.zUpToYUp != defaults.zUpToYUp)) {
+                best.placement = p;
+                best.fit = fit;
+                best.method = unitScale == 1.0f ? GroomPlacement::Method::File : GroomPlacement::Method::Units;
+                first = false;
+            }
+        }
+
+    // Fitted to the scalp, each candidate moved onto the surface from where it starts; the first
+    // that puts the roots on the head is taken (the format's axes first), else the best. Scales:
+    // the units' (a groom made for a head of about the same size), then, where the roots span
+    // enough of a sphere to measure it, that sphere's radius onto the cranium's (the cranium: a
+    // sphere fitted to the top 30% of the head).
+    std::vector<glm::vec3> top;
+    HeadRegion region = headRegion(head);
+    float cut = region.top - 0.5f * (region.top - region.neck);  // the skull above the eyes
+    for (const glm::vec3& v : head.positions)
+        if (v.y >= cut)
+            top.push_back(v);
+    std::optional<Sphere> cranium = fitSphere(top);
+    for (int pass = 0; pass < 2 && !best.fit.onHead(); ++pass) {
+        for (bool up : ups) {
+            if (best.fit.onHead())
+                break;
+            HairPlacement p{.scale = unitScale, .offset = glm::vec3(0.0f), .zUpToYUp = up, .mirrorZ = mirrors.front()};
+            std::vector<glm::vec3> oriented;
+            oriented.reserve(sample.size());
+            for (const glm::vec3& r : sample)
+                oriented.push_back(orient(p, r));
+            std::optional<Sphere> groom = fitSphere(oriented);
+            bool sphere = cranium && groom && groom->reliable && groom->radius > 0.0f;
+            if (pass == 1) {
+                if (!sphere)
+                    continue;
+                p.scale = cranium->radius / groom->radius;
+            }
+            // Where each try starts: the roots' sphere on the cranium's; else (a patch or a strip of
+            // roots: the fringe, a hair band) the roots' centre on the cranium's surface above, behind,
+            // in front and to either side, and the roots' top on the head's top.
+            std::vector<glm::vec3> starts;
+            if (sphere) {
+                starts.push_back(cranium->centre - p.scale * groom->centre);
+            } else {
+                Bounds rb;
+                rb.min = rb.max = p.scale * oriented.front();
+                for (const glm::vec3& r : oriented) {
+                    rb.min = glm::min(rb.min, p.scale * r);
+                    rb.max = glm::max(rb.max, p.scale * r);
+                }
+                glm::vec3 headTop(headBounds.center().x, headBounds.max.y, headBounds.center().z);
+                starts.push_back(headTop - glm::vec3(rb.center().x, rb.max.y, rb.center().z));
+                if (cranium)
+                    for (glm::vec3 d : {glm::vec3(0, 1, 0), glm::vec3(0, 0, -1), glm::vec3(0, 0, 1), glm::vec3(1, 0, 0),
+                                        glm::vec3(-1, 0, 0), glm::normalize(glm::vec3(0, 1, -1)), glm::normalize(glm::vec3(0, 1, 1))})
+                        starts.push_back(cranium->centre + cranium->radius * d - rb.center());
+            }
+            for (glm::vec3 start : starts) {
+                p.offset = start;
+                settleOnSurface(p, sample, distance);
+                RootFit fit = evaluate(p);
+                if (better(fit, up != defaults.zUpToYUp, best.fit, best.placement.zUpToYUp != defaults.zUpToYUp)) {
+                    best.placement = p;
+                    best.fit = fit;
+                    best.method = GroomPlacement::Method::Fitted;
+                }
+            }
+        }
+    }
+    best.fit = measureRoots(placed(best.placement, roots), distance, diagonal);
+    return best;
+}
+
+}  // namespace wisp

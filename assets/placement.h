@@ -1,0 +1,101 @@
+// assets/placement.h: where a groom's roots lie against a head, and placing a groom on a head
+// whose units, axes or position differ from the one it was made for. The distance of a point to
+// the head's surface (a bounding-volume hierarchy over its triangles), the roots' figures as
+// fractions of the head's size, and the choice of scale, axes and offset: as in the file when
+// the roots are already on the head, else fitted to the scalp (the roots' sphere onto the
+// cranium's, then moved onto the surface).
+#pragma once
+
+#include "assets/hair_asset.h"
+#include "assets/mesh.h"
+
+#include <glm/glm.hpp>
+#include <nlohmann/json_fwd.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace wisp {
+
+// The head part of a bust (y up): its top, and the neck (the narrowest slice between the skull's
+// widest and the shoulders; the bottom of a mesh without shoulders).
+struct HeadRegion {
+    float top = 0.0f;
+    float neck = 0.0f;
+};
+HeadRegion headRegion(const Mesh& mesh);
+
+// Closest points on a triangle mesh, through a bounding-volume hierarchy over its triangles.
+class MeshDistance {
+public:
+    explicit MeshDistance(const Mesh& mesh);
+    struct Closest {
+        glm::vec3 point{0.0f};
+        float distance = 0.0f;
+    };
+    Closest closest(glm::vec3 p) const;
+
+private:
+    struct Node {
+        glm::vec3 lo, hi;
+        uint32_t first = 0;  // leaf: first triangle in order_; inner: the right child (left is next)
+        uint32_t count = 0;  // triangles in a leaf; 0 for an inner node
+    };
+    uint32_t build(uint32_t begin, uint32_t end, std::vector<glm::vec3>& centroids);
+    const Mesh& mesh_;
+    std::vector<uint32_t> order_;  // triangle indices, grouped by leaf
+    std::vector<Node> nodes_;
+};
+
+// A root is on the head when it lies within this fraction of the head's bounding-box diagonal of
+// its surface (Sintel's roots: 0.4 mm on a bust of 0.74 m).
+inline constexpr float kRootOnSurface = 0.02f;
+// A groom is on the head when at least this share of its roots is (an automatic placement must
+// reach it); below kRootsOffHead it is not on it at all.
+inline constexpr float kRootsOnHead = 0.9f;
+inline constexpr float kRootsOffHead = 0.5f;
+
+// The roots against the head's surface, every distance a fraction of the head's diagonal.
+struct RootFit {
+    size_t roots = 0;
+    float median = 0.0f;
+    float p90 = 0.0f;
+    float max = 0.0f;
+    float onSurface = 0.0f;  // share of the roots within kRootOnSurface
+    bool onHead() const { return onSurface >= kRootsOnHead; }
+    bool offHead() const { return onSurface < kRootsOffHead; }
+};
+RootFit measureRoots(const std::vector<glm::vec3>& roots, const MeshDistance& head, float headDiagonal);
+
+// What the user fixed of the placement (--hair-scale, --hair-offset, --hair-z-up,
+// --hair-mirror-z); the rest is chosen.
+struct PlacementRequest {
+    std::optional<float> scale;
+    std::optional<glm::vec3> offset;
+    std::optional<bool> zUp;
+    std::optional<bool> mirrorZ;
+    // Scale or offset given: the placement is the user's (axes default to the format's).
+    bool placesByHand() const { return scale.has_value() || offset.has_value(); }
+};
+
+// How a groom was placed, and its roots against the head afterwards.
+struct GroomPlacement {
+    enum class Method { File, Units, Fitted, Given };
+    HairPlacement placement;
+    Method method = Method::File;
+    RootFit fit;
+    std::string describe() const;  // "fitted to the scalp: scale 0.4, offset (0, 1.2, -3), z-up turned y-up"
+    nlohmann::json toJson() const;
+};
+
+// The groom (its parts' roots, as the files store them) placed on `head`. With nothing requested:
+// as in the file (with the power-of-ten scale when units clearly differ) where that puts the roots
+// on the head, with either up axis and either handedness; else fitted to the scalp, with either up
+// axis; the best by the share of roots on the surface. What the request fixes is kept. The caller
+// decides what an off-head result means (HairScene refuses an automatic one).
+// `defaults`: the format's axes (cyHair z-up, TressFX 3 mirrored).
+GroomPlacement placeGroom(const std::vector<glm::vec3>& roots, const Bounds& groomBounds, const HairPlacement& defaults,
+                          const Mesh& head, const PlacementRequest& request = {});
+
+}  // namespace wisp
