@@ -15,6 +15,8 @@ struct FrameContext;
 enum class Access {
     ColorAttachment,   // written (and blended) as a colour attachment
     DepthAttachment,   // depth tested and written
+    DepthTestOnly,     // depth tested, not written (read-only depth layout: it can be sampled meanwhile)
+    DepthSampled,      // a depth image sampled in compute shaders, in the read-only depth layout
     ResolveTarget,     // written by a multisample resolve at the end of rendering
     TransferSrc,       // copied or blitted from
     TransferDst,       // copied or blitted to

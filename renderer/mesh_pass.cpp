@@ -227,7 +227,7 @@ void MeshPass::setSurface(const glm::mat4& model, const glm::vec3& albedo, float
 void MeshPass::declare(PassIo& io)
 {
     io.use(shadowMaskTrack_, Access::FragmentSampled);
-    target_.declareDraw(io);
+    target_.declareDraw(io, RenderTarget::DepthUse::TestOnly);  // the depth pass wrote it
 }
 
 void MeshPass::declareDepth(PassIo& io)
@@ -238,7 +238,7 @@ void MeshPass::declareDepth(PassIo& io)
 void MeshPass::declareShadowMask(PassIo& io)
 {
     lightMaps_->declareRead(io, Access::ComputeSampled);
-    io.use(target_.depth(), Access::ComputeSampled);
+    io.use(target_.depth(), Access::DepthSampled);
     io.use(shadowMaskTrack_, Access::ComputeWrite);
 }
 
@@ -298,7 +298,7 @@ void MeshPass::recordShadowMask(VkCommandBuffer cmd, FrameContext& frame)
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, shadowPipeline_);
     VkDescriptorBufferInfo frameInfo = uniforms_.descriptor(frame.slot);
     VkDescriptorImageInfo mask{VK_NULL_HANDLE, shadowMask_.view(), VK_IMAGE_LAYOUT_GENERAL};
-    VkDescriptorImageInfo depth{nearest_, target_.depthImage().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkDescriptorImageInfo depth{nearest_, target_.depthImage().view(), VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL};
     std::vector<VkWriteDescriptorSet> writes = {
         {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstBinding = gpu::kMeshBindingFrame, .descriptorCount = 1,
          .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, .pBufferInfo = &frameInfo},
@@ -321,7 +321,7 @@ void MeshPass::recordShadowMask(VkCommandBuffer cmd, FrameContext& frame)
 
 void MeshPass::record(VkCommandBuffer cmd, FrameContext& frame)
 {
-    target_.beginRendering(cmd, clearColor_);
+    target_.beginRendering(cmd, clearColor_, RenderTarget::DepthUse::TestOnly);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
     uniforms_.push(ctx_, cmd, layout_, frame.slot);
     VkDescriptorImageInfo mask{nearest_, shadowMask_.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};

@@ -249,7 +249,6 @@ CompositePass::CompositePass(const vk::Context& ctx, RenderTarget& target, const
                                                  .depthWrite = false,
                                                  .blend = vk::Blend::Premultiplied,
                                                  .colorFormat = RenderTarget::kColorFormat,
-                                                 .depthFormat = RenderTarget::kDepthFormat,
                                                  .samples = target.samples(),
                                                  .name = "composite.pipeline"});
 }
@@ -257,12 +256,12 @@ CompositePass::CompositePass(const vk::Context& ctx, RenderTarget& target, const
 void CompositePass::declare(PassIo& io)
 {
     io.use(*track_, Access::FragmentSampled);
-    target_.declareDraw(io);
+    target_.declareDraw(io, RenderTarget::DepthUse::None);  // laid over everything: no depth
 }
 
 void CompositePass::record(VkCommandBuffer cmd, FrameContext&)
 {
-    target_.beginRendering(cmd, glm::vec3(0.0f));
+    target_.beginRendering(cmd, glm::vec3(0.0f), RenderTarget::DepthUse::None);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
     VkDescriptorImageInfo image{sampler_, image_->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkWriteDescriptorSet write{.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,

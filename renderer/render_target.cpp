@@ -59,7 +59,7 @@ std::vector<TrackedImage*> RenderTarget::transientImages()
     return list;
 }
 
-void RenderTarget::declareDraw(PassIo& io)
+void RenderTarget::declareDraw(PassIo& io, DepthUse depth)
 {
     if (multisampled()) {
         io.use(colorTrack_, Access::ColorAttachment);
@@ -67,15 +67,16 @@ void RenderTarget::declareDraw(PassIo& io)
     } else {
         io.use(resolvedTrack_, Access::ColorAttachment);
     }
-    io.use(depthTrack_, Access::DepthAttachment);
+    if (depth != DepthUse::None)
+        io.use(depthTrack_, depth == DepthUse::Write ? Access::DepthAttachment : Access::DepthTestOnly);
 }
 
-void RenderTarget::beginRendering(VkCommandBuffer cmd, const glm::vec3& clearColor)
+void RenderTarget::beginRendering(VkCommandBuffer cmd, const glm::vec3& clearColor, DepthUse depthUse)
 {
     VkAttachmentLoadOp load = colorCleared_ ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
     VkAttachmentLoadOp depthLoad = depthCleared_ ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
     colorCleared_ = true;
-    depthCleared_ = true;
+    depthCleared_ = depthCleared_ || depthUse != DepthUse::None;
     VkRenderingAttachmentInfo color{.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
                                     .imageView = multisampled() ? color_.view() : resolved_.view(),
                                     .imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
@@ -89,16 +90,18 @@ void RenderTarget::beginRendering(VkCommandBuffer cmd, const glm::vec3& clearCol
     }
     VkRenderingAttachmentInfo depth{.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
                                     .imageView = depth_.view(),
-                                    .imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                                    .imageLayout = depthUse == DepthUse::TestOnly ? VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL
+                                                                                  : VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
                                     .loadOp = depthLoad,
-                                    .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
+                                    .storeOp = depthUse == DepthUse::TestOnly ? VK_ATTACHMENT_STORE_OP_NONE
+                                                                              : VK_ATTACHMENT_STORE_OP_STORE,
                                     .clearValue = {.depthStencil = {1.0f, 0}}};
     VkRenderingInfo info{.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
                          .renderArea = {{0, 0}, extent_},
                          .layerCount = 1,
                          .colorAttachmentCount = 1,
                          .pColorAttachments = &color,
-                         .pDepthAttachment = &depth};
+                         .pDepthAttachment = depthUse == DepthUse::None ? nullptr : &depth};
     vkCmdBeginRendering(cmd, &info);
     VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent_.width), static_cast<float>(extent_.height), 0.0f, 1.0f};
     VkRect2D scissor{{0, 0}, extent_};

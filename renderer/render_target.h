@@ -39,10 +39,13 @@ public:
     VkSampleCountFlagBits samples() const { return samples_; }
     bool multisampled() const { return samples_ != VK_SAMPLE_COUNT_1_BIT; }
 
+    // How a drawing pass uses the depth: tests and writes it, only tests it (the read-only layout,
+    // in which compute passes sample it too: no layout change between them), or not at all.
+    enum class DepthUse { Write, TestOnly, None };
     // Declares the attachments a drawing pass writes.
-    void declareDraw(PassIo& io);
+    void declareDraw(PassIo& io, DepthUse depth = DepthUse::Write);
     // Begins dynamic rendering; the first pass to draw after beginFrame() clears.
-    void beginRendering(VkCommandBuffer cmd, const glm::vec3& clearColor);
+    void beginRendering(VkCommandBuffer cmd, const glm::vec3& clearColor, DepthUse depth = DepthUse::Write);
     void endRendering(VkCommandBuffer cmd);
     // A pass that draws depth alone (no colour attachment: nothing to clear or resolve).
     void declareDepth(PassIo& io);

@@ -322,7 +322,7 @@ void StrandRaster::declare(Stage stage, PassIo& io)
         io.use(colors_.track, Access::ComputeWrite);
         break;
     case Stage::Depth:
-        io.use(target_.depth(), Access::ComputeSampled);
+        io.use(target_.depth(), Access::DepthSampled);
         io.use(depthRange_.track, Access::ComputeWrite);
         io.use(counts_.track, Access::ComputeWrite);
         break;
@@ -331,7 +331,7 @@ void StrandRaster::declare(Stage stage, PassIo& io)
         io.use(vertices_.track, Access::ComputeRead);
         io.use(colors_.track, Access::ComputeRead);
         io.use(depthRange_.track, Access::ComputeRead);
-        io.use(target_.depth(), Access::ComputeSampled);
+        io.use(target_.depth(), Access::DepthSampled);
         io.use(counts_.track, Access::ComputeWrite);
         io.use(offsets_.track, Access::ComputeRead);
         io.use(fragments_.track, Access::ComputeWrite);
@@ -392,7 +392,7 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
     VkDescriptorBufferInfo counts = whole(counts_), offsets = whole(offsets_), fragments = whole(fragments_);
     VkDescriptorBufferInfo counters = whole(counters_), depthRange = whole(depthRange_), blockSums = whole(blockSums_);
     VkDescriptorBufferInfo lightDepth = whole(lightDepth_), lightOpacity = whole(lightOpacity_);
-    VkDescriptorImageInfo meshDepth{depthSampler_, target_.depthImage().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkDescriptorImageInfo meshDepth{depthSampler_, target_.depthImage().view(), VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL};
     auto frameWrite = bufferWrite(gpu::kRasterBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frameInfo);
     uint64_t cameraVertices = uint64_t(camera_.guideCount) * camera_.drawnPerGuide * (camera_.divisions + 1);
     uint64_t lightVertexCount = uint64_t(light_.guideCount) * light_.drawnPerGuide * (light_.divisions + 1);
