@@ -18,8 +18,12 @@
 
 // Skips a window test, saying why, where Xvfb is not installed.
 #define WISP_REQUIRE_XVFB()                                                      \
-    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)                 \
-    GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb): cannot test the window here"
+    if (std::system("command -v Xvfb >/dev/null 2>&1") != 0)                     \
+    GTEST_SKIP() << "Xvfb is not installed (Debian package xvfb): cannot test the window here"
+
+// The prefix that runs a command under an Xvfb of its own (tests/with_xvfb.sh: the server picks a
+// free display, so window tests side by side never race for one).
+#define WISP_XVFB "'" WISP_SOURCE_DIR "/tests/with_xvfb.sh'"
 
 namespace wisp::test {
 

@@ -45,7 +45,7 @@ TEST(Window, OpensUnderXvfbDrawsAndClosesCleanly)
     TempDir dir;
     auto r = runWisp("--validation view --width 320 --height 240 --frames 4 --guides 200 --set shadow_size=512 --screenshot '" +
                          (dir / "shot.png").string() + "'",
-                     "xvfb-run -a -s '-screen 0 640x480x24'");
+                     WISP_XVFB);
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.out.find("closed after 4 frames"), std::string::npos) << r.out;
     EXPECT_TRUE(std::filesystem::exists(dir / "shot.png"));
@@ -60,7 +60,7 @@ TEST(Window, ScriptedRunsWithHairAreReproducible)
     TempDir dir;
     std::string common =
         "view --width 200 --height 150 --frames 12 --guides 200 --set strands_per_guide=8 --set shadow_size=256 --wind 3,0,0 --screenshot ";
-    auto xvfb = "xvfb-run -a -s '-screen 0 640x480x24'";
+    auto xvfb = WISP_XVFB;
     ASSERT_EQ(runWisp(common + "'" + (dir / "a.png").string() + "'", xvfb).status, 0);
     ASSERT_EQ(runWisp(common + "'" + (dir / "b.png").string() + "'", xvfb).status, 0);
     ASSERT_EQ(runWisp("view --width 200 --height 150 --frames 12 --no-hair --screenshot '" + (dir / "bald.png").string() + "'",
@@ -77,7 +77,7 @@ TEST(Window, AScriptMovesTheSphereAndTheLightAndTurnsTheHead)
               "# sphere: held right for 18 frames, then dragged up; light: held L for 20 frames; head: one turn\n"
               "2 press right\n20 release right\n22 drag-sphere 0 -40\n10 press l\n30 release l\n12 tap a\n");
     writeFile(dir / "still.txt", "# nothing happens\n");
-    auto xvfb = "xvfb-run -a -s '-screen 0 640x480x24'";
+    auto xvfb = WISP_XVFB;
     std::string common =
         "--validation view --width 160 --height 120 --frames 32 --guides 60 --set strands_per_guide=4 --set shadow_size=256 ";
     auto moved = runWisp(common + "--script '" + (dir / "moves.txt").string() + "' --screenshot '" +
@@ -110,7 +110,7 @@ TEST(Window, ThePanelAppliesSettingsLiveAndDrawsOverTheScene)
     TempDir dir;
     writeFile(dir / "sets.txt", "2 set shading=kajiya\n3 set shadow_size=128\n4 set step_hz=120\n5 set hair_preset=blonde\n");
     writeFile(dir / "none.txt", "");
-    auto xvfb = "xvfb-run -a -s '-screen 0 640x480x24'";
+    auto xvfb = WISP_XVFB;
     std::string common = "--validation view --width 200 --height 150 --frames 8 --guides 60 --set strands_per_guide=4 "
                          "--set shadow_size=256 --script '";
     auto changed = runWisp(common + (dir / "sets.txt").string() + "' --screenshot '" + (dir / "changed.png").string() + "'", xvfb);
@@ -140,7 +140,7 @@ TEST(Window, F2SavesTheStateAsASceneAndF3LoadsItBack)
     TempDir dir;
     // Sphere moved and switched on, Kajiya-Kay, saved at frame 9; switched off, then loaded back.
     writeFile(dir / "s.txt", "3 press right\n8 release right\n9 tap f2\n12 tap o\n14 tap f3\n");
-    std::string prefix = "cd '" + dir.path().string() + "' && xvfb-run -a -s '-screen 0 640x480x24'";
+    std::string prefix = "cd '" + dir.path().string() + "' && " WISP_XVFB;
     auto r = runWisp("--validation view --frames 18 --width 160 --height 120 --guides 60 --set strands_per_guide=4 "
                      "--set shadow_size=256 --set shading=kajiya --script s.txt",
                      prefix);
@@ -164,7 +164,7 @@ TEST(Window, AScenePlaysItsKeysAndTStopsIt)
     TempDir dir;
     writeFile(dir / "stop.txt", "0 tap t\n");
     writeFile(dir / "none.txt", "");
-    auto xvfb = "xvfb-run -a -s '-screen 0 640x480x24'";
+    auto xvfb = WISP_XVFB;
     // 60 frames of 1/60 s: 1.0 s into head-turn.json, whose head turns from 0 (0.5 s) to -60 (1.2 s).
     std::string common = "--validation view --scene '" + std::string(WISP_SOURCE_DIR) +
                          "/scenes/head-turn.json' --frames 60 --width 96 --height 72 --guides 40 "
@@ -187,7 +187,7 @@ TEST(Window, SceneSetsTheInitialSphereAndLight)
     TempDir dir;
     writeFile(dir / "s.json", R"({"keys": [{"time": 0, "sphere": [0.1, 0.2, 0.05, 0.04], "light": {"azimuth": 77, "elevation": 12}}]})");
     auto r = runWisp("view --scene '" + (dir / "s.json").string() + "' --no-hair --width 160 --height 120 --frames 2",
-                     "xvfb-run -a -s '-screen 0 640x480x24'");
+                     WISP_XVFB);
     ASSERT_EQ(r.status, 0) << r.err;
     ViewerStatus s = parseStatus(r.out);
     EXPECT_TRUE(s.sphereOn);
@@ -203,7 +203,7 @@ TEST(Window, DeviceLostClosesTheWindowWithItsOwnStatus)
     WISP_REQUIRE_XVFB();
     // Two frames in flight, a swapchain, the panel: their teardown after the loss returns cleanly.
     auto r = runWisp("--validation view --guides 60 --set strands_per_guide=4 --width 160 --height 120 --frames 30",
-                     lostAt(30) + " xvfb-run -a -s '-screen 0 640x480x24'");
+                     lostAt(30) + " " WISP_XVFB);
     expectDeviceLost(r, "view");
 }
 
@@ -217,7 +217,7 @@ TEST(BadInput, ViewScriptErrorsNameTheFileAndLine)
 {
     WISP_REQUIRE_XVFB();
     TempDir dir;
-    auto xvfb = "xvfb-run -a -s '-screen 0 640x480x24'";
+    auto xvfb = WISP_XVFB;
     auto check = [&](const std::string& text, const std::string& expected) {
         writeFile(dir / "bad.txt", text);
         auto r = runWisp("view --frames 1 --no-hair --script '" + (dir / "bad.txt").string() + "'", xvfb);
@@ -241,7 +241,7 @@ TEST(Window, F5ReloadsEveryShaderTheSolversIncluded)
     writeFile(dir / "f5.txt", "2 tap f5\n");
     auto r = runWisp("--validation view --width 160 --height 120 --frames 5 --guides 40 --set strands_per_guide=2 "
                      "--set shadow_size=128 --script '" + (dir / "f5.txt").string() + "'",
-                     "xvfb-run -a -s '-screen 0 640x480x24'");
+                     WISP_XVFB);
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.err.find("wisp: shaders reloaded"), std::string::npos) << r.err;
     EXPECT_NE(r.out.find("closed after 5 frames"), std::string::npos) << r.out;
