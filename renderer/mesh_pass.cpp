@@ -8,6 +8,7 @@
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "shaders/shared/mesh_params.h"
+#include "shaders/shared/mesh_raster.h"
 #include "shaders/shared/shadows.h"
 
 #include <algorithm>
@@ -201,10 +202,10 @@ MeshPass::GpuMesh MeshPass::upload(const Mesh& mesh, const char* name, const std
     std::string base = name;
     GpuMesh out;
     out.vertices = ctx_.createBufferWithData(
-        {.size = vertices.size() * sizeof(MeshVertex), .usage = vk::kVertex, .name = (base + ".vertices").c_str()},
+        {.size = vertices.size() * sizeof(MeshVertex), .usage = vk::kVertex | vk::kStorage, .name = (base + ".vertices").c_str()},
         vertices.data(), vertices.size() * sizeof(MeshVertex));
     out.indices = ctx_.createBufferWithData(
-        {.size = mesh.indices.size() * sizeof(uint32_t), .usage = vk::kIndex, .name = (base + ".indices").c_str()},
+        {.size = mesh.indices.size() * sizeof(uint32_t), .usage = vk::kIndex | vk::kStorage, .name = (base + ".indices").c_str()},
         mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t));
     out.indexCount = static_cast<uint32_t>(mesh.indices.size());
     return out;
@@ -217,9 +218,8 @@ void MeshPass::setMesh(const Mesh& mesh, const std::vector<float>& scalp)
         sphereMesh_ = upload(makeSphereMesh(), "mesh.sphere", {});
 }
 
-void MeshPass::setSurface(const glm::mat4& model, const glm::vec3& albedo, float roughness)
+void MeshPass::setSurface(const glm::vec3& albedo, float roughness)
 {
-    model_ = model;
     albedo_ = albedo;
     roughness_ = roughness;
 }
@@ -266,8 +266,10 @@ glm::mat4 placeSphere(const glm::vec4& sphere)
     return m;
 }
 
-constexpr glm::vec3 kSphereAlbedo{0.35f, 0.45f, 0.6f};  // a blue-grey ball, apart from skin and hair
-constexpr glm::vec3 kMarkerAlbedo{1.0f, 0.85f, 0.3f};
+using gpu::kMarkerAlbedo;
+using gpu::kMarkerRoughness;
+using gpu::kSphereAlbedo;
+using gpu::kSphereRoughness;
 
 }  // namespace
 
@@ -275,9 +277,9 @@ void MeshPass::recordFromLight(VkCommandBuffer cmd, FrameContext& frame)
 {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, lightPipeline_);
     uniforms_.push(ctx_, cmd, layout_, frame.slot);
-    draw(cmd, head_, headTransform_ * model_, albedo_, roughness_);
+    draw(cmd, head_, headTransform_, albedo_, roughness_);
     if (sphere_.w > 0.0f)
-        draw(cmd, sphereMesh_, placeSphere(sphere_), kSphereAlbedo, 0.4f);
+        draw(cmd, sphereMesh_, placeSphere(sphere_), kSphereAlbedo, kSphereRoughness);
 }
 
 void MeshPass::recordDepth(VkCommandBuffer cmd, FrameContext& frame)
@@ -285,11 +287,11 @@ void MeshPass::recordDepth(VkCommandBuffer cmd, FrameContext& frame)
     target_.beginDepthRendering(cmd);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depthPipeline_);
     uniforms_.push(ctx_, cmd, layout_, frame.slot);
-    draw(cmd, head_, headTransform_ * model_, albedo_, roughness_);
+    draw(cmd, head_, headTransform_, albedo_, roughness_);
     if (sphere_.w > 0.0f)
-        draw(cmd, sphereMesh_, placeSphere(sphere_), kSphereAlbedo, 0.4f);
+        draw(cmd, sphereMesh_, placeSphere(sphere_), kSphereAlbedo, kSphereRoughness);
     if (marker_.w > 0.0f)
-        draw(cmd, sphereMesh_, placeSphere(marker_), kMarkerAlbedo, 0.2f);
+        draw(cmd, sphereMesh_, placeSphere(marker_), kMarkerAlbedo, kMarkerRoughness);
     target_.endRendering(cmd);
 }
 
@@ -331,11 +333,11 @@ void MeshPass::record(VkCommandBuffer cmd, FrameContext& frame)
                                    .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                                    .pImageInfo = &mask};
     ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &maskWrite);
-    draw(cmd, head_, headTransform_ * model_, albedo_, roughness_);
+    draw(cmd, head_, headTransform_, albedo_, roughness_);
     if (sphere_.w > 0.0f)
-        draw(cmd, sphereMesh_, placeSphere(sphere_), kSphereAlbedo, 0.4f);
+        draw(cmd, sphereMesh_, placeSphere(sphere_), kSphereAlbedo, kSphereRoughness);
     if (marker_.w > 0.0f)
-        draw(cmd, sphereMesh_, placeSphere(marker_), kMarkerAlbedo, 0.2f);
+        draw(cmd, sphereMesh_, placeSphere(marker_), kMarkerAlbedo, kMarkerRoughness);
     target_.endRendering(cmd);
 }
 

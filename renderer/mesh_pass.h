@@ -57,7 +57,7 @@ public:
         scalpAlbedo_ = albedo;
         scalpStrength_ = strength;
     }
-    void setSurface(const glm::mat4& model, const glm::vec3& albedo, float roughness);
+    void setSurface(const glm::vec3& albedo, float roughness);
     void setClearColor(const glm::vec3& color) { clearColor_ = color; }
     // Where the head is this frame (rigid; its surface's model matrix applies first).
     void setHeadTransform(const glm::mat4& transform) { headTransform_ = transform; }
@@ -74,6 +74,22 @@ public:
     TrackedImage& shadowMask() { return shadowMaskTrack_; }  // rewritten every frame
     // Recreates the shadow mask at the target's size; the device must be idle.
     void resize();
+
+    // What the compute meshes (renderer/mesh_raster.h) draw: each object's vertices (7 floats:
+    // position, normal, scalp weight) and triangles (3 indices), and the surfaces.
+    struct Buffers {
+        VkBuffer vertices = VK_NULL_HANDLE;
+        VkBuffer indices = VK_NULL_HANDLE;
+        uint32_t triangles = 0;
+    };
+    Buffers headBuffers() const { return {head_.vertices, head_.indices, head_.indexCount / 3}; }
+    Buffers sphereBuffers() const { return {sphereMesh_.vertices, sphereMesh_.indices, sphereMesh_.indexCount / 3}; }
+    const glm::vec4& marker() const { return marker_; }
+    const glm::vec3& albedo() const { return albedo_; }
+    float roughness() const { return roughness_; }
+    const glm::vec3& scalpAlbedo() const { return scalpAlbedo_; }
+    float scalpStrength() const { return scalpStrength_; }
+    const glm::vec3& clearColor() const { return clearColor_; }
 
     void declareDepth(PassIo& io);
     void recordDepth(VkCommandBuffer cmd, FrameContext& frame);
@@ -108,7 +124,6 @@ private:
     glm::mat4 headTransform_{1.0f};
     glm::vec4 sphere_{0.0f};
     glm::vec4 marker_{0.0f};
-    glm::mat4 model_{1.0f};
     glm::vec3 albedo_{0.6f};
     float roughness_ = 0.5f;
     glm::vec3 scalpAlbedo_{0.0f};

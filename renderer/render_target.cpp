@@ -44,7 +44,8 @@ void RenderTarget::resize(VkExtent2D extent)
                               .name = "target.depth"});
     resolved_ = ctx.createImage({.format = kColorFormat,
                                  .extent = extent,
-                                 .usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                 .usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                          VK_IMAGE_USAGE_TRANSFER_DST_BIT,  // (the compute meshes' frame is copied in)
                                  .name = "target.color"});
     colorTrack_ = {.image = color_.get()};
     depthTrack_ = {.image = depth_.get(), .aspect = VK_IMAGE_ASPECT_DEPTH_BIT};

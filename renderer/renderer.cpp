@@ -104,7 +104,7 @@ Renderer::Renderer(const vk::Context& ctx, const RenderSettings& settings, uint3
     shadowPass_ = std::make_unique<ShadowPass>(*lightMaps_, *meshPass_, nullptr);
     opacityPass_ = std::make_unique<OpacityPass>(*lightMaps_, nullptr);
     meshPass_->setClearColor(settings_.background);
-    meshPass_->setSurface(glm::mat4(1.0f), settings_.headAlbedo, settings_.headRoughness);
+    meshPass_->setSurface(settings_.headAlbedo, settings_.headRoughness);
 }
 
 void Renderer::setHead(const Head& head)
@@ -126,6 +126,8 @@ void Renderer::resize(VkExtent2D extent)
         oit_->resize(extent, settings_.transparency.oitNodesPerPixel);
     if (strandRaster_)
         strandRaster_->resize();
+    if (meshRaster_)
+        meshRaster_->resize();
 }
 
 std::vector<TrackedImage*> Renderer::transientImages()
@@ -138,6 +140,9 @@ std::vector<TrackedImage*> Renderer::transientImages()
     if (strandRaster_)
         list.push_back(&strandRaster_->color());
     list.push_back(&meshPass_->shadowMask());
+    if (meshRaster_)
+        for (TrackedImage* image : meshRaster_->transientImages())
+            list.push_back(image);
     return list;
 }
 
@@ -186,6 +191,11 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
     opacityPass_->setEnabled(settings_.shadows.enabled && settings_.shadows.domLayers > 0);
     if (oitResolve_)
         oitResolve_->setK(settings_.transparency.oitK, frame);
+    if (computeMeshes()) {
+        if (!meshRaster_)
+            meshRaster_ = std::make_unique<MeshRaster>(ctx_, *target_, uniforms_, *lightMaps_, *meshPass_);
+        meshRaster_->setHair(nullptr, nullptr);
+    }
     if (!hairPass_)
         return;
     const StrandSettings& s = settings_.strands;
@@ -250,6 +260,12 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
     if (!settings_.shadows.enabled)
         lightRaster.drawnPerGuide = 0;  // the maps are only cleared
     strandRaster_->prepare(frame, rasterPush(push), lightRaster, &hairPass_->lutInfo());
+    if (computeMeshes()) {
+        meshRaster_->setHair(&strandRaster_->color(), &strandRaster_->colorImage());
+        strandRaster_->setMeshSamples(&meshRaster_->depthSamples(), meshRaster_->depthBuffer().get());
+    } else {
+        strandRaster_->setMeshSamples(nullptr, VK_NULL_HANDLE);
+    }
 }
 
 void Renderer::makeStrandRaster()
@@ -266,6 +282,11 @@ void Renderer::makeStrandRaster()
 HairRaster Renderer::hairRaster() const
 {
     return resolveHairRaster(settings_.hairRaster, ctx_.report().type);
+}
+
+bool Renderer::computeMeshes() const
+{
+    return hairRaster() == HairRaster::Compute && !settings_.strands.showGuides;
 }
 
 RasterStats Renderer::rasterStats(uint32_t slot) const
@@ -336,6 +357,17 @@ std::vector<Pass*> Renderer::passes()
     std::vector<Pass*> list;
     if (physicsPass_)
         list.push_back(physicsPass_.get());
+    bool meshesInCompute = computeMeshes() && meshRaster_;
+    auto meshes = [&] {
+        if (meshesInCompute) {
+            for (MeshRaster::Stage stage : MeshRaster::kMeshStages)
+                list.push_back(meshRaster_->pass(stage));
+        } else {
+            list.push_back(meshPass_->depthPass());
+            list.push_back(meshPass_->shadowMaskPass());
+            list.push_back(meshPass_.get());
+        }
+    };
     if (hairPass_ && hairRaster() == HairRaster::Compute) {
         using Stage = StrandRaster::Stage;
         list.push_back(strandRaster_->pass(Stage::Clear));
@@ -343,21 +375,28 @@ std::vector<Pass*> Renderer::passes()
         for (Stage stage : StrandRaster::kLightStages)
             if (stage != Stage::Clear)
                 list.push_back(strandRaster_->pass(stage));
-        list.push_back(meshPass_->depthPass());
-        list.push_back(meshPass_->shadowMaskPass());
-        list.push_back(meshPass_.get());
+        meshes();
         for (Stage stage : StrandRaster::kCameraStages)
             list.push_back(strandRaster_->pass(stage));
-        list.push_back(strandComposite_.get());
+        if (meshesInCompute) {
+            for (MeshRaster::Stage stage : MeshRaster::kFinalStages)
+                list.push_back(meshRaster_->pass(stage));
+        } else {
+            list.push_back(strandComposite_.get());
+        }
         list.push_back(strandRaster_->pass(Stage::Stats));
+    } else if (!hairPass_ && meshesInCompute) {
+        list.push_back(shadowPass_.get());
+        list.push_back(opacityPass_.get());
+        meshes();
+        for (MeshRaster::Stage stage : MeshRaster::kFinalStages)
+            list.push_back(meshRaster_->pass(stage));
     } else {
         list.push_back(shadowPass_.get());
         list.push_back(opacityPass_.get());
         if (oitClear_)
             list.push_back(oitClear_.get());
-        list.push_back(meshPass_->depthPass());
-        list.push_back(meshPass_->shadowMaskPass());
-        list.push_back(meshPass_.get());
+        meshes();
         if (hairPass_)
             list.push_back(hairPass_.get());
         if (oitResolve_) {

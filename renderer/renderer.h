@@ -15,6 +15,7 @@
 #include "renderer/hair_pass.h"
 #include "renderer/light_maps.h"
 #include "renderer/mesh_pass.h"
+#include "renderer/mesh_raster.h"
 #include "renderer/oit.h"
 #include "renderer/physics_pass.h"
 #include "renderer/render_target.h"
@@ -86,9 +87,13 @@ public:
     RasterStats rasterStats(uint32_t slot) const;
     // How the hair is drawn now (hair_raster, auto resolved for the device).
     HairRaster hairRaster() const;
+    // Whether the meshes are drawn in compute too (MeshRaster): with the compute hair, unless the
+    // guides are shown (their lines are drawn into the graphics meshes' target).
+    bool computeMeshes() const;
 
     RenderTarget& target() { return *target_; }
     StrandRaster* strandRaster() { return strandRaster_.get(); }
+    MeshRaster* meshRaster() { return meshRaster_.get(); }
     // The per-frame block prepare() last wrote (the tests' CPU twins take it as their input).
     const gpu::FrameParams& frameParams() const { return frameParams_; }
     LightMaps& lightMaps() { return *lightMaps_; }
@@ -117,6 +122,7 @@ private:
     std::unique_ptr<StrandRaster> strandRaster_;
     std::unique_ptr<ShadowPass> headShadowPass_;  // the head's depth alone: the hair's maps come from compute
     std::unique_ptr<CompositePass> strandComposite_;
+    std::unique_ptr<MeshRaster> meshRaster_;  // made the first time a frame draws its meshes in compute
     GpuSolver* solver_ = nullptr;
     std::vector<glm::uvec4> guideTriangles_;
     void makeStrandRaster();

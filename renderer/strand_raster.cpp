@@ -110,7 +110,8 @@ StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUn
                            {gpu::kRasterBindingLightOpacity, kStorage, kCompute},
                            {gpu::kRasterBindingOpacityImage, kImage, kCompute},
                            {gpu::kRasterBindingDepthRange, kStorage, kCompute},
-                           {gpu::kRasterBindingBlockSums, kStorage, kCompute}},
+                           {gpu::kRasterBindingBlockSums, kStorage, kCompute},
+                           {gpu::kRasterBindingMeshSamples, kStorage, kCompute}},
               .pushConstantBytes = sizeof(gpu::StrandRasterPush),
               .pushConstantStages = kCompute,
               .name = "strands.layout"});
@@ -121,10 +122,9 @@ StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUn
     const char* single = target.multisampled() ? "" : "_single";
     depthPipeline_ = vk::createComputePipeline(ctx, layout_, std::string("strands_depth") + single + ".comp",
                                                "strands.depth.pipeline");
-    countPipeline_ = vk::createComputePipeline(ctx, layout_, std::string("strands_fragments") + single + ".comp",
-                                               "strands.count.pipeline", {/*kWrite=*/0});
-    writePipeline_ = vk::createComputePipeline(ctx, layout_, std::string("strands_fragments") + single + ".comp",
-                                               "strands.write.pipeline", {/*kWrite=*/1});
+    depthBufferPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_depth_buffer.comp", "strands.depth.pipeline");
+    countPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_fragments.comp", "strands.count.pipeline", {/*kWrite=*/0});
+    writePipeline_ = vk::createComputePipeline(ctx, layout_, "strands_fragments.comp", "strands.write.pipeline", {/*kWrite=*/1});
     scanBlocksPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_scan.comp", "strands.scan.blocks.pipeline",
                                                     {/*kPhase=*/0, kScanBlockThreads});
     scanTotalsPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_scan.comp", "strands.scan.totals.pipeline",
@@ -173,6 +173,7 @@ void StrandRaster::resize()
     allocate(offsets_, (pixels + 1) * 4, vk::kStorage | vk::kTransferSrc, "strands.offsets", nullptr);
     allocate(depthRange_, pixels * 8, vk::kStorage, "strands.depth_range", nullptr);
     allocate(blockSums_, blocks * 4, vk::kStorage, "strands.block_sums", nullptr);
+    allocate(meshSamples_, pixels * uint32_t(target_.samples()) * 4, vk::kStorage, "strands.mesh_samples", nullptr);
     // The count past the last pixel is always 0 (its offset is the total): zeroed once.
     ctx_.submitAndWait([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, counts_.buffer, 0, VK_WHOLE_SIZE, 0); });
     color_ = ctx_.createImage({.format = VK_FORMAT_R16G16B16A16_SFLOAT,
@@ -322,7 +323,12 @@ void StrandRaster::declare(Stage stage, PassIo& io)
         io.use(colors_.track, Access::ComputeWrite);
         break;
     case Stage::Depth:
-        io.use(target_.depth(), Access::DepthSampled);
+        if (externalSamples_) {
+            io.use(*externalSamples_, Access::ComputeRead);
+        } else {
+            io.use(target_.depth(), Access::DepthSampled);
+            io.use(meshSamples_.track, Access::ComputeWrite);
+        }
         io.use(depthRange_.track, Access::ComputeWrite);
         io.use(counts_.track, Access::ComputeWrite);
         break;
@@ -331,7 +337,7 @@ void StrandRaster::declare(Stage stage, PassIo& io)
         io.use(vertices_.track, Access::ComputeRead);
         io.use(colors_.track, Access::ComputeRead);
         io.use(depthRange_.track, Access::ComputeRead);
-        io.use(target_.depth(), Access::DepthSampled);
+        io.use(externalSamples_ ? *externalSamples_ : meshSamples_.track, Access::ComputeRead);
         io.use(counts_.track, Access::ComputeWrite);
         io.use(offsets_.track, Access::ComputeRead);
         io.use(fragments_.track, Access::ComputeWrite);
@@ -393,6 +399,8 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
     VkDescriptorBufferInfo counters = whole(counters_), depthRange = whole(depthRange_), blockSums = whole(blockSums_);
     VkDescriptorBufferInfo lightDepth = whole(lightDepth_), lightOpacity = whole(lightOpacity_);
     VkDescriptorImageInfo meshDepth{depthSampler_, target_.depthImage().view(), VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL};
+    VkDescriptorBufferInfo meshSamples{externalSamples_ ? externalSamplesBuffer_ : meshSamples_.buffer.get(), 0,
+                                       VK_WHOLE_SIZE};
     auto frameWrite = bufferWrite(gpu::kRasterBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frameInfo);
     uint64_t cameraVertices = uint64_t(camera_.guideCount) * camera_.drawnPerGuide * (camera_.divisions + 1);
     uint64_t lightVertexCount = uint64_t(light_.guideCount) * light_.drawnPerGuide * (light_.divisions + 1);
@@ -450,10 +458,12 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
     }
     case Stage::Depth: {
         std::vector<VkWriteDescriptorSet> writes = {
-            imageWrite(gpu::kRasterBindingMeshDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &meshDepth),
+            bufferWrite(gpu::kRasterBindingMeshSamples, kStorage, &meshSamples),
             bufferWrite(gpu::kRasterBindingDepthRange, kStorage, &depthRange),
             bufferWrite(gpu::kRasterBindingCounts, kStorage, &counts)};
-        dispatch(cmd, depthPipeline_, camera_, writes, vk::groupCount(camera_.targetWidth, 8),
+        if (!externalSamples_)
+            writes.push_back(imageWrite(gpu::kRasterBindingMeshDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &meshDepth));
+        dispatch(cmd, externalSamples_ ? depthBufferPipeline_.get() : depthPipeline_.get(), camera_, writes, vk::groupCount(camera_.targetWidth, 8),
                  vk::groupCount(camera_.targetHeight, 8));
         break;
     }
@@ -467,7 +477,7 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
             bufferWrite(gpu::kRasterBindingFragments, kStorage, &fragments),
             bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters),
             bufferWrite(gpu::kRasterBindingDepthRange, kStorage, &depthRange),
-            imageWrite(gpu::kRasterBindingMeshDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &meshDepth)};
+            bufferWrite(gpu::kRasterBindingMeshSamples, kStorage, &meshSamples)};
         dispatchLinear(cmd, stage == Stage::Count ? countPipeline_.get() : writePipeline_.get(), camera_, writes,
                        camera_.segmentCount, gpu::kRasterGroupSize);
         break;

@@ -88,6 +88,15 @@ public:
     // Recreates what depends on the target's size; the device must be idle.
     void resize();
 
+    // Where the meshes' depth samples come from: the target's depth image (the graphics meshes;
+    // strands.depth copies it into a buffer of its own), or the compute meshes' buffer (float bits,
+    // pixel * samples + s). Set before each frame it changes.
+    void setMeshSamples(TrackedBuffer* track, VkBuffer buffer)
+    {
+        externalSamples_ = track;
+        externalSamplesBuffer_ = buffer;
+    }
+
     Pass* pass(Stage stage);
     TrackedImage& color() { return colorTrack_; }  // the hair, premultiplied RGBA16F
     const vk::Image& colorImage() const { return color_; }
@@ -127,7 +136,8 @@ private:
     GpuSolver& solver_;
     vk::DescriptorSetLayout setLayout_;
     vk::PipelineLayout layout_;
-    vk::Pipeline generatePipeline_, generateLightPipeline_, depthPipeline_, countPipeline_, writePipeline_;
+    vk::Pipeline generatePipeline_, generateLightPipeline_, depthPipeline_, depthBufferPipeline_, countPipeline_,
+        writePipeline_;
     vk::Pipeline scanBlocksPipeline_, scanTotalsPipeline_, scanOffsetsPipeline_, resolvePipeline_;
     vk::Pipeline lightDepthPipeline_, lightOpacityPipeline_, lightResolvePipeline_;
     uint32_t pipelineK_ = 0;  // the oit_k the resolve pipeline was built for
@@ -136,6 +146,9 @@ private:
     Storage vertices_, colors_;            // the camera's strand vertices
     Storage lightVertices_, lightColors_;  // the light's
     Storage counts_, offsets_, fragments_, counters_, depthRange_, blockSums_;
+    Storage meshSamples_;  // the depth image's samples, when the meshes are drawn by graphics
+    TrackedBuffer* externalSamples_ = nullptr;
+    VkBuffer externalSamplesBuffer_ = VK_NULL_HANDLE;
     Storage lightDepth_, lightOpacity_;
     std::vector<vk::Buffer> readback_;  // counters, one per frame in flight
     vk::Image color_;

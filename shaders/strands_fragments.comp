@@ -10,7 +10,8 @@
 //                          scan counted them as overflow)
 // Both variants make exactly the same decisions (the same arithmetic on the same input).
 // Segments with an end behind the camera or outside the depth range are not drawn.
-// With RASTER_SINGLE_SAMPLE (strands_fragments_single.comp) the meshes' depth has one sample.
+// The meshes' depth samples come from a buffer (float bits, pixel * samples + s): strands_depth.comp
+// copies the depth image there, or the compute meshes drew into it.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/strand_raster.h"
 
@@ -24,11 +25,7 @@ layout(set = 0, binding = kRasterBindingOffsets, std430) readonly buffer Offsets
 layout(set = 0, binding = kRasterBindingFragments, std430) writeonly buffer Fragments { uvec2 fragments[]; };
 layout(set = 0, binding = kRasterBindingCounters, std430) buffer Counters { RasterCounters counters; };
 layout(set = 0, binding = kRasterBindingDepthRange, std430) readonly buffer DepthRange { vec2 depthRange[]; };
-#ifdef RASTER_SINGLE_SAMPLE
-layout(set = 0, binding = kRasterBindingMeshDepth) uniform sampler2D meshDepth;
-#else
-layout(set = 0, binding = kRasterBindingMeshDepth) uniform sampler2DMS meshDepth;
-#endif
+layout(set = 0, binding = kRasterBindingMeshSamples, std430) readonly buffer MeshSamples { uint meshSamples[]; };
 
 shared uint groupSegments;
 
@@ -53,9 +50,6 @@ void main()
             int y0 = max(int(ceil(min(a.y, b.y) - reach - 0.5)), 0);
             int y1 = min(int(floor(max(a.y, b.y) + reach - 0.5)), int(push.targetHeight) - 1);
             uint samples = push.samples;
-#ifdef RASTER_SINGLE_SAMPLE
-            samples = 1u;
-#endif
             for (int y = y0; y <= y1; ++y) {
                 vec2 span = ribbonRowSpan(s, float(y) + 0.5);
                 int x0 = max(int(ceil(span.x - 0.5)), 0);
@@ -70,11 +64,7 @@ void main()
                     uint front = depth <= range.x ? samples : 0u;
                     if (depth > range.x && depth <= range.y) {  // at a mesh's edge: each sample
                         for (uint m = 0u; m < samples; ++m) {
-#ifdef RASTER_SINGLE_SAMPLE
-                            float d = texelFetch(meshDepth, ivec2(x, y), 0).r;
-#else
-                            float d = texelFetch(meshDepth, ivec2(x, y), int(m)).r;
-#endif
+                            float d = uintBitsToFloat(meshSamples[p * samples + m]);
                             front += depth <= d ? 1u : 0u;
                         }
                     }

@@ -62,6 +62,7 @@ GPU_CONST uint kRasterBindingLightOpacity = 18;// uint x 4 per light texel: opac
 GPU_CONST uint kRasterBindingOpacityImage = 19;// image2D rgba16f: the deep opacity layers, as shaders read them
 GPU_CONST uint kRasterBindingDepthRange = 20;  // vec2 per pixel: the nearest and farthest mesh depth sample
 GPU_CONST uint kRasterBindingBlockSums = 21;   // uint per scan block: its counts' total, then its offset
+GPU_CONST uint kRasterBindingMeshSamples = 22; // uint per mesh depth sample (pixel * samples + s): float bits
 
 // Fixed point of the light's opacity sums (integer units per unit of opacity).
 GPU_CONST float kOpacityFixedScale = 1024.0f;

@@ -1,0 +1,94 @@
+// renderer/mesh_raster.h: the meshes (head, collision sphere, light marker) drawn in compute, for
+// frames whose hair is drawn in compute (hair_raster=compute): on a GPU that runs its graphics
+// stages on a few units (the H100), the meshes' 4x MSAA depth, shading and the hair's composite
+// cost more than all the hair's kernels together. Same sample positions, same shading
+// (shared/mesh_raster.h's meshSurfaceColor, which mesh.frag calls too), same shadows as the
+// graphics meshes (MeshPass). Its passes:
+//   meshes.clear    transfer: every sample's depth to 1, its triangle to none
+//   meshes.raster   each sample's nearest depth (mesh_raster.comp, kPhase 0)
+//   meshes.ids      the triangle holding it (kPhase 1)
+//   meshes.shade    the resolved colour of the meshes per pixel (mesh_shade.comp)
+//     (then the strands, which read the samples' depth buffer)
+//   hair.composite  the hair over the meshes, sRGB-encoded (hair_compose.comp)
+//   frame.copy      into the target's result, which readback and the window read
+// Its C++ twin is renderer/mesh_raster_reference.h.
+#pragma once
+
+#include "gpu/handle.h"
+#include "gpu/pass.h"
+#include "gpu/resources.h"
+#include "shaders/shared/mesh_raster.h"
+
+#include <memory>
+#include <vector>
+
+namespace wisp {
+
+namespace vk {
+class Context;
+}
+class RenderTarget;
+class FrameUniforms;
+class LightMaps;
+class MeshPass;
+
+class MeshRaster {
+public:
+    enum class Stage { Clear, Raster, Ids, Shade, Compose, Copy };
+    static constexpr Stage kMeshStages[] = {Stage::Clear, Stage::Raster, Stage::Ids, Stage::Shade};
+    static constexpr Stage kFinalStages[] = {Stage::Compose, Stage::Copy};
+
+    // The device memory it allocates for a target of `extent` and `samples`: the samples' depth
+    // and triangle, the meshes' colour (RGBA16F) and the frame (RGBA8).
+    static constexpr uint64_t deviceBytes(VkExtent2D extent, uint32_t samples)
+    {
+        uint64_t pixels = uint64_t(extent.width) * extent.height;
+        return pixels * (uint64_t(samples > 1 ? samples : 1) * 8 + 8 + 4);
+    }
+
+    // Draws what `meshes` holds (its buffers, surfaces, sphere and marker) as the target's
+    // samples; the light's maps are read for the shadows.
+    MeshRaster(const vk::Context& ctx, RenderTarget& target, FrameUniforms& uniforms, LightMaps& maps, MeshPass& meshes);
+    ~MeshRaster();
+    // Recreates what depends on the target's size; the device must be idle.
+    void resize();
+    // The hair to lay over the meshes this frame (premultiplied RGBA16F), or none.
+    void setHair(TrackedImage* track, const vk::Image* image)
+    {
+        hairTrack_ = track;
+        hairImage_ = image;
+    }
+
+    Pass* pass(Stage stage) { return passes_[size_t(stage)].get(); }
+    // The samples' depth (float bits, pixel * samples + s), which the compute strands test against.
+    TrackedBuffer& depthSamples() { return depthTrack_; }
+    const vk::Buffer& depthBuffer() const { return depth_; }
+    const vk::Buffer& idBuffer() const { return ids_; }
+    TrackedImage& color() { return colorTrack_; }  // the meshes, resolved (RGBA16F, tone-mapped linear)
+    const vk::Image& colorImage() const { return color_; }
+    std::vector<TrackedImage*> transientImages() { return {&colorTrack_, &frameTrack_}; }
+    // The push constants this frame's kernels get (object and triangles per draw).
+    gpu::MeshRasterPush push() const;
+
+    void declare(Stage stage, PassIo& io);
+    void record(Stage stage, VkCommandBuffer cmd, FrameContext& frame);
+
+private:
+    const vk::Context& ctx_;
+    RenderTarget& target_;
+    FrameUniforms& uniforms_;
+    LightMaps& maps_;
+    MeshPass& meshes_;
+    vk::DescriptorSetLayout setLayout_;
+    vk::PipelineLayout layout_;
+    vk::Pipeline depthPipeline_, idPipeline_, shadePipeline_, composePipeline_;
+    vk::Buffer depth_, ids_;
+    TrackedBuffer depthTrack_, idTrack_;
+    vk::Image color_, frame_;
+    TrackedImage colorTrack_, frameTrack_;
+    TrackedImage* hairTrack_ = nullptr;
+    const vk::Image* hairImage_ = nullptr;
+    std::vector<std::unique_ptr<Pass>> passes_;
+};
+
+}  // namespace wisp
