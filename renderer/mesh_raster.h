@@ -11,7 +11,7 @@
 //     (then the strands, which read the samples' depth buffer)
 //   hair.composite  the hair over the meshes, sRGB-encoded (hair_compose.comp)
 //   frame.copy      into the target's result, which readback and the window read
-// Its C++ twin is renderer/mesh_raster_reference.h.
+// Its C++ twin is renderer/mesh_raster_reference.h (tests/test_strand_raster.cpp compares them).
 #pragma once
 
 #include "gpu/handle.h"
@@ -63,6 +63,7 @@ public:
     // The samples' depth (float bits, pixel * samples + s), which the compute strands test against.
     TrackedBuffer& depthSamples() { return depthTrack_; }
     const vk::Buffer& depthBuffer() const { return depth_; }
+    TrackedBuffer& idSamples() { return idTrack_; }  // (pixel * samples + s): packMeshId, kNoMesh where none
     const vk::Buffer& idBuffer() const { return ids_; }
     TrackedImage& color() { return colorTrack_; }  // the meshes, resolved (RGBA16F, tone-mapped linear)
     const vk::Image& colorImage() const { return color_; }

@@ -11,6 +11,7 @@
 #include "physics/hair_scene.h"
 #include "renderer/renderer.h"
 #include "renderer/strand_raster.h"
+#include "renderer/mesh_raster_reference.h"
 #include "renderer/strand_raster_reference.h"
 #include "app/hair_source.h"
 #include "small_scene.h"
@@ -39,12 +40,12 @@ constexpr Buffer kReadBuffers[] = {Buffer::Vertices,    Buffer::Colors,    Buffe
                                    Buffer::LightColors, Buffer::Offsets,   Buffer::Fragments,
                                    Buffer::Counters,    Buffer::LightDepth, Buffer::LightOpacity};
 
-// Copies the compute path's buffers, its hair image and the meshes' depth (one sample) to the host
-// at the end of the frame that made them.
+// Copies the compute path's buffers, its hair image, the compute meshes' samples (depth and
+// triangle, one sample a pixel) and their colour to the host at the end of the frame that made them.
 class RasterReadback : public Pass {
 public:
-    RasterReadback(const vk::Context& ctx, StrandRaster& raster, RenderTarget& target)
-        : raster_(raster), target_(target), extent_(target.extent())
+    RasterReadback(const vk::Context& ctx, StrandRaster& raster, MeshRaster& meshes, RenderTarget& target)
+        : raster_(raster), meshes_(meshes), extent_(target.extent())
     {
         for (Buffer b : kReadBuffers)
             copies_[b] = ctx.createBuffer({.size = raster.buffer(b).size(), .usage = vk::kTransferDst,
@@ -54,6 +55,10 @@ public:
                                    .memory = vk::Memory::Readback, .name = "test.raster.color"});
         depth_ = ctx.createBuffer({.size = uint64_t(e.width) * e.height * 4, .usage = vk::kTransferDst,
                                    .memory = vk::Memory::Readback, .name = "test.raster.depth"});
+        ids_ = ctx.createBuffer({.size = uint64_t(e.width) * e.height * 4, .usage = vk::kTransferDst,
+                                 .memory = vk::Memory::Readback, .name = "test.raster.ids"});
+        meshColor_ = ctx.createBuffer({.size = uint64_t(e.width) * e.height * 8, .usage = vk::kTransferDst,
+                                       .memory = vk::Memory::Readback, .name = "test.raster.mesh_color"});
     }
     const char* name() const override { return "test.readback"; }
     void declare(PassIo& io) override
@@ -61,7 +66,9 @@ public:
         for (Buffer b : kReadBuffers)
             io.use(raster_.track(b), Access::TransferSrc);
         io.use(raster_.color(), Access::TransferSrc);
-        io.use(target_.depth(), Access::TransferSrc);
+        io.use(meshes_.depthSamples(), Access::TransferSrc);
+        io.use(meshes_.idSamples(), Access::TransferSrc);
+        io.use(meshes_.color(), Access::TransferSrc);
     }
     void record(VkCommandBuffer cmd, FrameContext&) override
     {
@@ -69,11 +76,13 @@ public:
             VkBufferCopy region{0, 0, raster_.buffer(b).size()};
             vkCmdCopyBuffer(cmd, raster_.buffer(b), copies_[b], 1, &region);
         }
-        VkExtent2D e = target_.extent();
+        VkExtent2D e = extent_;
         VkBufferImageCopy color{.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageExtent = {e.width, e.height, 1}};
         vkCmdCopyImageToBuffer(cmd, raster_.colorImage().get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, color_, 1, &color);
-        VkBufferImageCopy depth{.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1}, .imageExtent = {e.width, e.height, 1}};
-        vkCmdCopyImageToBuffer(cmd, target_.depthImage().get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, depth_, 1, &depth);
+        vkCmdCopyImageToBuffer(cmd, meshes_.colorImage().get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, meshColor_, 1, &color);
+        VkBufferCopy samples{0, 0, uint64_t(e.width) * e.height * 4};
+        vkCmdCopyBuffer(cmd, meshes_.depthBuffer(), depth_, 1, &samples);
+        vkCmdCopyBuffer(cmd, meshes_.idBuffer(), ids_, 1, &samples);
         vk::transferToHostBarrier(cmd);
     }
     template <typename T>
@@ -84,11 +93,19 @@ public:
         return out;
     }
     // (These two, once the frame is done, may outlive the renderer.)
-    std::vector<glm::vec4> color() const
+    std::vector<glm::vec4> color() const { return halfImage(color_); }
+    std::vector<glm::vec4> meshColor() const { return halfImage(meshColor_); }
+    std::vector<uint32_t> ids() const
+    {
+        std::vector<uint32_t> out(size_t(extent_.width) * extent_.height);
+        std::memcpy(out.data(), ids_.mapped(), out.size() * 4);
+        return out;
+    }
+    std::vector<glm::vec4> halfImage(const vk::Buffer& buffer) const
     {
         VkExtent2D e = extent_;
         std::vector<glm::vec4> out(size_t(e.width) * e.height);
-        const uint32_t* words = static_cast<const uint32_t*>(color_.mapped());
+        const uint32_t* words = static_cast<const uint32_t*>(buffer.mapped());
         for (size_t i = 0; i < out.size(); ++i)
             out[i] = glm::vec4(glm::unpackHalf2x16(words[2 * i]), glm::unpackHalf2x16(words[2 * i + 1]));
         return out;
@@ -103,10 +120,10 @@ public:
 
 private:
     StrandRaster& raster_;
-    RenderTarget& target_;
+    MeshRaster& meshes_;
     VkExtent2D extent_;
     std::map<Buffer, vk::Buffer> copies_;
-    vk::Buffer color_, depth_;
+    vk::Buffer color_, depth_, ids_, meshColor_;
 };
 
 // One compute-path frame of the small scene, its buffers read back, with the inputs the twins need.
@@ -117,6 +134,8 @@ struct RasterFrame {
     gpu::StrandRasterPush camera{}, light{};
     std::vector<glm::vec3> guides;
     std::vector<glm::uvec4> triangles;
+    gpu::MeshRasterPush meshes{};
+    reference::MeshObject head, sphere;  // as the renderer uploaded them
 
     reference::StrandVertices strands(bool fromLight) const
     {
@@ -141,7 +160,7 @@ RasterFrame renderRasterFrame(const vk::Context& ctx, const HairScene& scene, Re
     FrameContext& fc = frame.begin(renderer.transientImages());
     renderer.prepare(fc, camera, 0.0f);
     RasterFrame out;
-    out.readback = std::make_unique<RasterReadback>(ctx, *renderer.strandRaster(), renderer.target());
+    out.readback = std::make_unique<RasterReadback>(ctx, *renderer.strandRaster(), *renderer.meshRaster(), renderer.target());
     std::vector<Pass*> passes = renderer.passes();
     passes.push_back(out.readback.get());
     frame.run(fc, passes);
@@ -154,6 +173,17 @@ RasterFrame renderRasterFrame(const vk::Context& ctx, const HairScene& scene, Re
     for (const glm::vec4& p : solver.readState().positions)
         out.guides.push_back(glm::vec3(p));
     out.triangles = guideTriangles(scene.strands);
+    out.meshes = renderer.meshRaster()->push();
+    auto object = [](const Mesh& m, const std::vector<float>& scalp, uint32_t id) {
+        reference::MeshObject o{.object = id, .vertices = {}, .indices = m.indices};
+        for (size_t v = 0; v < m.positions.size(); ++v)
+            for (float x : {m.positions[v].x, m.positions[v].y, m.positions[v].z, m.normals[v].x, m.normals[v].y,
+                            m.normals[v].z, v < scalp.size() ? scalp[v] : 0.0f})
+                o.vertices.push_back(x);
+        return o;
+    };
+    out.head = object(scene.head.mesh, scalpCoverage(scene.head.mesh, scene.strands), gpu::kMeshObjectHead);
+    out.sphere = object(makeSphereMesh(), {}, gpu::kMeshObjectSphere);
     return out;
 }
 
@@ -264,6 +294,81 @@ TEST(StrandRaster, CameraKernelsMatchTheirCpuTwin)
             EXPECT_LT(sumTwin / double(pixels * 4), 2e-4);
         }
     }
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
+TEST(MeshRaster, KernelsMatchTheirCpuTwin)
+{
+    // mesh_raster.comp and mesh_shade.comp against their twin, in the compute path's frame (the
+    // head drawn in compute, one sample a pixel; shadows off: the twin shades unoccluded).
+    vk::Context ctx(test::validatedOptions());
+    HairScene scene = test::smallHairScene(60);
+    RenderSettings s = test::smallRenderSettings();
+    s.shadows.enabled = false;
+    RasterFrame f = renderRasterFrame(ctx, scene, s);
+    ASSERT_EQ(f.meshes.samples, 1u);
+    reference::MeshSamples cpu = reference::rasterMeshes(f.meshes, f.frame, {f.head});
+    std::vector<float> depth = f.readback->depth();
+    std::vector<uint32_t> ids = f.readback->ids();
+    size_t pixels = depth.size(), covered = 0, differentIds = 0;
+    double worstDepth = 0.0;
+    for (size_t p = 0; p < pixels; ++p) {
+        covered += ids[p] != gpu::kNoMesh ? 1 : 0;
+        differentIds += ids[p] != cpu.ids[p] ? 1 : 0;
+        worstDepth = std::max(worstDepth, double(std::abs(depth[p] - std::bit_cast<float>(cpu.depth[p]))));
+    }
+    EXPECT_GT(covered, pixels / 10) << "the head covers part of the picture";
+    EXPECT_LT(covered, pixels) << "and not all of it";
+    EXPECT_LE(differentIds, pixels / 2000) << "a sample on a shared edge, at most";
+    EXPECT_LT(worstDepth, 1e-6);
+
+    // The shading, from the GPU's own samples: the same surfaces, RGBA16F rounding and the two
+    // compilers' arithmetic apart; the background exactly where no mesh is.
+    reference::MeshSamples gpuSamples{cpu.depth, ids};
+    std::vector<glm::vec3> twin = reference::shadeMeshes(f.meshes, f.frame, f.head, f.sphere, gpuSamples);
+    std::vector<glm::vec4> color = f.readback->meshColor();
+    double worst = 0.0, sum = 0.0, worstBackground = 0.0;
+    for (size_t p = 0; p < pixels; ++p)
+        for (int ch = 0; ch < 3; ++ch) {
+            double d = std::abs(double(color[p][ch]) - double(twin[p][ch]));
+            worst = std::max(worst, d);
+            sum += d;
+            if (ids[p] == gpu::kNoMesh)
+                worstBackground = std::max(worstBackground, std::abs(double(color[p][ch]) - double(f.meshes.background[ch])));
+        }
+    EXPECT_LT(worst, 4e-3);
+    EXPECT_LT(sum / double(pixels * 3), 2e-4);
+    EXPECT_LT(worstBackground, 1e-3);
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
+TEST(MeshRaster, MatchesTheGraphicsMeshes)
+{
+    // The head alone, 4x MSAA, shadows on: drawn by the graphics pipeline and by compute, the same
+    // picture but for samples on the silhouette's edges and the shadows' noise there.
+    vk::Context ctx(test::validatedOptions());
+    HairScene scene = test::smallHairScene(60);
+    RenderSettings s = test::smallRenderSettings();
+    s.samples = 4;
+    s.hairRaster = HairRaster::Graphics;
+    Picture graphics = renderPicture(ctx, scene.head, s);
+    s.hairRaster = HairRaster::Compute;
+    Picture compute = renderPicture(ctx, scene.head, s);
+    ASSERT_EQ(graphics.rgba.size(), compute.rgba.size());
+    size_t differing = 0, head = 0;
+    double sum = 0.0;
+    for (size_t i = 0; i < graphics.rgba.size(); i += 4) {
+        int d = 0;
+        for (int k = 0; k < 3; ++k)
+            d = std::max(d, std::abs(int(graphics.rgba[i + k]) - int(compute.rgba[i + k])));
+        sum += d;
+        differing += d > 24 ? 1 : 0;
+        head += graphics.rgba[i] != graphics.rgba[0] ? 1 : 0;
+    }
+    double pixels = double(graphics.rgba.size() / 4);
+    EXPECT_GT(double(head) / pixels, 0.1) << "the head is in the picture";
+    EXPECT_LT(double(differing) / pixels, 0.003) << "pixels that differ clearly";
+    EXPECT_LT(sum / pixels, 0.4) << "mean difference (levels of 255)";
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 

@@ -1,6 +1,9 @@
 // tests/test_strand_raster_math.cpp: the compute strand renderer's shared math on the CPU
 // (shaders/shared/strand_raster.h): analytic coverage against exact polygon areas, seamless joints,
 // the row spans holding everything covered, and the per-pixel fragment lists (the nearest k sorted, the rest blended) against a plain sort, in any arrival order.
+// Also the compute meshes' triangles (shaders/shared/mesh_raster.h): coverage and depth against
+// ray casts, and fans without gaps.
+#include "shaders/shared/mesh_raster.h"
 #include "shaders/shared/strand_raster.h"
 
 #include <gtest/gtest.h>
@@ -207,4 +210,136 @@ TEST(RasterFragments, TheNearestKAreSortedAndTheRestBlendedWhateverTheOrder)
             EXPECT_NEAR(result.w, 1.0 - transmittance, 3e-3) << "k " << k;
         }
     }
+}
+
+// The compute meshes' triangle setup (shared/mesh_raster.h): which samples a triangle covers and
+// the depth there, against the geometry itself.
+namespace {
+
+// A perspective camera at the origin looking down -z (Vulkan's clip space: y down, depth 0..1).
+glm::mat4 testProjection(float aspect)
+{
+    float f = 1.0f / std::tan(0.5f * 0.9f), n = 0.1f, far = 10.0f;
+    glm::mat4 p(0.0f);
+    p[0][0] = f / aspect;
+    p[1][1] = -f;
+    p[2][2] = far / (n - far);
+    p[2][3] = -1.0f;
+    p[3][2] = far * n / (n - far);
+    return p;
+}
+
+}  // namespace
+
+TEST(MeshRasterMath, CoverageAndDepthFollowTheTriangle)
+{
+    // Random triangles in front of the eye, across it and behind it: every sample of a 64 x 48
+    // target is covered exactly where the ray through it hits the triangle in front of the near
+    // plane (Moller-Trumbore), but for samples within a hair of an edge; and the depth there is the
+    // hit's depth.
+    const glm::vec2 size(64.0f, 48.0f);
+    glm::mat4 projection = testProjection(size.x / size.y);
+    glm::mat4 inverse = glm::inverse(projection);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> xy(-3.0f, 3.0f), z(-6.0f, 1.5f);
+    size_t samples = 0, covered = 0, disagreements = 0, nearEdge = 0;
+    double worstDepth = 0.0;
+    for (int trial = 0; trial < 60; ++trial) {
+        glm::vec3 v[3];
+        for (glm::vec3& p : v)
+            p = {xy(rng), xy(rng), z(rng)};
+        gpu::MeshTriangle t = gpu::setupMeshTriangle(projection * glm::vec4(v[0], 1.0f), projection * glm::vec4(v[1], 1.0f),
+                                                     projection * glm::vec4(v[2], 1.0f), size);
+        if (t.det == 0.0f)
+            continue;
+        for (int y = 0; y < int(size.y); ++y)
+            for (int x = 0; x < int(size.x); ++x)
+                for (uint32_t s = 0; s < 4; ++s) {
+                    glm::vec2 pixel = glm::vec2(x, y) + gpu::meshSamplePosition(s, 4);
+                    float depth = gpu::meshSampleDepth(t, pixel, size);
+                    // The ray through the sample: from the eye through the point at depth 0.5.
+                    glm::vec2 ndc = pixel / size * 2.0f - 1.0f;
+                    glm::vec4 far = inverse * glm::vec4(ndc, 0.5f, 1.0f);
+                    glm::vec3 dir = glm::normalize(glm::vec3(far) / far.w);
+                    glm::vec3 e1 = v[1] - v[0], e2 = v[2] - v[0], pv = glm::cross(dir, e2);
+                    float det = glm::dot(e1, pv);
+                    glm::vec3 tv = -v[0];
+                    float u = glm::dot(tv, pv) / det;
+                    glm::vec3 qv = glm::cross(tv, e1);
+                    float w = glm::dot(dir, qv) / det, along = glm::dot(e2, qv) / det;
+                    glm::vec3 hit = along * dir;
+                    bool inside = u >= 0.0f && w >= 0.0f && u + w <= 1.0f && along > 0.0f;
+                    float hitDepth = 2.0f;
+                    if (inside) {
+                        glm::vec4 c = projection * glm::vec4(hit, 1.0f);
+                        hitDepth = c.z / c.w;
+                        inside = hitDepth >= 0.0f && hitDepth <= 1.0f;
+                    }
+                    float edge = std::min({std::abs(u), std::abs(w), std::abs(1.0f - u - w)});
+                    ++samples;
+                    if (inside != (depth <= 1.0f)) {
+                        if (edge < 1e-3f || std::abs(hitDepth) < 1e-4f)
+                            ++nearEdge;
+                        else
+                            ++disagreements;
+                        continue;
+                    }
+                    if (inside) {
+                        ++covered;
+                        worstDepth = std::max(worstDepth, double(std::abs(depth - hitDepth)));
+                    }
+                }
+    }
+    EXPECT_GT(covered, samples / 20) << "the triangles cover part of the target";
+    EXPECT_EQ(disagreements, 0u);
+    EXPECT_LT(nearEdge, samples / 10000 + 1);
+    EXPECT_LT(worstDepth, 1e-4);
+}
+
+TEST(MeshRasterMath, SharedEdgesLeaveNoGapAndNoOverlap)
+{
+    // A fan of triangles around a point covers every sample of the polygon once (the edge rows of
+    // two neighbours are exact negatives): no sample is missed or drawn twice inside.
+    const glm::vec2 size(80.0f, 60.0f);
+    glm::mat4 projection = testProjection(size.x / size.y);
+    const int n = 13;
+    glm::vec3 centre(0.1f, -0.05f, -3.0f);
+    std::vector<glm::vec4> rim;
+    for (int i = 0; i < n; ++i) {
+        float a = 6.2831853f * float(i) / float(n);
+        rim.push_back(projection * glm::vec4(centre + glm::vec3(1.7f * std::cos(a), 1.2f * std::sin(a), 0.3f * std::sin(3.0f * a)), 1.0f));
+    }
+    glm::vec4 c = projection * glm::vec4(centre, 1.0f);
+    auto screen = [&](glm::vec4 q) { return (glm::vec2(q) / q.w * 0.5f + 0.5f) * size; };
+    // The reference: the projected fan in 2D, a sample well inside one of its triangles (a
+    // thousandth of a pixel from every edge).
+    auto wellInside = [&](glm::vec2 p) {
+        for (int i = 0; i < n; ++i) {
+            glm::vec2 a = screen(c), b = screen(rim[size_t(i)]), d = screen(rim[size_t((i + 1) % n)]);
+            auto side = [&](glm::vec2 u, glm::vec2 v) {  // signed distance of p from the edge u -> v
+                glm::vec2 e = v - u;
+                return (e.x * (p.y - u.y) - e.y * (p.x - u.x)) / glm::length(e);
+            };
+            float s0 = side(a, b), s1 = side(b, d), s2 = side(d, a);
+            if ((s0 > 1e-3f && s1 > 1e-3f && s2 > 1e-3f) || (s0 < -1e-3f && s1 < -1e-3f && s2 < -1e-3f))
+                return true;
+        }
+        return false;
+    };
+    size_t twice = 0, inside = 0, gaps = 0;
+    for (int y = 0; y < int(size.y); ++y)
+        for (int x = 0; x < int(size.x); ++x) {
+            glm::vec2 pixel = glm::vec2(x, y) + 0.5f;
+            int hits = 0;
+            for (int i = 0; i < n; ++i) {
+                gpu::MeshTriangle t = gpu::setupMeshTriangle(c, rim[size_t(i)], rim[size_t((i + 1) % n)], size);
+                hits += gpu::meshSampleDepth(t, pixel, size) <= 1.0f ? 1 : 0;
+            }
+            inside += hits > 0 ? 1 : 0;
+            twice += hits > 1 ? 1 : 0;
+            gaps += hits == 0 && wellInside(pixel) ? 1 : 0;
+        }
+    EXPECT_EQ(gaps, 0u) << "samples inside the fan that no triangle covered";
+    EXPECT_GT(inside, size_t(size.x * size.y) / 5);
+    EXPECT_LE(twice, inside / 500) << "samples exactly on an edge count for both sides, nothing more";
 }

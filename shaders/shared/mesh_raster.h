@@ -108,13 +108,18 @@ GPU_FN mat4 meshObjectModel(uint object, mat4 headTransform, vec4 sphere, vec4 m
 
 // A triangle in homogeneous 2D: u = rows * (ndc.x, ndc.y, 1) / det are the perspective-correct
 // barycentrics scaled by 1/w; inside where all three are >= 0 and their sum > 0 (in front of the
-// eye); the depth is dot(u, z).
+// eye). Two triangles sharing an edge compute its row as exact negatives (a cross product), so
+// no sample falls between them. The depth, where all three vertices are in front of the eye, is
+// the plane through their projections (pixels relative to the first vertex: small numbers, as a
+// hardware rasterizer has them; a far head's depths differ in their fifth digit); else dot(u, z).
 struct MeshTriangle {
     vec3  row0;
     vec3  row1;
     vec3  row2;
     vec3  z;          // the vertices' clip z
     vec4  bounds;     // pixels: min x, min y, max x, max y (the whole target when a vertex is behind the eye)
+    vec4  plane;      // pixels: the first vertex's projection (xy), its depth (z), the plane's use (w: 1)
+    vec4  slopes;     // the plane: the depth's change per pixel in x and y (xy)
     float det;        // 0: edge-on or degenerate, nothing drawn
 };
 
@@ -127,11 +132,20 @@ GPU_FN MeshTriangle setupMeshTriangle(vec4 c0, vec4 c1, vec4 c2, vec2 size)
     t.row2 = cross(a, b);
     t.det = dot(a, t.row0);
     t.z = vec3(c0.z, c1.z, c2.z);
+    t.plane = vec4(0.0f);
+    t.slopes = vec4(0.0f);
     if (c0.w > 0.0f && c1.w > 0.0f && c2.w > 0.0f) {
         vec2 p0 = (vec2(c0.x, c0.y) / c0.w * 0.5f + 0.5f) * size;
         vec2 p1 = (vec2(c1.x, c1.y) / c1.w * 0.5f + 0.5f) * size;
         vec2 p2 = (vec2(c2.x, c2.y) / c2.w * 0.5f + 0.5f) * size;
         t.bounds = vec4(min(min(p0, p1), p2), max(max(p0, p1), p2));
+        vec2 e1 = p1 - p0, e2 = p2 - p0;
+        float area = e1.x * e2.y - e1.y * e2.x;
+        if (area != 0.0f) {
+            float z0 = c0.z / c0.w, dz1 = c1.z / c1.w - z0, dz2 = c2.z / c2.w - z0;
+            t.plane = vec4(p0.x, p0.y, z0, 1.0f);
+            t.slopes = vec4((dz1 * e2.y - dz2 * e1.y) / area, (dz2 * e1.x - dz1 * e2.x) / area, 0.0f, 0.0f);
+        }
     } else {
         t.bounds = vec4(0.0f, 0.0f, size.x, size.y);
     }
@@ -153,7 +167,8 @@ GPU_FN float meshSampleDepth(MeshTriangle t, vec2 pixel, vec2 size)
     vec3 u = meshTriangleWeights(t, pixel, size);
     if (u.x < 0.0f || u.y < 0.0f || u.z < 0.0f || u.x + u.y + u.z <= 0.0f)
         return 2.0f;
-    float depth = dot(u, t.z);
+    float depth = t.plane.w > 0.0f ? t.plane.z + t.slopes.x * (pixel.x - t.plane.x) + t.slopes.y * (pixel.y - t.plane.y)
+                                   : dot(u, t.z);
     return depth >= 0.0f && depth <= 1.0f ? depth : 2.0f;
 }
 
