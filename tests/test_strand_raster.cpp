@@ -451,3 +451,42 @@ TEST(StrandRaster, AFullFragmentBufferIsCountedAndGrowsForTheNextFrame)
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 
+
+TEST(StrandRaster, DeviceBytesIsWhatItAllocates)
+{
+    // The up-front estimate (StrandRaster::deviceBytes) against the buffers and image a first frame really makes: with the light's strands, without
+    // them (shadows off), on a size whose pixels do not fill the scan's blocks.
+    vk::Context ctx(test::validatedOptions());
+    HairScene scene = test::smallHairScene(150);
+    for (bool shadows : {true, false}) {
+        RenderSettings s = test::smallRenderSettings();
+        s.width = 203;
+        s.height = 97;
+        s.hairRaster = HairRaster::Compute;
+        s.shadows.enabled = shadows;
+        Renderer renderer(ctx, s, 1);
+        renderer.setHead(scene.head);
+        SimSetup setup = makeSimSetup(SimSettings{}, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
+        GpuSolver solver(ctx, scene.strands, setup, glm::mat4(1.0f));
+        renderer.attachHair(solver, scene.strands, scene.unitsPerMetre);
+        Frame frame(ctx, 1);
+        OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(s.width) / float(s.height));
+        Picture picture = renderFrame(ctx, renderer, frame, camera);
+        ASSERT_GT(picture.raster.fragments, 0u);
+        StrandRaster& raster = *renderer.strandRaster();
+        const gpu::StrandRasterPush& cam = raster.cameraPush();
+        const gpu::StrandRasterPush& light = raster.lightPush();
+        EXPECT_EQ(cam.drawnPerGuide, 8u) << "the default framing draws every strand";
+        EXPECT_EQ(light.drawnPerGuide, shadows ? 2u : 0u) << "shadow_strands 0.25 of 8";
+        uint64_t estimate = StrandRaster::deviceBytes({.extent = {s.width, s.height},
+                                                       .guides = cam.guideCount,
+                                                       .strandsPerGuide = cam.drawnPerGuide,
+                                                       .lightStrandsPerGuide = light.drawnPerGuide,
+                                                       .divisions = cam.divisions,
+                                                       .lightMapSize = s.shadows.mapSize,
+                                                       .maxStorageBufferRange = ctx.report().maxStorageBufferRange});
+        EXPECT_EQ(raster.allocatedBytes(), estimate) << "shadows " << shadows;
+        EXPECT_EQ(raster.fragmentCapacity(), picture.raster.capacity);
+    }
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
