@@ -5,6 +5,7 @@
 // correlates, and adds up to about the same), determinism, and a fragment buffer that overflows,
 // is counted and grows.
 #include "app/headless.h"
+#include "app/workload.h"
 #include "gpu/frame.h"
 #include "gpu/pipeline.h"
 #include "physics/gpu_solver.h"
@@ -454,7 +455,8 @@ TEST(StrandRaster, AFullFragmentBufferIsCountedAndGrowsForTheNextFrame)
 
 TEST(StrandRaster, DeviceBytesIsWhatItAllocates)
 {
-    // The up-front estimate (StrandRaster::deviceBytes) against the buffers and image a first frame really makes: with the light's strands, without
+    // The up-front estimate (StrandRaster::deviceBytes, which the workload's memory check sums)
+    // against the buffers and image a first frame really makes: with the light's strands, without
     // them (shadows off), on a size whose pixels do not fill the scan's blocks.
     vk::Context ctx(test::validatedOptions());
     HairScene scene = test::smallHairScene(150);
@@ -487,6 +489,10 @@ TEST(StrandRaster, DeviceBytesIsWhatItAllocates)
                                                        .maxStorageBufferRange = ctx.report().maxStorageBufferRange});
         EXPECT_EQ(raster.allocatedBytes(), estimate) << "shadows " << shadows;
         EXPECT_EQ(raster.fragmentCapacity(), picture.raster.capacity);
+        // The workload's check counts the same from the settings alone.
+        Workload w{.guides = scene.strands.strandCount(), .verticesPerStrand = scene.strands.verticesPerStrand,
+                   .sim = SimSettings{}, .render = &s};
+        EXPECT_EQ(estimateGpuMemory(w, ctx.report()).raster, raster.allocatedBytes()) << "shadows " << shadows;
     }
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
