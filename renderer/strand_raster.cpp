@@ -80,6 +80,16 @@ constexpr uint32_t kScanBlockThreads = 256;  // strands_scan.comp's blocks: 4 co
 
 }  // namespace
 
+std::string describeRasterStats(const RasterStats& s)
+{
+    std::string text = "compute raster: " + std::to_string(s.segments) + " segments on screen, " +
+                       std::to_string(s.fragments) + " hair fragments (at most " + std::to_string(s.maxPixel) +
+                       " in a pixel), buffer of " + std::to_string(s.capacity);
+    if (s.overflow > 0)
+        text += ", dropped " + std::to_string(s.overflow);
+    return text;
+}
+
 StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUniforms& uniforms, LightMaps& maps,
                            GpuSolver& solver, const std::vector<glm::uvec4>& triangles, uint32_t framesInFlight)
     : ctx_(ctx), target_(target), uniforms_(uniforms), maps_(maps), solver_(solver)

@@ -36,6 +36,7 @@
 
 #include <array>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace wisp {
@@ -57,6 +58,9 @@ struct RasterStats {
     uint64_t overflow = 0;   // fragments that did not fit: dropped that frame, the buffer grows for the next
     uint64_t maxPixel = 0;   // the most fragments one pixel held
 };
+// "compute raster: S segments on screen, F hair fragments (at most P in a pixel), buffer of C"
+// and ", dropped K" when some did not fit: the line `wisp render` prints and the window's panel shows.
+std::string describeRasterStats(const RasterStats& stats);
 
 class StrandRaster {
 public:

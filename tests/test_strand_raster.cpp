@@ -496,3 +496,15 @@ TEST(StrandRaster, DeviceBytesIsWhatItAllocates)
     }
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
+
+TEST(StrandRaster, StatsAreDescribedInOneLine)
+{
+    // The line `wisp render` prints and the window's panel shows.
+    RasterStats s{.segments = 1200, .fragments = 5000, .capacity = 8000, .overflow = 0, .maxPixel = 17};
+    EXPECT_EQ(describeRasterStats(s),
+              "compute raster: 1200 segments on screen, 5000 hair fragments (at most 17 in a pixel), buffer of 8000");
+    s.capacity = 4000;
+    s.overflow = 1000;
+    EXPECT_EQ(describeRasterStats(s), "compute raster: 1200 segments on screen, 5000 hair fragments (at most 17 in a "
+                                      "pixel), buffer of 4000, dropped 1000");
+}
