@@ -104,9 +104,7 @@ int run(const GlobalOptions& g, const RenderCommand& c)
     if (!picture.hairCounts.empty())
         std::cout << picture.hairCounts << "\n";
     if (picture.raster.capacity > 0) {
-        std::cout << "compute raster: " << picture.raster.segments << " segments on screen, " << picture.raster.fragments
-                  << " hair fragments (at most " << picture.raster.maxPixel << " in a pixel), buffer of "
-                  << picture.raster.capacity << "\n";
+        std::cout << describeRasterStats(picture.raster) << "\n";
         if (picture.raster.overflow > 0)
             std::cerr << "wisp: warning: the compute path's fragment buffer was full: " << picture.raster.overflow << " of "
                       << picture.raster.fragments << " hair fragments were dropped ('" << ctx.report().name

@@ -6,7 +6,9 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "renderer/hair_pass.h"
+#include "renderer/settings.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 #include <sys/wait.h>
@@ -59,7 +61,7 @@ public:
         if (!existed_)
             std::filesystem::remove_all(dir_, ec);
         else
-            for (const char* name : {"results.csv", "fps.png", "passes.png"})
+            for (const char* name : {"results.csv", "fps.png", "frame.png", "passes.png"})
                 std::filesystem::remove(dir_ / name, ec);
     }
     OutputFolder(const OutputFolder&) = delete;
@@ -72,6 +74,61 @@ private:
     bool done_ = false;
 };
 
+// What one point of the grid measured.
+struct SweepPoint {
+    std::vector<std::string> values;  // one per axis
+    std::vector<PassTiming> timings;  // the passes it ran, in their order, then the frame
+    OitStats oit;
+    RasterStats raster;
+    HairRaster drawn = HairRaster::Graphics;  // hair_raster as resolved for the device (auto: compute)
+    uint64_t strands = 0;
+    uint64_t segments = 0;
+    uint32_t width = 0;
+    uint32_t height = 0;
+};
+
+// The pass columns: every pass some point ran, in the order first seen, then the frame.
+std::vector<std::string> passColumns(const std::vector<SweepPoint>& points)
+{
+    std::vector<std::string> columns;
+    for (const SweepPoint& p : points)
+        for (const PassTiming& t : p.timings)
+            if (t.name != "frame" && std::find(columns.begin(), columns.end(), t.name) == columns.end())
+                columns.push_back(t.name);
+    columns.push_back("frame");
+    return columns;
+}
+
+std::string resultsCsv(const vk::Context& ctx, const std::vector<SweepAxis>& axes, const std::vector<SweepPoint>& points)
+{
+    std::vector<std::string> passes = passColumns(points);
+    std::ostringstream csv;
+    for (const SweepAxis& a : axes)
+        csv << a.name << ",";
+    for (const std::string& p : passes)
+        csv << p << "_ms_median," << p << "_ms_p95,";
+    csv << "fps,strands,segments,oit_fragments,oit_overflow,raster_segments,raster_fragments,raster_overflow,"
+           "hair_raster_drawn,width,height,device,driver\n";
+    for (const SweepPoint& point : points) {
+        for (const std::string& v : point.values)
+            csv << v << ",";
+        double frameMs = 0.0;
+        for (const std::string& p : passes) {
+            auto t = std::find_if(point.timings.begin(), point.timings.end(), [&](const PassTiming& x) { return x.name == p; });
+            bool ran = t != point.timings.end();  // a pass this point did not run counts 0
+            csv << (ran ? t->medianMs : 0.0) << "," << (ran ? t->p95Ms : 0.0) << ",";
+            if (p == "frame" && ran)
+                frameMs = t->medianMs;
+        }
+        csv << (frameMs > 0.0 ? 1000.0 / frameMs : 0.0) << "," << point.strands << "," << point.segments << ","
+            << point.oit.fragments << "," << point.oit.overflow << "," << point.raster.segments << ","
+            << point.raster.fragments << "," << point.raster.overflow << ","
+            << (point.drawn == HairRaster::Compute ? "compute" : "graphics") << "," << point.width << "," << point.height
+            << ",\"" << ctx.report().name << "\",\"" << ctx.report().driverInfo << "\"\n";
+    }
+    return csv.str();
+}
+
 }  // namespace
 
 int runSweep(const vk::Context& ctx, const SweepOptions& o, const SessionOptions& base)
@@ -81,56 +138,38 @@ int runSweep(const vk::Context& ctx, const SweepOptions& o, const SessionOptions
     for (const SweepAxis& a : o.axes)
         points *= a.values.size();
 
-    std::ostringstream csv;
-    // Every pass a frame may run (zero where a mode skips it), then the frame.
-    std::vector<std::string> passColumns = {"physics", "shadow",      "opacity",       "oit.clear", "meshes",
-                                            "hair",    "oit.resolve", "oit.composite", "oit.stats", "frame"};
-    for (const SweepAxis& a : o.axes)
-        csv << a.name << ",";
-    for (const std::string& p : passColumns)
-        csv << p << "_ms_median," << p << "_ms_p95,";
-    csv << "fps,strands,segments,oit_fragments,oit_overflow,width,height,device,driver\n";
-
+    // Every point first: the columns are the passes any of them ran.
+    std::vector<SweepPoint> measured;
     for (size_t index = 0; index < points; ++index) {
         Settings settings = base.settings;
         const RenderSettings& render = settings.render;
-        std::vector<std::string> values;
+        SweepPoint point;
         size_t rest = index;
         for (const SweepAxis& a : o.axes) {
-            values.push_back(a.values[rest % a.values.size()]);
+            point.values.push_back(a.values[rest % a.values.size()]);
             rest /= a.values.size();
-            applySetting(settings, a.name + "=" + values.back());
+            applySetting(settings, a.name + "=" + point.values.back());
         }
         std::fprintf(stderr, "sweep: point %zu/%zu:", index + 1, points);
         for (size_t i = 0; i < o.axes.size(); ++i)
-            std::fprintf(stderr, " %s=%s", o.axes[i].name.c_str(), values[i].c_str());
+            std::fprintf(stderr, " %s=%s", o.axes[i].name.c_str(), point.values[i].c_str());
         std::fprintf(stderr, "\n");
 
         HairSession session(ctx, base.source.buildScene(settings), settings.sim,
                             stillTimeline(base.source.sphere, settings.sim.wind, render.light), base.source);
-        OitStats oit;
-        std::vector<PassTiming> timings = profileFrames(ctx, session, render, 30.0f, o.warmup, o.frames, &oit);
+        point.timings = profileFrames(ctx, session, render, 30.0f, o.warmup, o.frames, &point.oit, &point.raster);
+        point.drawn = resolveHairRaster(render.hairRaster, ctx.report().type);
         HairDrawCounts counts = hairDrawCounts(uint32_t(session.scene().strands.strandCount()), render.strands);
-        for (const std::string& v : values)
-            csv << v << ",";
-        double frameMs = 0.0;
-        for (const std::string& p : passColumns) {
-            const PassTiming* t = nullptr;
-            for (const PassTiming& x : timings)
-                if (x.name == p)
-                    t = &x;
-            csv << (t ? t->medianMs : 0.0) << "," << (t ? t->p95Ms : 0.0) << ",";
-            if (p == "frame" && t)
-                frameMs = t->medianMs;
-        }
-        csv << (frameMs > 0.0 ? 1000.0 / frameMs : 0.0) << "," << counts.strands() << "," << counts.segments() << ","
-            << oit.fragments << "," << oit.overflow << "," << render.width << "," << render.height << ",\"" << ctx.report().name << "\",\"" << ctx.report().driverInfo
-            << "\"\n";
+        point.strands = counts.strands();
+        point.segments = counts.segments();
+        point.width = render.width;
+        point.height = render.height;
+        measured.push_back(std::move(point));
     }
 
     // results.csv appears whole or not at all.
     std::filesystem::path csvPath = o.outDir / "results.csv";
-    writeFileAtomically(csvPath, csv.str());
+    writeFileAtomically(csvPath, resultsCsv(ctx, o.axes, measured));
     folder.keep();  // the results are whole: the charts failing below leaves them
     std::printf("%s\n", csvPath.string().c_str());
 

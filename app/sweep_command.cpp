@@ -61,7 +61,8 @@ CommandRun addSweepCommand(CLI::App& app, const GlobalOptions& global)
 {
     auto c = std::make_shared<SweepCommand>();
     CLI::App* cmd = app.add_subcommand(
-        "sweep", "per-pass GPU timings over a grid of settings: results.csv, fps.png and passes.png (python3-matplotlib)");
+        "sweep",
+        "per-pass GPU timings over a grid of settings: results.csv, fps.png, frame.png and passes.png (python3-matplotlib)");
     c->command = cmd;
     cmd->add_option("--out", c->out, "output folder (created)")->required();
     cmd->add_option("--vary", c->varies, "NAME=V1,V2,... for a setting from 'wisp settings'; several make a grid")->required();

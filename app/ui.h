@@ -2,9 +2,10 @@
 // Vulkan backends (compiled from Debian's libimgui-dev sources, 1.86, which draw inside a render
 // pass: one render pass and framebuffer over the render target's resolved image), and is a Pass
 // that draws the panel last, over the scene. The panel shows the state, the help line, the counts
-// (guides, strands drawn, segments, OIT fragments and overflow), per-pass GPU times with a graph,
-// and every setting of `wisp settings` as the control its type calls for (app/settings_table.h's
-// panelControl: sliders, checkboxes, lists, colours), section by section.
+// (guides, strands drawn, segments, the OIT lists' or the compute raster's fragments and overflow),
+// per-pass GPU times with a graph, and every setting of `wisp settings` as the control its type
+// calls for (app/settings_table.h's panelControl: sliders, checkboxes, lists, colours), section by
+// section.
 #pragma once
 
 #include "app/settings_table.h"

@@ -307,9 +307,15 @@ void Window::buildPanel(const std::vector<std::string>& scriptedSets)
                                std::to_string(session_.scene().strands.verticesPerStrand) + " vertices, simulated");
         panel.counts.push_back("strands drawn " + std::to_string(c.strands()) + " (" + std::to_string(c.strandsPerGuide) +
                                " per guide, before LOD), segments " + std::to_string(c.segments()));
-        if (oit.capacity > 0)
+        // The hair's fragments as the path that draws it holds them (the other reports zeros).
+        if (renderer_->hairRaster() == HairRaster::Compute) {
+            RasterStats raster = renderer_->rasterStats(framesDrawn_ % kFramesInFlight);
+            if (raster.capacity > 0)
+                panel.counts.push_back(describeRasterStats(raster));
+        } else if (oit.capacity > 0) {
             panel.counts.push_back("OIT fragments " + std::to_string(oit.fragments) + " of a pool of " +
                                    std::to_string(oit.capacity) + ", dropped " + std::to_string(oit.overflow));
+        }
     }
     for (const vk::ScopeTime& t : frame_.timings())
         panel.passes.emplace_back(t.name, t.milliseconds);

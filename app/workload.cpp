@@ -1,6 +1,6 @@
 // app/workload.cpp: a workload's 32-bit counts and its GPU memory, summed from what each owner
-// says it allocates (solverDeviceBytes, HairPass, GuidePass, RenderTarget, LightMaps and Oit's
-// deviceBytes, each in its own formats) and checked against the device up front.
+// says it allocates (solverDeviceBytes, HairPass, GuidePass, RenderTarget, LightMaps, Oit and
+// StrandRaster's deviceBytes, each in its own formats) and checked against the device up front.
 #include "app/workload.h"
 
 #include "core/error.h"
@@ -10,8 +10,11 @@
 #include "renderer/light_maps.h"
 #include "renderer/oit.h"
 #include "renderer/render_target.h"
+#include "renderer/mesh_raster.h"
+#include "renderer/strand_raster.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <string>
 
@@ -31,10 +34,22 @@ std::string mib(uint64_t bytes)
     return std::to_string(mebibytes(bytes)) + " MiB";
 }
 
+bool drawnInCompute(const Workload& w, const vk::DeviceReport& device)
+{
+    return w.render && w.guides > 0 && resolveHairRaster(w.render->hairRaster, device.type) == HairRaster::Compute;
+}
+
 }  // namespace
 
-// Each owner states what it allocates, in its own formats, beside the allocation.
 GpuMemory estimateGpuMemory(const Workload& w)
+{
+    vk::DeviceReport any;
+    any.maxStorageBufferRange = std::numeric_limits<uint32_t>::max();
+    return estimateGpuMemory(w, any);
+}
+
+// Each owner states what it allocates, in its own formats, beside the allocation.
+GpuMemory estimateGpuMemory(const Workload& w, const vk::DeviceReport& device)
 {
     GpuMemory m;
     uint64_t grid = uint64_t(w.sim.gridResolution) * w.sim.gridResolution * w.sim.gridResolution;
@@ -49,6 +64,23 @@ GpuMemory estimateGpuMemory(const Workload& w)
     m.lightMaps = LightMaps::deviceBytes(r.shadows.mapSize);
     if (r.transparency.mode == Transparency::Oit)
         m.oit = Oit::deviceBytes(extent, r.transparency.oitNodesPerPixel);
+    if (drawnInCompute(w, device)) {
+        // Every strand at full detail (LOD draws fewer); the light's share as Renderer::prepare
+        // draws them: at least one a guide, none with shadows off.
+        uint32_t perGuide = r.strands.strandsPerGuide;
+        uint32_t light = std::min(perGuide, uint32_t(std::ceil(std::max(1.0f, float(perGuide) * r.shadows.strandFraction))));
+        m.raster = StrandRaster::deviceBytes({.extent = extent,
+                                              .guides = w.guides,
+                                              .strandsPerGuide = perGuide,
+                                              .lightStrandsPerGuide = r.shadows.enabled ? light : 0,
+                                              .divisions = r.strands.divisions,
+                                              .lightMapSize = r.shadows.mapSize,
+                                              .samples = std::max<uint32_t>(r.samples, 1),
+                                              .maxStorageBufferRange = device.maxStorageBufferRange});
+        // The meshes drawn in compute beside it (unless the guides are shown).
+        if (!r.strands.showGuides)
+            m.raster += MeshRaster::deviceBytes(extent, std::max<uint32_t>(r.samples, 1));
+    }
     return m;
 }
 
@@ -72,7 +104,7 @@ void checkCounts(const Workload& w)
 void checkWorkload(const Workload& w, const vk::DeviceReport& device)
 {
     checkCounts(w);
-    GpuMemory m = estimateGpuMemory(w);
+    GpuMemory m = estimateGpuMemory(w, device);
     if (m.total() <= device.deviceLocalBytes)
         return;
     std::string parts = "simulation " + mib(m.simulation) + " for " + std::to_string(w.guides) + " guides x " +
@@ -84,6 +116,13 @@ void checkWorkload(const Workload& w, const vk::DeviceReport& device)
                  std::to_string(w.render->height) + " x " + std::to_string(w.render->samples) + " samples), light maps " +
                  mib(m.lightMaps) + ", OIT " + mib(m.oit);
         lower += ", the size, samples, shadow_size or oit_nodes_per_pixel";
+        if (drawnInCompute(w, device)) {
+            const StrandSettings& s = w.render->strands;
+            parts += ", compute raster " + mib(m.raster) + " (" + std::to_string(w.guides * s.strandsPerGuide) +
+                     " strands x " + std::to_string(s.divisions) + " divisions)";
+            lower = "lower --guides, --vertices or --grid, strands_per_guide, divisions, the size, samples, shadow_size "
+                    "or oit_nodes_per_pixel";
+        }
     }
     throw UserError("the workload needs " + mib(m.total()) + " of GPU memory (" + parts + "), but '" + device.name +
                     "' has " + mib(device.deviceLocalBytes) + "; " + lower);

@@ -31,17 +31,24 @@ struct GpuMemory {
     uint64_t target = 0;      // MSAA colour and depth, the resolved colour
     uint64_t lightMaps = 0;   // the light's two depth maps and its opacity layers
     uint64_t oit = 0;         // list heads, resolved colour, and the node pool when its size is set
-                              // (an automatic pool takes what the device allows: at least a node a pixel)
-    uint64_t total() const { return simulation + hair + target + lightMaps + oit; }
+                              // (an automatic pool takes what the device allows: at least a node a pixel);
+                              // made with transparency=oit whichever path draws the hair
+    uint64_t raster = 0;      // the compute path's strand vertices (camera and light), per-pixel buffers,
+                              // first fragment buffer, light buffers and hair image, when it draws the hair
+    uint64_t total() const { return simulation + hair + target + lightMaps + oit + raster; }
 };
 
+// On `device` (hair_raster=auto resolved for its type, the fragment buffer within its storage-buffer
+// range); without one, on a device of no type with a 4 GiB range.
+GpuMemory estimateGpuMemory(const Workload& w, const vk::DeviceReport& device);
 GpuMemory estimateGpuMemory(const Workload& w);
 
 // Throws UserError when the drawn strands (guides x strands_per_guide) or their segments
 // (x divisions) pass 2^32 - 1: strands are numbered in 32 bits on the GPU.
 void checkCounts(const Workload& w);
 // checkCounts, then the memory: throws UserError "the workload needs N MiB of GPU memory
-// (simulation A MiB, ...), but 'DEVICE' has M MiB; ..." when it is more than the device has.
+// (simulation A MiB, ..., compute raster R MiB), but 'DEVICE' has M MiB; lower ..." when it is more
+// than the device has.
 void checkWorkload(const Workload& w, const vk::DeviceReport& device);
 
 }  // namespace wisp

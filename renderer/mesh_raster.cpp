@@ -123,6 +123,12 @@ void MeshRaster::resize()
     frameTrack_ = {.image = frame_.get()};
 }
 
+uint64_t MeshRaster::allocatedBytes() const
+{
+    uint64_t pixels = uint64_t(color_.extent().width) * color_.extent().height;
+    return depth_.size() + ids_.size() + pixels * (vk::formatBytes(color_.format()) + vk::formatBytes(frame_.format()));
+}
+
 gpu::MeshRasterPush MeshRaster::push() const
 {
     VkExtent2D e = target_.extent();

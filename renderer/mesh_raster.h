@@ -68,6 +68,8 @@ public:
     TrackedImage& color() { return colorTrack_; }  // the meshes, resolved (RGBA16F, tone-mapped linear)
     const vk::Image& colorImage() const { return color_; }
     std::vector<TrackedImage*> transientImages() { return {&colorTrack_, &frameTrack_}; }
+    // The bytes of the buffers and images it holds (what deviceBytes estimates).
+    uint64_t allocatedBytes() const;
     // The push constants this frame's kernels get (object and triangles per draw).
     gpu::MeshRasterPush push() const;
 

@@ -86,14 +86,6 @@ gpu::FrameParams pack(const RenderSettings& s, const OrbitCamera& camera, VkExte
     return p;
 }
 
-HairRaster resolveHairRaster(HairRaster setting, VkPhysicalDeviceType deviceType)
-{
-    // Measured (README, "Two ways to draw strands"): compute is the faster on every device tried,
-    // the H100 (6 to 10 times) and lavapipe (about 13 times), whatever the workload.
-    (void)deviceType;
-    return setting == HairRaster::Auto ? HairRaster::Compute : setting;
-}
-
 Renderer::Renderer(const vk::Context& ctx, const RenderSettings& settings, uint32_t framesInFlight)
     : ctx_(ctx), settings_(settings), uniforms_(ctx, framesInFlight), framesInFlight_(framesInFlight)
 {

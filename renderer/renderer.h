@@ -41,10 +41,6 @@ struct LightFit {
     float unitsPerMetre = 1.0f;
 };
 
-// What hair_raster=auto draws with on a device of this type: compute, the faster on every device
-// measured (the H100, lavapipe).
-HairRaster resolveHairRaster(HairRaster setting, VkPhysicalDeviceType deviceType);
-
 // Turns the human-facing settings and the camera into the GPU's per-frame block, all but the hair
 // material (`hair`: the Renderer packs it when the look changes, not every frame).
 gpu::FrameParams pack(const RenderSettings& settings, const OrbitCamera& camera, VkExtent2D extent, float timeSeconds,

@@ -8,6 +8,7 @@
 #include "shading/hair_look.h"
 
 #include <glm/glm.hpp>
+#include <vulkan/vulkan_core.h>
 
 #include <cstdint>
 #include <string>
@@ -72,6 +73,16 @@ struct TransparencySettings {
 // How the hair is drawn: the tessellation and geometry stages (hair_pass.cpp), or entirely in
 // compute (strand_raster.cpp); auto picks the faster on the device (resolveHairRaster).
 enum class HairRaster { Graphics, Compute, Auto };
+
+// What hair_raster=auto draws with on a device of this type: compute, the faster on every device
+// measured (README, "Two ways to draw strands": the H100 6 to 10 times, lavapipe about 13 times,
+// whatever the workload). Here, not in renderer.cpp, so that the workload's memory (app/workload.cpp,
+// without a device) counts the path that will draw.
+constexpr HairRaster resolveHairRaster(HairRaster setting, VkPhysicalDeviceType deviceType)
+{
+    (void)deviceType;
+    return setting == HairRaster::Auto ? HairRaster::Compute : setting;
+}
 
 struct RenderSettings {
     uint32_t width = 1280;

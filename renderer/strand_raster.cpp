@@ -80,6 +80,16 @@ constexpr uint32_t kScanBlockThreads = 256;  // strands_scan.comp's blocks: 4 co
 
 }  // namespace
 
+std::string describeRasterStats(const RasterStats& s)
+{
+    std::string text = "compute raster: " + std::to_string(s.segments) + " segments on screen, " +
+                       std::to_string(s.fragments) + " hair fragments (at most " + std::to_string(s.maxPixel) +
+                       " in a pixel), buffer of " + std::to_string(s.capacity);
+    if (s.overflow > 0)
+        text += ", dropped " + std::to_string(s.overflow);
+    return text;
+}
+
 StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUniforms& uniforms, LightMaps& maps,
                            GpuSolver& solver, const std::vector<glm::uvec4>& triangles, uint32_t framesInFlight)
     : ctx_(ctx), target_(target), uniforms_(uniforms), maps_(maps), solver_(solver)
@@ -160,7 +170,7 @@ void StrandRaster::allocate(Storage& storage, uint64_t bytes, VkBufferUsageFlags
 {
     if (frame && storage.buffer)
         frame->retire(std::move(storage.buffer));
-    storage.buffer = ctx_.createBuffer({.size = std::max<uint64_t>(bytes, 16), .usage = usage, .name = name});
+    storage.buffer = ctx_.createBuffer({.size = bufferBytes(bytes), .usage = usage, .name = name});
     storage.track = {.buffer = storage.buffer};
 }
 
@@ -169,14 +179,15 @@ void StrandRaster::resize()
     VkExtent2D e = target_.extent();
     uint64_t pixels = uint64_t(e.width) * e.height;
     uint64_t blocks = (pixels + 1 + gpu::kRasterScanBlock - 1) / gpu::kRasterScanBlock;
-    allocate(counts_, (pixels + 1) * 4, vk::kStorage | vk::kTransferDst, "strands.counts", nullptr);
-    allocate(offsets_, (pixels + 1) * 4, vk::kStorage | vk::kTransferSrc, "strands.offsets", nullptr);
-    allocate(depthRange_, pixels * 8, vk::kStorage, "strands.depth_range", nullptr);
-    allocate(blockSums_, blocks * 4, vk::kStorage, "strands.block_sums", nullptr);
-    allocate(meshSamples_, pixels * uint32_t(target_.samples()) * 4, vk::kStorage, "strands.mesh_samples", nullptr);
+    allocate(counts_, (pixels + 1) * sizeof(uint32_t), vk::kStorage | vk::kTransferDst, "strands.counts", nullptr);
+    allocate(offsets_, (pixels + 1) * sizeof(uint32_t), vk::kStorage | vk::kTransferSrc, "strands.offsets", nullptr);
+    allocate(depthRange_, pixels * 2 * sizeof(float), vk::kStorage, "strands.depth_range", nullptr);
+    allocate(blockSums_, blocks * sizeof(uint32_t), vk::kStorage, "strands.block_sums", nullptr);
+    allocate(meshSamples_, pixels * uint32_t(target_.samples()) * sizeof(uint32_t), vk::kStorage,
+             "strands.mesh_samples", nullptr);
     // The count past the last pixel is always 0 (its offset is the total): zeroed once.
     ctx_.submitAndWait([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, counts_.buffer, 0, VK_WHOLE_SIZE, 0); });
-    color_ = ctx_.createImage({.format = VK_FORMAT_R16G16B16A16_SFLOAT,
+    color_ = ctx_.createImage({.format = kColorFormat,
                                .extent = e,
                                .usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                                         VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
@@ -209,6 +220,15 @@ StrandRaster::Storage& StrandRaster::storage(Buffer which)
     return counters_;
 }
 
+uint64_t StrandRaster::allocatedBytes() const
+{
+    uint64_t bytes = triangles_.size() + uint64_t(color_.extent().width) * color_.extent().height * vk::formatBytes(color_.format());
+    for (const Storage* s : {&vertices_, &colors_, &lightVertices_, &lightColors_, &counts_, &offsets_, &fragments_,
+                             &counters_, &depthRange_, &blockSums_, &lightDepth_, &lightOpacity_, &meshSamples_})
+        bytes += s->buffer ? s->buffer.size() : 0;
+    return bytes;
+}
+
 Pass* StrandRaster::pass(Stage stage)
 {
     return passes_[size_t(stage)].get();
@@ -229,33 +249,34 @@ void StrandRaster::prepare(FrameContext& frame, gpu::StrandRasterPush camera, gp
     VkExtent2D e = target_.extent();
     uint64_t cameraVertices = uint64_t(camera.guideCount) * camera.drawnPerGuide * (camera.divisions + 1);
     uint64_t lightVertices = uint64_t(light.guideCount) * light.drawnPerGuide * (light.divisions + 1);
-    if (!vertices_.buffer || vertices_.buffer.size() < cameraVertices * sizeof(glm::vec4)) {
-        allocate(vertices_, cameraVertices * sizeof(glm::vec4), vk::kStorage | vk::kTransferSrc, "strands.vertices", &frame);
-        allocate(colors_, cameraVertices * 4, vk::kStorage | vk::kTransferSrc, "strands.colors", &frame);
+    if (!vertices_.buffer || vertices_.buffer.size() < cameraVertices * kVertexBytes) {
+        allocate(vertices_, cameraVertices * kVertexBytes, vk::kStorage | vk::kTransferSrc, "strands.vertices", &frame);
+        allocate(colors_, cameraVertices * kColorBytes, vk::kStorage | vk::kTransferSrc, "strands.colors", &frame);
     }
-    if (!lightVertices_.buffer || lightVertices_.buffer.size() < lightVertices * sizeof(glm::vec4)) {
-        allocate(lightVertices_, lightVertices * sizeof(glm::vec4), vk::kStorage | vk::kTransferSrc, "strands.light_vertices", &frame);
-        allocate(lightColors_, lightVertices * 4, vk::kStorage | vk::kTransferSrc, "strands.light_colors", &frame);
+    if (!lightVertices_.buffer || lightVertices_.buffer.size() < lightVertices * kVertexBytes) {
+        allocate(lightVertices_, lightVertices * kVertexBytes, vk::kStorage | vk::kTransferSrc, "strands.light_vertices", &frame);
+        allocate(lightColors_, lightVertices * kColorBytes, vk::kStorage | vk::kTransferSrc, "strands.light_colors", &frame);
     }
     if (lightSize_ != maps_.size()) {
         lightSize_ = maps_.size();
         uint64_t texels = uint64_t(lightSize_) * lightSize_;
-        allocate(lightDepth_, texels * 4, vk::kStorage | vk::kTransferDst | vk::kTransferSrc, "strands.light_depth", &frame);
-        allocate(lightOpacity_, texels * 16, vk::kStorage | vk::kTransferDst | vk::kTransferSrc, "strands.light_opacity", &frame);
+        allocate(lightDepth_, texels * kLightDepthBytes, vk::kStorage | vk::kTransferDst | vk::kTransferSrc,
+                 "strands.light_depth", &frame);
+        allocate(lightOpacity_, texels * kLightOpacityBytes, vk::kStorage | vk::kTransferDst | vk::kTransferSrc,
+                 "strands.light_opacity", &frame);
     }
     // The fragments: room for what this slot's last frame needed (it has completed), with some to
     // spare; at first a few per segment. Never past what one buffer may hold.
     uint64_t segments = uint64_t(camera.guideCount) * camera.drawnPerGuide * camera.divisions;
-    uint64_t limit = std::min<uint64_t>(ctx_.report().maxStorageBufferRange, 0xffffffffull) / 8;
-    uint64_t wanted = forcedCapacity_ > 0 ? forcedCapacity_
-                                          : std::max(kMinFragments, segments * kInitialFragmentsPerSegment);
+    uint64_t limit = fragmentLimit(ctx_.report().maxStorageBufferRange);
+    uint64_t wanted = forcedCapacity_ > 0 ? forcedCapacity_ : initialFragments(segments, ctx_.report().maxStorageBufferRange);
     RasterStats last = stats(frame.slot);
     if (last.fragments > fragmentCapacity_)
         wanted = std::max(wanted, last.fragments + last.fragments / 4);
     wanted = std::min(wanted, limit);
     if (wanted > fragmentCapacity_ || !fragments_.buffer) {
         fragmentCapacity_ = std::max(wanted, fragmentCapacity_);
-        allocate(fragments_, fragmentCapacity_ * 8, vk::kStorage | vk::kTransferSrc, "strands.fragments", &frame);
+        allocate(fragments_, fragmentCapacity_ * kFragmentBytes, vk::kStorage | vk::kTransferSrc, "strands.fragments", &frame);
     }
     // oit_k is the resolve's specialization constant.
     uint32_t k = std::clamp(camera.oitK, 1u, gpu::kMaxOitK);

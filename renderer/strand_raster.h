@@ -36,6 +36,7 @@
 
 #include <array>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace wisp {
@@ -57,6 +58,9 @@ struct RasterStats {
     uint64_t overflow = 0;   // fragments that did not fit: dropped that frame, the buffer grows for the next
     uint64_t maxPixel = 0;   // the most fragments one pixel held
 };
+// "compute raster: S segments on screen, F hair fragments (at most P in a pixel), buffer of C"
+// and ", dropped K" when some did not fit: the line `wisp render` prints and the window's panel shows.
+std::string describeRasterStats(const RasterStats& stats);
 
 class StrandRaster {
 public:
@@ -73,6 +77,62 @@ public:
     // kInitialFragmentsPerSegment per segment drawn.
     static constexpr uint64_t kMinFragments = 1u << 18;
     static constexpr uint64_t kInitialFragmentsPerSegment = 8;
+    // What each buffer holds per item (shaders/shared/strand_raster.h's bindings).
+    static constexpr uint64_t kVertexBytes = sizeof(glm::vec4);           // a strand vertex, projected
+    static constexpr uint64_t kColorBytes = sizeof(uint32_t);             // its packed colour and opacity
+    static constexpr uint64_t kFragmentBytes = 2 * sizeof(uint32_t);      // depth bits, packed colour and opacity
+    static constexpr uint64_t kLightDepthBytes = sizeof(float);           // a light texel's first hair depth
+    static constexpr uint64_t kLightOpacityBytes = 4 * sizeof(uint32_t);  // its opacity layers, fixed point
+    static constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // the hair image, premultiplied
+
+    // A buffer's size as allocated: never empty.
+    static constexpr uint64_t bufferBytes(uint64_t bytes) { return bytes > 16 ? bytes : 16; }
+    // The most fragments one buffer may hold on a device of this storage-buffer range.
+    static constexpr uint64_t fragmentLimit(uint64_t maxStorageBufferRange)
+    {
+        return (maxStorageBufferRange < 0xffffffffull ? maxStorageBufferRange : 0xffffffffull) / kFragmentBytes;
+    }
+    // The fragment buffer a first frame of `segments` segments gets.
+    static constexpr uint64_t initialFragments(uint64_t segments, uint64_t maxStorageBufferRange)
+    {
+        uint64_t wanted = segments * kInitialFragmentsPerSegment > kMinFragments ? segments * kInitialFragmentsPerSegment
+                                                                                 : kMinFragments;
+        uint64_t limit = fragmentLimit(maxStorageBufferRange);
+        return wanted < limit ? wanted : limit;
+    }
+
+    // What the compute path allocates on the device for a first frame (the fragment buffer grows
+    // past it when a frame needs more): allocatedBytes() sums the same buffers as they are made.
+    struct DeviceSizes {
+        VkExtent2D extent{};
+        uint64_t guides = 0;
+        uint32_t strandsPerGuide = 0;       // drawn for the camera (all of them at full detail)
+        uint32_t lightStrandsPerGuide = 0;  // drawn into the light's maps (0: shadows off)
+        uint32_t divisions = 0;
+        uint32_t lightMapSize = 0;          // shadow_size: texels per side
+        uint32_t samples = 1;               // the target's MSAA samples (the meshes' depth samples)
+        uint64_t maxStorageBufferRange = 0xffffffffull;
+    };
+    static constexpr uint64_t deviceBytes(const DeviceSizes& s)
+    {
+        uint64_t pixels = uint64_t(s.extent.width) * s.extent.height;
+        uint64_t blocks = (pixels + 1 + gpu::kRasterScanBlock - 1) / gpu::kRasterScanBlock;
+        uint64_t texels = uint64_t(s.lightMapSize) * s.lightMapSize;
+        uint64_t cameraVertices = s.guides * s.strandsPerGuide * (s.divisions + 1);
+        uint64_t lightVertices = s.guides * s.lightStrandsPerGuide * (s.divisions + 1);
+        uint64_t segments = s.guides * s.strandsPerGuide * s.divisions;
+        return s.guides * sizeof(glm::uvec4) +  // each guide's triangle of guides
+               bufferBytes(sizeof(gpu::RasterCounters)) +
+               bufferBytes(cameraVertices * kVertexBytes) + bufferBytes(cameraVertices * kColorBytes) +
+               bufferBytes(lightVertices * kVertexBytes) + bufferBytes(lightVertices * kColorBytes) +
+               2 * bufferBytes((pixels + 1) * sizeof(uint32_t)) +  // counts, offsets (and the total past the last)
+               bufferBytes(pixels * 2 * sizeof(float)) +           // each pixel's mesh depth range
+               bufferBytes(blocks * sizeof(uint32_t)) +            // the scan's block sums
+               bufferBytes(pixels * (s.samples > 1 ? s.samples : 1) * sizeof(uint32_t)) +  // the meshes' depth samples
+               bufferBytes(texels * kLightDepthBytes) + bufferBytes(texels * kLightOpacityBytes) +
+               bufferBytes(initialFragments(segments, s.maxStorageBufferRange) * kFragmentBytes) +
+               pixels * vk::formatBytes(kColorFormat);
+    }
 
     // `triangles`: each guide and its two neighbours (guideTriangles), for multi-strand interpolation.
     StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUniforms& uniforms, LightMaps& maps,
@@ -102,6 +162,9 @@ public:
     const vk::Image& colorImage() const { return color_; }
     RasterStats stats(uint32_t slot) const;
     uint64_t fragmentCapacity() const { return fragmentCapacity_; }
+    // The bytes of the device-local buffers and the image it holds now (what deviceBytes
+    // estimates; the host-visible counters' readback is not counted).
+    uint64_t allocatedBytes() const;
 
     // The buffers, for tests that read them back (tests/test_strand_raster.cpp).
     enum class Buffer { Vertices, Colors, LightVertices, LightColors, Offsets, Fragments, Counters, LightDepth, LightOpacity };

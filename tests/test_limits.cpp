@@ -149,8 +149,10 @@ TEST(Workload, RenderMemoryByHand)
     r.transparency.oitNodesPerPixel = 10;
     SimSettings sim;
     sim.gridResolution = 8;
+    r.hairRaster = HairRaster::Graphics;  // (the compute path's buffers: ComputeRasterMemoryByHand)
     GpuMemory m = estimateGpuMemory({.guides = 10, .verticesPerStrand = 4, .sim = sim, .render = &r});
     EXPECT_EQ(m.simulation, solverDeviceBytes(10, 4, 512, true));
+    EXPECT_EQ(m.raster, 0u) << "drawn by the graphics pipeline";
     // MSAA colour (4 bytes) and depth (4 bytes) x 4 samples, and the resolved colour, per pixel.
     EXPECT_EQ(m.target, 5000u * (16u + 16u + 4u));
     // Two depth maps (4 bytes) and the opacity layers (RGBA16F) per texel.
@@ -159,7 +161,7 @@ TEST(Workload, RenderMemoryByHand)
     EXPECT_EQ(m.oit, 5000u * (4u + 8u + 120u));
     // A triangle of guides (16 bytes) each, the 64^2 x 5 RGBA32F tables, two indices per guide line.
     EXPECT_EQ(m.hair, 10u * 16u + 64u * 64u * 5u * 16u + 10u * 3u * 2u * 4u);
-    EXPECT_EQ(m.total(), m.simulation + m.hair + m.target + m.lightMaps + m.oit);
+    EXPECT_EQ(m.total(), m.simulation + m.hair + m.target + m.lightMaps + m.oit + m.raster);
     r.transparency.mode = Transparency::Msaa;
     EXPECT_EQ(estimateGpuMemory({.guides = 10, .verticesPerStrand = 4, .sim = sim, .render = &r}).oit, 0u);
     EXPECT_EQ(estimateGpuMemory({.guides = 10, .verticesPerStrand = 4, .sim = sim, .render = nullptr}).total(),
@@ -168,6 +170,61 @@ TEST(Workload, RenderMemoryByHand)
     GpuMemory head = estimateGpuMemory({.guides = 0, .verticesPerStrand = 4, .sim = sim, .render = &r});
     EXPECT_EQ(head.simulation, 0u);
     EXPECT_EQ(head.hair, 64u * 64u * 5u * 16u);
+}
+
+TEST(Workload, ComputeRasterMemoryByHand)
+{
+    RenderSettings r;
+    r.width = 100;
+    r.height = 50;
+    r.samples = 4;
+    r.shadows.mapSize = 64;
+    r.transparency.mode = Transparency::Oit;
+    r.transparency.oitNodesPerPixel = 10;
+    r.strands.strandsPerGuide = 4;
+    r.strands.divisions = 3;
+    r.shadows.strandFraction = 0.25f;  // one strand a guide into the light's maps
+    r.hairRaster = HairRaster::Compute;
+    SimSettings sim;
+    sim.gridResolution = 8;
+    Workload w{.guides = 10, .verticesPerStrand = 4, .sim = sim, .render = &r};
+    GpuMemory m = estimateGpuMemory(w);
+    uint64_t byHand = 10u * 16u                 // a triangle of guides (uvec4) each
+                      + 32u                     // the counters
+                      + 10u * 4u * 4u * (16u + 4u)  // 40 camera strands x 4 vertices: a vec4 and a packed colour
+                      + 10u * 1u * 4u * (16u + 4u)  // 10 light strands x 4 vertices
+                      + 2u * 5001u * 4u         // counts and offsets per pixel, and one past the last
+                      + 5000u * 8u              // each pixel's depth range
+                      + 5u * 4u                 // the scan's block sums: ceil(5001 / 1024)
+                      + 64u * 64u * (4u + 16u)  // the light's depth and opacity layers per texel
+                      + (1u << 18) * 8u         // at least 2^18 fragments of 8 bytes (120 segments x 8 is fewer)
+                      + 5000u * 8u              // the hair image, RGBA16F
+                      + 5000u * 4u * 4u         // the meshes' depth samples the strands test against
+                      // the meshes in compute: each sample's depth and triangle, their colour
+                      // (RGBA16F) and the frame (RGBA8)
+                      + 5000u * (4u * 8u + 8u + 4u);
+    EXPECT_EQ(m.raster, byHand);
+    EXPECT_EQ(m.total(), m.simulation + m.hair + m.target + m.lightMaps + m.oit + m.raster);
+    // The OIT lists are made with transparency=oit whichever path draws: still counted.
+    EXPECT_EQ(m.oit, 5000u * (4u + 8u + 120u));
+    r.hairRaster = HairRaster::Auto;  // compute everywhere measured
+    EXPECT_EQ(estimateGpuMemory(w).raster, byHand);
+    r.hairRaster = HairRaster::Graphics;
+    EXPECT_EQ(estimateGpuMemory(w).raster, 0u);
+    r.hairRaster = HairRaster::Compute;
+    // Shadows off: no light strands (each buffer is at least 16 bytes).
+    r.shadows.enabled = false;
+    EXPECT_EQ(estimateGpuMemory(w).raster, byHand - 10u * 4u * 20u + 2u * 16u);
+    r.shadows.enabled = true;
+    // Many segments: 8 fragments each; within the device's storage-buffer range.
+    r.strands.strandsPerGuide = 1000;
+    r.strands.divisions = 100;  // 1e6 segments: 8e6 fragments, 64 MB
+    vk::DeviceReport small;
+    small.maxStorageBufferRange = 1u << 20;  // holds 2^17 fragments
+    EXPECT_EQ(estimateGpuMemory(w).raster - estimateGpuMemory(w, small).raster, 8000000u * 8u - (1u << 20));
+    // No hair, or the simulation alone: nothing drawn.
+    EXPECT_EQ(estimateGpuMemory({.guides = 0, .verticesPerStrand = 4, .sim = sim, .render = &r}).raster, 0u);
+    EXPECT_EQ(estimateGpuMemory({.guides = 10, .verticesPerStrand = 4, .sim = sim, .render = nullptr}).raster, 0u);
 }
 
 TEST(Workload, DrawnStrandsAndSegmentsMustFit32Bits)
@@ -194,15 +251,49 @@ TEST(Workload, TooLargeForTheDeviceIsRefusedWithBothSizes)
     vk::DeviceReport tiny;
     tiny.name = "Tiny GPU";
     tiny.deviceLocalBytes = uint64_t(256) << 20;
+    tiny.maxStorageBufferRange = std::numeric_limits<uint32_t>::max();
     RenderSettings r;
     Workload w{.guides = kMaxGuides, .verticesPerStrand = 64, .sim = {}, .render = &r};
     std::string what = errorOf([&] { checkWorkload(w, tiny); });
-    uint64_t need = (estimateGpuMemory(w).total() + (1u << 20) - 1) >> 20;
+    uint64_t need = (estimateGpuMemory(w, tiny).total() + (1u << 20) - 1) >> 20;
     EXPECT_NE(what.find("needs " + std::to_string(need) + " MiB"), std::string::npos) << what;
     EXPECT_NE(what.find("'Tiny GPU' has 256 MiB"), std::string::npos) << what;
     EXPECT_NE(what.find("--guides"), std::string::npos) << what;
-    // The default workload fits in 256 MiB.
+    // The default workload fits in 512 MiB (about 290: the compute raster's light buffers, per-pixel
+    // buffers and first fragment buffer are 168 of them); drawn by the graphics pipeline, in 256.
     w.guides = GrowthSettings{}.guides;
     w.verticesPerStrand = GrowthSettings{}.verticesPerStrand;
-    EXPECT_EQ(errorOf([&] { checkWorkload(w, tiny); }), "") << estimateGpuMemory(w).total();
+    vk::DeviceReport small = tiny;
+    small.deviceLocalBytes = uint64_t(512) << 20;
+    EXPECT_EQ(errorOf([&] { checkWorkload(w, small); }), "") << estimateGpuMemory(w, small).total();
+    r.hairRaster = HairRaster::Graphics;
+    EXPECT_EQ(errorOf([&] { checkWorkload(w, tiny); }), "") << estimateGpuMemory(w, tiny).total();
+}
+
+TEST(Workload, AComputeRasterTooLargeForTheDeviceIsNamed)
+{
+    // 1000 guides x 4096 strands x 1024 divisions: about 100 GB of strand vertices for the compute
+    // path; the simulation and the images are small.
+    vk::DeviceReport device;
+    device.name = "Small GPU";
+    device.deviceLocalBytes = uint64_t(8) << 30;
+    device.maxStorageBufferRange = std::numeric_limits<uint32_t>::max();
+    RenderSettings r;
+    r.width = 64;
+    r.height = 64;
+    r.shadows.mapSize = 64;
+    r.strands.strandsPerGuide = 4096;
+    r.strands.divisions = 1024;
+    r.hairRaster = HairRaster::Compute;
+    Workload w{.guides = 1000, .verticesPerStrand = 16, .sim = {}, .render = &r};
+    GpuMemory m = estimateGpuMemory(w, device);
+    EXPECT_GT(m.raster, device.deviceLocalBytes);
+    EXPECT_LT(m.total() - m.raster, device.deviceLocalBytes) << "the compute raster alone is too large";
+    std::string what = errorOf([&] { checkWorkload(w, device); });
+    EXPECT_NE(what.find("compute raster " + std::to_string((m.raster + (1u << 20) - 1) >> 20) + " MiB (4096000 strands x 1024 divisions)"),
+              std::string::npos) << what;
+    EXPECT_NE(what.find("'Small GPU' has 8192 MiB"), std::string::npos) << what;
+    EXPECT_NE(what.find("strands_per_guide, divisions, the size"), std::string::npos) << what;
+    r.hairRaster = HairRaster::Graphics;  // the tessellation keeps no per-vertex buffers: it fits
+    EXPECT_EQ(errorOf([&] { checkWorkload(w, device); }), "");
 }

@@ -151,6 +151,31 @@ TEST(BadInput, WorkloadLargerThanTheGpuIsRefusedUpFront)
     EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
 }
 
+TEST(BadInput, ComputeRasterLargerThanTheGpuIsRefusedUpFront)
+{
+    // 1000 guides x 4096 strands x 1024 divisions drawn in compute: about 105 GB of strand
+    // vertices, fragments and light buffers; the simulation and the images are small. Refused,
+    // naming the compute raster, before the hair is grown or the device touched.
+    auto info = runWisp("info --json");
+    ASSERT_EQ(info.status, 0) << info.err;
+    uint64_t most = 0;
+    for (const auto& d : nlohmann::json::parse(info.out))
+        most = std::max(most, d["device_local_bytes"].get<uint64_t>());
+    if (most > (uint64_t(96) << 30))
+        GTEST_SKIP() << "the device has " << (most >> 20) << " MiB: this workload fits";
+    TempDir dir;
+    for (const char* path : {"compute", "auto"}) {
+        auto r = runWisp("render --width 64 --height 64 --guides 1000 --set strands_per_guide=4096 --set divisions=1024 "
+                         "--set shadow_size=64 --set hair_raster=" + std::string(path) + " --out '" +
+                         (dir / "a.png").string() + "'");
+        expectUserError(r, "MiB of GPU memory");
+        EXPECT_NE(r.err.find(", compute raster "), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("(4096000 strands x 1024 divisions)"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("strands_per_guide, divisions"), std::string::npos) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
+    }
+}
+
 TEST(BadInput, BadPartSettings)
 {
     expectUserError(runWisp("simulate --steps 1 --part 3:global=0.1"), "no part '3'");

@@ -5,6 +5,7 @@
 // correlates, and adds up to about the same), determinism, and a fragment buffer that overflows,
 // is counted and grows.
 #include "app/headless.h"
+#include "app/workload.h"
 #include "gpu/frame.h"
 #include "gpu/pipeline.h"
 #include "physics/gpu_solver.h"
@@ -556,3 +557,63 @@ TEST(StrandRaster, AFullFragmentBufferIsCountedAndGrowsForTheNextFrame)
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 
+
+TEST(StrandRaster, DeviceBytesIsWhatItAllocates)
+{
+    // The up-front estimate (StrandRaster::deviceBytes, which the workload's memory check sums)
+    // against the buffers and image a first frame really makes: with the light's strands, without
+    // them (shadows off), on a size whose pixels do not fill the scan's blocks.
+    vk::Context ctx(test::validatedOptions());
+    HairScene scene = test::smallHairScene(150);
+    for (bool shadows : {true, false}) {
+        RenderSettings s = test::smallRenderSettings();
+        s.width = 203;
+        s.height = 97;
+        s.hairRaster = HairRaster::Compute;
+        s.shadows.enabled = shadows;
+        Renderer renderer(ctx, s, 1);
+        renderer.setHead(scene.head);
+        SimSetup setup = makeSimSetup(SimSettings{}, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
+        GpuSolver solver(ctx, scene.strands, setup, glm::mat4(1.0f));
+        renderer.attachHair(solver, scene.strands, scene.unitsPerMetre);
+        Frame frame(ctx, 1);
+        OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(s.width) / float(s.height));
+        Picture picture = renderFrame(ctx, renderer, frame, camera);
+        ASSERT_GT(picture.raster.fragments, 0u);
+        StrandRaster& raster = *renderer.strandRaster();
+        const gpu::StrandRasterPush& cam = raster.cameraPush();
+        const gpu::StrandRasterPush& light = raster.lightPush();
+        EXPECT_EQ(cam.drawnPerGuide, 8u) << "the default framing draws every strand";
+        EXPECT_EQ(light.drawnPerGuide, shadows ? 2u : 0u) << "shadow_strands 0.25 of 8";
+        uint64_t estimate = StrandRaster::deviceBytes({.extent = {s.width, s.height},
+                                                       .guides = cam.guideCount,
+                                                       .strandsPerGuide = cam.drawnPerGuide,
+                                                       .lightStrandsPerGuide = light.drawnPerGuide,
+                                                       .divisions = cam.divisions,
+                                                       .lightMapSize = s.shadows.mapSize,
+                                                       .samples = uint32_t(renderer.target().samples()),
+                                                       .maxStorageBufferRange = ctx.report().maxStorageBufferRange});
+        EXPECT_EQ(raster.allocatedBytes(), estimate) << "shadows " << shadows;
+        ASSERT_NE(renderer.meshRaster(), nullptr) << "the meshes drawn in compute too";
+        uint64_t meshes = renderer.meshRaster()->allocatedBytes();
+        EXPECT_EQ(meshes, MeshRaster::deviceBytes({s.width, s.height}, uint32_t(renderer.target().samples())));
+        EXPECT_EQ(raster.fragmentCapacity(), picture.raster.capacity);
+        // The workload's check counts the same from the settings alone.
+        Workload w{.guides = scene.strands.strandCount(), .verticesPerStrand = scene.strands.verticesPerStrand,
+                   .sim = SimSettings{}, .render = &s};
+        EXPECT_EQ(estimateGpuMemory(w, ctx.report()).raster, raster.allocatedBytes() + meshes) << "shadows " << shadows;
+    }
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
+TEST(StrandRaster, StatsAreDescribedInOneLine)
+{
+    // The line `wisp render` prints and the window's panel shows.
+    RasterStats s{.segments = 1200, .fragments = 5000, .capacity = 8000, .overflow = 0, .maxPixel = 17};
+    EXPECT_EQ(describeRasterStats(s),
+              "compute raster: 1200 segments on screen, 5000 hair fragments (at most 17 in a pixel), buffer of 8000");
+    s.capacity = 4000;
+    s.overflow = 1000;
+    EXPECT_EQ(describeRasterStats(s), "compute raster: 1200 segments on screen, 5000 hair fragments (at most 17 in a "
+                                      "pixel), buffer of 4000, dropped 1000");
+}

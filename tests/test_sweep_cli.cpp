@@ -1,5 +1,6 @@
 // tests/test_sweep_cli.cpp: `wisp sweep` through the real binary: a tiny grid's CSV and charts,
-// and --vary values checked before anything is written.
+// the pass columns of both ways of drawing hair, and --vary values checked before anything is
+// written.
 #include "cli_support.h"
 #include "groom_files.h"
 
@@ -9,6 +10,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <string>
 
 using namespace wisp::test;
@@ -42,7 +44,83 @@ TEST(Sweep, TinyGridWritesAWellFormedCsvAndCharts)
     EXPECT_EQ(rows[0].rfind("1,2,", 0), 0u);
     EXPECT_EQ(rows[3].rfind("3,5,", 0), 0u);
     EXPECT_NE(rows[3].find(",60,"), std::string::npos) << rows[3];  // 20 guides x 3 strands
-    for (const char* chart : {"fps.png", "passes.png"})
+    for (const char* chart : {"fps.png", "frame.png", "passes.png"})
+        EXPECT_GT(std::filesystem::file_size(dir / "s" / chart), 1000u) << chart;
+}
+
+namespace {
+
+// A CSV line's fields (commas inside quotes do not split).
+std::vector<std::string> csvFields(const std::string& line)
+{
+    std::vector<std::string> out(1);
+    bool quoted = false;
+    for (char c : line) {
+        if (c == '"')
+            quoted = !quoted;
+        else if (c == ',' && !quoted)
+            out.emplace_back();
+        else
+            out.back() += c;
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST(Sweep, ColumnsAreThePassesEveryPointRanAndThePathThatDrew)
+{
+    // The graphics path and the compute path run different passes: the columns are all of them,
+    // each point's missing ones 0, the frame last; the compute path's counts beside the OIT's.
+    TempDir dir;
+    auto r = runWisp("--validation sweep --out '" + (dir / "s").string() +
+                     "' --vary hair_raster=graphics,compute,auto --warmup 1 --frames 2 --width 64 --height 48 --guides 20 "
+                     "--set strands_per_guide=2 --set divisions=4 --set shadow_size=128");
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::ifstream in(dir / "s" / "results.csv");
+    std::string line;
+    std::getline(in, line);
+    std::vector<std::string> header = csvFields(line);
+    std::vector<std::map<std::string, std::string>> rows;
+    while (std::getline(in, line)) {
+        std::vector<std::string> fields = csvFields(line);
+        ASSERT_EQ(fields.size(), header.size()) << line;
+        std::map<std::string, std::string> row;
+        for (size_t i = 0; i < header.size(); ++i)
+            row[header[i]] = fields[i];
+        rows.push_back(row);
+    }
+    ASSERT_EQ(rows.size(), 3u);
+    auto column = [&](const std::string& name) { return std::find(header.begin(), header.end(), name) - header.begin(); };
+    for (const char* name : {"hair_ms_median", "oit.resolve_ms_median", "strands.count_ms_median", "strands.write_ms_median",
+                             "strands.resolve_ms_median", "hair.composite_ms_median", "meshes.depth_ms_median",
+                             "light.depth_ms_median", "raster_segments", "raster_fragments", "raster_overflow",
+                             "hair_raster_drawn"})
+        EXPECT_LT(size_t(column(name)), header.size()) << name << " in " << line;
+    // The frame's columns close the passes', and come after every pass.
+    EXPECT_EQ(column("frame_ms_p95") + 1, column("fps"));
+    EXPECT_LT(column("strands.resolve_ms_p95"), column("frame_ms_median"));
+    EXPECT_EQ(column("raster_segments"), column("oit_overflow") + 1);
+    EXPECT_EQ(header.front(), "hair_raster");
+
+    const auto& graphics = rows[0];
+    const auto& compute = rows[1];
+    const auto& automatic = rows[2];
+    EXPECT_EQ(graphics.at("hair_raster_drawn"), "graphics");
+    EXPECT_EQ(compute.at("hair_raster_drawn"), "compute");
+    EXPECT_EQ(automatic.at("hair_raster_drawn"), "compute") << "auto draws in compute";
+    EXPECT_EQ(std::stod(graphics.at("strands.resolve_ms_median")), 0.0) << "not run by the graphics path";
+    EXPECT_GT(std::stod(compute.at("strands.resolve_ms_median")), 0.0);
+    EXPECT_GT(std::stod(graphics.at("hair_ms_median")), 0.0);
+    EXPECT_EQ(std::stod(compute.at("hair_ms_median")), 0.0) << "not run by the compute path";
+    EXPECT_GT(std::stoull(graphics.at("oit_fragments")), 0u);
+    EXPECT_EQ(std::stoull(compute.at("oit_fragments")), 0u);
+    EXPECT_EQ(std::stoull(graphics.at("raster_fragments")), 0u);
+    EXPECT_GT(std::stoull(compute.at("raster_segments")), 0u);
+    EXPECT_LE(std::stoull(compute.at("raster_segments")), 20u * 2u * 4u) << "the segments on screen, of 160";
+    EXPECT_GT(std::stoull(compute.at("raster_fragments")), 0u);
+    EXPECT_EQ(compute.at("raster_overflow"), "0");
+    for (const char* chart : {"fps.png", "frame.png", "passes.png"})
         EXPECT_GT(std::filesystem::file_size(dir / "s" / chart), 1000u) << chart;
 }
 
