@@ -44,6 +44,11 @@ void LightMaps::resize(uint32_t size)
                                               VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     headDepth_ = ctx_.createImage({.format = kDepthFormat, .extent = extent, .usage = kDepthUsage, .name = "light.head_depth"});
     hairDepth_ = ctx_.createImage({.format = kDepthFormat, .extent = extent, .usage = kDepthUsage, .name = "light.hair_depth"});
+    hairValues_ = ctx_.createImage({.format = kDepthValueFormat,
+                                    .extent = extent,
+                                    .usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                             VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                    .name = "light.hair_depth_values"});
     opacity_ = ctx_.createImage({.format = kOpacityFormat,
                                  .extent = extent,
                                  .usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
@@ -53,6 +58,7 @@ void LightMaps::resize(uint32_t size)
     drawnKey_ = HeadShadowKey{};  // a new map: drawn again
     headStale_ = true;
     hairTrack_ = {.image = hairDepth_.get(), .aspect = VK_IMAGE_ASPECT_DEPTH_BIT};
+    valuesTrack_ = {.image = hairValues_.get()};
     opacityTrack_ = {.image = opacity_.get()};
     updateInfos();
 }
@@ -62,7 +68,7 @@ void LightMaps::updateInfos()
     constexpr VkImageLayout kRead = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     infos_[0] = {compare_, headDepth_.view(), kRead};
     infos_[1] = {compare_, hairDepth_.view(), kRead};
-    infos_[2] = {nearest_, hairDepth_.view(), kRead};
+    infos_[2] = {nearest_, values_ ? hairValues_.view() : hairDepth_.view(), kRead};
     infos_[3] = {linear_, opacity_.view(), kRead};
 }
 
@@ -72,10 +78,18 @@ void LightMaps::setHeadKey(const HeadShadowKey& key)
     headStale_ = headStale_ || drawnKey_.size == 0 || std::memcmp(&key_, &drawnKey_, sizeof(key_)) != 0;
 }
 
+void LightMaps::useHairDepthValues(bool values)
+{
+    values_ = values;
+    updateInfos();
+}
+
 void LightMaps::declareRead(PassIo& io, Access access)
 {
     io.use(headTrack_, access);
-    io.use(hairTrack_, access);
+    io.use(hairTrack_, access);  // (bound to the hair's PCF either way)
+    if (values_)
+        io.use(valuesTrack_, access);
     io.use(opacityTrack_, access);
 }
 

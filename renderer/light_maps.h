@@ -43,9 +43,13 @@ public:
     static constexpr VkFormat kOpacityFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 
     // The device memory of maps of `size`² texels: the head's and the hair's depth, the opacity layers.
+    static constexpr VkFormat kDepthValueFormat = VK_FORMAT_R32_SFLOAT;
+    // The device memory of maps of `size`² texels: the head's and the hair's depth, the hair's
+    // depth as values (the compute path's), the opacity layers.
     static constexpr uint64_t deviceBytes(uint32_t size)
     {
-        return uint64_t(size) * size * (2 * vk::formatBytes(kDepthFormat) + vk::formatBytes(kOpacityFormat));
+        return uint64_t(size) * size *
+               (2 * vk::formatBytes(kDepthFormat) + vk::formatBytes(kDepthValueFormat) + vk::formatBytes(kOpacityFormat));
     }
 
     LightMaps(const vk::Context& ctx, uint32_t size);
@@ -56,11 +60,18 @@ public:
     TrackedImage& headDepth() { return headTrack_; }
     TrackedImage& hairDepth() { return hairTrack_; }
     TrackedImage& opacity() { return opacityTrack_; }
+    // The hair's first depth as an R32F image: the compute path writes it from its kernels (no copy
+    // into the depth image), and the deep opacity lookups sample it instead of the depth image
+    // while useHairDepthValues(true).
+    TrackedImage& hairDepthValues() { return valuesTrack_; }
+    const vk::Image& hairDepthValuesImage() const { return hairValues_; }
+    void useHairDepthValues(bool values);
+    bool hairDepthValuesUsed() const { return values_; }
     const vk::Image& headDepthImage() const { return headDepth_; }
     const vk::Image& hairDepthImage() const { return hairDepth_; }
     const vk::Image& opacityImage() const { return opacity_; }
     // The hair's maps are remade every frame; the head's depth only when its key changes.
-    std::vector<TrackedImage*> transientImages() { return {&hairTrack_, &opacityTrack_}; }
+    std::vector<TrackedImage*> transientImages() { return {&hairTrack_, &valuesTrack_, &opacityTrack_}; }
     // This frame's key for the head's depth (before the frame's passes are declared).
     void setHeadKey(const HeadShadowKey& key);
     bool headDepthStale() const { return headStale_; }
@@ -80,8 +91,9 @@ public:
 private:
     const vk::Context& ctx_;
     uint32_t size_ = 0;
-    vk::Image headDepth_, hairDepth_, opacity_;
-    TrackedImage headTrack_, hairTrack_, opacityTrack_;
+    vk::Image headDepth_, hairDepth_, hairValues_, opacity_;
+    TrackedImage headTrack_, hairTrack_, valuesTrack_, opacityTrack_;
+    bool values_ = false;
     HeadShadowKey key_, drawnKey_;
     bool headStale_ = true;
     vk::Sampler compare_;  // depth compare, bilinear (each PCF tap is itself a 2x2 filter)

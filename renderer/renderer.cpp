@@ -225,11 +225,16 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
     light.lodStrands = std::max(1.0f, push.lodStrands * settings_.shadows.strandFraction);
     light.lodWidthScale = push.lodWidthScale * std::sqrt(push.lodStrands / light.lodStrands);
     hairPass_->setLightPush(light);
-    if (hairRaster() != HairRaster::Compute)
+    if (hairRaster() != HairRaster::Compute) {
+        lightMaps_->useHairDepthValues(false);
         return;
+    }
 
-    // The compute path draws the same strands from the same parameters.
+    // The compute path draws the same strands from the same parameters. Its hair depth from the
+    // light is sampled as values where the opacity layers need it; copied into the depth image
+    // only for the PCF of the hair's shadow (no opacity layers).
     makeStrandRaster();
+    lightMaps_->useHairDepthValues(settings_.shadows.domLayers > 0);
     headShadowPass_->setEnabled(settings_.shadows.enabled);
     strandComposite_->setSource(&strandRaster_->color(), &strandRaster_->colorImage());
     auto rasterPush = [&](const gpu::HairPush& p) {
@@ -365,7 +370,7 @@ std::vector<Pass*> Renderer::passes()
         list.push_back(strandRaster_->pass(Stage::Clear));
         list.push_back(headShadowPass_.get());
         for (Stage stage : StrandRaster::kLightStages)
-            if (stage != Stage::Clear)
+            if (stage != Stage::Clear && (stage != Stage::LightCopy || !lightMaps_->hairDepthValuesUsed()))
                 list.push_back(strandRaster_->pass(stage));
         meshes();
         for (Stage stage : StrandRaster::kCameraStages)

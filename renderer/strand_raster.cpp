@@ -121,7 +121,8 @@ StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUn
                            {gpu::kRasterBindingOpacityImage, kImage, kCompute},
                            {gpu::kRasterBindingDepthRange, kStorage, kCompute},
                            {gpu::kRasterBindingBlockSums, kStorage, kCompute},
-                           {gpu::kRasterBindingMeshSamples, kStorage, kCompute}},
+                           {gpu::kRasterBindingMeshSamples, kStorage, kCompute},
+                           {gpu::kRasterBindingLightDepthImage, kImage, kCompute}},
               .pushConstantBytes = sizeof(gpu::StrandRasterPush),
               .pushConstantStages = kCompute,
               .name = "strands.layout"});
@@ -331,7 +332,9 @@ void StrandRaster::declare(Stage stage, PassIo& io)
         break;
     case Stage::LightResolve:
         io.use(lightOpacity_.track, Access::ComputeRead);
+        io.use(lightDepth_.track, Access::ComputeRead);
         io.use(maps_.opacity(), Access::ComputeWrite);
+        io.use(maps_.hairDepthValues(), Access::ComputeWrite);
         break;
     case Stage::LightCopy:
         io.use(lightDepth_.track, Access::TransferSrc);
@@ -353,14 +356,13 @@ void StrandRaster::declare(Stage stage, PassIo& io)
         io.use(depthRange_.track, Access::ComputeWrite);
         io.use(counts_.track, Access::ComputeWrite);
         break;
-    case Stage::Count:  // (one shader with strands.write: it binds, never touches, the offsets and fragments)
+    case Stage::Count:  // (one shader with strands.write: it binds, never touches, the fragments)
     case Stage::Write:
         io.use(vertices_.track, Access::ComputeRead);
         io.use(colors_.track, Access::ComputeRead);
         io.use(depthRange_.track, Access::ComputeRead);
         io.use(externalSamples_ ? *externalSamples_ : meshSamples_.track, Access::ComputeRead);
-        io.use(counts_.track, Access::ComputeWrite);
-        io.use(offsets_.track, Access::ComputeRead);
+        io.use(counts_.track, Access::ComputeWrite);  // counts, then (strands.write) cursors
         io.use(fragments_.track, Access::ComputeWrite);
         io.use(counters_.track, Access::ComputeWrite);
         break;
@@ -464,9 +466,12 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
     }
     case Stage::LightResolve: {
         VkDescriptorImageInfo opacityImage{VK_NULL_HANDLE, maps_.opacityImage().view(), VK_IMAGE_LAYOUT_GENERAL};
+        VkDescriptorImageInfo depthImage{VK_NULL_HANDLE, maps_.hairDepthValuesImage().view(), VK_IMAGE_LAYOUT_GENERAL};
         std::vector<VkWriteDescriptorSet> writes = {
             bufferWrite(gpu::kRasterBindingLightOpacity, kStorage, &lightOpacity),
-            imageWrite(gpu::kRasterBindingOpacityImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &opacityImage)};
+            bufferWrite(gpu::kRasterBindingLightDepth, kStorage, &lightDepth),
+            imageWrite(gpu::kRasterBindingOpacityImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &opacityImage),
+            imageWrite(gpu::kRasterBindingLightDepthImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &depthImage)};
         dispatch(cmd, lightResolvePipeline_, light_, writes, vk::groupCount(lightSize_, 8), vk::groupCount(lightSize_, 8));
         break;
     }
@@ -494,7 +499,6 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
             bufferWrite(gpu::kRasterBindingVertices, kStorage, &vertices),
             bufferWrite(gpu::kRasterBindingColors, kStorage, &colors),
             bufferWrite(gpu::kRasterBindingCounts, kStorage, &counts),
-            bufferWrite(gpu::kRasterBindingOffsets, kStorage, &offsets),
             bufferWrite(gpu::kRasterBindingFragments, kStorage, &fragments),
             bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters),
             bufferWrite(gpu::kRasterBindingDepthRange, kStorage, &depthRange),

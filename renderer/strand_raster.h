@@ -7,8 +7,10 @@
 //   strands.light         the light's strands (fewer, wider: shadow_strands), projected into its map
 //   light.depth           the hair's first depth from the light (atomicMin per texel)
 //   light.opacity         the deep opacity layers (fixed-point atomicAdd per texel and layer)
-//   light.resolve         the layers into the opacity image
-//   light.copy            the depth copied into the hair depth map
+//   light.resolve         the layers into the opacity image, the depth into the R32F image the
+//                         opacity lookups sample
+//   light.copy            the depth copied into the hair depth map (only without opacity layers:
+//                         the PCF of the hair's shadow compares against it)
 //     (then the meshes, which read those maps)
 //   strands.generate      the camera's strands: placed, projected, shaded per vertex
 //   strands.depth         each pixel's nearest and farthest mesh depth sample; its count zeroed

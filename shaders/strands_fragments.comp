@@ -5,9 +5,9 @@
 // antialiased); the colour and opacity interpolate the two vertices' (shaded along the strand by
 // strands_generate.comp). Specialization constant 0 chooses:
 //   false (strands.count): each fragment that stays is counted at its pixel (atomicAdd)
-//   true  (strands.write): written to its pixel's next slot, offsets[pixel] + a cursor (the counts,
-//                          zeroed by the scan); slots past the buffer's capacity are skipped (the
-//                          scan counted them as overflow)
+//   true  (strands.write): written to its pixel's next slot, from a cursor (the counts, which the
+//                          scan set to each pixel's offset); slots past the buffer's capacity are
+//                          skipped (the scan counted them as overflow)
 // Both variants make exactly the same decisions (the same arithmetic on the same input).
 // Segments with an end behind the camera or outside the depth range are not drawn.
 // The meshes' depth samples come from a buffer (float bits, pixel * samples + s): strands_depth.comp
@@ -21,7 +21,6 @@ layout(push_constant) uniform PushBlock { StrandRasterPush push; };
 layout(set = 0, binding = kRasterBindingVertices, std430) readonly buffer Vertices { vec4 vertices[]; };
 layout(set = 0, binding = kRasterBindingColors, std430) readonly buffer Colors { uint colors[]; };
 layout(set = 0, binding = kRasterBindingCounts, std430) buffer Counts { uint counts[]; };
-layout(set = 0, binding = kRasterBindingOffsets, std430) readonly buffer Offsets { uint offsets[]; };
 layout(set = 0, binding = kRasterBindingFragments, std430) writeonly buffer Fragments { uvec2 fragments[]; };
 layout(set = 0, binding = kRasterBindingCounters, std430) buffer Counters { RasterCounters counters; };
 layout(set = 0, binding = kRasterBindingDepthRange, std430) readonly buffer DepthRange { vec2 depthRange[]; };
@@ -75,7 +74,7 @@ void main()
                     if (alpha < 0.5 / 255.0)
                         continue;  // below what the fragment's 8 bits of alpha hold
                     if (kWrite) {
-                        uint slot = offsets[p] + atomicAdd(counts[p], 1u);
+                        uint slot = atomicAdd(counts[p], 1u);  // the cursor starts at the pixel's offset
                         if (slot < push.fragmentCapacity)
                             fragments[slot] = uvec2(floatBitsToUint(depth), packFragmentColor(c.rgb, alpha));
                     } else {

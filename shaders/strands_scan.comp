@@ -6,7 +6,8 @@
 //   1 (strands.scan.totals)  one workgroup: the blocks' totals scanned into their offsets; the
 //                            grand total, the capacity and what does not fit into the counters
 //   2 (strands.scan.offsets) one workgroup per block: each count's offset (its block's plus its
-//                            own within the block); the counts zeroed to serve as write cursors
+//                            own within the block); each pixel's count becomes its write cursor,
+//                            starting at its offset (strands.write takes its slots from it)
 #extension GL_GOOGLE_include_directive : require
 #include "shared/strand_raster.h"
 
@@ -82,7 +83,8 @@ void main()
     for (uint i = 0u; i < 4u; ++i) {
         if (i < per && first + i < count) {
             offsets[first + i] = offset;
-            counts[first + i] = 0u;
+            if (first + i + 1u < count)
+                counts[first + i] = offset;  // the pixel's write cursor (the count past the last stays 0)
             offset += values[i];
         }
     }

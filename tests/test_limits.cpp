@@ -155,8 +155,8 @@ TEST(Workload, RenderMemoryByHand)
     EXPECT_EQ(m.raster, 0u) << "drawn by the graphics pipeline";
     // MSAA colour (4 bytes) and depth (4 bytes) x 4 samples, and the resolved colour, per pixel.
     EXPECT_EQ(m.target, 5000u * (16u + 16u + 4u));
-    // Two depth maps (4 bytes) and the opacity layers (RGBA16F) per texel.
-    EXPECT_EQ(m.lightMaps, 64u * 64u * 16u);
+    // Two depth maps (4 bytes), the hair depth as values (R32F) and the opacity layers (RGBA16F) per texel.
+    EXPECT_EQ(m.lightMaps, 64u * 64u * 20u);
     // A list head (4 bytes), the resolved colour (8) and 10 nodes of 12 bytes per pixel.
     EXPECT_EQ(m.oit, 5000u * (4u + 8u + 120u));
     // A triangle of guides (16 bytes) each, the 64^2 x 5 RGBA32F tables, two indices per guide line.

@@ -32,15 +32,19 @@ TEST(Cli, RenderWritesAPngWithValidationClean)
 
 TEST(Cli, EveryPassIsCleanUnderSynchronizationValidation)
 {
-    // Shadows, deep opacity, both ways of drawing the strands, both transparency modes and every
-    // shading model, one sample and four: the barriers the frame derives from the passes'
+    // Shadows, deep opacity, both ways of drawing the strands (the compute path's meshes in compute,
+    // and by graphics under the guides), both transparency modes and every shading model, one
+    // sample and four, the head alone: the barriers the frame derives from the passes'
     // declarations satisfy the synchronization checks.
     TempDir dir;
     for (const char* sets : {"--set hair_raster=graphics --set transparency=oit --set shading=karis",
                              "--set hair_raster=graphics --set transparency=msaa --set shading=lut",
                              "--set hair_raster=graphics --set dom_layers=0 --set shading=kajiya",
                              "--set hair_raster=compute --set shading=lut", "--set hair_raster=compute --set samples=1",
-                             "--set hair_raster=compute --set dom_layers=0 --set shading=kajiya --set shadows=off"}) {
+                             "--set hair_raster=compute --set dom_layers=0 --set shading=kajiya --set shadows=off",
+                             "--set hair_raster=compute --set dom_layers=0",
+                             "--set hair_raster=compute --set show_guides=on",
+                             "--no-hair --set hair_raster=compute"}) {
         auto r = runWisp("--sync-validation render --width 96 --height 72 --guides 60 --set strands_per_guide=4 " +
                          std::string(sets) + " --set shadow_size=256 --out '" + (dir / "s.png").string() + "'");
         EXPECT_EQ(r.status, 0) << sets << "\n" << r.err;

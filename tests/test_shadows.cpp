@@ -93,16 +93,21 @@ public:
                                      .name = "test.opacity"});
     }
     const char* name() const override { return "test.readback"; }
+    // The hair's depth as the opacity lookups sample it: the depth image, or the compute path's
+    // values (LightMaps::useHairDepthValues).
     void declare(PassIo& io) override
     {
-        io.use(maps_.hairDepth(), Access::TransferSrc);
+        io.use(maps_.hairDepthValuesUsed() ? maps_.hairDepthValues() : maps_.hairDepth(), Access::TransferSrc);
         io.use(maps_.opacity(), Access::TransferSrc);
     }
     void record(VkCommandBuffer cmd, FrameContext&) override
     {
         uint32_t n = maps_.size();
-        VkBufferImageCopy depth{.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1}, .imageExtent = {n, n, 1}};
-        vkCmdCopyImageToBuffer(cmd, maps_.hairDepthImage().get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, depth_, 1, &depth);
+        bool values = maps_.hairDepthValuesUsed();
+        VkBufferImageCopy depth{.imageSubresource = {values ? VK_IMAGE_ASPECT_COLOR_BIT : VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1},
+                                .imageExtent = {n, n, 1}};
+        vkCmdCopyImageToBuffer(cmd, values ? maps_.hairDepthValuesImage().get() : maps_.hairDepthImage().get(),
+                               VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, depth_, 1, &depth);
         VkBufferImageCopy color{.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageExtent = {n, n, 1}};
         vkCmdCopyImageToBuffer(cmd, maps_.opacityImage().get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, opacity_, 1, &color);
         vk::transferToHostBarrier(cmd);

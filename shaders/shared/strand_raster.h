@@ -51,7 +51,7 @@ GPU_CONST uint kRasterBindingTriangles = 3;    // uvec4 per guide: the guide and
 GPU_CONST uint kRasterBindingLut = 8;          // sampler2DArray: the lookup mode's tables
 GPU_CONST uint kRasterBindingVertices = 9;     // vec4 per strand vertex: StrandVertex
 GPU_CONST uint kRasterBindingColors = 10;      // uint per strand vertex: packed colour and opacity
-GPU_CONST uint kRasterBindingCounts = 11;      // uint per pixel: fragments (count), then write cursors
+GPU_CONST uint kRasterBindingCounts = 11;      // uint per pixel: fragments (count), then write cursors (from its offset)
 GPU_CONST uint kRasterBindingOffsets = 12;     // uint per pixel + 1: its first fragment slot, the total last
 GPU_CONST uint kRasterBindingFragments = 13;   // uvec2 per fragment: depth bits, packed colour and opacity
 GPU_CONST uint kRasterBindingCounters = 14;    // RasterCounters
@@ -63,6 +63,7 @@ GPU_CONST uint kRasterBindingOpacityImage = 19;// image2D rgba16f: the deep opac
 GPU_CONST uint kRasterBindingDepthRange = 20;  // vec2 per pixel: the nearest and farthest mesh depth sample
 GPU_CONST uint kRasterBindingBlockSums = 21;   // uint per scan block: its counts' total, then its offset
 GPU_CONST uint kRasterBindingMeshSamples = 22; // uint per mesh depth sample (pixel * samples + s): float bits
+GPU_CONST uint kRasterBindingLightDepthImage = 23; // image2D r32f: the hair's first depth from the light, as values
 
 // Fixed point of the light's opacity sums (integer units per unit of opacity).
 GPU_CONST float kOpacityFixedScale = 1024.0f;
