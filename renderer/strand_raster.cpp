@@ -122,8 +122,7 @@ StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUn
                            {gpu::kRasterBindingDepthRange, kStorage, kCompute},
                            {gpu::kRasterBindingBlockSums, kStorage, kCompute},
                            {gpu::kRasterBindingMeshSamples, kStorage, kCompute},
-                           {gpu::kRasterBindingLightDepthImage, kImage, kCompute},
-                           {gpu::kRasterBindingTileNear, kStorage, kCompute}},
+                           {gpu::kRasterBindingLightDepthImage, kImage, kCompute}},
               .pushConstantBytes = sizeof(gpu::StrandRasterPush),
               .pushConstantStages = kCompute,
               .name = "strands.layout"});
@@ -185,7 +184,6 @@ void StrandRaster::resize()
     allocate(offsets_, (pixels + 1) * sizeof(uint32_t), vk::kStorage | vk::kTransferSrc, "strands.offsets", nullptr);
     allocate(depthRange_, pixels * 2 * sizeof(float), vk::kStorage, "strands.depth_range", nullptr);
     allocate(blockSums_, blocks * sizeof(uint32_t), vk::kStorage, "strands.block_sums", nullptr);
-    allocate(tileNear_, tiles(e) * sizeof(float), vk::kStorage, "strands.tile_near", nullptr);
     allocate(meshSamples_, pixels * uint32_t(target_.samples()) * sizeof(uint32_t), vk::kStorage,
              "strands.mesh_samples", nullptr);
     // The count past the last pixel is always 0 (its offset is the total): zeroed once.
@@ -227,7 +225,7 @@ uint64_t StrandRaster::allocatedBytes() const
 {
     uint64_t bytes = triangles_.size() + uint64_t(color_.extent().width) * color_.extent().height * vk::formatBytes(color_.format());
     for (const Storage* s : {&vertices_, &colors_, &lightVertices_, &lightColors_, &counts_, &offsets_, &fragments_,
-                             &counters_, &depthRange_, &blockSums_, &lightDepth_, &lightOpacity_, &meshSamples_, &tileNear_})
+                             &counters_, &depthRange_, &blockSums_, &lightDepth_, &lightOpacity_, &meshSamples_})
         bytes += s->buffer ? s->buffer.size() : 0;
     return bytes;
 }
@@ -356,7 +354,6 @@ void StrandRaster::declare(Stage stage, PassIo& io)
             io.use(meshSamples_.track, Access::ComputeWrite);
         }
         io.use(depthRange_.track, Access::ComputeWrite);
-        io.use(tileNear_.track, Access::ComputeWrite);
         io.use(counts_.track, Access::ComputeWrite);
         break;
     case Stage::Count:  // (one shader with strands.write: it binds, never touches, the fragments)
@@ -364,7 +361,6 @@ void StrandRaster::declare(Stage stage, PassIo& io)
         io.use(vertices_.track, Access::ComputeRead);
         io.use(colors_.track, Access::ComputeRead);
         io.use(depthRange_.track, Access::ComputeRead);
-        io.use(tileNear_.track, Access::ComputeRead);
         io.use(externalSamples_ ? *externalSamples_ : meshSamples_.track, Access::ComputeRead);
         io.use(counts_.track, Access::ComputeWrite);  // counts, then (strands.write) cursors
         io.use(fragments_.track, Access::ComputeWrite);
@@ -424,7 +420,6 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
     VkDescriptorBufferInfo lightVertices = whole(lightVertices_), lightColors = whole(lightColors_);
     VkDescriptorBufferInfo counts = whole(counts_), offsets = whole(offsets_), fragments = whole(fragments_);
     VkDescriptorBufferInfo counters = whole(counters_), depthRange = whole(depthRange_), blockSums = whole(blockSums_);
-    VkDescriptorBufferInfo tileNear = whole(tileNear_);
     VkDescriptorBufferInfo lightDepth = whole(lightDepth_), lightOpacity = whole(lightOpacity_);
     VkDescriptorImageInfo meshDepth{depthSampler_, target_.depthImage().view(), VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL};
     VkDescriptorBufferInfo meshSamples{externalSamples_ ? externalSamplesBuffer_ : meshSamples_.buffer.get(), 0,
@@ -491,7 +486,6 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
         std::vector<VkWriteDescriptorSet> writes = {
             bufferWrite(gpu::kRasterBindingMeshSamples, kStorage, &meshSamples),
             bufferWrite(gpu::kRasterBindingDepthRange, kStorage, &depthRange),
-            bufferWrite(gpu::kRasterBindingTileNear, kStorage, &tileNear),
             bufferWrite(gpu::kRasterBindingCounts, kStorage, &counts)};
         if (!externalSamples_)
             writes.push_back(imageWrite(gpu::kRasterBindingMeshDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &meshDepth));
@@ -508,7 +502,6 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
             bufferWrite(gpu::kRasterBindingFragments, kStorage, &fragments),
             bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters),
             bufferWrite(gpu::kRasterBindingDepthRange, kStorage, &depthRange),
-            bufferWrite(gpu::kRasterBindingTileNear, kStorage, &tileNear),
             bufferWrite(gpu::kRasterBindingMeshSamples, kStorage, &meshSamples)};
         dispatchLinear(cmd, stage == Stage::Count ? countPipeline_.get() : writePipeline_.get(), camera_, writes,
                        camera_.segmentCount, gpu::kRasterGroupSize);

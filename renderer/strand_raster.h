@@ -13,8 +13,7 @@
 //                         the PCF of the hair's shadow compares against it)
 //     (then the meshes, which read those maps)
 //   strands.generate      the camera's strands: placed, projected, shaded per vertex
-//   strands.depth         each pixel's nearest and farthest mesh depth sample, each 8 x 8 tile's
-//                         nearest; the pixel's count zeroed
+//   strands.depth         each pixel's nearest and farthest mesh depth sample; its count zeroed
 //   strands.count         each segment's fragments counted at their pixels
 //   strands.scan.blocks   the counts' prefix sum: each block's total,
 //   strands.scan.totals   the blocks' offsets and the total against the capacity,
@@ -116,11 +115,6 @@ public:
         uint32_t samples = 1;               // the target's MSAA samples (the meshes' depth samples)
         uint64_t maxStorageBufferRange = 0xffffffffull;
     };
-    // 8 x 8-pixel tiles of a target (strands.depth's workgroups).
-    static constexpr uint64_t tiles(VkExtent2D extent)
-    {
-        return uint64_t((extent.width + 7) / 8) * ((extent.height + 7) / 8);
-    }
     static constexpr uint64_t deviceBytes(const DeviceSizes& s)
     {
         uint64_t pixels = uint64_t(s.extent.width) * s.extent.height;
@@ -136,7 +130,6 @@ public:
                2 * bufferBytes((pixels + 1) * sizeof(uint32_t)) +  // counts, offsets (and the total past the last)
                bufferBytes(pixels * 2 * sizeof(float)) +           // each pixel's mesh depth range
                bufferBytes(blocks * sizeof(uint32_t)) +            // the scan's block sums
-               bufferBytes(tiles(s.extent) * sizeof(float)) +      // each tile's nearest mesh depth
                bufferBytes(pixels * (s.samples > 1 ? s.samples : 1) * sizeof(uint32_t)) +  // the meshes' depth samples
                bufferBytes(texels * kLightDepthBytes) + bufferBytes(texels * kLightOpacityBytes) +
                bufferBytes(initialFragments(segments, s.maxStorageBufferRange) * kFragmentBytes) +
@@ -217,7 +210,7 @@ private:
     vk::Buffer triangles_;
     Storage vertices_, colors_;            // the camera's strand vertices
     Storage lightVertices_, lightColors_;  // the light's
-    Storage counts_, offsets_, fragments_, counters_, depthRange_, blockSums_, tileNear_;
+    Storage counts_, offsets_, fragments_, counters_, depthRange_, blockSums_;
     Storage meshSamples_;  // the depth image's samples, when the meshes are drawn by graphics
     TrackedBuffer* externalSamples_ = nullptr;
     VkBuffer externalSamplesBuffer_ = VK_NULL_HANDLE;

@@ -2,9 +2,7 @@
 // strands_depth.comp: one thread per pixel, before the compute path's fragments: the nearest and
 // farthest of the meshes' depth samples at the pixel (a fragment in front of the nearest is in
 // front of them all, one behind the farthest behind them all: only the meshes' edges need each
-// sample), and the pixel's fragment count zeroed; per 8 x 8 tile (the workgroup), the nearest of
-// its pixels' nearest samples (a fragment in front of it is in front of every sample of the tile:
-// the fragments' walk then skips the pixel's own range). The samples' depths come from the meshes' depth
+// sample), and the pixel's fragment count zeroed. The samples' depths come from the meshes' depth
 // image (copied as float bits into the samples' buffer strands_fragments.comp reads: one sample
 // with RASTER_SINGLE_SAMPLE, strands_depth_single.comp), or with MESH_DEPTH_BUFFER
 // (strands_depth_buffer.comp) from that buffer, where the compute meshes (mesh_raster.comp) drew.
@@ -25,37 +23,27 @@ layout(set = 0, binding = kRasterBindingMeshSamples, std430) writeonly buffer Me
 #endif
 layout(set = 0, binding = kRasterBindingDepthRange, std430) writeonly buffer DepthRange { vec2 depthRange[]; };
 layout(set = 0, binding = kRasterBindingCounts, std430) writeonly buffer Counts { uint counts[]; };
-layout(set = 0, binding = kRasterBindingTileNear, std430) writeonly buffer TileNear { float tileNear[]; };
-
-shared uint groupNear;
 
 void main()
 {
-    if (gl_LocalInvocationIndex == 0u)
-        groupNear = floatBitsToUint(1.0);
-    barrier();
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (pixel.x < int(push.targetWidth) && pixel.y < int(push.targetHeight)) {
-        uint p = uint(pixel.y) * push.targetWidth + uint(pixel.x);
-        vec2 range = vec2(1.0, 0.0);
-        for (uint s = 0u; s < push.samples; ++s) {
+    if (pixel.x >= int(push.targetWidth) || pixel.y >= int(push.targetHeight))
+        return;
+    uint p = uint(pixel.y) * push.targetWidth + uint(pixel.x);
+    vec2 range = vec2(1.0, 0.0);
+    for (uint s = 0u; s < push.samples; ++s) {
 #if defined(MESH_DEPTH_BUFFER)
-            float d = uintBitsToFloat(meshSamples[p * push.samples + s]);
+        float d = uintBitsToFloat(meshSamples[p * push.samples + s]);
 #else
 #ifdef RASTER_SINGLE_SAMPLE
-            float d = texelFetch(meshDepth, pixel, 0).r;
+        float d = texelFetch(meshDepth, pixel, 0).r;
 #else
-            float d = texelFetch(meshDepth, pixel, int(s)).r;
+        float d = texelFetch(meshDepth, pixel, int(s)).r;
 #endif
-            meshSamples[p * push.samples + s] = floatBitsToUint(d);
+        meshSamples[p * push.samples + s] = floatBitsToUint(d);
 #endif
-            range = vec2(min(range.x, d), max(range.y, d));
-        }
-        depthRange[p] = range;
-        counts[p] = 0u;
-        atomicMin(groupNear, floatBitsToUint(range.x));  // depths in [0, 1] order as their bits
+        range = vec2(min(range.x, d), max(range.y, d));
     }
-    barrier();
-    if (gl_LocalInvocationIndex == 0u)
-        tileNear[gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x] = uintBitsToFloat(groupNear);
+    depthRange[p] = range;
+    counts[p] = 0u;
 }

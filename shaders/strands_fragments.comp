@@ -24,7 +24,6 @@ layout(set = 0, binding = kRasterBindingCounts, std430) buffer Counts { uint cou
 layout(set = 0, binding = kRasterBindingFragments, std430) writeonly buffer Fragments { uvec2 fragments[]; };
 layout(set = 0, binding = kRasterBindingCounters, std430) buffer Counters { RasterCounters counters; };
 layout(set = 0, binding = kRasterBindingDepthRange, std430) readonly buffer DepthRange { vec2 depthRange[]; };
-layout(set = 0, binding = kRasterBindingTileNear, std430) readonly buffer TileNear { float tileNear[]; };
 layout(set = 0, binding = kRasterBindingMeshSamples, std430) readonly buffer MeshSamples { uint meshSamples[]; };
 
 shared uint groupSegments;
@@ -50,7 +49,6 @@ void main()
             int y0 = max(int(ceil(min(a.y, b.y) - reach - 0.5)), 0);
             int y1 = min(int(floor(max(a.y, b.y) + reach - 0.5)), int(push.targetHeight) - 1);
             uint samples = push.samples;
-            uint tilesPerRow = (push.targetWidth + 7u) / 8u;
             for (int y = y0; y <= y1; ++y) {
                 vec2 span = ribbonRowSpan(s, float(y) + 0.5);
                 int x0 = max(int(ceil(span.x - 0.5)), 0);
@@ -61,10 +59,7 @@ void main()
                         continue;
                     float depth = mix(a.z, b.z, hit.y);
                     uint p = uint(y) * push.targetWidth + uint(x);
-                    // In front of the tile's nearest mesh sample: in front of all of the pixel's
-                    // (the same decision as its own range gives; one load the tile's pixels share).
-                    vec2 range = depth <= tileNear[(uint(y) >> 3u) * tilesPerRow + (uint(x) >> 3u)] ? vec2(1.0, 1.0)
-                                                                                                      : depthRange[p];
+                    vec2 range = depthRange[p];
                     uint front = depth <= range.x ? samples : 0u;
                     if (depth > range.x && depth <= range.y) {  // at a mesh's edge: each sample
                         for (uint m = 0u; m < samples; ++m) {

@@ -196,7 +196,6 @@ TEST(Workload, ComputeRasterMemoryByHand)
                       + 2u * 5001u * 4u         // counts and offsets per pixel, and one past the last
                       + 5000u * 8u              // each pixel's depth range
                       + 5u * 4u                 // the scan's block sums: ceil(5001 / 1024)
-                      + 13u * 7u * 4u           // each 8 x 8 tile's nearest mesh depth
                       + 64u * 64u * (4u + 16u)  // the light's depth and opacity layers per texel
                       + (1u << 18) * 8u         // at least 2^18 fragments of 8 bytes (120 segments x 8 is fewer)
                       + 5000u * 8u              // the hair image, RGBA16F

@@ -64,7 +64,6 @@ GPU_CONST uint kRasterBindingDepthRange = 20;  // vec2 per pixel: the nearest an
 GPU_CONST uint kRasterBindingBlockSums = 21;   // uint per scan block: its counts' total, then its offset
 GPU_CONST uint kRasterBindingMeshSamples = 22; // uint per mesh depth sample (pixel * samples + s): float bits
 GPU_CONST uint kRasterBindingLightDepthImage = 23; // image2D r32f: the hair's first depth from the light, as values
-GPU_CONST uint kRasterBindingTileNear = 24;    // float per 8 x 8 pixels: the nearest of their mesh depth samples
 
 // Fixed point of the light's opacity sums (integer units per unit of opacity).
 GPU_CONST float kOpacityFixedScale = 1024.0f;
