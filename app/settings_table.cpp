@@ -310,8 +310,9 @@ std::vector<SettingSpec> buildSpecs()
     add(field(onOff("show_guides", kLive, "", "also draw the simulated guides as lines"),
               [](Settings& x) -> auto& { return x.render.strands.showGuides; }));
     add(field(choice("hair_raster", {"graphics", "compute", "auto"}, kLive, "",
-                     "how the hair is drawn: tessellation and geometry shaders, or compute (tiles, analytic coverage, "
-                     "the nearest oit_k sorted); auto: the faster on the device (compute on every device measured)"),
+                     "how the hair is drawn: tessellation and geometry shaders, or compute (analytic coverage, fragments "
+                     "binned per pixel, the nearest oit_k sorted; the meshes too); auto: the faster on the device "
+                     "(compute on every device measured)"),
               [](Settings& x) -> auto& { return x.render.hairRaster; }));
 
     // ---- The target, the light and the shadows ----

@@ -75,7 +75,7 @@ struct TransparencySettings {
 enum class HairRaster { Graphics, Compute, Auto };
 
 // What hair_raster=auto draws with on a device of this type: compute, the faster on every device
-// measured (README, "Two ways to draw strands": the H100 6 to 10 times, lavapipe about 13 times,
+// measured (README, "Two ways to draw strands": the H100 8 to 23 times, lavapipe about 19 times,
 // whatever the workload). Here, not in renderer.cpp, so that the workload's memory (app/workload.cpp,
 // without a device) counts the path that will draw.
 constexpr HairRaster resolveHairRaster(HairRaster setting, VkPhysicalDeviceType deviceType)
