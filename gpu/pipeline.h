@@ -89,4 +89,17 @@ void computeToComputeBarrier(VkCommandBuffer cmd);
 void transferToHostBarrier(VkCommandBuffer cmd);
 uint32_t groupCount(uint32_t items, uint32_t groupSize);  // ceil(items / groupSize)
 
+// One descriptor of a push-descriptor set (Context::pushDescriptorSet): a buffer, or an image (and
+// its sampler, for combined image samplers). `info` must outlive the push.
+inline VkWriteDescriptorSet bufferWrite(uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* info)
+{
+    return {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstBinding = binding, .descriptorCount = 1,
+            .descriptorType = type, .pBufferInfo = info};
+}
+inline VkWriteDescriptorSet imageWrite(uint32_t binding, VkDescriptorType type, const VkDescriptorImageInfo* info)
+{
+    return {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstBinding = binding, .descriptorCount = 1,
+            .descriptorType = type, .pImageInfo = info};
+}
+
 }  // namespace wisp::vk

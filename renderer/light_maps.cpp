@@ -13,19 +13,6 @@
 
 namespace wisp {
 
-namespace {
-
-VkWriteDescriptorSet imageWrite(uint32_t binding, const VkDescriptorImageInfo* info)
-{
-    return {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-            .dstBinding = binding,
-            .descriptorCount = 1,
-            .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-            .pImageInfo = info};
-}
-
-}  // namespace
-
 LightMaps::LightMaps(const vk::Context& ctx, uint32_t size) : ctx_(ctx)
 {
     compare_ = vk::createSampler(ctx, VK_FILTER_LINEAR, true, "light.sampler.compare");
@@ -95,13 +82,16 @@ void LightMaps::declareRead(PassIo& io, Access access)
 
 std::array<VkWriteDescriptorSet, 4> LightMaps::descriptorWrites() const
 {
-    return {imageWrite(gpu::kBindingShadowHead, &infos_[0]), imageWrite(gpu::kBindingShadowHair, &infos_[1]),
-            imageWrite(gpu::kBindingHairDepth, &infos_[2]), imageWrite(gpu::kBindingOpacity, &infos_[3])};
+    constexpr VkDescriptorType kSampler = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    return {vk::imageWrite(gpu::kBindingShadowHead, kSampler, &infos_[0]),
+            vk::imageWrite(gpu::kBindingShadowHair, kSampler, &infos_[1]),
+            vk::imageWrite(gpu::kBindingHairDepth, kSampler, &infos_[2]),
+            vk::imageWrite(gpu::kBindingOpacity, kSampler, &infos_[3])};
 }
 
 VkWriteDescriptorSet LightMaps::hairDepthWrite() const
 {
-    return imageWrite(gpu::kBindingHairDepth, &infos_[2]);
+    return vk::imageWrite(gpu::kBindingHairDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &infos_[2]);
 }
 
 namespace {

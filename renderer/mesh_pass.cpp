@@ -302,12 +302,9 @@ void MeshPass::recordShadowMask(VkCommandBuffer cmd, FrameContext& frame)
     VkDescriptorImageInfo mask{VK_NULL_HANDLE, shadowMask_.view(), VK_IMAGE_LAYOUT_GENERAL};
     VkDescriptorImageInfo depth{nearest_, target_.depthImage().view(), VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL};
     std::vector<VkWriteDescriptorSet> writes = {
-        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstBinding = gpu::kMeshBindingFrame, .descriptorCount = 1,
-         .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, .pBufferInfo = &frameInfo},
-        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstBinding = gpu::kMeshBindingShadowMask, .descriptorCount = 1,
-         .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, .pImageInfo = &mask},
-        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstBinding = gpu::kMeshBindingDepth, .descriptorCount = 1,
-         .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, .pImageInfo = &depth}};
+        vk::bufferWrite(gpu::kMeshBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frameInfo),
+        vk::imageWrite(gpu::kMeshBindingShadowMask, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &mask),
+        vk::imageWrite(gpu::kMeshBindingDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &depth)};
     for (const VkWriteDescriptorSet& w : lightMaps_->descriptorWrites())
         writes.push_back(w);
     ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, shadowLayout_, 0, uint32_t(writes.size()), writes.data());
@@ -327,11 +324,8 @@ void MeshPass::record(VkCommandBuffer cmd, FrameContext& frame)
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
     uniforms_.push(ctx_, cmd, layout_, frame.slot);
     VkDescriptorImageInfo mask{nearest_, shadowMask_.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkWriteDescriptorSet maskWrite{.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-                                   .dstBinding = gpu::kMeshBindingShadowMask,
-                                   .descriptorCount = 1,
-                                   .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                   .pImageInfo = &mask};
+    VkWriteDescriptorSet maskWrite =
+        vk::imageWrite(gpu::kMeshBindingShadowMask, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &mask);
     ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &maskWrite);
     draw(cmd, head_, headTransform_, albedo_, roughness_);
     if (sphere_.w > 0.0f)

@@ -20,6 +20,9 @@ static_assert(sizeof(gpu::MeshRasterPush) == 96, "MeshRasterPush must fit the 12
 
 namespace {
 
+constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+constexpr VkDescriptorType kImage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+
 constexpr uint32_t kMaxGroupsPerDimension = 65535;
 
 const char* stageName(MeshRaster::Stage stage)
@@ -35,31 +38,6 @@ const char* stageName(MeshRaster::Stage stage)
     return "meshes";
 }
 
-class StagePass : public Pass {
-public:
-    StagePass(MeshRaster& raster, MeshRaster::Stage stage) : raster_(raster), stage_(stage) {}
-    const char* name() const override { return stageName(stage_); }
-    void declare(PassIo& io) override { raster_.declare(stage_, io); }
-    void record(VkCommandBuffer cmd, FrameContext& frame) override { raster_.record(stage_, cmd, frame); }
-
-private:
-    MeshRaster& raster_;
-    MeshRaster::Stage stage_;
-};
-
-VkWriteDescriptorSet bufferWrite(uint32_t binding, const VkDescriptorBufferInfo* info,
-                                 VkDescriptorType type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)
-{
-    return {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstBinding = binding, .descriptorCount = 1,
-            .descriptorType = type, .pBufferInfo = info};
-}
-
-VkWriteDescriptorSet imageWrite(uint32_t binding, const VkDescriptorImageInfo* info)
-{
-    return {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstBinding = binding, .descriptorCount = 1,
-            .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, .pImageInfo = info};
-}
-
 }  // namespace
 
 MeshRaster::MeshRaster(const vk::Context& ctx, RenderTarget& target, FrameUniforms& uniforms, LightMaps& maps,
@@ -67,9 +45,7 @@ MeshRaster::MeshRaster(const vk::Context& ctx, RenderTarget& target, FrameUnifor
     : ctx_(ctx), target_(target), uniforms_(uniforms), maps_(maps), meshes_(meshes)
 {
     constexpr VkShaderStageFlags kCompute = VK_SHADER_STAGE_COMPUTE_BIT;
-    constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     constexpr VkDescriptorType kSampler = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    constexpr VkDescriptorType kImage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     vk::PipelineLayoutBundle layout = vk::createPipelineLayout(
         ctx, {.bindings = {{gpu::kMeshRasterBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCompute},
                            {gpu::kMeshRasterBindingVertices, kStorage, kCompute},
@@ -95,7 +71,7 @@ MeshRaster::MeshRaster(const vk::Context& ctx, RenderTarget& target, FrameUnifor
     shadePipeline_ = vk::createComputePipeline(ctx, layout_, "mesh_shade.comp", "meshes.shade.pipeline");
     composePipeline_ = vk::createComputePipeline(ctx, layout_, "hair_compose.comp", "hair.composite.pipeline");
     for (int s = 0; s <= int(Stage::Copy); ++s)
-        passes_.push_back(std::make_unique<StagePass>(*this, Stage(s)));
+        passes_.push_back(std::make_unique<StagePass<MeshRaster, Stage>>(*this, Stage(s), stageName(Stage(s))));
     resize();
 }
 
@@ -219,10 +195,11 @@ void MeshRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
             VkDescriptorBufferInfo vertices{d.buffers.vertices, 0, VK_WHOLE_SIZE};
             VkDescriptorBufferInfo indices{d.buffers.indices, 0, VK_WHOLE_SIZE};
             std::vector<VkWriteDescriptorSet> writes = {
-                bufferWrite(gpu::kMeshRasterBindingFrame, &frameInfo, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER),
-                bufferWrite(gpu::kMeshRasterBindingVertices, &vertices),
-                bufferWrite(gpu::kMeshRasterBindingIndices, &indices),
-                bufferWrite(gpu::kMeshRasterBindingDepth, &depth), bufferWrite(gpu::kMeshRasterBindingIds, &ids)};
+                vk::bufferWrite(gpu::kMeshRasterBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frameInfo),
+                vk::bufferWrite(gpu::kMeshRasterBindingVertices, kStorage, &vertices),
+                vk::bufferWrite(gpu::kMeshRasterBindingIndices, kStorage, &indices),
+                vk::bufferWrite(gpu::kMeshRasterBindingDepth, kStorage, &depth),
+                vk::bufferWrite(gpu::kMeshRasterBindingIds, kStorage, &ids)};
             gpu::MeshRasterPush drawPush = p;
             drawPush.object = d.object;
             drawPush.triangles = d.buffers.triangles;
@@ -236,13 +213,14 @@ void MeshRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
     case Stage::Shade: {
         VkDescriptorImageInfo color{VK_NULL_HANDLE, color_.view(), VK_IMAGE_LAYOUT_GENERAL};
         std::vector<VkWriteDescriptorSet> writes = {
-            bufferWrite(gpu::kMeshRasterBindingFrame, &frameInfo, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER),
-            bufferWrite(gpu::kMeshRasterBindingVertices, &headVertices),
-            bufferWrite(gpu::kMeshRasterBindingIndices, &headIndices),
-            bufferWrite(gpu::kMeshRasterBindingSphereVertices, &sphereVertices),
-            bufferWrite(gpu::kMeshRasterBindingSphereIndices, &sphereIndices),
-            bufferWrite(gpu::kMeshRasterBindingDepth, &depth), bufferWrite(gpu::kMeshRasterBindingIds, &ids),
-            imageWrite(gpu::kMeshRasterBindingColor, &color)};
+            vk::bufferWrite(gpu::kMeshRasterBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frameInfo),
+            vk::bufferWrite(gpu::kMeshRasterBindingVertices, kStorage, &headVertices),
+            vk::bufferWrite(gpu::kMeshRasterBindingIndices, kStorage, &headIndices),
+            vk::bufferWrite(gpu::kMeshRasterBindingSphereVertices, kStorage, &sphereVertices),
+            vk::bufferWrite(gpu::kMeshRasterBindingSphereIndices, kStorage, &sphereIndices),
+            vk::bufferWrite(gpu::kMeshRasterBindingDepth, kStorage, &depth),
+            vk::bufferWrite(gpu::kMeshRasterBindingIds, kStorage, &ids),
+            vk::imageWrite(gpu::kMeshRasterBindingColor, kImage, &color)};
         for (const VkWriteDescriptorSet& w : maps_.descriptorWrites())
             writes.push_back(w);
         bindAndPush(shadePipeline_, writes, p);
@@ -254,9 +232,9 @@ void MeshRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
         VkDescriptorImageInfo hair{VK_NULL_HANDLE, hairImage_ ? hairImage_->view() : color_.view(),
                                    VK_IMAGE_LAYOUT_GENERAL};  // (no hair: bound, not read)
         VkDescriptorImageInfo out{VK_NULL_HANDLE, frame_.view(), VK_IMAGE_LAYOUT_GENERAL};
-        std::vector<VkWriteDescriptorSet> writes = {imageWrite(gpu::kMeshRasterBindingColor, &color),
-                                                    imageWrite(gpu::kMeshRasterBindingHair, &hair),
-                                                    imageWrite(gpu::kMeshRasterBindingOut, &out)};
+        std::vector<VkWriteDescriptorSet> writes = {vk::imageWrite(gpu::kMeshRasterBindingColor, kImage, &color),
+                                                    vk::imageWrite(gpu::kMeshRasterBindingHair, kImage, &hair),
+                                                    vk::imageWrite(gpu::kMeshRasterBindingOut, kImage, &out)};
         p.object = hairTrack_ ? 1u : 0u;
         bindAndPush(composePipeline_, writes, p);
         vkCmdDispatch(cmd, vk::groupCount(e.width, 8), vk::groupCount(e.height, 8), 1);

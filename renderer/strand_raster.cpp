@@ -45,37 +45,6 @@ const char* stageName(StrandRaster::Stage stage)
     return "strands";
 }
 
-// One stage of the compute path as a pass of the frame.
-class StagePass : public Pass {
-public:
-    StagePass(StrandRaster& raster, StrandRaster::Stage stage) : raster_(raster), stage_(stage) {}
-    const char* name() const override { return stageName(stage_); }
-    void declare(PassIo& io) override { raster_.declare(stage_, io); }
-    void record(VkCommandBuffer cmd, FrameContext& frame) override { raster_.record(stage_, cmd, frame); }
-
-private:
-    StrandRaster& raster_;
-    StrandRaster::Stage stage_;
-};
-
-VkWriteDescriptorSet bufferWrite(uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* info)
-{
-    return {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-            .dstBinding = binding,
-            .descriptorCount = 1,
-            .descriptorType = type,
-            .pBufferInfo = info};
-}
-
-VkWriteDescriptorSet imageWrite(uint32_t binding, VkDescriptorType type, const VkDescriptorImageInfo* info)
-{
-    return {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-            .dstBinding = binding,
-            .descriptorCount = 1,
-            .descriptorType = type,
-            .pImageInfo = info};
-}
-
 constexpr uint32_t kScanBlockThreads = 256;  // strands_scan.comp's blocks: 4 counts a thread
 
 }  // namespace
@@ -160,7 +129,7 @@ StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUn
         std::memset(readback_.back().mapped(), 0, sizeof(gpu::RasterCounters));
     }
     for (int s = 0; s <= int(Stage::Stats); ++s)
-        passes_.push_back(std::make_unique<StagePass>(*this, Stage(s)));
+        passes_.push_back(std::make_unique<StagePass<StrandRaster, Stage>>(*this, Stage(s), stageName(Stage(s))));
     resize();
 }
 
@@ -424,7 +393,7 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
     VkDescriptorImageInfo meshDepth{depthSampler_, target_.depthImage().view(), VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL};
     VkDescriptorBufferInfo meshSamples{externalSamples_ ? externalSamplesBuffer_ : meshSamples_.buffer.get(), 0,
                                        VK_WHOLE_SIZE};
-    auto frameWrite = bufferWrite(gpu::kRasterBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frameInfo);
+    auto frameWrite = vk::bufferWrite(gpu::kRasterBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frameInfo);
     uint64_t cameraVertices = uint64_t(camera_.guideCount) * camera_.drawnPerGuide * (camera_.divisions + 1);
     uint64_t lightVertexCount = uint64_t(light_.guideCount) * light_.drawnPerGuide * (light_.divisions + 1);
 
@@ -439,15 +408,15 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
     case Stage::Generate: {
         bool fromLight = stage == Stage::LightGenerate;
         std::vector<VkWriteDescriptorSet> writes = {
-            frameWrite, bufferWrite(gpu::kRasterBindingSim, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &simInfo),
-            bufferWrite(gpu::kRasterBindingPositions, kStorage, &positions),
-            bufferWrite(gpu::kRasterBindingTriangles, kStorage, &triangles),
-            bufferWrite(gpu::kRasterBindingVertices, kStorage, fromLight ? &lightVertices : &vertices),
-            bufferWrite(gpu::kRasterBindingColors, kStorage, fromLight ? &lightColors : &colors)};
+            frameWrite, vk::bufferWrite(gpu::kRasterBindingSim, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &simInfo),
+            vk::bufferWrite(gpu::kRasterBindingPositions, kStorage, &positions),
+            vk::bufferWrite(gpu::kRasterBindingTriangles, kStorage, &triangles),
+            vk::bufferWrite(gpu::kRasterBindingVertices, kStorage, fromLight ? &lightVertices : &vertices),
+            vk::bufferWrite(gpu::kRasterBindingColors, kStorage, fromLight ? &lightColors : &colors)};
         if (!fromLight) {
             for (const VkWriteDescriptorSet& w : maps_.descriptorWrites())
                 writes.push_back(w);
-            writes.push_back(imageWrite(gpu::kRasterBindingLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, lut_));
+            writes.push_back(vk::imageWrite(gpu::kRasterBindingLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, lut_));
         }
         dispatchLinear(cmd, fromLight ? generateLightPipeline_.get() : generatePipeline_.get(), fromLight ? light_ : camera_, writes,
                        fromLight ? lightVertexCount : cameraVertices, gpu::kRasterGroupSize);
@@ -456,10 +425,10 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
     case Stage::LightDepth:
     case Stage::LightOpacity: {
         std::vector<VkWriteDescriptorSet> writes = {
-            frameWrite, bufferWrite(gpu::kRasterBindingVertices, kStorage, &lightVertices),
-            bufferWrite(gpu::kRasterBindingColors, kStorage, &lightColors),
-            bufferWrite(gpu::kRasterBindingLightDepth, kStorage, &lightDepth),
-            bufferWrite(gpu::kRasterBindingLightOpacity, kStorage, &lightOpacity)};
+            frameWrite, vk::bufferWrite(gpu::kRasterBindingVertices, kStorage, &lightVertices),
+            vk::bufferWrite(gpu::kRasterBindingColors, kStorage, &lightColors),
+            vk::bufferWrite(gpu::kRasterBindingLightDepth, kStorage, &lightDepth),
+            vk::bufferWrite(gpu::kRasterBindingLightOpacity, kStorage, &lightOpacity)};
         dispatchLinear(cmd, stage == Stage::LightDepth ? lightDepthPipeline_.get() : lightOpacityPipeline_.get(), light_, writes,
                        light_.segmentCount, gpu::kRasterGroupSize);
         break;
@@ -468,10 +437,10 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
         VkDescriptorImageInfo opacityImage{VK_NULL_HANDLE, maps_.opacityImage().view(), VK_IMAGE_LAYOUT_GENERAL};
         VkDescriptorImageInfo depthImage{VK_NULL_HANDLE, maps_.hairDepthValuesImage().view(), VK_IMAGE_LAYOUT_GENERAL};
         std::vector<VkWriteDescriptorSet> writes = {
-            bufferWrite(gpu::kRasterBindingLightOpacity, kStorage, &lightOpacity),
-            bufferWrite(gpu::kRasterBindingLightDepth, kStorage, &lightDepth),
-            imageWrite(gpu::kRasterBindingOpacityImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &opacityImage),
-            imageWrite(gpu::kRasterBindingLightDepthImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &depthImage)};
+            vk::bufferWrite(gpu::kRasterBindingLightOpacity, kStorage, &lightOpacity),
+            vk::bufferWrite(gpu::kRasterBindingLightDepth, kStorage, &lightDepth),
+            vk::imageWrite(gpu::kRasterBindingOpacityImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &opacityImage),
+            vk::imageWrite(gpu::kRasterBindingLightDepthImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &depthImage)};
         dispatch(cmd, lightResolvePipeline_, light_, writes, vk::groupCount(lightSize_, 8), vk::groupCount(lightSize_, 8));
         break;
     }
@@ -484,11 +453,11 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
     }
     case Stage::Depth: {
         std::vector<VkWriteDescriptorSet> writes = {
-            bufferWrite(gpu::kRasterBindingMeshSamples, kStorage, &meshSamples),
-            bufferWrite(gpu::kRasterBindingDepthRange, kStorage, &depthRange),
-            bufferWrite(gpu::kRasterBindingCounts, kStorage, &counts)};
+            vk::bufferWrite(gpu::kRasterBindingMeshSamples, kStorage, &meshSamples),
+            vk::bufferWrite(gpu::kRasterBindingDepthRange, kStorage, &depthRange),
+            vk::bufferWrite(gpu::kRasterBindingCounts, kStorage, &counts)};
         if (!externalSamples_)
-            writes.push_back(imageWrite(gpu::kRasterBindingMeshDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &meshDepth));
+            writes.push_back(vk::imageWrite(gpu::kRasterBindingMeshDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &meshDepth));
         dispatch(cmd, externalSamples_ ? depthBufferPipeline_.get() : depthPipeline_.get(), camera_, writes, vk::groupCount(camera_.targetWidth, 8),
                  vk::groupCount(camera_.targetHeight, 8));
         break;
@@ -496,13 +465,13 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
     case Stage::Count:
     case Stage::Write: {
         std::vector<VkWriteDescriptorSet> writes = {
-            bufferWrite(gpu::kRasterBindingVertices, kStorage, &vertices),
-            bufferWrite(gpu::kRasterBindingColors, kStorage, &colors),
-            bufferWrite(gpu::kRasterBindingCounts, kStorage, &counts),
-            bufferWrite(gpu::kRasterBindingFragments, kStorage, &fragments),
-            bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters),
-            bufferWrite(gpu::kRasterBindingDepthRange, kStorage, &depthRange),
-            bufferWrite(gpu::kRasterBindingMeshSamples, kStorage, &meshSamples)};
+            vk::bufferWrite(gpu::kRasterBindingVertices, kStorage, &vertices),
+            vk::bufferWrite(gpu::kRasterBindingColors, kStorage, &colors),
+            vk::bufferWrite(gpu::kRasterBindingCounts, kStorage, &counts),
+            vk::bufferWrite(gpu::kRasterBindingFragments, kStorage, &fragments),
+            vk::bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters),
+            vk::bufferWrite(gpu::kRasterBindingDepthRange, kStorage, &depthRange),
+            vk::bufferWrite(gpu::kRasterBindingMeshSamples, kStorage, &meshSamples)};
         dispatchLinear(cmd, stage == Stage::Count ? countPipeline_.get() : writePipeline_.get(), camera_, writes,
                        camera_.segmentCount, gpu::kRasterGroupSize);
         break;
@@ -510,10 +479,10 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
     case Stage::ScanBlocks:
     case Stage::ScanTotals:
     case Stage::ScanOffsets: {
-        std::vector<VkWriteDescriptorSet> writes = {bufferWrite(gpu::kRasterBindingCounts, kStorage, &counts),
-                                                    bufferWrite(gpu::kRasterBindingOffsets, kStorage, &offsets),
-                                                    bufferWrite(gpu::kRasterBindingBlockSums, kStorage, &blockSums),
-                                                    bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters)};
+        std::vector<VkWriteDescriptorSet> writes = {vk::bufferWrite(gpu::kRasterBindingCounts, kStorage, &counts),
+                                                    vk::bufferWrite(gpu::kRasterBindingOffsets, kStorage, &offsets),
+                                                    vk::bufferWrite(gpu::kRasterBindingBlockSums, kStorage, &blockSums),
+                                                    vk::bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters)};
         if (stage == Stage::ScanTotals)
             dispatch(cmd, scanTotalsPipeline_, camera_, writes, 1);
         else
@@ -524,10 +493,10 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
     case Stage::Resolve: {
         VkDescriptorImageInfo color{VK_NULL_HANDLE, color_.view(), VK_IMAGE_LAYOUT_GENERAL};
         std::vector<VkWriteDescriptorSet> writes = {
-            bufferWrite(gpu::kRasterBindingOffsets, kStorage, &offsets),
-            bufferWrite(gpu::kRasterBindingFragments, kStorage, &fragments),
-            bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters),
-            imageWrite(gpu::kRasterBindingHairColor, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &color)};
+            vk::bufferWrite(gpu::kRasterBindingOffsets, kStorage, &offsets),
+            vk::bufferWrite(gpu::kRasterBindingFragments, kStorage, &fragments),
+            vk::bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters),
+            vk::imageWrite(gpu::kRasterBindingHairColor, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &color)};
         dispatch(cmd, resolvePipeline_, camera_, writes, vk::groupCount(camera_.targetWidth, 8),
                  vk::groupCount(camera_.targetHeight, 8));
         break;

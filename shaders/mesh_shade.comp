@@ -82,7 +82,6 @@ void main()
     if (nearest != kNoMesh) {
         vec2 visibility = lightVisibilityParts(surfaceAt(nearest, centre, size).position, centre, frame.shadowBias);
         vec3 lightRadiance = frame.lightColor * frame.lightIntensity * (visibility.x * visibility.y);
-        vec3 toCamera = frame.cameraPosition;
         for (uint s = 0u; s < push.samples; ++s) {
             uint id = ids[first + s];
             bool seen = id == kNoMesh;
@@ -98,7 +97,7 @@ void main()
             vec3 albedo = object == kMeshObjectHead ? push.headAlbedo : object == kMeshObjectSphere ? kSphereAlbedo : kMarkerAlbedo;
             float roughness = object == kMeshObjectHead ? push.headRoughness : object == kMeshObjectSphere ? kSphereRoughness : kMarkerRoughness;
             float scalp = push.scalpStrength * clamp(surface.scalp, 0.0, 1.0);
-            color += float(count) * meshSurfaceColor(normalize(surface.normal), normalize(toCamera - surface.position),
+            color += float(count) * meshSurfaceColor(normalize(surface.normal), normalize(frame.cameraPosition - surface.position),
                                                      frame.lightDirection, lightRadiance, albedo, roughness,
                                                      push.scalpAlbedo, scalp, frame.ambientIntensity, frame.skyColor,
                                                      frame.groundColor, frame.exposure);

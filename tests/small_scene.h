@@ -3,7 +3,9 @@
 #pragma once
 
 #include "app/headless.h"
+#include "physics/gpu_solver.h"
 #include "physics/hair_scene.h"
+#include "renderer/renderer.h"
 #include "assets/head.h"
 #include "renderer/settings.h"
 
@@ -33,5 +35,20 @@ inline Picture renderHair(const vk::Context& ctx, const HairScene& scene, const 
     HairSession session(ctx, scene, SimSettings{}, stillTimeline(glm::vec4(0.0f), glm::vec3(0.0f), s.light));
     return renderPicture(ctx, session, s);
 }
+
+// A renderer with the scene's head and its hair attached (unsimulated: the solver holds the rest
+// pose), for the tests that run its passes themselves, one frame in flight.
+struct HairRenderer {
+    HairRenderer(const vk::Context& ctx, const HairScene& scene, const RenderSettings& s)
+        : renderer(ctx, s, 1),
+          solver(ctx, scene.strands, makeSimSetup(SimSettings{}, scene.strands, scene.gpuColliders, scene.unitsPerMetre),
+                 glm::mat4(1.0f))
+    {
+        renderer.setHead(scene.head);
+        renderer.attachHair(solver, scene.strands, scene.unitsPerMetre);
+    }
+    Renderer renderer;
+    GpuSolver solver;
+};
 
 }  // namespace wisp::test

@@ -3,7 +3,6 @@
 // (light transmitted through the fibres, TT), bad look settings are refused.
 #include "app/headless.h"
 #include "app/settings_table.h"
-#include "physics/gpu_solver.h"
 #include "gpu/frame.h"
 #include "renderer/renderer.h"
 #include "core/error.h"
@@ -155,11 +154,8 @@ TEST(HairLook, TheLookupTablesFollowTheLook)
     RenderSettings s = smallRenderSettings();
     s.hair.model = ShadingModel::Lut;
     applyHairPreset(s.hair, "blonde");
-    Renderer renderer(ctx, s, 1);
-    renderer.setHead(scene.head);
-    SimSetup setup = makeSimSetup(SimSettings{}, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
-    GpuSolver solver(ctx, scene.strands, setup, glm::mat4(1.0f));
-    renderer.attachHair(solver, scene.strands, scene.unitsPerMetre);
+    test::HairRenderer hair(ctx, scene, s);
+    Renderer& renderer = hair.renderer;
     Frame frame(ctx, 1);
     OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(s.width) / float(s.height));
     Picture bald = renderPicture(ctx, scene.head, s);

@@ -4,11 +4,11 @@
 // horizontal strand visible, determinism, more strands covering more pixels.
 #include "app/headless.h"
 #include "physics/colliders.h"
-#include "physics/gpu_solver.h"
 #include "physics/hair_scene.h"
 #include "gpu/frame.h"
 #include "renderer/renderer.h"
 #include "shaders/shared/strands.h"
+#include "small_scene.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -164,11 +164,8 @@ struct HairFrame {
 HairFrame renderHairFrame(const vk::Context& ctx, const HairScene& scene, const RenderSettings& settings,
                           float cameraDistanceScale = 1.0f)
 {
-    Renderer renderer(ctx, settings, 1);
-    renderer.setHead(scene.head);
-    SimSetup setup = makeSimSetup(SimSettings{}, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
-    GpuSolver solver(ctx, scene.strands, setup, glm::mat4(1.0f));
-    renderer.attachHair(solver, scene.strands, scene.unitsPerMetre);
+    test::HairRenderer hair(ctx, scene, settings);
+    Renderer& renderer = hair.renderer;
     Frame frame(ctx, 1);
     OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(settings.width) / float(settings.height));
     camera.distance *= cameraDistanceScale;

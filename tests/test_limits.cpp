@@ -138,7 +138,11 @@ TEST(Workload, SolverMemoryByHand)
     EXPECT_GT(big, uint64_t(8) << 30);
 }
 
-TEST(Workload, RenderMemoryByHand)
+namespace {
+
+// The small workload the memory estimates are checked against by hand: 100 x 50 pixels, 4 samples,
+// 64² light maps, 10 OIT nodes a pixel, an 8³ grid.
+RenderSettings byHandSettings()
 {
     RenderSettings r;
     r.width = 100;
@@ -147,8 +151,22 @@ TEST(Workload, RenderMemoryByHand)
     r.shadows.mapSize = 64;
     r.transparency.mode = Transparency::Oit;
     r.transparency.oitNodesPerPixel = 10;
+    return r;
+}
+
+SimSettings byHandSim()
+{
     SimSettings sim;
     sim.gridResolution = 8;
+    return sim;
+}
+
+}  // namespace
+
+TEST(Workload, RenderMemoryByHand)
+{
+    RenderSettings r = byHandSettings();
+    SimSettings sim = byHandSim();
     r.hairRaster = HairRaster::Graphics;  // (the compute path's buffers: ComputeRasterMemoryByHand)
     GpuMemory m = estimateGpuMemory({.guides = 10, .verticesPerStrand = 4, .sim = sim, .render = &r});
     EXPECT_EQ(m.simulation, solverDeviceBytes(10, 4, 512, true));
@@ -174,19 +192,12 @@ TEST(Workload, RenderMemoryByHand)
 
 TEST(Workload, ComputeRasterMemoryByHand)
 {
-    RenderSettings r;
-    r.width = 100;
-    r.height = 50;
-    r.samples = 4;
-    r.shadows.mapSize = 64;
-    r.transparency.mode = Transparency::Oit;
-    r.transparency.oitNodesPerPixel = 10;
+    RenderSettings r = byHandSettings();
     r.strands.strandsPerGuide = 4;
     r.strands.divisions = 3;
     r.shadows.strandFraction = 0.25f;  // one strand a guide into the light's maps
     r.hairRaster = HairRaster::Compute;
-    SimSettings sim;
-    sim.gridResolution = 8;
+    SimSettings sim = byHandSim();
     Workload w{.guides = 10, .verticesPerStrand = 4, .sim = sim, .render = &r};
     GpuMemory m = estimateGpuMemory(w);
     uint64_t byHand = 10u * 16u                 // a triangle of guides (uvec4) each

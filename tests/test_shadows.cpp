@@ -3,7 +3,6 @@
 // away from the light is darker, the deep opacity layers hold the hair and their transmittance
 // falls with depth, the OIT result does not depend on draw order, and a full pool is counted.
 #include "app/headless.h"
-#include "physics/gpu_solver.h"
 #include "physics/hair_scene.h"
 #include "gpu/frame.h"
 #include "renderer/renderer.h"
@@ -201,11 +200,8 @@ TEST_P(ShadowsBoth, DeepOpacityLayersHoldTheHairAndTransmittanceFallsWithDepth)
     s.hairRaster = GetParam();
     s.shadows.mapSize = 256;
     s.light.elevationDeg = 80.0f;  // from above: light crosses the whole thickness of the hair
-    Renderer renderer(ctx, s, 1);
-    renderer.setHead(scene.head);
-    SimSetup setup = makeSimSetup(SimSettings{}, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
-    GpuSolver solver(ctx, scene.strands, setup, glm::mat4(1.0f));
-    renderer.attachHair(solver, scene.strands, scene.unitsPerMetre);
+    test::HairRenderer hair(ctx, scene, s);
+    Renderer& renderer = hair.renderer;
     Frame frame(ctx, 1);
     OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(s.width) / float(s.height));
     LightMapsReadback readback(ctx, renderer.lightMaps());

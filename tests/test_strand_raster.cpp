@@ -151,11 +151,9 @@ RasterFrame renderRasterFrame(const vk::Context& ctx, const HairScene& scene, Re
 {
     s.hairRaster = HairRaster::Compute;
     s.samples = 1;  // the meshes' depth read back as one sample per pixel
-    Renderer renderer(ctx, s, 1);
-    renderer.setHead(scene.head);
-    SimSetup setup = makeSimSetup(SimSettings{}, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
-    GpuSolver solver(ctx, scene.strands, setup, glm::mat4(1.0f));
-    renderer.attachHair(solver, scene.strands, scene.unitsPerMetre);
+    test::HairRenderer hair(ctx, scene, s);
+    Renderer& renderer = hair.renderer;
+    GpuSolver& solver = hair.solver;
     Frame frame(ctx, 1);
     OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(s.width) / float(s.height));
     FrameContext& fc = frame.begin(renderer.transientImages());
@@ -535,11 +533,8 @@ TEST(StrandRaster, AFullFragmentBufferIsCountedAndGrowsForTheNextFrame)
     s.hairRaster = HairRaster::Compute;
     Picture reference = test::renderHair(ctx, scene, s);
 
-    Renderer renderer(ctx, s, 1);
-    renderer.setHead(scene.head);
-    SimSetup setup = makeSimSetup(SimSettings{}, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
-    GpuSolver solver(ctx, scene.strands, setup, glm::mat4(1.0f));
-    renderer.attachHair(solver, scene.strands, scene.unitsPerMetre);
+    test::HairRenderer hair(ctx, scene, s);
+    Renderer& renderer = hair.renderer;
     Frame frame(ctx, 1);
     OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(s.width) / float(s.height));
     // A first frame sizes the fragment buffer; then it is made far too small.
@@ -571,11 +566,8 @@ TEST(StrandRaster, DeviceBytesIsWhatItAllocates)
         s.height = 97;
         s.hairRaster = HairRaster::Compute;
         s.shadows.enabled = shadows;
-        Renderer renderer(ctx, s, 1);
-        renderer.setHead(scene.head);
-        SimSetup setup = makeSimSetup(SimSettings{}, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
-        GpuSolver solver(ctx, scene.strands, setup, glm::mat4(1.0f));
-        renderer.attachHair(solver, scene.strands, scene.unitsPerMetre);
+        test::HairRenderer hair(ctx, scene, s);
+        Renderer& renderer = hair.renderer;
         Frame frame(ctx, 1);
         OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(s.width) / float(s.height));
         Picture picture = renderFrame(ctx, renderer, frame, camera);
