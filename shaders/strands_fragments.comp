@@ -1,5 +1,6 @@
 #version 460
-// strands_fragments.comp: one thread per strand segment; every pixel its ribbon can reach, row by
+// strands_fragments.comp: one thread per strand segment (clump by clump: clumpOrderedSegment); every
+// pixel its ribbon can reach, row by
 // row (ribbonRowSpan), is covered analytically (segmentCoverage) and tested against the meshes'
 // depth (the share of MSAA samples in front scales the coverage, so the head's silhouette stays
 // antialiased); the colour and opacity interpolate the two vertices' (shaded along the strand by
@@ -34,9 +35,10 @@ void main()
         groupSegments = 0u;
     barrier();
 
-    uint segment = linearInvocation(gl_GlobalInvocationID, gl_NumWorkGroups.x * gl_WorkGroupSize.x);
+    uint thread = linearInvocation(gl_GlobalInvocationID, gl_NumWorkGroups.x * gl_WorkGroupSize.x);
+    uint segment = clumpOrderedSegment(thread, push.divisions, push.drawnPerGuide);
     bool drawn = false;
-    if (segment < push.segmentCount) {
+    if (thread < push.segmentCount) {
         uint v = segment / push.divisions * (push.divisions + 1u) + segment % push.divisions;
         vec4 a = vertices[v];
         vec4 b = vertices[v + 1u];

@@ -1,5 +1,6 @@
 #version 460
 // strands_light.comp: the hair in the light's maps, one thread per segment of the light's strands
+// (clump by clump: clumpOrderedSegment)
 // (strands_generate_light.comp: fewer and wider, the same coverage). The thread walks the texels
 // the ribbon can touch, row by row (ribbonRowSpan). Specialization constant 0 chooses the map:
 //   false (light.depth):   the hair's first depth, atomicMin over the float's bits (depths are
@@ -46,8 +47,9 @@ void touch(RasterSegment s, float za, float zb, float alpha, ivec2 texel)
 
 void main()
 {
-    uint segment = linearInvocation(gl_GlobalInvocationID, gl_NumWorkGroups.x * gl_WorkGroupSize.x);
-    if (segment >= push.segmentCount)
+    uint thread = linearInvocation(gl_GlobalInvocationID, gl_NumWorkGroups.x * gl_WorkGroupSize.x);
+    uint segment = clumpOrderedSegment(thread, push.divisions, push.drawnPerGuide);
+    if (thread >= push.segmentCount)
         return;
     uint v = segment / push.divisions * (push.divisions + 1u) + segment % push.divisions;
     vec4 a = vertices[v];

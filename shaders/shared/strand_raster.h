@@ -120,6 +120,18 @@ GPU_FN uint linearInvocation(uvec3 global, uint threadsPerRow)
     return global.x + global.y * threadsPerRow;
 }
 
+// The segment thread t walks (segments are numbered strand by strand: (guide * S + s) * D + i):
+// threads go clump by clump, neighbouring threads taking the same segment i of neighbouring
+// strands s of one guide. Those strands cross the same pixels at about the same time, so one
+// subgroup's atomics and stores land on the same pixels' counts and neighbouring slots together.
+GPU_FN uint clumpOrderedSegment(uint t, uint divisions, uint strandsPerGuide)
+{
+    uint perGuide = divisions * strandsPerGuide;
+    uint guide = t / perGuide;
+    uint r = t % perGuide;
+    return (guide * strandsPerGuide + r % strandsPerGuide) * divisions + r / strandsPerGuide;
+}
+
 // ---- Projection ------------------------------------------------------------------------------
 
 // A world point seen through `viewProjection` onto a `size` pixel target, with its world width.
