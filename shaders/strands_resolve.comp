@@ -36,9 +36,9 @@ void main()
         const uint kAhead = 8u;
         for (uint i = begin; i < end; i += kAhead) {
             uvec2 batch[kAhead];
-            for (uint j = 0u; j < kAhead; ++j)
+            GPU_UNROLL for (uint j = 0u; j < kAhead; ++j)
                 batch[j] = i + j < end ? fragments[i + j] : uvec2(floatBitsToUint(kRasterFarDepth), 0u);
-            for (uint j = 0u; j < kAhead; ++j)
+            GPU_UNROLL for (uint j = 0u; j < kAhead; ++j)
                 if (i + j < end)
                     insertFragment(f, k, uintBitsToFloat(batch[j].x), batch[j].y);
         }

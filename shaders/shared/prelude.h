@@ -50,11 +50,17 @@ using glm::packUnorm4x8;
 using glm::bitCount;
 using glm::unpackUnorm4x8;
 GPU_NAMESPACE_END
+#define GPU_UNROLL
 #else
+#extension GL_EXT_control_flow_attributes : require
 #define GPU_NAMESPACE_BEGIN
 #define GPU_NAMESPACE_END
 #define GPU_FN
 #define GPU_CONST const
+// Before a loop of a constant count over a small array: unrolled, its indices become constants
+// and the array stays in registers (a loop the compiler keeps would index it, and put it in
+// local memory).
+#define GPU_UNROLL [[unroll]]
 #endif
 
 #endif

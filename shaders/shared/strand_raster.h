@@ -301,7 +301,7 @@ struct PixelFragments {
 GPU_FN PixelFragments emptyPixelFragments()
 {
     PixelFragments f;
-    for (uint i = 0u; i < kMaxOitK; ++i) {
+    GPU_UNROLL for (uint i = 0u; i < kMaxOitK; ++i) {
         f.depth[i] = kRasterFarDepth;
         f.color[i] = 0u;
     }
@@ -337,7 +337,7 @@ GPU_FN void addToTail(GPU_INOUT(PixelFragments) f, uint color)
 GPU_FN void insertFragment(GPU_INOUT(PixelFragments) f, uint k, float depth, uint color)
 {
     uint position = 0u;
-    for (uint i = 0u; i < kMaxOitK; ++i)
+    GPU_UNROLL for (uint i = 0u; i < kMaxOitK; ++i)
         position += i < k && !fragmentFarther(f.depth[i], f.color[i], depth, color) ? 1u : 0u;
     if (position >= k) {
         addToTail(f, color);  // behind all k kept (most fragments, once k are kept)
@@ -345,19 +345,19 @@ GPU_FN void insertFragment(GPU_INOUT(PixelFragments) f, uint k, float depth, uin
     }
     float lastDepth = kRasterFarDepth;
     uint lastColor = 0u;
-    for (uint i = 0u; i < kMaxOitK; ++i) {
+    GPU_UNROLL for (uint i = 0u; i < kMaxOitK; ++i) {
         if (i + 1u == k) {
             lastDepth = f.depth[i];
             lastColor = f.color[i];
         }
     }
-    for (uint i = kMaxOitK - 1u; i > 0u; --i) {
+    GPU_UNROLL for (uint i = kMaxOitK - 1u; i > 0u; --i) {
         if (i < k && i > position) {
             f.depth[i] = f.depth[i - 1u];
             f.color[i] = f.color[i - 1u];
         }
     }
-    for (uint i = 0u; i < kMaxOitK; ++i) {
+    GPU_UNROLL for (uint i = 0u; i < kMaxOitK; ++i) {
         if (i == position) {
             f.depth[i] = depth;
             f.color[i] = color;
@@ -371,7 +371,7 @@ GPU_FN vec4 resolveFragments(PixelFragments f, uint k)
 {
     vec3 color = vec3(0.0f);
     float transmittance = 1.0f;
-    for (uint i = 0u; i < kMaxOitK; ++i) {
+    GPU_UNROLL for (uint i = 0u; i < kMaxOitK; ++i) {
         if (i < k && f.depth[i] < kRasterFarDepth) {
             vec4 c = unpackFragmentColor(f.color[i]);
             color += transmittance * c.w * vec3(c);
