@@ -336,13 +336,6 @@ GPU_FN void addToTail(GPU_INOUT(PixelFragments) f, uint color)
 // and the steps do not wait on one another.
 GPU_FN void insertFragment(GPU_INOUT(PixelFragments) f, uint k, float depth, uint color)
 {
-    uint position = 0u;
-    GPU_UNROLL for (uint i = 0u; i < kMaxOitK; ++i)
-        position += i < k && !fragmentFarther(f.depth[i], f.color[i], depth, color) ? 1u : 0u;
-    if (position >= k) {
-        addToTail(f, color);  // behind all k kept (most fragments, once k are kept)
-        return;
-    }
     float lastDepth = kRasterFarDepth;
     uint lastColor = 0u;
     GPU_UNROLL for (uint i = 0u; i < kMaxOitK; ++i) {
@@ -350,6 +343,17 @@ GPU_FN void insertFragment(GPU_INOUT(PixelFragments) f, uint k, float depth, uin
             lastDepth = f.depth[i];
             lastColor = f.color[i];
         }
+    }
+    if (depth > lastDepth) {
+        addToTail(f, color);  // behind all k kept (most fragments, once k are kept): one comparison
+        return;
+    }
+    uint position = 0u;
+    GPU_UNROLL for (uint i = 0u; i < kMaxOitK; ++i)
+        position += i < k && !fragmentFarther(f.depth[i], f.color[i], depth, color) ? 1u : 0u;
+    if (position >= k) {
+        addToTail(f, color);  // behind all k kept, at the last one's depth
+        return;
     }
     GPU_UNROLL for (uint i = kMaxOitK - 1u; i > 0u; --i) {
         if (i < k && i > position) {
