@@ -1,7 +1,7 @@
 #version 460
 // strands_light.comp: the hair in the light's maps, one thread per segment of the light's strands
-// (clump by clump: clumpOrderedSegment)
-// (strands_generate_light.comp: fewer and wider, the same coverage). The thread walks the texels
+// (strands_generate_light.comp: fewer and wider, the same coverage; clump by clump as
+// clumpOrderedSegment takes them). The thread walks the texels
 // the ribbon can touch, row by row (ribbonRowSpan). Specialization constant 0 chooses the map:
 //   false (light.depth):   the hair's first depth, atomicMin over the float's bits (depths are
 //                          positive, so their bits order as the numbers do), on every texel whose

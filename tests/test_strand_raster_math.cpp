@@ -158,6 +158,29 @@ TEST(RasterReach, RowSpansHoldEveryCoveredPixelAndLittleElse)
     EXPECT_LT(spanned, covered + covered / 4) << "the spans hold little more than the covered pixels";
 }
 
+TEST(RasterWalk, ClumpOrderTakesEverySegmentOnce)
+{
+    // The walks' threads take the segments clump by clump (clumpOrderedSegment): every segment of
+    // every strand exactly once, and neighbouring threads the same segment of neighbouring strands.
+    for (uint32_t strandsPerGuide : {1u, 3u, 8u}) {
+        for (uint32_t divisions : {1u, 5u, 24u}) {
+            uint32_t guides = 7;
+            uint32_t count = guides * strandsPerGuide * divisions;
+            std::vector<uint32_t> taken(count, 0);
+            for (uint32_t t = 0; t < count; ++t) {
+                uint32_t segment = gpu::clumpOrderedSegment(t, divisions, strandsPerGuide);
+                ASSERT_LT(segment, count) << "thread " << t;
+                ++taken[segment];
+                if (t + 1 < count && (t + 1) % strandsPerGuide != 0) {  // the next strand, the same segment
+                    EXPECT_EQ(gpu::clumpOrderedSegment(t + 1, divisions, strandsPerGuide), segment + divisions);
+                }
+            }
+            EXPECT_TRUE(std::all_of(taken.begin(), taken.end(), [](uint32_t n) { return n == 1; }))
+                << strandsPerGuide << " strands per guide, " << divisions << " divisions";
+        }
+    }
+}
+
 TEST(RasterFragments, TheNearestKAreSortedAndTheRestBlendedWhateverTheOrder)
 {
     std::mt19937 rng(3);
