@@ -51,7 +51,8 @@ constexpr uint32_t kScanBlockThreads = 256;  // strands_scan.comp's blocks: 4 co
 
 std::string describeRasterStats(const RasterStats& s)
 {
-    std::string text = "compute raster: " + std::to_string(s.segments) + " segments on screen, " +
+    std::string text = "compute raster: " + std::to_string(s.segments) + " segments on screen (" +
+                       std::to_string(s.hidden) + " behind the meshes), " +
                        std::to_string(s.fragments) + " hair fragments (at most " + std::to_string(s.maxPixel) +
                        " in a pixel), buffer of " + std::to_string(s.capacity);
     if (s.overflow > 0)
@@ -91,7 +92,8 @@ StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUn
                            {gpu::kRasterBindingDepthRange, kStorage, kCompute},
                            {gpu::kRasterBindingBlockSums, kStorage, kCompute},
                            {gpu::kRasterBindingMeshSamples, kStorage, kCompute},
-                           {gpu::kRasterBindingLightDepthImage, kImage, kCompute}},
+                           {gpu::kRasterBindingLightDepthImage, kImage, kCompute},
+                           {gpu::kRasterBindingTileDepth, kStorage, kCompute}},
               .pushConstantBytes = sizeof(gpu::StrandRasterPush),
               .pushConstantStages = kCompute,
               .name = "strands.layout"});
@@ -152,6 +154,7 @@ void StrandRaster::resize()
     allocate(counts_, (pixels + 1) * sizeof(uint32_t), vk::kStorage | vk::kTransferDst, "strands.counts", nullptr);
     allocate(offsets_, (pixels + 1) * sizeof(uint32_t), vk::kStorage | vk::kTransferSrc, "strands.offsets", nullptr);
     allocate(depthRange_, pixels * 2 * sizeof(float), vk::kStorage, "strands.depth_range", nullptr);
+    allocate(tileDepth_, depthTiles(e) * sizeof(float), vk::kStorage, "strands.tile_depth", nullptr);
     allocate(blockSums_, blocks * sizeof(uint32_t), vk::kStorage, "strands.block_sums", nullptr);
     allocate(meshSamples_, pixels * uint32_t(target_.samples()) * sizeof(uint32_t), vk::kStorage,
              "strands.mesh_samples", nullptr);
@@ -194,7 +197,7 @@ uint64_t StrandRaster::allocatedBytes() const
 {
     uint64_t bytes = triangles_.size() + uint64_t(color_.extent().width) * color_.extent().height * vk::formatBytes(color_.format());
     for (const Storage* s : {&vertices_, &colors_, &lightVertices_, &lightColors_, &counts_, &offsets_, &fragments_,
-                             &counters_, &depthRange_, &blockSums_, &lightDepth_, &lightOpacity_, &meshSamples_})
+                             &counters_, &depthRange_, &tileDepth_, &blockSums_, &lightDepth_, &lightOpacity_, &meshSamples_})
         bytes += s->buffer ? s->buffer.size() : 0;
     return bytes;
 }
@@ -208,7 +211,7 @@ RasterStats StrandRaster::stats(uint32_t slot) const
 {
     gpu::RasterCounters c{};
     std::memcpy(&c, readback_.at(slot).mapped(), sizeof(c));
-    return {.segments = c.segments, .fragments = c.fragments, .capacity = c.capacity, .overflow = c.overflow,
+    return {.segments = c.segments, .hidden = c.hidden, .fragments = c.fragments, .capacity = c.capacity, .overflow = c.overflow,
             .maxPixel = c.maxPixel};
 }
 
@@ -323,6 +326,7 @@ void StrandRaster::declare(Stage stage, PassIo& io)
             io.use(meshSamples_.track, Access::ComputeWrite);
         }
         io.use(depthRange_.track, Access::ComputeWrite);
+        io.use(tileDepth_.track, Access::ComputeWrite);
         io.use(counts_.track, Access::ComputeWrite);
         break;
     case Stage::Count:  // (one shader with strands.write: it binds, never touches, the fragments)
@@ -330,6 +334,7 @@ void StrandRaster::declare(Stage stage, PassIo& io)
         io.use(vertices_.track, Access::ComputeRead);
         io.use(colors_.track, Access::ComputeRead);
         io.use(depthRange_.track, Access::ComputeRead);
+        io.use(tileDepth_.track, Access::ComputeRead);
         io.use(externalSamples_ ? *externalSamples_ : meshSamples_.track, Access::ComputeRead);
         io.use(counts_.track, Access::ComputeWrite);  // counts, then (strands.write) cursors
         io.use(fragments_.track, Access::ComputeWrite);
@@ -389,6 +394,7 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
     VkDescriptorBufferInfo lightVertices = whole(lightVertices_), lightColors = whole(lightColors_);
     VkDescriptorBufferInfo counts = whole(counts_), offsets = whole(offsets_), fragments = whole(fragments_);
     VkDescriptorBufferInfo counters = whole(counters_), depthRange = whole(depthRange_), blockSums = whole(blockSums_);
+    VkDescriptorBufferInfo tileDepth = whole(tileDepth_);
     VkDescriptorBufferInfo lightDepth = whole(lightDepth_), lightOpacity = whole(lightOpacity_);
     VkDescriptorImageInfo meshDepth{depthSampler_, target_.depthImage().view(), VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL};
     VkDescriptorBufferInfo meshSamples{externalSamples_ ? externalSamplesBuffer_ : meshSamples_.buffer.get(), 0,
@@ -455,6 +461,7 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
         std::vector<VkWriteDescriptorSet> writes = {
             vk::bufferWrite(gpu::kRasterBindingMeshSamples, kStorage, &meshSamples),
             vk::bufferWrite(gpu::kRasterBindingDepthRange, kStorage, &depthRange),
+            vk::bufferWrite(gpu::kRasterBindingTileDepth, kStorage, &tileDepth),
             vk::bufferWrite(gpu::kRasterBindingCounts, kStorage, &counts)};
         if (!externalSamples_)
             writes.push_back(vk::imageWrite(gpu::kRasterBindingMeshDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &meshDepth));
@@ -471,6 +478,7 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
             vk::bufferWrite(gpu::kRasterBindingFragments, kStorage, &fragments),
             vk::bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters),
             vk::bufferWrite(gpu::kRasterBindingDepthRange, kStorage, &depthRange),
+            vk::bufferWrite(gpu::kRasterBindingTileDepth, kStorage, &tileDepth),
             vk::bufferWrite(gpu::kRasterBindingMeshSamples, kStorage, &meshSamples)};
         dispatchLinear(cmd, stage == Stage::Count ? countPipeline_.get() : writePipeline_.get(), camera_, writes,
                        camera_.segmentCount, gpu::kRasterGroupSize);

@@ -55,12 +55,13 @@ class LightMaps;
 // One frame's counts (zeros until a frame has completed).
 struct RasterStats {
     uint64_t segments = 0;   // segments on screen
+    uint64_t hidden = 0;     // of those, the ones behind the meshes' coarse depth (not walked)
     uint64_t fragments = 0;  // fragments the pixels held (what the buffer needed)
     uint64_t capacity = 0;   // fragments the buffer held
     uint64_t overflow = 0;   // fragments that did not fit: dropped that frame, the buffer grows for the next
     uint64_t maxPixel = 0;   // the most fragments one pixel held
 };
-// "compute raster: S segments on screen, F hair fragments (at most P in a pixel), buffer of C"
+// "compute raster: S segments on screen (H behind the meshes), F hair fragments (at most P in a pixel), buffer of C"
 // and ", dropped K" when some did not fit: the line `wisp render` prints and the window's panel shows.
 std::string describeRasterStats(const RasterStats& stats);
 
@@ -93,6 +94,12 @@ public:
     static constexpr uint64_t fragmentLimit(uint64_t maxStorageBufferRange)
     {
         return (maxStorageBufferRange < 0xffffffffull ? maxStorageBufferRange : 0xffffffffull) / kFragmentBytes;
+    }
+    // The coarse depth's tiles over a target (kRasterDepthTile pixels a side, partial ones included).
+    static constexpr uint64_t depthTiles(VkExtent2D extent)
+    {
+        return uint64_t((extent.width + gpu::kRasterDepthTile - 1) / gpu::kRasterDepthTile) *
+               ((extent.height + gpu::kRasterDepthTile - 1) / gpu::kRasterDepthTile);
     }
     // The fragment buffer a first frame of `segments` segments gets.
     static constexpr uint64_t initialFragments(uint64_t segments, uint64_t maxStorageBufferRange)
@@ -129,6 +136,7 @@ public:
                bufferBytes(lightVertices * kVertexBytes) + bufferBytes(lightVertices * kColorBytes) +
                2 * bufferBytes((pixels + 1) * sizeof(uint32_t)) +  // counts, offsets (and the total past the last)
                bufferBytes(pixels * 2 * sizeof(float)) +           // each pixel's mesh depth range
+               bufferBytes(depthTiles(s.extent) * sizeof(float)) +   // each tile's farthest mesh sample
                bufferBytes(blocks * sizeof(uint32_t)) +            // the scan's block sums
                bufferBytes(pixels * (s.samples > 1 ? s.samples : 1) * sizeof(uint32_t)) +  // the meshes' depth samples
                bufferBytes(texels * kLightDepthBytes) + bufferBytes(texels * kLightOpacityBytes) +
@@ -210,7 +218,7 @@ private:
     vk::Buffer triangles_;
     Storage vertices_, colors_;            // the camera's strand vertices
     Storage lightVertices_, lightColors_;  // the light's
-    Storage counts_, offsets_, fragments_, counters_, depthRange_, blockSums_;
+    Storage counts_, offsets_, fragments_, counters_, depthRange_, tileDepth_, blockSums_;
     Storage meshSamples_;  // the depth image's samples, when the meshes are drawn by graphics
     TrackedBuffer* externalSamples_ = nullptr;
     VkBuffer externalSamplesBuffer_ = VK_NULL_HANDLE;

@@ -76,23 +76,46 @@ StrandVertices generateStrands(const gpu::StrandRasterPush& push, const gpu::Fra
 }
 
 std::vector<std::vector<Fragment>> pixelFragments(const gpu::StrandRasterPush& push, const StrandVertices& strands,
-                                                  const std::vector<float>& meshDepth, uint32_t* segments)
+                                                  const std::vector<float>& meshDepth, SegmentCounts* counts)
 {
     std::vector<std::vector<Fragment>> out(size_t(push.targetWidth) * push.targetHeight);
-    uint32_t drawnSegments = 0;
+    SegmentCounts found;
+    // strands_depth.comp's coarse depth: each tile's farthest sample.
+    constexpr int kTile = int(gpu::kRasterDepthTile);
+    int tilesX = (int(push.targetWidth) + kTile - 1) / kTile, tilesY = (int(push.targetHeight) + kTile - 1) / kTile;
+    std::vector<float> tileDepth(size_t(tilesX) * size_t(tilesY), 0.0f);
+    for (uint32_t y = 0; y < push.targetHeight; ++y)
+        for (uint32_t x = 0; x < push.targetWidth; ++x) {
+            float& tile = tileDepth[size_t(int(y) / kTile) * size_t(tilesX) + size_t(int(x) / kTile)];
+            tile = std::max(tile, meshDepth[size_t(y) * push.targetWidth + x]);
+        }
+    // strands_fragments.comp's reachesUnhiddenTile.
+    auto hidden = [&](glm::ivec4 bounds, float nearest) {
+        if (bounds.x > bounds.z || bounds.y > bounds.w)
+            return false;
+        glm::ivec4 tiles = bounds / kTile;
+        if (uint32_t((tiles.z - tiles.x + 1) * (tiles.w - tiles.y + 1)) > gpu::kRasterMaxCullTiles)
+            return false;
+        for (int ty = tiles.y; ty <= tiles.w; ++ty)
+            for (int tx = tiles.x; tx <= tiles.z; ++tx)
+                if (gpu::depthCanPass(nearest, tileDepth[size_t(ty) * size_t(tilesX) + size_t(tx)]))
+                    return false;
+        return true;
+    };
     for (uint32_t segment = 0; segment < push.segmentCount; ++segment) {
         uint32_t v = firstVertex(push, segment);
         glm::vec4 a = strands.positions[v], b = strands.positions[v + 1];
         if (!(a.w >= 0.0f && b.w >= 0.0f && std::min(a.z, b.z) >= 0.0f && std::max(a.z, b.z) <= 1.0f))
             continue;
-        ++drawnSegments;
+        ++found.drawn;
         gpu::RasterSegment s = gpu::makeRasterSegment(glm::vec2(a), glm::vec2(b), a.w, b.w);
         glm::vec4 colorA = gpu::unpackFragmentColor(strands.colors[v]);
         glm::vec4 colorB = gpu::unpackFragmentColor(strands.colors[v + 1]);
-        float reach = gpu::ribbonReach(s);
-        int y0 = std::max(int(std::ceil(std::min(a.y, b.y) - reach - 0.5f)), 0);
-        int y1 = std::min(int(std::floor(std::max(a.y, b.y) + reach - 0.5f)), int(push.targetHeight) - 1);
-        for (int y = y0; y <= y1; ++y) {
+        glm::ivec4 bounds = gpu::ribbonPixelBounds(s, glm::vec2(a), glm::vec2(b), push.targetWidth, push.targetHeight);
+        bool skipped = hidden(bounds, std::min(a.z, b.z));  // walked all the same: any fragment is a loss
+        found.hidden += skipped ? 1 : 0;
+        bool gave = false;
+        for (int y = bounds.y; y <= bounds.w; ++y) {
             glm::vec2 span = gpu::ribbonRowSpan(s, float(y) + 0.5f);
             int x0 = std::max(int(std::ceil(span.x - 0.5f)), 0);
             int x1 = std::min(int(std::floor(span.y - 0.5f)), int(push.targetWidth) - 1);
@@ -109,11 +132,13 @@ std::vector<std::vector<Fragment>> pixelFragments(const gpu::StrandRasterPush& p
                 if (alpha < 0.5f / 255.0f)
                     continue;
                 out[p].push_back({depth, gpu::packFragmentColor(glm::vec3(c), alpha)});
+                gave = true;
             }
         }
+        found.hiddenWithFragments += skipped && gave ? 1 : 0;
     }
-    if (segments)
-        *segments = drawnSegments;
+    if (counts)
+        *counts = found;
     return out;
 }
 
@@ -147,10 +172,9 @@ LightMaps rasterLight(const gpu::StrandRasterPush& push, const gpu::FrameParams&
             gpu::RasterSegment s = gpu::makeRasterSegment(glm::vec2(a), glm::vec2(b), a.w, b.w);
             gpu::RasterSegment reach =
                 gpu::makeRasterSegment(glm::vec2(a), glm::vec2(b), std::max(a.w, 0.5f), std::max(b.w, 0.5f));
-            float extent = gpu::ribbonReach(reach);
-            int y0 = std::max(int(std::ceil(std::min(a.y, b.y) - extent - 0.5f)), 0);
-            int y1 = std::min(int(std::floor(std::max(a.y, b.y) + extent - 0.5f)), int(push.targetHeight) - 1);
-            for (int y = y0; y <= y1; ++y) {
+            glm::ivec4 bounds =
+                gpu::ribbonPixelBounds(reach, glm::vec2(a), glm::vec2(b), push.targetWidth, push.targetHeight);
+            for (int y = bounds.y; y <= bounds.w; ++y) {
                 glm::vec2 span = gpu::ribbonRowSpan(reach, float(y) + 0.5f);
                 int x0 = std::max(int(std::ceil(span.x - 0.5f)), 0);
                 int x1 = std::min(int(std::floor(span.y - 0.5f)), int(push.targetWidth) - 1);

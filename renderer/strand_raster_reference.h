@@ -35,12 +35,21 @@ struct Fragment {
     bool operator==(const Fragment& o) const { return depth == o.depth && color == o.color; }
 };
 
+// What pixelFragments() found of the segments: those drawn (on screen, in front of the camera),
+// those of them the kernels skip as hidden (behind the farthest mesh depth of every 8 x 8 tile
+// they reach), and of those the ones that gave a fragment all the same (the twin walks every
+// segment: 0 unless the skip loses hair).
+struct SegmentCounts {
+    uint32_t drawn = 0;
+    uint32_t hidden = 0;
+    uint32_t hiddenWithFragments = 0;
+};
+
 // strands_depth.comp, strands_fragments.comp (count and write) and the scan: every pixel's
 // fragments (row-major), given the meshes' depth (one sample per pixel, row-major), each pixel's
-// in the order the segments come (the kernels' order is the atomics'); `segments` receives the
-// segments drawn.
+// in the order the segments come (the kernels' order is the atomics').
 std::vector<std::vector<Fragment>> pixelFragments(const gpu::StrandRasterPush& push, const StrandVertices& strands,
-                                                  const std::vector<float>& meshDepth, uint32_t* segments = nullptr);
+                                                  const std::vector<float>& meshDepth, SegmentCounts* counts = nullptr);
 
 // strands_resolve.comp: the premultiplied hair of every pixel.
 std::vector<glm::vec4> resolvePixels(const gpu::StrandRasterPush& push, const std::vector<std::vector<Fragment>>& pixels);

@@ -9,7 +9,10 @@
 //                          scan set to each pixel's offset); slots past the buffer's capacity are
 //                          skipped (the scan counted them as overflow)
 // Both variants make exactly the same decisions (the same arithmetic on the same input).
-// Segments with an end behind the camera or outside the depth range are not drawn.
+// Segments with an end behind the camera or outside the depth range are not drawn; nor are those
+// behind the farthest mesh sample of every 8 x 8 tile they reach (the coarse depth of
+// strands_depth.comp): none of their fragments could pass the per-pixel test, so skipping their
+// walk changes nothing but the time (they are counted as hidden).
 // The meshes' depth samples come from a buffer (float bits, pixel * samples + s): strands_depth.comp
 // copies the depth image there, or the compute meshes drew into it.
 #extension GL_GOOGLE_include_directive : require
@@ -26,31 +29,52 @@ layout(set = 0, binding = kRasterBindingCounters, std430) buffer Counters { Rast
 layout(set = 0, binding = kRasterBindingDepthRange, std430) readonly buffer DepthRange { vec2 depthRange[]; };
 layout(set = 0, binding = kRasterBindingMeshSamples, std430) readonly buffer MeshSamples { uint meshSamples[]; };
 
+layout(set = 0, binding = kRasterBindingTileDepth, std430) readonly buffer TileDepth { float tileDepth[]; };
+
 shared uint groupSegments;
+shared uint groupHidden;
+
+// Whether any pixel in `bounds` could hold a fragment as near as `nearest`: whether it lies in
+// front of the farthest mesh sample of some tile the bounds reach (true, unlooked, past
+// kRasterMaxCullTiles tiles).
+bool reachesUnhiddenTile(ivec4 bounds, float nearest)
+{
+    ivec4 tiles = bounds / int(kRasterDepthTile);
+    if (uint((tiles.z - tiles.x + 1) * (tiles.w - tiles.y + 1)) > kRasterMaxCullTiles)
+        return true;
+    uint tilesPerRow = (push.targetWidth + kRasterDepthTile - 1u) / kRasterDepthTile;
+    for (int ty = tiles.y; ty <= tiles.w; ++ty)
+        for (int tx = tiles.x; tx <= tiles.z; ++tx)
+            if (depthCanPass(nearest, tileDepth[uint(ty) * tilesPerRow + uint(tx)]))
+                return true;
+    return false;
+}
 
 void main()
 {
-    if (gl_LocalInvocationIndex == 0u)
+    if (gl_LocalInvocationIndex == 0u) {
         groupSegments = 0u;
+        groupHidden = 0u;
+    }
     barrier();
 
     uint thread = linearInvocation(gl_GlobalInvocationID, gl_NumWorkGroups.x * gl_WorkGroupSize.x);
     uint segment = clumpOrderedSegment(thread, push.divisions, push.drawnPerGuide);
     bool drawn = false;
+    bool hidden = false;
     if (thread < push.segmentCount) {
         uint v = segment / push.divisions * (push.divisions + 1u) + segment % push.divisions;
         vec4 a = vertices[v];
         vec4 b = vertices[v + 1u];
         drawn = a.w >= 0.0 && b.w >= 0.0 && min(a.z, b.z) >= 0.0 && max(a.z, b.z) <= 1.0;
-        if (drawn) {
-            RasterSegment s = makeRasterSegment(a.xy, b.xy, a.w, b.w);
+        RasterSegment s = makeRasterSegment(a.xy, b.xy, a.w, b.w);
+        ivec4 bounds = ribbonPixelBounds(s, a.xy, b.xy, push.targetWidth, push.targetHeight);
+        hidden = drawn && bounds.x <= bounds.z && bounds.y <= bounds.w && !reachesUnhiddenTile(bounds, min(a.z, b.z));
+        if (drawn && !hidden) {
             vec4 colorA = unpackFragmentColor(colors[v]);
             vec4 colorB = unpackFragmentColor(colors[v + 1u]);
-            float reach = ribbonReach(s);
-            int y0 = max(int(ceil(min(a.y, b.y) - reach - 0.5)), 0);
-            int y1 = min(int(floor(max(a.y, b.y) + reach - 0.5)), int(push.targetHeight) - 1);
             uint samples = push.samples;
-            for (int y = y0; y <= y1; ++y) {
+            for (int y = bounds.y; y <= bounds.w; ++y) {
                 vec2 span = ribbonRowSpan(s, float(y) + 0.5);
                 int x0 = max(int(ceil(span.x - 0.5)), 0);
                 int x1 = min(int(floor(span.y - 0.5)), int(push.targetWidth) - 1);
@@ -87,7 +111,11 @@ void main()
     }
     if (!kWrite && drawn)
         atomicAdd(groupSegments, 1u);
+    if (!kWrite && hidden)
+        atomicAdd(groupHidden, 1u);
     barrier();
     if (!kWrite && gl_LocalInvocationIndex == 0u && groupSegments > 0u)
         atomicAdd(counters.segments, groupSegments);
+    if (!kWrite && gl_LocalInvocationIndex == 0u && groupHidden > 0u)
+        atomicAdd(counters.hidden, groupHidden);
 }

@@ -60,10 +60,8 @@ void main()
     RasterSegment s = makeRasterSegment(a.xy, b.xy, a.w, b.w);
     // The texels the ribbon, at least a texel wide, can reach, row by row.
     RasterSegment reach = makeRasterSegment(a.xy, b.xy, max(a.w, 0.5), max(b.w, 0.5));
-    float extent = ribbonReach(reach);
-    int y0 = max(int(ceil(min(a.y, b.y) - extent - 0.5)), 0);
-    int y1 = min(int(floor(max(a.y, b.y) + extent - 0.5)), int(push.targetHeight) - 1);
-    for (int y = y0; y <= y1; ++y) {
+    ivec4 bounds = ribbonPixelBounds(reach, a.xy, b.xy, push.targetWidth, push.targetHeight);
+    for (int y = bounds.y; y <= bounds.w; ++y) {
         vec2 span = ribbonRowSpan(reach, float(y) + 0.5);
         int x0 = max(int(ceil(span.x - 0.5)), 0);
         int x1 = min(int(floor(span.y - 0.5)), int(push.targetWidth) - 1);

@@ -206,6 +206,7 @@ TEST(Workload, ComputeRasterMemoryByHand)
                       + 10u * 1u * 4u * (16u + 4u)  // 10 light strands x 4 vertices
                       + 2u * 5001u * 4u         // counts and offsets per pixel, and one past the last
                       + 5000u * 8u              // each pixel's depth range
+                      + 13u * 7u * 4u           // each 8 x 8 tile's farthest mesh depth (100 x 50 pixels)
                       + 5u * 4u                 // the scan's block sums: ceil(5001 / 1024)
                       + 64u * 64u * (4u + 16u)  // the light's depth and opacity layers per texel
                       + (1u << 18) * 8u         // at least 2^18 fragments of 8 bytes (120 segments x 8 is fewer)

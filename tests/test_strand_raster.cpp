@@ -231,14 +231,18 @@ TEST(StrandRaster, CameraKernelsMatchTheirCpuTwin)
             expectSameStrands(gpuStrands, reference::generateStrands(f.camera, f.frame, f.sim, f.guides, f.triangles), true);
 
             // strands.depth, strands.count, the scan and strands.write, from the GPU's own vertices
-            uint32_t segments = 0;
+            reference::SegmentCounts segments;
             std::vector<std::vector<reference::Fragment>> cpu =
                 reference::pixelFragments(f.camera, gpuStrands, f.readback->depth(), &segments);
             size_t pixels = cpu.size();
             std::vector<uint32_t> offsets = f.readback->read<uint32_t>(Buffer::Offsets, pixels + 1);
             gpu::RasterCounters counters = f.readback->read<gpu::RasterCounters>(Buffer::Counters, 1)[0];
-            EXPECT_EQ(counters.segments, segments);
-            EXPECT_GT(segments, 1000u);
+            EXPECT_EQ(counters.segments, segments.drawn);
+            EXPECT_GT(segments.drawn, 1000u);
+            // the segments behind the head's coarse depth, skipped: the same ones, and no hair lost
+            EXPECT_EQ(counters.hidden, segments.hidden);
+            EXPECT_GT(segments.hidden, segments.drawn / 20) << "the hair behind the head";
+            EXPECT_EQ(segments.hiddenWithFragments, 0u);
             EXPECT_EQ(counters.fragments, offsets[pixels]);
             EXPECT_EQ(counters.overflow, 0u);
             std::vector<uvec2Fragment> raw = f.readback->read<uvec2Fragment>(Buffer::Fragments, offsets[pixels]);
@@ -601,11 +605,11 @@ TEST(StrandRaster, DeviceBytesIsWhatItAllocates)
 TEST(StrandRaster, StatsAreDescribedInOneLine)
 {
     // The line `wisp render` prints and the window's panel shows.
-    RasterStats s{.segments = 1200, .fragments = 5000, .capacity = 8000, .overflow = 0, .maxPixel = 17};
-    EXPECT_EQ(describeRasterStats(s),
-              "compute raster: 1200 segments on screen, 5000 hair fragments (at most 17 in a pixel), buffer of 8000");
+    RasterStats s{.segments = 1200, .hidden = 300, .fragments = 5000, .capacity = 8000, .overflow = 0, .maxPixel = 17};
+    EXPECT_EQ(describeRasterStats(s), "compute raster: 1200 segments on screen (300 behind the meshes), 5000 hair "
+                                      "fragments (at most 17 in a pixel), buffer of 8000");
     s.capacity = 4000;
     s.overflow = 1000;
-    EXPECT_EQ(describeRasterStats(s), "compute raster: 1200 segments on screen, 5000 hair fragments (at most 17 in a "
-                                      "pixel), buffer of 4000, dropped 1000");
+    EXPECT_EQ(describeRasterStats(s), "compute raster: 1200 segments on screen (300 behind the meshes), 5000 hair "
+                                      "fragments (at most 17 in a pixel), buffer of 4000, dropped 1000");
 }

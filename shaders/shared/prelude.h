@@ -19,6 +19,7 @@ using vec4 = glm::vec4;
 using uvec2 = glm::uvec2;
 using uvec3 = glm::uvec3;
 using ivec3 = glm::ivec3;
+using ivec4 = glm::ivec4;
 using uvec4 = glm::uvec4;
 using ivec2 = glm::ivec2;
 using mat3 = glm::mat3;

@@ -6,8 +6,11 @@
 //              pixels, shaded there (shared/strand_shading.h: shading along the strand, not per
 //              pixel) and packed with its opacity
 //   depth      one thread per pixel: the nearest and farthest of the meshes' depth samples; the
-//              pixel's fragment count zeroed
-//   count      one thread per segment (two consecutive vertices): every pixel its ribbon can reach
+//              pixel's fragment count zeroed; each 8 x 8 tile's farthest sample (a coarse depth)
+//   count      one thread per segment (two consecutive vertices), unless the segment lies behind
+//              the farthest sample of every tile it reaches (hidden: none of its fragments could
+//              pass the depth test, so its walk is skipped; the hair behind a head is about half
+//              of what a front view's walks would visit): every pixel its ribbon can reach
 //              (ribbonRowSpan, row by row) covered analytically (segmentCoverage: the exact area of
 //              the ribbon over the pixel across it, times the overlap along it) and depth-tested
 //              against the meshes (each MSAA sample); each fragment that stays counted at its pixel
@@ -64,6 +67,12 @@ GPU_CONST uint kRasterBindingDepthRange = 20;  // vec2 per pixel: the nearest an
 GPU_CONST uint kRasterBindingBlockSums = 21;   // uint per scan block: its counts' total, then its offset
 GPU_CONST uint kRasterBindingMeshSamples = 22; // uint per mesh depth sample (pixel * samples + s): float bits
 GPU_CONST uint kRasterBindingLightDepthImage = 23; // image2D r32f: the hair's first depth from the light, as values
+GPU_CONST uint kRasterBindingTileDepth = 24;   // uint per kRasterDepthTile^2 pixels: their farthest mesh depth sample (float bits)
+
+// The coarse depth's tiles: kRasterDepthTile x kRasterDepthTile pixels (strands_depth.comp's workgroup).
+GPU_CONST uint kRasterDepthTile = 8u;
+// A segment reaching more tiles than this is walked without looking at them.
+GPU_CONST uint kRasterMaxCullTiles = 16u;
 
 // Fixed point of the light's opacity sums (integer units per unit of opacity).
 GPU_CONST float kOpacityFixedScale = 1024.0f;
@@ -103,7 +112,7 @@ struct RasterCounters {
     uint overflow;   // fragments that did not fit (dropped this frame; the renderer grows the buffer)
     uint segments;   // segments on screen, in front of the camera
     uint maxPixel;   // the most fragments one pixel held
-    uint pad0;
+    uint hidden;     // of the segments on screen, those behind the meshes' coarse depth (not walked)
     uint pad1;
     uint pad2;
 };
@@ -259,10 +268,30 @@ GPU_FN vec3 lightTexelHit(RasterSegment s, vec2 centre)
     return vec3(inside ? 1.0f : 0.0f, t, min(2.0f * h, 1.0f));
 }
 
-// How far beyond its ends, in y, a segment's ribbon can reach a pixel centre.
+// How far beyond its ends, in x or y, a segment's ribbon can reach a pixel centre.
 GPU_FN float ribbonReach(RasterSegment seg)
 {
     return max(seg.ha, seg.hb) + seg.footA + seg.footB;
+}
+
+// The pixels whose centres the ribbon of the segment from a to b can reach: x0, y0, x1, y1,
+// inclusive, clamped to a width x height target (empty, x0 > x1 or y0 > y1, off it).
+GPU_FN ivec4 ribbonPixelBounds(RasterSegment seg, vec2 a, vec2 b, uint width, uint height)
+{
+    float reach = ribbonReach(seg);
+    vec2 lo = min(a, b) - reach - 0.5f;
+    vec2 hi = max(a, b) + reach - 0.5f;
+    return ivec4(max(int(ceil(lo.x)), 0), max(int(ceil(lo.y)), 0), min(int(floor(hi.x)), int(width) - 1),
+                 min(int(floor(hi.y)), int(height) - 1));
+}
+
+// Whether a fragment at `depth` (in front of the camera) could pass the meshes' depth test where
+// the farthest of their samples is `farthest`: a fragment farther than every sample is behind
+// them all (strands_fragments.comp's per-pixel test). A segment's fragments are never nearer than
+// its nearer end; mix() may round a last bit below it, hence the margin.
+GPU_FN bool depthCanPass(float nearestDepth, float farthest)
+{
+    return nearestDepth - 1e-6f <= farthest;
 }
 
 // ---- Order-independent blending (the nearest k sorted, the rest as one layer) ----------------
