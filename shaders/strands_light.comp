@@ -4,7 +4,8 @@
 // clumpOrderedSegment takes them). The thread walks the texels
 // the ribbon can touch, row by row (ribbonRowSpan). Specialization constant 0 chooses the map:
 //   false (light.depth):   the hair's first depth, atomicMin over the float's bits (depths are
-//                          positive, so their bits order as the numbers do), on every texel whose
+//                          positive, so their bits order as the numbers do; only a fragment
+//                          nearer than the texel holds takes the atomic), on every texel whose
 //                          centre lies within the ribbon, at least a texel wide (as rasterization does)
 //   true  (light.opacity): on the same texels, the strand's opacity x the share of the texel-wide
 //                          ribbon its width covers, added in fixed point to the deep opacity layer
@@ -34,7 +35,11 @@ void touch(RasterSegment s, float za, float zb, float alpha, ivec2 texel)
     uint index = uint(texel.y) * push.targetWidth + uint(texel.x);
     float depth = mix(za, zb, hit.y);
     if (!kOpacity) {
-        atomicMin(lightDepth[index], floatBitsToUint(max(depth, 0.0)));
+        // The texel only ever gets nearer: a value read now (however stale) is no nearer than the
+        // texel will end, so a fragment not nearer than it changes nothing, and needs no atomic.
+        uint bits = floatBitsToUint(max(depth, 0.0));
+        if (bits < lightDepth[index])
+            atomicMin(lightDepth[index], bits);
         return;
     }
     float z0 = uintBitsToFloat(lightDepth[index]);

@@ -76,7 +76,9 @@ GPU_CONST uint kRasterMaxCullTiles = 16u;
 
 // Fixed point of the light's opacity sums (integer units per unit of opacity).
 GPU_CONST float kOpacityFixedScale = 1024.0f;
-// Fixed point of a pixel's blended tail (sums of alpha x colour, alpha and -log(1 - alpha)).
+// Fixed point of a pixel's blended tail: -log(1 - alpha) summed in units of 1 / kTailFixedScale;
+// alpha x colour and alpha in units of 255^3 / 2^12 (about 1 / 4048), whole numbers from the
+// fragment's bytes (addToTail).
 GPU_CONST float kTailFixedScale = 4096.0f;
 GPU_CONST uint kTailSaturate = 0x7fffffffu;
 GPU_CONST float kRasterFarDepth = 2.0f;  // an empty slot of the nearest list: behind everything
@@ -342,20 +344,33 @@ GPU_FN PixelFragments emptyPixelFragments()
     return f;
 }
 
-GPU_FN uint saturatingAdd(uint sum, float value)
+GPU_FN uint saturatingAdd(uint sum, uint v)
 {
-    uint v = uint(clamp(value, 0.0f, 65536.0f) * kTailFixedScale + 0.5f);
     return min(sum, kTailSaturate - v) + v;
 }
 
+// A product of three bytes (at most 255^3) in the tail's units of 255^3 / 2^12, rounded.
+GPU_FN uint tailUnits(uint product)
+{
+    return (product + 2048u) >> 12u;
+}
+
+// The fragment joins the tail. Its colour bytes hold sqrt(rgb) and its alpha byte alpha
+// (packFragmentColor), so alpha x r is (A x R x R) / 255^3 exactly: whole-number arithmetic,
+// with one conversion (for the logarithm) where unpacking to floats would take nine; the tail is
+// where most of a busy pixel's fragments go.
 GPU_FN void addToTail(GPU_INOUT(PixelFragments) f, uint color)
 {
-    vec4 c = unpackFragmentColor(color);
-    f.tailR = saturatingAdd(f.tailR, c.w * c.x);
-    f.tailG = saturatingAdd(f.tailG, c.w * c.y);
-    f.tailB = saturatingAdd(f.tailB, c.w * c.z);
-    f.tailAlpha = saturatingAdd(f.tailAlpha, c.w);
-    f.tailClear = saturatingAdd(f.tailClear, -log(1.0f - min(c.w, 0.999f)));
+    uint r = color & 0xffu;
+    uint g = (color >> 8u) & 0xffu;
+    uint b = (color >> 16u) & 0xffu;
+    uint a = color >> 24u;
+    f.tailR = saturatingAdd(f.tailR, tailUnits(a * r * r));
+    f.tailG = saturatingAdd(f.tailG, tailUnits(a * g * g));
+    f.tailB = saturatingAdd(f.tailB, tailUnits(a * b * b));
+    f.tailAlpha = saturatingAdd(f.tailAlpha, tailUnits(a * 65025u));
+    float clear = -log(1.0f - min(float(a) * (1.0f / 255.0f), 0.999f));
+    f.tailClear = saturatingAdd(f.tailClear, uint(clear * kTailFixedScale + 0.5f));
 }
 
 // Adds a fragment: it takes its place among the nearest k (after every kept fragment not farther
