@@ -68,7 +68,7 @@ GpuMemory estimateGpuMemory(const Workload& w, const vk::DeviceReport& device)
         // Every strand at full detail (LOD draws fewer); the light's share as Renderer::prepare
         // draws them: at least one a guide, none with shadows off.
         uint32_t perGuide = r.strands.strandsPerGuide;
-        uint32_t light = std::min(perGuide, uint32_t(std::ceil(std::max(1.0f, float(perGuide) * r.shadows.strandFraction))));
+        uint32_t light = drawnStrandsPerGuide(perGuide, lightLodStrands(float(perGuide), r.shadows.strandFraction));
         m.raster = StrandRaster::deviceBytes({.extent = extent,
                                               .guides = w.guides,
                                               .strandsPerGuide = perGuide,

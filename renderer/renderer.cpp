@@ -222,7 +222,7 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
     // The light's maps need the hair's depth and opacity, not every strand: LOD's fewer, wider
     // strands (the same coverage) cost a fraction of the tessellation.
     gpu::HairPush light = push;
-    light.lodStrands = std::max(1.0f, push.lodStrands * settings_.shadows.strandFraction);
+    light.lodStrands = lightLodStrands(push.lodStrands, settings_.shadows.strandFraction);
     light.lodWidthScale = push.lodWidthScale * std::sqrt(push.lodStrands / light.lodStrands);
     hairPass_->setLightPush(light);
     if (hairRaster() != HairRaster::Compute) {
@@ -242,7 +242,7 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
         r.guideCount = p.guideCount;
         r.verticesPerStrand = p.verticesPerStrand;
         r.strandsPerGuide = p.strandsPerGuide;
-        r.drawnPerGuide = std::min(p.strandsPerGuide, uint32_t(std::ceil(p.lodStrands)));
+        r.drawnPerGuide = drawnStrandsPerGuide(p.strandsPerGuide, p.lodStrands);
         r.divisions = p.divisions;
         r.interpolation = p.interpolation;
         r.clumpRadius = p.clumpRadius;

@@ -36,7 +36,9 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -51,6 +53,18 @@ class RenderTarget;
 class FrameUniforms;
 class GpuSolver;
 class LightMaps;
+
+// The strands the light's maps draw per guide, LOD's `lodStrands` (continuous) drawn for the camera:
+// `strandFraction` of them (shadow_strands), wider, at least one.
+inline float lightLodStrands(float lodStrands, float strandFraction)
+{
+    return std::max(1.0f, lodStrands * strandFraction);
+}
+// The strands a guide's LOD of `lodStrands` (continuous) generates: the last one fading, at most all.
+inline uint32_t drawnStrandsPerGuide(uint32_t strandsPerGuide, float lodStrands)
+{
+    return std::min(strandsPerGuide, uint32_t(std::ceil(lodStrands)));
+}
 
 // One frame's counts (zeros until a frame has completed).
 struct RasterStats {
