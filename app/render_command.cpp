@@ -66,8 +66,8 @@ int runProfile(const GlobalOptions& g, SessionOptions& o, const RenderCommand& c
                           {"hair_raster_drawn", path == HairRaster::Compute ? "compute" : "graphics"},
                           {"settings", settingsJson(o.settings)}};
     if (path == HairRaster::Compute)
-        out["raster"] = {{"segments", raster.segments}, {"hidden", raster.hidden}, {"fragments", raster.fragments}, {"capacity", raster.capacity},
-                         {"overflow", raster.overflow}, {"max_pixel", raster.maxPixel}};
+        out["raster"] = {{"segments", raster.segments}, {"hidden", raster.hidden}, {"fragments", raster.fragments},
+                         {"capacity", raster.capacity}, {"overflow", raster.overflow}, {"max_pixel", raster.maxPixel}};
     for (const PassTiming& t : timings)
         out["ms"][t.name] = {{"median", t.medianMs}, {"p95", t.p95Ms}};
     std::cout << out.dump() << "\n";

@@ -197,7 +197,8 @@ uint64_t StrandRaster::allocatedBytes() const
 {
     uint64_t bytes = triangles_.size() + uint64_t(color_.extent().width) * color_.extent().height * vk::formatBytes(color_.format());
     for (const Storage* s : {&vertices_, &colors_, &lightVertices_, &lightColors_, &counts_, &offsets_, &fragments_,
-                             &counters_, &depthRange_, &tileDepth_, &blockSums_, &lightDepth_, &lightOpacity_, &meshSamples_})
+                             &counters_, &depthRange_, &tileDepth_, &blockSums_, &lightDepth_, &lightOpacity_,
+                             &meshSamples_})
         bytes += s->buffer ? s->buffer.size() : 0;
     return bytes;
 }
@@ -211,8 +212,8 @@ RasterStats StrandRaster::stats(uint32_t slot) const
 {
     gpu::RasterCounters c{};
     std::memcpy(&c, readback_.at(slot).mapped(), sizeof(c));
-    return {.segments = c.segments, .hidden = c.hidden, .fragments = c.fragments, .capacity = c.capacity, .overflow = c.overflow,
-            .maxPixel = c.maxPixel};
+    return {.segments = c.segments, .hidden = c.hidden, .fragments = c.fragments, .capacity = c.capacity,
+            .overflow = c.overflow, .maxPixel = c.maxPixel};
 }
 
 void StrandRaster::prepare(FrameContext& frame, gpu::StrandRasterPush camera, gpu::StrandRasterPush light,

@@ -67,7 +67,7 @@ GPU_CONST uint kRasterBindingDepthRange = 20;  // vec2 per pixel: the nearest an
 GPU_CONST uint kRasterBindingBlockSums = 21;   // uint per scan block: its counts' total, then its offset
 GPU_CONST uint kRasterBindingMeshSamples = 22; // uint per mesh depth sample (pixel * samples + s): float bits
 GPU_CONST uint kRasterBindingLightDepthImage = 23; // image2D r32f: the hair's first depth from the light, as values
-GPU_CONST uint kRasterBindingTileDepth = 24;   // uint per kRasterDepthTile^2 pixels: their farthest mesh depth sample (float bits)
+GPU_CONST uint kRasterBindingTileDepth = 24;   // float per kRasterDepthTile^2 pixels: their farthest mesh depth sample
 
 // The coarse depth's tiles: kRasterDepthTile x kRasterDepthTile pixels (strands_depth.comp's workgroup).
 GPU_CONST uint kRasterDepthTile = 8u;
