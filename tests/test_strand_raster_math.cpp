@@ -181,6 +181,40 @@ TEST(RasterWalk, ClumpOrderTakesEverySegmentOnce)
     }
 }
 
+TEST(RasterWalk, PixelBoundsHoldEveryCoveredPixelAndNoFragmentIsNearerThanItsSegment)
+{
+    // The walks skip a segment behind the meshes' coarse depth over the tiles its pixel bounds
+    // reach (ribbonPixelBounds, depthCanPass): exact only if every pixel the ribbon covers lies
+    // within the bounds, and no fragment's depth (mixed along the segment) is nearer than its
+    // nearer end by more than depthCanPass allows.
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    constexpr uint32_t kWidth = 64, kHeight = 48;
+    size_t covered = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+        glm::vec2 a(unit(rng) * 80.0f - 8.0f, unit(rng) * 64.0f - 8.0f);
+        float length = trial % 4 == 0 ? unit(rng) * 0.5f : unit(rng) * 20.0f;  // some shorter than a pixel
+        float angle = unit(rng) * 6.2831853f;
+        glm::vec2 b = a + length * glm::vec2(std::cos(angle), std::sin(angle));
+        float ha = trial % 3 == 0 ? unit(rng) * 3.0f : unit(rng) * 0.3f, hb = unit(rng) * 0.3f;
+        gpu::RasterSegment s = gpu::makeRasterSegment(a, b, ha, hb);
+        glm::ivec4 bounds = gpu::ribbonPixelBounds(s, a, b, kWidth, kHeight);
+        float za = unit(rng), zb = unit(rng);
+        for (int y = 0; y < int(kHeight); ++y)
+            for (int x = 0; x < int(kWidth); ++x) {
+                glm::vec2 hit = gpu::segmentCoverage(s, glm::vec2(float(x), float(y)) + 0.5f);
+                if (hit.x <= 0.0f)
+                    continue;
+                ++covered;
+                ASSERT_TRUE(x >= bounds.x && x <= bounds.z && y >= bounds.y && y <= bounds.w)
+                    << "trial " << trial << ": pixel " << x << ", " << y << " covered outside the bounds";
+                ASSERT_TRUE(gpu::depthCanPass(std::min(za, zb), glm::mix(za, zb, hit.y)))
+                    << "trial " << trial << ": a fragment nearer than its segment";
+            }
+    }
+    EXPECT_GT(covered, 1000u);
+}
+
 TEST(RasterFragments, TheNearestKAreSortedAndTheRestBlendedWhateverTheOrder)
 {
     std::mt19937 rng(3);
