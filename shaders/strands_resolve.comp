@@ -6,6 +6,10 @@
 // so the lists stay in registers); the pixel's premultiplied hair written once. hair.composite
 // lays the picture over the target.
 #extension GL_GOOGLE_include_directive : require
+// The tail's clear units (tailClearUnits) of each alpha byte, filled at the workgroup's start: a
+// shared-memory load where each fragment of the tail would take a logarithm.
+shared uint tailClearTable[256];
+#define TAIL_CLEAR_TABLE
 #include "shared/strand_raster.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -22,6 +26,8 @@ void main()
 {
     if (gl_LocalInvocationIndex == 0u)
         groupMost = 0u;
+    for (uint a = gl_LocalInvocationIndex; a < 256u; a += gl_WorkGroupSize.x * gl_WorkGroupSize.y)
+        tailClearTable[a] = tailClearUnits(a);
     barrier();
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     bool inside = pixel.x < int(push.targetWidth) && pixel.y < int(push.targetHeight);
@@ -32,15 +38,23 @@ void main()
         const uint k = kOitK;  // 1 .. kMaxOitK (the renderer clamps it)
         PixelFragments f = emptyPixelFragments();
         // Eight loads in flight before the first insert: a pixel of thousands of fragments would
-        // otherwise wait on memory once per fragment.
+        // otherwise wait on memory once per fragment. The tail's sums go unguarded where the
+        // pixel's fragments cannot saturate them (every pixel, short of 75000 fragments).
         const uint kAhead = 8u;
+        bool saturate = end - begin > kTailExactFragments;
         for (uint i = begin; i < end; i += kAhead) {
             uvec2 batch[kAhead];
             GPU_UNROLL for (uint j = 0u; j < kAhead; ++j)
                 batch[j] = i + j < end ? fragments[i + j] : uvec2(floatBitsToUint(kRasterFarDepth), 0u);
-            GPU_UNROLL for (uint j = 0u; j < kAhead; ++j)
-                if (i + j < end)
-                    insertFragment(f, k, uintBitsToFloat(batch[j].x), batch[j].y);
+            if (saturate) {
+                GPU_UNROLL for (uint j = 0u; j < kAhead; ++j)
+                    if (i + j < end)
+                        insertFragmentSummed(f, k, uintBitsToFloat(batch[j].x), batch[j].y, true);
+            } else {
+                GPU_UNROLL for (uint j = 0u; j < kAhead; ++j)
+                    if (i + j < end)
+                        insertFragmentSummed(f, k, uintBitsToFloat(batch[j].x), batch[j].y, false);
+            }
         }
         imageStore(hairColor, pixel, resolveFragments(f, k));
         if (end > begin)

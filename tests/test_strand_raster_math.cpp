@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numeric>
 #include <random>
 #include <vector>
@@ -267,6 +268,43 @@ TEST(RasterFragments, TheNearestKAreSortedAndTheRestBlendedWhateverTheOrder)
             EXPECT_NEAR(result.w, 1.0 - transmittance, 3e-3) << "k " << k;
         }
     }
+}
+
+TEST(RasterFragments, TheUnguardedTailEqualsTheGuardedOneBelowItsBound)
+{
+    // The bound: kTailExactFragments of the largest additions stay below the saturation point.
+    uint32_t mostClear = 0, mostColor = 0;
+    for (uint32_t a = 0; a < 256; ++a) {
+        mostClear = std::max(mostClear, gpu::tailClearUnits(a));
+        mostColor = std::max(mostColor, gpu::tailUnits(a * 255u * 255u));
+    }
+    EXPECT_EQ(mostClear, gpu::tailClearUnits(255u));
+    EXPECT_LE(uint64_t(gpu::kTailExactFragments) * mostClear, uint64_t(gpu::kTailSaturate));
+    EXPECT_LE(uint64_t(gpu::kTailExactFragments) * mostColor, uint64_t(gpu::kTailSaturate));
+    EXPECT_GT(uint64_t(gpu::kTailExactFragments + gpu::kTailExactFragments / 10) * mostClear, uint64_t(gpu::kTailSaturate))
+        << "the bound is far below what saturates: it could be larger";
+
+    // Below it, the two ways of summing keep the same pixel, field by field.
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    for (uint32_t k : {1u, 8u}) {
+        gpu::PixelFragments guarded = gpu::emptyPixelFragments(), plain = gpu::emptyPixelFragments();
+        for (int i = 0; i < 5000; ++i) {
+            float depth = unit(rng);
+            uint32_t color = gpu::packFragmentColor(glm::vec3(unit(rng), unit(rng), unit(rng)), unit(rng));
+            gpu::insertFragmentSummed(guarded, k, depth, color, true);
+            gpu::insertFragmentSummed(plain, k, depth, color, false);
+        }
+        EXPECT_EQ(std::memcmp(&guarded, &plain, sizeof(guarded)), 0) << "k " << k;
+        EXPECT_GT(plain.tailClear, 0u);
+    }
+
+    // Past it the guard holds the sums at the saturation point.
+    gpu::PixelFragments f = gpu::emptyPixelFragments();
+    f.tailClear = gpu::kTailSaturate - 10u;
+    gpu::insertFragmentSummed(f, 1, 0.5f, gpu::packFragmentColor(glm::vec3(1.0f), 1.0f), true);  // kept
+    gpu::insertFragmentSummed(f, 1, 0.6f, gpu::packFragmentColor(glm::vec3(1.0f), 1.0f), true);  // to the tail
+    EXPECT_EQ(f.tailClear, gpu::kTailSaturate);
 }
 
 // The compute meshes' triangle setup (shared/mesh_raster.h): which samples a triangle covers and

@@ -355,30 +355,65 @@ GPU_FN uint tailUnits(uint product)
     return (product + 2048u) >> 12u;
 }
 
+// What a fragment of alpha byte `a` adds to the tail's clear sum: -log(1 - alpha) in units of
+// 1 / kTailFixedScale (alpha held below 0.999, so one fragment adds at most 28295).
+GPU_FN uint tailClearUnits(uint a)
+{
+    float clear = -log(1.0f - min(float(a) * (1.0f / 255.0f), 0.999f));
+    return uint(clear * kTailFixedScale + 0.5f);
+}
+
+// A pixel of at most this many fragments cannot saturate its tail: each fragment adds at most
+// tailClearUnits(255) = 28295 to the clear sum (and 4048, tailUnits(255^3), to the others), and
+// 75000 x 28295 stays below kTailSaturate. Its sums may then be plain additions (insertFragment's
+// `saturate` false), with the same result.
+GPU_CONST uint kTailExactFragments = 75000u;
+
+// The clear units of alpha byte `a`: computed, or read from a table the includer fills with
+// tailClearUnits (strands_resolve.comp: `shared uint tailClearTable[256]`, TAIL_CLEAR_TABLE).
+#ifdef TAIL_CLEAR_TABLE
+#define TAIL_CLEAR_UNITS(a) tailClearTable[a]
+#else
+#define TAIL_CLEAR_UNITS(a) tailClearUnits(a)
+#endif
+
 // The fragment joins the tail. Its colour bytes hold sqrt(rgb) and its alpha byte alpha
 // (packFragmentColor), so alpha x r is (A x R x R) / 255^3 exactly: whole-number arithmetic,
-// with one conversion (for the logarithm) where unpacking to floats would take nine; the tail is
-// where most of a busy pixel's fragments go.
-GPU_FN void addToTail(GPU_INOUT(PixelFragments) f, uint color)
+// with no conversion where unpacking to floats would take nine (the logarithm is
+// tailClearUnits'); the tail is where most of a busy pixel's fragments go. `saturate` false
+// adds without the guard, for pixels of at most kTailExactFragments fragments.
+GPU_FN void addToTail(GPU_INOUT(PixelFragments) f, uint color, bool saturate)
 {
     uint r = color & 0xffu;
     uint g = (color >> 8u) & 0xffu;
     uint b = (color >> 16u) & 0xffu;
     uint a = color >> 24u;
-    f.tailR = saturatingAdd(f.tailR, tailUnits(a * r * r));
-    f.tailG = saturatingAdd(f.tailG, tailUnits(a * g * g));
-    f.tailB = saturatingAdd(f.tailB, tailUnits(a * b * b));
-    f.tailAlpha = saturatingAdd(f.tailAlpha, tailUnits(a * 65025u));
-    float clear = -log(1.0f - min(float(a) * (1.0f / 255.0f), 0.999f));
-    f.tailClear = saturatingAdd(f.tailClear, uint(clear * kTailFixedScale + 0.5f));
+    uint addR = tailUnits(a * r * r);
+    uint addG = tailUnits(a * g * g);
+    uint addB = tailUnits(a * b * b);
+    uint addAlpha = tailUnits(a * 65025u);
+    uint addClear = TAIL_CLEAR_UNITS(a);
+    if (saturate) {
+        f.tailR = saturatingAdd(f.tailR, addR);
+        f.tailG = saturatingAdd(f.tailG, addG);
+        f.tailB = saturatingAdd(f.tailB, addB);
+        f.tailAlpha = saturatingAdd(f.tailAlpha, addAlpha);
+        f.tailClear = saturatingAdd(f.tailClear, addClear);
+    } else {
+        f.tailR += addR;
+        f.tailG += addG;
+        f.tailB += addB;
+        f.tailAlpha += addAlpha;
+        f.tailClear += addClear;
+    }
 }
 
 // Adds a fragment: it takes its place among the nearest k (after every kept fragment not farther
 // than it), the kept ones behind it move back one, and whatever falls out of the last kept slot
 // (or the fragment itself, when it is behind all k) joins the tail. Written as independent
 // comparisons and moves with constant indices, not a chain of swaps: the lists stay in registers
-// and the steps do not wait on one another.
-GPU_FN void insertFragment(GPU_INOUT(PixelFragments) f, uint k, float depth, uint color)
+// and the steps do not wait on one another. `saturate`: as addToTail's.
+GPU_FN void insertFragmentSummed(GPU_INOUT(PixelFragments) f, uint k, float depth, uint color, bool saturate)
 {
     float lastDepth = kRasterFarDepth;
     uint lastColor = 0u;
@@ -389,14 +424,14 @@ GPU_FN void insertFragment(GPU_INOUT(PixelFragments) f, uint k, float depth, uin
         }
     }
     if (depth > lastDepth) {
-        addToTail(f, color);  // behind all k kept (most fragments, once k are kept): one comparison
+        addToTail(f, color, saturate);  // behind all k kept (most fragments, once k are kept): one comparison
         return;
     }
     uint position = 0u;
     GPU_UNROLL for (uint i = 0u; i < kMaxOitK; ++i)
         position += i < k && !fragmentFarther(f.depth[i], f.color[i], depth, color) ? 1u : 0u;
     if (position >= k) {
-        addToTail(f, color);  // behind all k kept, at the last one's depth
+        addToTail(f, color, saturate);  // behind all k kept, at the last one's depth
         return;
     }
     GPU_UNROLL for (uint i = kMaxOitK - 1u; i > 0u; --i) {
@@ -412,7 +447,13 @@ GPU_FN void insertFragment(GPU_INOUT(PixelFragments) f, uint k, float depth, uin
         }
     }
     if (lastDepth < kRasterFarDepth)
-        addToTail(f, lastColor);
+        addToTail(f, lastColor, saturate);
+}
+
+// insertFragmentSummed with the tail's guard, for a pixel of any number of fragments.
+GPU_FN void insertFragment(GPU_INOUT(PixelFragments) f, uint k, float depth, uint color)
+{
+    insertFragmentSummed(f, k, depth, color, true);
 }
 
 GPU_FN vec4 resolveFragments(PixelFragments f, uint k)
