@@ -37,15 +37,19 @@ void main()
         uint end = min(offsets[p + 1u], push.fragmentCapacity);
         const uint k = kOitK;  // 1 .. kMaxOitK (the renderer clamps it)
         PixelFragments f = emptyPixelFragments();
-        // Eight loads in flight before the first insert: a pixel of thousands of fragments would
-        // otherwise wait on memory once per fragment. The tail's sums go unguarded where the
-        // pixel's fragments cannot saturate them (every pixel, short of 75000 fragments).
-        const uint kAhead = 8u;
+        // The list in batches of eight, the next batch's loads issued before this one's inserts: a
+        // pixel of thousands of fragments (the dispatch lasts as long as its longest list) would
+        // otherwise wait on memory once per batch. The tail's sums go unguarded where the pixel's
+        // fragments cannot saturate them (every pixel, short of 75000 fragments).
+        const uint kAhead = 8u;  // (16 measured slower on the H100: the batches no longer fit its registers)
         bool saturate = end - begin > kTailExactFragments;
+        uvec2 batch[kAhead];
+        GPU_UNROLL for (uint j = 0u; j < kAhead; ++j)
+            batch[j] = begin + j < end ? fragments[begin + j] : uvec2(0u);
         for (uint i = begin; i < end; i += kAhead) {
-            uvec2 batch[kAhead];
+            uvec2 ahead[kAhead];
             GPU_UNROLL for (uint j = 0u; j < kAhead; ++j)
-                batch[j] = i + j < end ? fragments[i + j] : uvec2(floatBitsToUint(kRasterFarDepth), 0u);
+                ahead[j] = i + kAhead + j < end ? fragments[i + kAhead + j] : uvec2(0u);
             if (saturate) {
                 GPU_UNROLL for (uint j = 0u; j < kAhead; ++j)
                     if (i + j < end)
@@ -55,6 +59,7 @@ void main()
                     if (i + j < end)
                         insertFragmentSummed(f, k, uintBitsToFloat(batch[j].x), batch[j].y, false);
             }
+            batch = ahead;
         }
         imageStore(hairColor, pixel, resolveFragments(f, k));
         if (end > begin)
