@@ -173,9 +173,9 @@ LightMaps rasterLight(const gpu::StrandRasterPush& push, const gpu::FrameParams&
             gpu::RasterSegment reach =
                 gpu::makeRasterSegment(glm::vec2(a), glm::vec2(b), std::max(a.w, 0.5f), std::max(b.w, 0.5f));
             glm::ivec4 bounds =
-                gpu::ribbonPixelBounds(reach, glm::vec2(a), glm::vec2(b), push.targetWidth, push.targetHeight);
+                gpu::lightTexelBounds(reach, glm::vec2(a), glm::vec2(b), push.targetWidth, push.targetHeight);
             for (int y = bounds.y; y <= bounds.w; ++y) {
-                glm::vec2 span = gpu::ribbonRowSpan(reach, float(y) + 0.5f);
+                glm::vec2 span = gpu::lightRowCentres(reach, float(y) + 0.5f);
                 int x0 = std::max(int(std::ceil(span.x - 0.5f)), 0);
                 int x1 = std::min(int(std::floor(span.y - 0.5f)), int(push.targetWidth) - 1);
                 for (int x = x0; x <= x1; ++x) {

@@ -1,8 +1,8 @@
 #version 460
 // strands_light.comp: the hair in the light's maps, one thread per segment of the light's strands
 // (strands_generate_light.comp: fewer and wider, the same coverage; clump by clump as
-// clumpOrderedSegment takes them). The thread walks the texels
-// the ribbon can touch, row by row (ribbonRowSpan). Specialization constant 0 chooses the map:
+// clumpOrderedSegment takes them). The thread walks the texels whose centres can lie in the
+// ribbon, row by row (lightRowCentres). Specialization constant 0 chooses the map:
 //   false (light.depth):   the hair's first depth, atomicMin over the float's bits (depths are
 //                          positive, so their bits order as the numbers do; only a fragment
 //                          nearer than the texel holds takes the atomic), on every texel whose
@@ -63,11 +63,11 @@ void main()
         return;
     float alpha = 0.5 * (unpackUnorm4x8(colors[v]).w + unpackUnorm4x8(colors[v + 1u]).w);
     RasterSegment s = makeRasterSegment(a.xy, b.xy, a.w, b.w);
-    // The texels the ribbon, at least a texel wide, can reach, row by row.
+    // The texels whose centres the ribbon, at least a texel wide, can hold, row by row.
     RasterSegment reach = makeRasterSegment(a.xy, b.xy, max(a.w, 0.5), max(b.w, 0.5));
-    ivec4 bounds = ribbonPixelBounds(reach, a.xy, b.xy, push.targetWidth, push.targetHeight);
+    ivec4 bounds = lightTexelBounds(reach, a.xy, b.xy, push.targetWidth, push.targetHeight);
     for (int y = bounds.y; y <= bounds.w; ++y) {
-        vec2 span = ribbonRowSpan(reach, float(y) + 0.5);
+        vec2 span = lightRowCentres(reach, float(y) + 0.5);
         int x0 = max(int(ceil(span.x - 0.5)), 0);
         int x1 = min(int(floor(span.y - 0.5)), int(push.targetWidth) - 1);
         for (int x = x0; x <= x1; ++x)

@@ -216,6 +216,45 @@ TEST(RasterWalk, PixelBoundsHoldEveryCoveredPixelAndNoFragmentIsNearerThanItsSeg
     EXPECT_GT(covered, 1000u);
 }
 
+TEST(RasterWalk, TheLightsWalkReachesEveryTexelItsRibbonHolds)
+{
+    // strands_light.comp walks only the texels whose centres lie within a sixteenth of a texel of
+    // the ribbon (lightTexelBounds, lightRowCentres): every texel lightTexelHit takes must be among
+    // them, far from the origin too (a map of 8192 texels, where a float's step is a thousandth).
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    size_t hits = 0, walked = 0;
+    for (float origin : {0.0f, 8100.0f}) {
+        for (int trial = 0; trial < 300; ++trial) {
+            glm::vec2 a = glm::vec2(origin) + glm::vec2(unit(rng) * 40.0f + 4.0f, unit(rng) * 40.0f + 4.0f);
+            float length = trial % 4 == 0 ? unit(rng) * 0.5f : unit(rng) * 20.0f;
+            float angle = trial % 5 == 0 ? float(trial % 8) * 0.7853982f : unit(rng) * 6.2831853f;  // some on the axes
+            glm::vec2 b = a + length * glm::vec2(std::cos(angle), std::sin(angle));
+            float ha = trial % 3 == 0 ? unit(rng) * 3.0f : unit(rng) * 0.6f, hb = unit(rng) * 0.6f;
+            gpu::RasterSegment s = gpu::makeRasterSegment(a, b, ha, hb);
+            gpu::RasterSegment reach = gpu::makeRasterSegment(a, b, std::max(ha, 0.5f), std::max(hb, 0.5f));
+            glm::ivec4 bounds = gpu::lightTexelBounds(reach, a, b, 8192, 8192);
+            for (int y = int(origin); y < int(origin) + 56; ++y) {
+                glm::vec2 span = gpu::lightRowCentres(reach, float(y) + 0.5f);
+                int x0 = int(std::ceil(span.x - 0.5f)), x1 = int(std::floor(span.y - 0.5f));
+                if (y >= bounds.y && y <= bounds.w)
+                    walked += size_t(std::max(x1 - x0 + 1, 0));
+                for (int x = int(origin); x < int(origin) + 56; ++x) {
+                    if (gpu::lightTexelHit(s, glm::vec2(float(x), float(y)) + 0.5f).x <= 0.0f)
+                        continue;
+                    ++hits;
+                    ASSERT_TRUE(x >= bounds.x && x <= bounds.z && y >= bounds.y && y <= bounds.w)
+                        << "trial " << trial << ": texel " << x << ", " << y << " outside the bounds";
+                    ASSERT_TRUE(x >= x0 && x <= x1) << "trial " << trial << ": texel " << x << ", " << y
+                                                    << " outside its row's walk " << x0 << " .. " << x1;
+                }
+            }
+        }
+    }
+    EXPECT_GT(hits, 2000u);
+    EXPECT_LT(double(walked), 1.5 * double(hits)) << "the walk keeps to the ribbon's texels";
+}
+
 TEST(RasterFragments, TheNearestKAreSortedAndTheRestBlendedWhateverTheOrder)
 {
     std::mt19937 rng(3);

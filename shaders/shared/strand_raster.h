@@ -228,9 +228,18 @@ GPU_FN vec2 segmentCoverage(RasterSegment s, vec2 pixel)
 // across the segment, and within s of its ends along it (a rectangle: each side a slab, each slab
 // an interval of x on the row). Exactly where segmentCoverage can be above zero; empty (x > y)
 // when the row misses the rectangle.
+GPU_FN vec2 ribbonRowWithin(RasterSegment seg, float cy, float s);
+
 GPU_FN vec2 ribbonRowSpan(RasterSegment seg, float cy)
 {
-    float s = 0.5f * (seg.footA + seg.footB) + 1e-4f;
+    return ribbonRowWithin(seg, cy, 0.5f * (seg.footA + seg.footB) + 1e-4f);
+}
+
+// The x range on the row at height cy of the points within `s` of the segment's ribbon, a
+// rectangle (each side a slab, each slab an interval of x on the row); empty (x > y) when the row
+// misses it.
+GPU_FN vec2 ribbonRowWithin(RasterSegment seg, float cy, float s)
+{
     float across = max(seg.ha, seg.hb) + s;
     float y = cy - seg.a.y;
     float lo = -1e30f;
@@ -276,15 +285,36 @@ GPU_FN float ribbonReach(RasterSegment seg)
     return max(seg.ha, seg.hb) + seg.footA + seg.footB;
 }
 
-// The pixels whose centres the ribbon of the segment from a to b can reach: x0, y0, x1, y1,
-// inclusive, clamped to a width x height target (empty, x0 > x1 or y0 > y1, off it).
-GPU_FN ivec4 ribbonPixelBounds(RasterSegment seg, vec2 a, vec2 b, uint width, uint height)
+// The pixels whose centres lie within `reach` of the segment from a to b in x and y: x0, y0, x1,
+// y1, inclusive, clamped to a width x height target (empty, x0 > x1 or y0 > y1, off it).
+GPU_FN ivec4 pixelBoundsWithin(vec2 a, vec2 b, float reach, uint width, uint height)
 {
-    float reach = ribbonReach(seg);
     vec2 lo = min(a, b) - reach - 0.5f;
     vec2 hi = max(a, b) + reach - 0.5f;
     return ivec4(max(int(ceil(lo.x)), 0), max(int(ceil(lo.y)), 0), min(int(floor(hi.x)), int(width) - 1),
                  min(int(floor(hi.y)), int(height) - 1));
+}
+
+// The pixels whose centres the ribbon of the segment from a to b can reach (ribbonReach).
+GPU_FN ivec4 ribbonPixelBounds(RasterSegment seg, vec2 a, vec2 b, uint width, uint height)
+{
+    return pixelBoundsWithin(a, b, ribbonReach(seg), width, height);
+}
+
+// The light's texels are taken by their centres (lightTexelHit), not by the pixel's area: a
+// light segment's texels are those whose centres lie within the ribbon (`reach`, at least a texel
+// wide), found row by row within a sixteenth of a texel of it (the margin covers the rounding of
+// solving for a row's ends; the pixel footprint's, about 0.7 a side, would walk twice the texels).
+GPU_CONST float kLightCentreMargin = 0.0625f;
+
+GPU_FN ivec4 lightTexelBounds(RasterSegment reach, vec2 a, vec2 b, uint width, uint height)
+{
+    return pixelBoundsWithin(a, b, max(reach.ha, reach.hb) + kLightCentreMargin, width, height);
+}
+
+GPU_FN vec2 lightRowCentres(RasterSegment reach, float cy)
+{
+    return ribbonRowWithin(reach, cy, kLightCentreMargin);
 }
 
 // Whether a fragment at `depth` (in front of the camera) could pass the meshes' depth test where
