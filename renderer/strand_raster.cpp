@@ -27,6 +27,7 @@ const char* stageName(StrandRaster::Stage stage)
 {
     switch (stage) {
     case StrandRaster::Stage::Clear: return "strands.clear";
+    case StrandRaster::Stage::Curves: return "strands.curves";
     case StrandRaster::Stage::LightGenerate: return "strands.light";
     case StrandRaster::Stage::LightDepth: return "light.depth";
     case StrandRaster::Stage::LightOpacity: return "light.opacity";
@@ -93,12 +94,14 @@ StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUn
                            {gpu::kRasterBindingBlockSums, kStorage, kCompute},
                            {gpu::kRasterBindingMeshSamples, kStorage, kCompute},
                            {gpu::kRasterBindingLightDepthImage, kImage, kCompute},
-                           {gpu::kRasterBindingTileDepth, kStorage, kCompute}},
+                           {gpu::kRasterBindingTileDepth, kStorage, kCompute},
+                           {gpu::kRasterBindingCurves, kStorage, kCompute}},
               .pushConstantBytes = sizeof(gpu::StrandRasterPush),
               .pushConstantStages = kCompute,
               .name = "strands.layout"});
     setLayout_ = std::move(layout.setLayout);
     layout_ = std::move(layout.layout);
+    curvesPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_curves.comp", "strands.curves.pipeline");
     generatePipeline_ = vk::createComputePipeline(ctx, layout_, "strands_generate.comp", "strands.generate.pipeline");
     generateLightPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_generate_light.comp", "strands.light.pipeline");
     const char* single = target.multisampled() ? "" : "_single";
@@ -180,6 +183,7 @@ void StrandRaster::setFragmentCapacity(uint64_t fragments)
 StrandRaster::Storage& StrandRaster::storage(Buffer which)
 {
     switch (which) {
+    case Buffer::Curves: return curves_;
     case Buffer::Vertices: return vertices_;
     case Buffer::Colors: return colors_;
     case Buffer::LightVertices: return lightVertices_;
@@ -196,7 +200,7 @@ StrandRaster::Storage& StrandRaster::storage(Buffer which)
 uint64_t StrandRaster::allocatedBytes() const
 {
     uint64_t bytes = triangles_.size() + uint64_t(color_.extent().width) * color_.extent().height * vk::formatBytes(color_.format());
-    for (const Storage* s : {&vertices_, &colors_, &lightVertices_, &lightColors_, &counts_, &offsets_, &fragments_,
+    for (const Storage* s : {&curves_, &vertices_, &colors_, &lightVertices_, &lightColors_, &counts_, &offsets_, &fragments_,
                              &counters_, &depthRange_, &tileDepth_, &blockSums_, &lightDepth_, &lightOpacity_,
                              &meshSamples_})
         bytes += s->buffer ? s->buffer.size() : 0;
@@ -223,6 +227,9 @@ void StrandRaster::prepare(FrameContext& frame, gpu::StrandRasterPush camera, gp
     VkExtent2D e = target_.extent();
     uint64_t cameraVertices = uint64_t(camera.guideCount) * camera.drawnPerGuide * (camera.divisions + 1);
     uint64_t lightVertices = uint64_t(light.guideCount) * light.drawnPerGuide * (light.divisions + 1);
+    uint64_t curvePoints = uint64_t(camera.guideCount) * (camera.divisions + 1);  // (the light's divisions are the same)
+    if (!curves_.buffer || curves_.buffer.size() < curvePoints * kCurvePointBytes)
+        allocate(curves_, curvePoints * kCurvePointBytes, vk::kStorage | vk::kTransferSrc, "strands.curves", &frame);
     if (!vertices_.buffer || vertices_.buffer.size() < cameraVertices * kVertexBytes) {
         allocate(vertices_, cameraVertices * kVertexBytes, vk::kStorage | vk::kTransferSrc, "strands.vertices", &frame);
         allocate(colors_, cameraVertices * kColorBytes, vk::kStorage | vk::kTransferSrc, "strands.colors", &frame);
@@ -286,8 +293,12 @@ void StrandRaster::declare(Stage stage, PassIo& io)
         io.use(lightOpacity_.track, Access::TransferDst);
         io.use(counters_.track, Access::TransferDst);
         break;
-    case Stage::LightGenerate:
+    case Stage::Curves:
         io.use(solver_.positionsTrack(), Access::ComputeRead);
+        io.use(curves_.track, Access::ComputeWrite);
+        break;
+    case Stage::LightGenerate:
+        io.use(curves_.track, Access::ComputeRead);
         io.use(lightVertices_.track, Access::ComputeWrite);
         io.use(lightColors_.track, Access::ComputeWrite);
         break;
@@ -314,7 +325,7 @@ void StrandRaster::declare(Stage stage, PassIo& io)
         io.use(maps_.hairDepth(), Access::TransferDst);
         break;
     case Stage::Generate:
-        io.use(solver_.positionsTrack(), Access::ComputeRead);
+        io.use(curves_.track, Access::ComputeRead);
         maps_.declareRead(io, Access::ComputeSampled);
         io.use(vertices_.track, Access::ComputeWrite);
         io.use(colors_.track, Access::ComputeWrite);
@@ -391,7 +402,7 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
     VkDescriptorBufferInfo simInfo{solver_.params(), 0, VK_WHOLE_SIZE};
     VkDescriptorBufferInfo positions{solver_.positions(), 0, VK_WHOLE_SIZE};
     VkDescriptorBufferInfo triangles{triangles_, 0, VK_WHOLE_SIZE};
-    VkDescriptorBufferInfo vertices = whole(vertices_), colors = whole(colors_);
+    VkDescriptorBufferInfo curves = whole(curves_), vertices = whole(vertices_), colors = whole(colors_);
     VkDescriptorBufferInfo lightVertices = whole(lightVertices_), lightColors = whole(lightColors_);
     VkDescriptorBufferInfo counts = whole(counts_), offsets = whole(offsets_), fragments = whole(fragments_);
     VkDescriptorBufferInfo counters = whole(counters_), depthRange = whole(depthRange_), blockSums = whole(blockSums_);
@@ -411,12 +422,19 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
         vkCmdFillBuffer(cmd, counters_.buffer, 0, VK_WHOLE_SIZE, 0);
         break;
     }
+    case Stage::Curves: {
+        std::vector<VkWriteDescriptorSet> writes = {vk::bufferWrite(gpu::kRasterBindingPositions, kStorage, &positions),
+                                                    vk::bufferWrite(gpu::kRasterBindingCurves, kStorage, &curves)};
+        dispatchLinear(cmd, curvesPipeline_, camera_, writes, uint64_t(camera_.guideCount) * (camera_.divisions + 1),
+                       gpu::kRasterGroupSize);
+        break;
+    }
     case Stage::LightGenerate:
     case Stage::Generate: {
         bool fromLight = stage == Stage::LightGenerate;
         std::vector<VkWriteDescriptorSet> writes = {
             frameWrite, vk::bufferWrite(gpu::kRasterBindingSim, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &simInfo),
-            vk::bufferWrite(gpu::kRasterBindingPositions, kStorage, &positions),
+            vk::bufferWrite(gpu::kRasterBindingCurves, kStorage, &curves),
             vk::bufferWrite(gpu::kRasterBindingTriangles, kStorage, &triangles),
             vk::bufferWrite(gpu::kRasterBindingVertices, kStorage, fromLight ? &lightVertices : &vertices),
             vk::bufferWrite(gpu::kRasterBindingColors, kStorage, fromLight ? &lightColors : &colors)};

@@ -82,11 +82,13 @@ std::string describeRasterStats(const RasterStats& stats);
 class StrandRaster {
 public:
     enum class Stage {
-        Clear, LightGenerate, LightDepth, LightOpacity, LightResolve, LightCopy,
+        Clear, Curves, LightGenerate, LightDepth, LightOpacity, LightResolve, LightCopy,
         Generate, Depth, Count, ScanBlocks, ScanTotals, ScanOffsets, Write, Resolve, Stats
     };
-    static constexpr std::array<Stage, 6> kLightStages = {Stage::Clear,        Stage::LightGenerate, Stage::LightDepth,
-                                                          Stage::LightOpacity, Stage::LightResolve,  Stage::LightCopy};
+    // (Curves, the guides' points both generates read, runs with the light's stages: before them.)
+    static constexpr std::array<Stage, 7> kLightStages = {Stage::Clear,        Stage::Curves,       Stage::LightGenerate,
+                                                          Stage::LightDepth,   Stage::LightOpacity, Stage::LightResolve,
+                                                          Stage::LightCopy};
     static constexpr std::array<Stage, 8> kCameraStages = {Stage::Generate,   Stage::Depth,      Stage::Count,
                                                            Stage::ScanBlocks, Stage::ScanTotals, Stage::ScanOffsets,
                                                            Stage::Write,      Stage::Resolve};
@@ -95,6 +97,7 @@ public:
     static constexpr uint64_t kMinFragments = 1u << 18;
     static constexpr uint64_t kInitialFragmentsPerSegment = 8;
     // What each buffer holds per item (shaders/shared/strand_raster.h's bindings).
+    static constexpr uint64_t kCurvePointBytes = 2 * sizeof(glm::vec4);   // a guide's curve point: position, tangent
     static constexpr uint64_t kVertexBytes = sizeof(glm::vec4);           // a strand vertex, projected
     static constexpr uint64_t kColorBytes = sizeof(uint32_t);             // its packed colour and opacity
     static constexpr uint64_t kFragmentBytes = 2 * sizeof(uint32_t);      // depth bits, packed colour and opacity
@@ -145,6 +148,7 @@ public:
         uint64_t lightVertices = s.guides * s.lightStrandsPerGuide * (s.divisions + 1);
         uint64_t segments = s.guides * s.strandsPerGuide * s.divisions;
         return s.guides * sizeof(glm::uvec4) +  // each guide's triangle of guides
+               bufferBytes(s.guides * (s.divisions + 1) * kCurvePointBytes) +
                bufferBytes(sizeof(gpu::RasterCounters)) +
                bufferBytes(cameraVertices * kVertexBytes) + bufferBytes(cameraVertices * kColorBytes) +
                bufferBytes(lightVertices * kVertexBytes) + bufferBytes(lightVertices * kColorBytes) +
@@ -191,7 +195,9 @@ public:
     uint64_t allocatedBytes() const;
 
     // The buffers, for tests that read them back (tests/test_strand_raster.cpp).
-    enum class Buffer { Vertices, Colors, LightVertices, LightColors, Offsets, Fragments, Counters, LightDepth, LightOpacity };
+    enum class Buffer {
+        Curves, Vertices, Colors, LightVertices, LightColors, Offsets, Fragments, Counters, LightDepth, LightOpacity
+    };
     TrackedBuffer& track(Buffer which) { return storage(which).track; }
     const vk::Buffer& buffer(Buffer which) { return storage(which).buffer; }
     const gpu::StrandRasterPush& cameraPush() const { return camera_; }
@@ -226,10 +232,11 @@ private:
     vk::Pipeline generatePipeline_, generateLightPipeline_, depthPipeline_, depthBufferPipeline_, countPipeline_,
         writePipeline_;
     vk::Pipeline scanBlocksPipeline_, scanTotalsPipeline_, scanOffsetsPipeline_, resolvePipeline_;
-    vk::Pipeline lightDepthPipeline_, lightOpacityPipeline_, lightResolvePipeline_;
+    vk::Pipeline lightDepthPipeline_, lightOpacityPipeline_, lightResolvePipeline_, curvesPipeline_;
     uint32_t pipelineK_ = 0;  // the oit_k the resolve pipeline was built for
     vk::Sampler depthSampler_;  // the meshes' depth, fetched by texel
     vk::Buffer triangles_;
+    Storage curves_;                       // the guides' curve points (strands.curves)
     Storage vertices_, colors_;            // the camera's strand vertices
     Storage lightVertices_, lightColors_;  // the light's
     Storage counts_, offsets_, fragments_, counters_, depthRange_, tileDepth_, blockSums_;

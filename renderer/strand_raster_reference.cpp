@@ -29,6 +29,15 @@ uint32_t firstVertex(const gpu::StrandRasterPush& push, uint32_t segment)
 
 }  // namespace
 
+std::vector<gpu::CurvePoint> guideCurves(const gpu::StrandRasterPush& push, const std::vector<glm::vec3>& guides)
+{
+    uint32_t perGuide = push.divisions + 1;
+    std::vector<gpu::CurvePoint> out(size_t(push.guideCount) * perGuide);
+    for (uint32_t id = 0; id < out.size(); ++id)
+        out[id] = evaluateGuide(guides, push.verticesPerStrand, id / perGuide, float(id % perGuide) / float(push.divisions));
+    return out;
+}
+
 StrandVertices generateStrands(const gpu::StrandRasterPush& push, const gpu::FrameParams& frame,
                                const gpu::SimParams& sim, const std::vector<glm::vec3>& guides,
                                const std::vector<glm::uvec4>& triangles)

@@ -7,6 +7,7 @@
 #include "shaders/shared/frame_params.h"
 #include "shaders/shared/sim.h"
 #include "shaders/shared/strand_raster.h"
+#include "shaders/shared/strands.h"
 
 #include <glm/glm.hpp>
 
@@ -19,6 +20,10 @@ struct StrandVertices {
     std::vector<glm::vec4> positions;  // StrandVertex: x, y pixels, depth, half width (< 0: not drawn)
     std::vector<uint32_t> colors;      // packFragmentColor(rgb, opacity)
 };
+
+// strands_curves.comp: each guide's curve at the strands' points t = i / D (guide * (D + 1) + i).
+// `guides` holds the guide vertices in strand-major order (guide * V + i).
+std::vector<gpu::CurvePoint> guideCurves(const gpu::StrandRasterPush& push, const std::vector<glm::vec3>& guides);
 
 // strands_generate.comp (and _light with push.fromLight): `guides` holds the guide vertices in
 // strand-major order (guide * V + i). Shading with the light's visibility at 1 (the twin does not

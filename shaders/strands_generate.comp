@@ -2,8 +2,8 @@
 // strands_generate.comp: the compute path's strands, one thread per strand vertex (D + 1 per
 // strand, strands of a guide side by side, so neighbouring threads read the same guide). Each
 // point is placed as the tessellation path places it (shared/strands.h placeStrandPoint: the
-// guide's C1 Bezier, single or multi interpolation, deviations, then out of the colliders),
-// projected, and for the camera shaded there (shared/strand_shading.h, with the light's
+// guide's C1 Bezier, as strands_curves.comp evaluated it, single or multi interpolation,
+// deviations, then out of the colliders), projected, and for the camera shaded there (shared/strand_shading.h, with the light's
 // visibility read from its maps as hair.tese reads it). With STRANDS_FROM_LIGHT
 // (strands_generate_light.comp) the points are projected into the light's maps, unshaded.
 #extension GL_GOOGLE_include_directive : require
@@ -16,7 +16,7 @@ layout(local_size_x = 64) in;  // kRasterGroupSize
 layout(push_constant) uniform PushBlock { StrandRasterPush push; };
 layout(set = 0, binding = kRasterBindingFrame) uniform FrameBlock { FrameParams frame; };
 layout(set = 0, binding = kRasterBindingSim) uniform SimBlock { SimParams sim; };
-layout(set = 0, binding = kRasterBindingPositions, std430) readonly buffer Positions { vec4 positions[]; };
+layout(set = 0, binding = kRasterBindingCurves, std430) readonly buffer Curves { vec4 curves[]; };
 layout(set = 0, binding = kRasterBindingTriangles, std430) readonly buffer Triangles { uvec4 triangles[]; };
 layout(set = 0, binding = kRasterBindingVertices, std430) writeonly buffer Vertices { vec4 vertices[]; };
 layout(set = 0, binding = kRasterBindingColors, std430) writeonly buffer Colors { uint colors[]; };
@@ -25,18 +25,11 @@ layout(set = 0, binding = kRasterBindingLut) uniform sampler2DArray hairLut;
 #include "light_visibility.glsl"
 #endif
 
-vec3 guidePoint(uint guide, uint i)
+// The guide's curve at the strand's point i (t = i / D), as strands.curves evaluated it.
+CurvePoint guideCurve(uint guide, uint i)
 {
-    return positions[vertexSlot(guide, i, push.verticesPerStrand)].xyz;
-}
-
-CurvePoint evaluateGuide(uint guide, float t)
-{
-    uint V = push.verticesPerStrand;
-    uint seg = curveSegment(t, V);
-    return guideCurvePoint(guidePoint(guide, seg == 0u ? 0u : seg - 1u), guidePoint(guide, seg),
-                           guidePoint(guide, seg + 1u), guidePoint(guide, min(seg + 2u, V - 1u)),
-                           curveLocal(t, V, seg));
+    uint at = 2u * (guide * (push.divisions + 1u) + i);
+    return CurvePoint(curves[at].xyz, curves[at + 1u].xyz);
 }
 
 void main()
@@ -51,12 +44,12 @@ void main()
     uint s = drawn % push.drawnPerGuide;
     float t = float(i) / float(push.divisions);
 
-    CurvePoint g = evaluateGuide(guide, t);
+    CurvePoint g = guideCurve(guide, i);
     CurvePoint g1 = g, g2 = g;
     if (strandIsMulti(push.interpolation, s)) {
         uvec4 tri = triangles[guide];
-        g1 = evaluateGuide(tri.y, t);
-        g2 = evaluateGuide(tri.z, t);
+        g1 = guideCurve(tri.y, i);
+        g2 = guideCurve(tri.z, i);
     }
     CurvePoint point = placeStrandPoint(g, g1, g2, guide, s, t, push.interpolation, push.clumpRadius, push.deviation);
     vec3 p = point.position;

@@ -201,6 +201,7 @@ TEST(Workload, ComputeRasterMemoryByHand)
     Workload w{.guides = 10, .verticesPerStrand = 4, .sim = sim, .render = &r};
     GpuMemory m = estimateGpuMemory(w);
     uint64_t byHand = 10u * 16u                 // a triangle of guides (uvec4) each
+                      + 10u * 4u * 32u          // each guide's curve at its strands' 4 points: position, tangent
                       + 32u                     // the counters
                       + 10u * 4u * 4u * (16u + 4u)  // 40 camera strands x 4 vertices: a vec4 and a packed colour
                       + 10u * 1u * 4u * (16u + 4u)  // 10 light strands x 4 vertices

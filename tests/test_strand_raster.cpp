@@ -37,9 +37,10 @@ struct uvec2Fragment {  // as strands.write stores a fragment
     uint32_t depth;     // float bits
     uint32_t color;
 };
-constexpr Buffer kReadBuffers[] = {Buffer::Vertices,    Buffer::Colors,    Buffer::LightVertices,
-                                   Buffer::LightColors, Buffer::Offsets,   Buffer::Fragments,
-                                   Buffer::Counters,    Buffer::LightDepth, Buffer::LightOpacity};
+constexpr Buffer kReadBuffers[] = {Buffer::Curves,        Buffer::Vertices,  Buffer::Colors,
+                                   Buffer::LightVertices, Buffer::LightColors, Buffer::Offsets,
+                                   Buffer::Fragments,     Buffer::Counters,  Buffer::LightDepth,
+                                   Buffer::LightOpacity};
 
 // Copies the compute path's buffers, its hair image, the compute meshes' samples (depth and
 // triangle, one sample a pixel) and their colour to the host at the end of the frame that made them.
@@ -225,6 +226,17 @@ TEST(StrandRaster, CameraKernelsMatchTheirCpuTwin)
             s.strands.interpolation = interpolation;
             s.hair.model = model;
             RasterFrame f = renderRasterFrame(ctx, scene, s);
+
+            // strands.curves: each guide's points, as the twin evaluates them
+            std::vector<gpu::CurvePoint> curves = reference::guideCurves(f.camera, f.guides);
+            std::vector<glm::vec4> gpuCurves = f.readback->read<glm::vec4>(Buffer::Curves, 2 * curves.size());
+            float worstCurve = 0.0f;
+            for (size_t i = 0; i < curves.size(); ++i) {
+                worstCurve = std::max(worstCurve, glm::length(glm::vec3(gpuCurves[2 * i]) - curves[i].position));
+                worstCurve = std::max(worstCurve, glm::length(glm::vec3(gpuCurves[2 * i + 1]) - curves[i].tangent));
+            }
+            EXPECT_GT(curves.size(), 500u);
+            EXPECT_LT(worstCurve, 1e-5f);
 
             // strands.generate
             reference::StrandVertices gpuStrands = f.strands(false);

@@ -1,6 +1,9 @@
 // shaders/shared/strand_raster.h: the compute strand renderer's interface and pure math, one copy
 // for its kernels (shaders/strands_*.comp) and their C++ twin (renderer/strand_raster_reference.cpp).
 // The frame, in compute (hair_raster=compute), after the physics and the meshes' depth:
+//   curves     one thread per guide point of the strands' parameters (t = i / D): the guide's C1
+//              curve there (shared/strands.h guideCurvePoint), which every strand of the guide (and
+//              of its neighbours, multi) would otherwise evaluate again
 //   generate   one thread per strand vertex: the strand's point (shared/strands.h, as hair.tese
 //              places it), projected to the screen (or the light's map) with its half width in
 //              pixels, shaded there (shared/strand_shading.h: shading along the strand, not per
@@ -68,6 +71,7 @@ GPU_CONST uint kRasterBindingBlockSums = 21;   // uint per scan block: its count
 GPU_CONST uint kRasterBindingMeshSamples = 22; // uint per mesh depth sample (pixel * samples + s): float bits
 GPU_CONST uint kRasterBindingLightDepthImage = 23; // image2D r32f: the hair's first depth from the light, as values
 GPU_CONST uint kRasterBindingTileDepth = 24;   // float per kRasterDepthTile^2 pixels: their farthest mesh depth sample
+GPU_CONST uint kRasterBindingCurves = 25;      // vec4 x 2 per guide point (guide * (D + 1) + i): position, tangent
 
 // The coarse depth's tiles: kRasterDepthTile x kRasterDepthTile pixels (strands_depth.comp's workgroup).
 GPU_CONST uint kRasterDepthTile = 8u;
