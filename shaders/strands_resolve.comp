@@ -38,9 +38,9 @@ void main()
         const uint k = kOitK;  // 1 .. kMaxOitK (the renderer clamps it)
         PixelFragments f = emptyPixelFragments();
         // The list in batches of eight, the next batch's loads issued before this one's inserts: a
-        // pixel of thousands of fragments (the dispatch lasts as long as its longest list) would
-        // otherwise wait on memory once per batch. The tail's sums go unguarded where the pixel's
-        // fragments cannot saturate them (every pixel, short of 75000 fragments).
+        // pixel of thousands of fragments would otherwise wait on memory once per batch. The tail's
+        // sums go unguarded where the pixel's fragments cannot saturate them (every pixel, short of
+        // 75000 fragments).
         const uint kAhead = 8u;  // (16 measured slower on the H100: the batches no longer fit its registers)
         bool saturate = end - begin > kTailExactFragments;
         uvec2 batch[kAhead];
