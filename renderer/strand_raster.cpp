@@ -200,8 +200,8 @@ StrandRaster::Storage& StrandRaster::storage(Buffer which)
 uint64_t StrandRaster::allocatedBytes() const
 {
     uint64_t bytes = triangles_.size() + uint64_t(color_.extent().width) * color_.extent().height * vk::formatBytes(color_.format());
-    for (const Storage* s : {&curves_, &vertices_, &colors_, &lightVertices_, &lightColors_, &counts_, &offsets_, &fragments_,
-                             &counters_, &depthRange_, &tileDepth_, &blockSums_, &lightDepth_, &lightOpacity_,
+    for (const Storage* s : {&curves_, &vertices_, &colors_, &lightVertices_, &lightColors_, &counts_, &offsets_,
+                             &fragments_, &counters_, &depthRange_, &tileDepth_, &blockSums_, &lightDepth_, &lightOpacity_,
                              &meshSamples_})
         bytes += s->buffer ? s->buffer.size() : 0;
     return bytes;
@@ -227,7 +227,7 @@ void StrandRaster::prepare(FrameContext& frame, gpu::StrandRasterPush camera, gp
     VkExtent2D e = target_.extent();
     uint64_t cameraVertices = uint64_t(camera.guideCount) * camera.drawnPerGuide * (camera.divisions + 1);
     uint64_t lightVertices = uint64_t(light.guideCount) * light.drawnPerGuide * (light.divisions + 1);
-    uint64_t curvePoints = uint64_t(camera.guideCount) * (camera.divisions + 1);  // (the light's divisions are the same)
+    uint64_t curvePoints = uint64_t(camera.guideCount) * (camera.divisions + 1);  // (the light's D is the same)
     if (!curves_.buffer || curves_.buffer.size() < curvePoints * kCurvePointBytes)
         allocate(curves_, curvePoints * kCurvePointBytes, vk::kStorage | vk::kTransferSrc, "strands.curves", &frame);
     if (!vertices_.buffer || vertices_.buffer.size() < cameraVertices * kVertexBytes) {

@@ -86,8 +86,9 @@ public:
         Generate, Depth, Count, ScanBlocks, ScanTotals, ScanOffsets, Write, Resolve, Stats
     };
     // (Curves, the guides' points both generates read, runs with the light's stages: before them.)
-    static constexpr std::array<Stage, 7> kLightStages = {Stage::Clear,        Stage::Curves,       Stage::LightGenerate,
-                                                          Stage::LightDepth,   Stage::LightOpacity, Stage::LightResolve,
+    static constexpr std::array<Stage, 7> kLightStages = {Stage::Clear,        Stage::Curves,
+                                                          Stage::LightGenerate, Stage::LightDepth,
+                                                          Stage::LightOpacity,  Stage::LightResolve,
                                                           Stage::LightCopy};
     static constexpr std::array<Stage, 8> kCameraStages = {Stage::Generate,   Stage::Depth,      Stage::Count,
                                                            Stage::ScanBlocks, Stage::ScanTotals, Stage::ScanOffsets,

@@ -33,8 +33,10 @@ std::vector<gpu::CurvePoint> guideCurves(const gpu::StrandRasterPush& push, cons
 {
     uint32_t perGuide = push.divisions + 1;
     std::vector<gpu::CurvePoint> out(size_t(push.guideCount) * perGuide);
-    for (uint32_t id = 0; id < out.size(); ++id)
-        out[id] = evaluateGuide(guides, push.verticesPerStrand, id / perGuide, float(id % perGuide) / float(push.divisions));
+    for (uint32_t id = 0; id < out.size(); ++id) {
+        float t = float(id % perGuide) / float(push.divisions);
+        out[id] = evaluateGuide(guides, push.verticesPerStrand, id / perGuide, t);
+    }
     return out;
 }
 

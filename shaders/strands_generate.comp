@@ -3,9 +3,10 @@
 // strand, strands of a guide side by side, so neighbouring threads read the same guide). Each
 // point is placed as the tessellation path places it (shared/strands.h placeStrandPoint: the
 // guide's C1 Bezier, as strands_curves.comp evaluated it, single or multi interpolation,
-// deviations, then out of the colliders), projected, and for the camera shaded there (shared/strand_shading.h, with the light's
-// visibility read from its maps as hair.tese reads it). With STRANDS_FROM_LIGHT
-// (strands_generate_light.comp) the points are projected into the light's maps, unshaded.
+// deviations, then out of the colliders), projected, and for the camera shaded there
+// (shared/strand_shading.h, with the light's visibility read from its maps as hair.tese reads it).
+// With STRANDS_FROM_LIGHT (strands_generate_light.comp) the points are projected into the light's
+// maps, unshaded.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/frame_params.h"
 #include "shared/strand_raster.h"

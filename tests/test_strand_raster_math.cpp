@@ -320,8 +320,8 @@ TEST(RasterFragments, TheUnguardedTailEqualsTheGuardedOneBelowItsBound)
     EXPECT_EQ(mostClear, gpu::tailClearUnits(255u));
     EXPECT_LE(uint64_t(gpu::kTailExactFragments) * mostClear, uint64_t(gpu::kTailSaturate));
     EXPECT_LE(uint64_t(gpu::kTailExactFragments) * mostColor, uint64_t(gpu::kTailSaturate));
-    EXPECT_GT(uint64_t(gpu::kTailExactFragments + gpu::kTailExactFragments / 10) * mostClear, uint64_t(gpu::kTailSaturate))
-        << "the bound is far below what saturates: it could be larger";
+    uint64_t tenthMore = gpu::kTailExactFragments + gpu::kTailExactFragments / 10;
+    EXPECT_GT(tenthMore * mostClear, uint64_t(gpu::kTailSaturate)) << "the bound is far below what saturates";
 
     // Below it, the two ways of summing keep the same pixel, field by field.
     std::mt19937 rng(11);
