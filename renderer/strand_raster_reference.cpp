@@ -46,6 +46,7 @@ StrandVertices generateStrands(const gpu::StrandRasterPush& push, const gpu::Fra
 {
     uint32_t perStrand = push.divisions + 1;
     size_t count = size_t(push.guideCount) * push.drawnPerGuide * perStrand;
+    std::vector<gpu::CurvePoint> curves = guideCurves(push, guides);  // strands.curves, as the kernel reads it
     StrandVertices out;
     out.positions.resize(count);
     out.colors.resize(count);
@@ -55,11 +56,11 @@ StrandVertices generateStrands(const gpu::StrandRasterPush& push, const gpu::Fra
         uint32_t guide = drawn / push.drawnPerGuide;
         uint32_t s = drawn % push.drawnPerGuide;
         float t = float(i) / float(push.divisions);
-        gpu::CurvePoint g = evaluateGuide(guides, push.verticesPerStrand, guide, t);
+        gpu::CurvePoint g = curves[size_t(guide) * perStrand + i];
         gpu::CurvePoint g1 = g, g2 = g;
         if (gpu::strandIsMulti(push.interpolation, s)) {
-            g1 = evaluateGuide(guides, push.verticesPerStrand, triangles[guide].y, t);
-            g2 = evaluateGuide(guides, push.verticesPerStrand, triangles[guide].z, t);
+            g1 = curves[size_t(triangles[guide].y) * perStrand + i];
+            g2 = curves[size_t(triangles[guide].z) * perStrand + i];
         }
         gpu::CurvePoint point =
             gpu::placeStrandPoint(g, g1, g2, guide, s, t, push.interpolation, push.clumpRadius, push.deviation);

@@ -4,10 +4,11 @@
 // front of them all, one behind the farthest behind them all: only the meshes' edges need each
 // sample), and the pixel's fragment count zeroed. The workgroup is one 8 x 8 tile: it writes the
 // farthest of its samples (kRasterBindingTileDepth), which lets strands_fragments.comp skip the
-// segments behind every tile they reach without visiting their pixels. The samples' depths come from the meshes' depth
-// image (copied as float bits into the samples' buffer strands_fragments.comp reads: one sample
-// with RASTER_SINGLE_SAMPLE, strands_depth_single.comp), or with MESH_DEPTH_BUFFER
-// (strands_depth_buffer.comp) from that buffer, where the compute meshes (mesh_raster.comp) drew.
+// segments behind every tile they reach without visiting their pixels. The samples' depths come
+// from the meshes' depth image (copied as float bits into the samples' buffer
+// strands_fragments.comp reads: one sample with RASTER_SINGLE_SAMPLE, strands_depth_single.comp),
+// or with MESH_DEPTH_BUFFER (strands_depth_buffer.comp) from that buffer, where the compute meshes
+// (mesh_raster.comp) drew.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/strand_raster.h"
 

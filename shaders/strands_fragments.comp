@@ -1,9 +1,10 @@
 #version 460
 // strands_fragments.comp: one thread per strand segment (clump by clump: clumpOrderedSegment);
 // every pixel its ribbon can reach, row by row (ribbonRowSpan), is covered analytically
-// (segmentCoverage) and tested against the meshes' depth (the share of MSAA samples in front scales the coverage, so the head's silhouette stays
-// antialiased); the colour and opacity interpolate the two vertices' (shaded along the strand by
-// strands_generate.comp). Specialization constant 0 chooses:
+// (segmentCoverage) and tested against the meshes' depth (the share of MSAA samples in front
+// scales the coverage, so the head's silhouette stays antialiased); the colour and opacity
+// interpolate the two vertices' (shaded along the strand by strands_generate.comp).
+// Specialization constant 0 chooses:
 //   false (strands.count): each fragment that stays is counted at its pixel (atomicAdd)
 //   true  (strands.write): written to its pixel's next slot, from a cursor (the counts, which the
 //                          scan set to each pixel's offset); slots past the buffer's capacity are

@@ -227,18 +227,6 @@ GPU_FN vec2 segmentCoverage(RasterSegment s, vec2 pixel)
 
 // ---- Where a segment reaches --------------------------------------------------------------------
 
-// The x range of the pixel centres on the row of centres at height cy that the segment's ribbon
-// can cover: within its widest half width plus the pixel's footprint (s = (footA + footB) / 2)
-// across the segment, and within s of its ends along it (a rectangle: each side a slab, each slab
-// an interval of x on the row). Exactly where segmentCoverage can be above zero; empty (x > y)
-// when the row misses the rectangle.
-GPU_FN vec2 ribbonRowWithin(RasterSegment seg, float cy, float s);
-
-GPU_FN vec2 ribbonRowSpan(RasterSegment seg, float cy)
-{
-    return ribbonRowWithin(seg, cy, 0.5f * (seg.footA + seg.footB) + 1e-4f);
-}
-
 // The x range on the row at height cy of the points within `s` of the segment's ribbon, a
 // rectangle (each side a slab, each slab an interval of x on the row); empty (x > y) when the row
 // misses it.
@@ -267,6 +255,16 @@ GPU_FN vec2 ribbonRowWithin(RasterSegment seg, float cy, float s)
         return vec2(1.0f, 0.0f);
     }
     return vec2(lo + seg.a.x, hi + seg.a.x);
+}
+
+// The x range of the pixel centres on the row of centres at height cy that the segment's ribbon
+// can cover: within its widest half width plus the pixel's footprint (s = (footA + footB) / 2)
+// across the segment, and within s of its ends along it (a rectangle: each side a slab, each slab
+// an interval of x on the row). Exactly where segmentCoverage can be above zero; empty (x > y)
+// when the row misses the rectangle.
+GPU_FN vec2 ribbonRowSpan(RasterSegment seg, float cy)
+{
+    return ribbonRowWithin(seg, cy, 0.5f * (seg.footA + seg.footB) + 1e-4f);
 }
 
 // A texel of the light's maps and a light segment, as the tessellation path's light pass
