@@ -25,7 +25,7 @@ using shading::HairModel;
 struct BsdfOptions {
     shading::HairParams params;
     std::vector<float> sigmaA, melanin, color, wo, wi;
-    std::string model;  // "", or a name from shading::modelName
+    std::string model; // "", or a name from shading::modelName
     bool compare = false;
     bool json = false;
     CLI::App* command = nullptr;
@@ -141,7 +141,7 @@ int run(BsdfOptions& o)
         if (model == HairModel::Lut)
             lut = shading::buildHairLut(o.params);
         glm::vec3 s = shading::evaluateModel(model, shading::packHairMaterial(o.params), lut, wo, wi);
-        f = std::abs(wi.z) > 0.0f ? s / std::abs(wi.z) : s;  // as pbrt's f
+        f = std::abs(wi.z) > 0.0f ? s / std::abs(wi.z) : s; // as pbrt's f
     } else {
         f = shading::HairBsdf(o.params).f(wo, wi);
     }
@@ -149,7 +149,7 @@ int run(BsdfOptions& o)
     return 0;
 }
 
-}  // namespace
+} // namespace
 
 std::function<int()> addBsdfCommand(CLI::App& app)
 {
@@ -207,4 +207,4 @@ std::function<int()> addBsdfCommand(CLI::App& app)
     return [o]() { return o->command->parsed() ? run(*o) : -1; };
 }
 
-}  // namespace wisp
+} // namespace wisp

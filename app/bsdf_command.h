@@ -16,4 +16,4 @@ namespace wisp {
 // cannot check throw UserError (runCli turns it into one line and exit status 2).
 std::function<int()> addBsdfCommand(CLI::App& app);
 
-}  // namespace wisp
+} // namespace wisp

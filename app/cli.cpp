@@ -25,15 +25,16 @@ int runCli(int argc, char** argv)
     app.add_flag("--sync-validation", g.syncValidation, "also the validation layer's synchronization checks");
     app.add_option("--gpu", g.gpu, "Vulkan device: an index or part of a name from 'wisp info' (default: best)")
         ->check(CLI::Validator(
-            [](std::string& v) {  // an index past what std::stoul reads would be an internal error later
+            [](std::string& v) { // an index past what std::stoul reads would be an internal error later
                 bool digits = !v.empty() && v.find_first_not_of("0123456789") == std::string::npos;
-                return digits && v.size() > 6 ? "device index " + v + " is out of range (see 'wisp info')" : std::string();
+                return digits && v.size() > 6 ? "device index " + v + " is out of range (see 'wisp info')"
+                                              : std::string();
             },
             "INDEX|NAME"));
 
-    std::vector<CommandRun> commands = {addRenderCommand(app, g),   addViewCommand(app, g),  addSimulateCommand(app, g),
-                                        addRecordCommand(app, g),   addSweepCommand(app, g), addBsdfCommand(app),
-                                        addSettingsCommand(app),    addInfoCommand(app),     addInspectCommand(app)};
+    std::vector<CommandRun> commands = {addRenderCommand(app, g), addViewCommand(app, g),  addSimulateCommand(app, g),
+                                        addRecordCommand(app, g), addSweepCommand(app, g), addBsdfCommand(app),
+                                        addSettingsCommand(app),  addInfoCommand(app),     addInspectCommand(app)};
 
     // CLI11 reports a mistyped command only as "a subcommand is required": name it instead.
     for (int i = 1; i < argc; ++i) {
@@ -88,4 +89,4 @@ int runCli(int argc, char** argv)
     return kExitInternalError;
 }
 
-}  // namespace wisp
+} // namespace wisp

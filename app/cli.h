@@ -8,4 +8,4 @@ namespace wisp {
 
 int runCli(int argc, char** argv);
 
-}  // namespace wisp
+} // namespace wisp

@@ -52,7 +52,8 @@ HairScene buildCheckedScene(const GlobalOptions& g, const SessionOptions& o, con
     const HairSource& h = o.source;
     const GrowthSettings& growth = o.settings.growth;
     auto check = [&](uint64_t guides) {
-        Workload w{.guides = guides, .verticesPerStrand = growth.verticesPerStrand, .sim = o.settings.sim, .render = render};
+        Workload w{
+            .guides = guides, .verticesPerStrand = growth.verticesPerStrand, .sim = o.settings.sim, .render = render};
         checkCounts(w);
         std::vector<vk::DeviceReport> devices = vk::enumerateDevices();
         checkWorkload(w, vk::selectDevice(devices, g.gpu, window));
@@ -67,4 +68,4 @@ HairScene buildCheckedScene(const GlobalOptions& g, const SessionOptions& o, con
     return scene;
 }
 
-}  // namespace wisp
+} // namespace wisp

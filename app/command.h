@@ -14,7 +14,7 @@
 namespace CLI {
 class App;
 class Validator;
-}
+} // namespace CLI
 
 namespace wisp {
 
@@ -40,4 +40,4 @@ CLI::Validator within(double lo, double hi);
 HairScene buildCheckedScene(const GlobalOptions& global, const SessionOptions& options, const RenderSettings* render,
                             bool window = false);
 
-}  // namespace wisp
+} // namespace wisp

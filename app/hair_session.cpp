@@ -90,12 +90,12 @@ bool HairSession::setSim(const SimSettings& sim, const glm::mat4& head)
         return false;
     scene_.strands.parts = source_.partsFor(partsAsBuilt_, sim_);
     SimSetup setup = makeSetup();
-    bool same = setup.substeps == setup_.substeps &&
-                std::memcmp(&setup.params, &setup_.params, sizeof(gpu::SimParams)) == 0;
-    setup_ = setup;  // the wind's frequency, whichever way
+    bool same =
+        setup.substeps == setup_.substeps && std::memcmp(&setup.params, &setup_.params, sizeof(gpu::SimParams)) == 0;
+    setup_ = setup; // the wind's frequency, whichever way
     if (same)
         return false;
-    solver_.reset();  // before the new one allocates
+    solver_.reset(); // before the new one allocates
     solver_ = std::make_unique<GpuSolver>(ctx_, scene_.strands, setup_, head);
     return true;
 }
@@ -112,4 +112,4 @@ void HairSession::reloadShaders()
         solver_->reloadPipelines();
 }
 
-}  // namespace wisp
+} // namespace wisp

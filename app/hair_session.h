@@ -25,9 +25,9 @@ class Renderer;
 
 // Where the head, the user's sphere and the wind are at a moment.
 struct StepPose {
-    glm::mat4 head{1.0f};     // the head's rigid transform
-    glm::vec4 sphere{0.0f};   // xyz, radius (0: none), head units
-    glm::vec3 wind{0.0f};     // m/s²
+    glm::mat4 head{1.0f};   // the head's rigid transform
+    glm::vec4 sphere{0.0f}; // xyz, radius (0: none), head units
+    glm::vec3 wind{0.0f};   // m/s²
 };
 using PoseAt = std::function<StepPose(double seconds)>;
 
@@ -84,7 +84,7 @@ private:
     const vk::Context& ctx_;
     HairScene scene_;
     HairSource source_;
-    std::vector<PartSettings> partsAsBuilt_;  // before the settings' and the per-part overrides
+    std::vector<PartSettings> partsAsBuilt_; // before the settings' and the per-part overrides
     Bounds headBounds_;
     SimSettings sim_;
     SimSetup setup_;
@@ -94,4 +94,4 @@ private:
     std::unique_ptr<GpuSolver> solver_;
 };
 
-}  // namespace wisp
+} // namespace wisp

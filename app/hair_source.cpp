@@ -112,4 +112,4 @@ void HairSource::applyPartOverride(std::vector<PartSettings>& parts, const std::
     }
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -18,23 +18,23 @@ namespace wisp {
 
 // Limits of a loaded groom's placement and of the user's sphere (head units).
 inline constexpr Range kHairScaleRange{1e-6, 1e6};
-inline constexpr Range kPositionRange{-1e4, 1e4};  // every coordinate
-inline constexpr Range kRadiusRange{0.0, 1e4};     // 0: no sphere
+inline constexpr Range kPositionRange{-1e4, 1e4}; // every coordinate
+inline constexpr Range kRadiusRange{0.0, 1e4};    // 0: no sphere
 
 struct HairSource {
-    std::filesystem::path headFile;          // empty: the default head (models/head.json)
-    bool noHair = false;                     // the head alone
-    std::vector<std::string> hairFiles;      // none: guides grown with the growth settings
-    float hairScale = 0.0f;                  // 0: automatic placement
-    std::optional<glm::vec3> hairOffset;     // head units, after scaling
-    std::optional<bool> zUp, mirrorZ;        // placement overrides for loaded hair
+    std::filesystem::path headFile;      // empty: the default head (models/head.json)
+    bool noHair = false;                 // the head alone
+    std::vector<std::string> hairFiles;  // none: guides grown with the growth settings
+    float hairScale = 0.0f;              // 0: automatic placement
+    std::optional<glm::vec3> hairOffset; // head units, after scaling
+    std::optional<bool> zUp, mirrorZ;    // placement overrides for loaded hair
     // "PART:key=value,..." (PART: a part's index or name; keys global, local, damping, drag): a
     // scene file's per-file values, then the command line's --part, each over the one before.
     std::vector<std::string> scenePartOverrides, partOverrides;
-    std::optional<std::vector<Ellipsoid>> colliders;  // replace the head's (head space)
-    glm::vec4 sphere{0.0f};                           // the user's sphere: xyz, radius (0: none)
+    std::optional<std::vector<Ellipsoid>> colliders; // replace the head's (head space)
+    glm::vec4 sphere{0.0f};                          // the user's sphere: xyz, radius (0: none)
 
-    std::filesystem::path headPath() const;  // headFile, or the default head
+    std::filesystem::path headPath() const; // headFile, or the default head
     // The head with grown guides (or none with noHair), or with the hair files as parts, each
     // placed; each part's parameters as grown or loaded (a HairSession applies partsFor()).
     HairScene buildScene(const Settings& settings) const;
@@ -47,4 +47,4 @@ struct HairSource {
     static void applyPartOverride(std::vector<PartSettings>& parts, const std::string& spec);
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -26,7 +26,8 @@ std::string describeMemory(const MemorySample& start, const MemorySample& end)
     std::snprintf(text, sizeof(text), "host RSS %.1f -> %.1f MiB, device %llu -> %llu allocations (%.1f -> %.1f MiB)",
                   mib(start.hostResidentBytes), mib(end.hostResidentBytes),
                   static_cast<unsigned long long>(start.device.allocations),
-                  static_cast<unsigned long long>(end.device.allocations), mib(start.device.bytes), mib(end.device.bytes));
+                  static_cast<unsigned long long>(end.device.allocations), mib(start.device.bytes),
+                  mib(end.device.bytes));
     return text;
 }
 
@@ -92,7 +93,8 @@ std::string describeHairCounts(const Renderer& renderer)
            std::to_string(c.strandChunks) + " instances, " + std::to_string(c.draws()) + " draws)";
 }
 
-Picture renderPicture(const vk::Context& ctx, HairSession& session, const RenderSettings& settings, uint32_t frames, float fps)
+Picture renderPicture(const vk::Context& ctx, HairSession& session, const RenderSettings& settings, uint32_t frames,
+                      float fps)
 {
     Renderer renderer(ctx, settings, 1);
     renderer.setHead(session.scene().head);
@@ -101,8 +103,8 @@ Picture renderPicture(const vk::Context& ctx, HairSession& session, const Render
     if (session.hasHair())
         runSteps(frame, renderer, session, frames * session.clock().stepsPerFrame(fps));
     float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
-    OrbitCamera camera =
-        poseFrame(renderer, session.timeline(), session.clock().seconds(), OrbitCamera::framing(renderer.sceneBounds(), aspect));
+    OrbitCamera camera = poseFrame(renderer, session.timeline(), session.clock().seconds(),
+                                   OrbitCamera::framing(renderer.sceneBounds(), aspect));
     Picture picture = renderFrame(ctx, renderer, frame, camera);
     // The compute path's bins grow after a frame that outgrew them: that frame is drawn again.
     for (int again = 0; again < 2 && picture.raster.overflow > 0; ++again)
@@ -116,7 +118,8 @@ Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSett
 {
     HairScene bald;
     bald.head = head;
-    HairSession session(ctx, std::move(bald), SimSettings{}, stillTimeline(glm::vec4(0.0f), glm::vec3(0.0f), settings.light));
+    HairSession session(ctx, std::move(bald), SimSettings{},
+                        stillTimeline(glm::vec4(0.0f), glm::vec3(0.0f), settings.light));
     return renderPicture(ctx, session, settings);
 }
 
@@ -144,7 +147,7 @@ std::vector<PassTiming> profileFrames(const vk::Context& ctx, HairSession& sessi
         OitStats lists = renderer.oitStats(fc.slot);
         if (lists.overflow > 0 && renderer.growOit(lists)) {
             if (n >= warmup)
-                --n;  // the pool grew: this frame is not timed, one more is
+                --n; // the pool grew: this frame is not timed, one more is
             continue;
         }
         if (oit)
@@ -173,4 +176,4 @@ std::vector<PassTiming> profileFrames(const vk::Context& ctx, HairSession& sessi
     return out;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -5,14 +5,14 @@
 
 #include "app/hair_session.h"
 #include "app/scene.h"
+#include "gpu/context.h"
 #include "physics/hair_scene.h"
 #include "physics/simulation.h"
-#include "renderer/hair_pass.h"
 #include "renderer/camera.h"
+#include "renderer/hair_pass.h"
 #include "renderer/oit.h"
-#include "renderer/strand_raster.h"
 #include "renderer/settings.h"
-#include "gpu/context.h"
+#include "renderer/strand_raster.h"
 
 #include <cstdint>
 #include <string>
@@ -26,17 +26,17 @@ class Frame;
 struct Picture {
     uint32_t width = 0;
     uint32_t height = 0;
-    std::vector<uint8_t> rgba;  // tightly packed, top row first, sRGB
-    std::string hairCounts;     // what the hair draw was split into (empty without hair)
-    OitStats oit;               // the OIT lists of this frame (zeros in MSAA mode or without hair)
-    RasterStats raster;         // the compute path's counts (zeros when the hair is drawn by graphics)
+    std::vector<uint8_t> rgba; // tightly packed, top row first, sRGB
+    std::string hairCounts;    // what the hair draw was split into (empty without hair)
+    OitStats oit;              // the OIT lists of this frame (zeros in MSAA mode or without hair)
+    RasterStats raster;        // the compute path's counts (zeros when the hair is drawn by graphics)
 };
 
 // Host and device memory at one moment: long runs report it at their start and end (a soak's
 // memory must stay flat).
 struct MemorySample {
     uint64_t hostResidentBytes = 0;
-    vk::DeviceMemoryStats device;  // Wisp's live device allocations
+    vk::DeviceMemoryStats device; // Wisp's live device allocations
 };
 MemorySample sampleMemory();
 // "host RSS 41.2 -> 41.3 MiB, device 23 -> 23 allocations (12.0 -> 12.0 MiB)"
@@ -76,4 +76,4 @@ std::vector<PassTiming> profileFrames(const vk::Context& ctx, HairSession& sessi
                                       float fps, uint32_t warmup, uint32_t frames, OitStats* oit = nullptr,
                                       RasterStats* raster = nullptr);
 
-}  // namespace wisp
+} // namespace wisp

@@ -29,8 +29,9 @@ void writePng(const std::filesystem::path& path, uint32_t width, uint32_t height
     checkPngOutput(path);
     int stride = static_cast<int>(width * 4);
     writeAtomically(path, [&](const std::filesystem::path& temp) {
-        return stbi_write_png(temp.c_str(), static_cast<int>(width), static_cast<int>(height), 4, rgba.data(), stride) != 0;
+        return stbi_write_png(temp.c_str(), static_cast<int>(width), static_cast<int>(height), 4, rgba.data(),
+                              stride) != 0;
     });
 }
 
-}  // namespace wisp
+} // namespace wisp

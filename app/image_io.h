@@ -13,4 +13,4 @@ void checkPngOutput(const std::filesystem::path& path);
 // Writes tightly packed RGBA8 pixels as a PNG; atomic.
 void writePng(const std::filesystem::path& path, uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba);
 
-}  // namespace wisp
+} // namespace wisp

@@ -65,7 +65,8 @@ int run(bool json)
                   << "  fragment stores and atomics:  " << yes(d.fragmentStoresAndAtomics) << "\n"
                   << "  float atomic add (buffers):   " << yes(d.floatAtomicAdd) << "\n"
                   << "  64-bit integer atomics:       " << yes(d.int64Atomics)
-                  << " (the deterministic fixed-point hair grid" << (d.int64Atomics ? ")" : "; float atomics instead)") << "\n"
+                  << " (the deterministic fixed-point hair grid" << (d.int64Atomics ? ")" : "; float atomics instead)")
+                  << "\n"
                   << "  timestamps:                   " << yes(d.timestamps) << " (" << d.timestampValidBits
                   << " valid bits, " << d.timestampPeriodNs << " ns per tick)\n"
                   << "  pipeline statistics:          " << yes(d.pipelineStatisticsQuery) << "\n"
@@ -75,7 +76,7 @@ int run(bool json)
     return 0;
 }
 
-}  // namespace
+} // namespace
 
 CommandRun addInfoCommand(CLI::App& app)
 {
@@ -85,4 +86,4 @@ CommandRun addInfoCommand(CLI::App& app)
     return [cmd, json] { return cmd->parsed() ? run(*json) : -1; };
 }
 
-}  // namespace wisp
+} // namespace wisp

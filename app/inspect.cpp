@@ -50,7 +50,8 @@ nlohmann::json lengths(const HairAsset& asset, float scale)
     return {{"min", l.front()}, {"median", l[l.size() / 2]}, {"max", l.back()}};
 }
 
-const char* kTreatment = "kept rigid: they follow the head and are drawn, not simulated; strands of no length are dropped";
+const char* kTreatment =
+    "kept rigid: they follow the head and are drawn, not simulated; strands of no length are dropped";
 
 int inspectGroomOnHead(const InspectOptions& o)
 {
@@ -66,25 +67,27 @@ int inspectGroomOnHead(const InspectOptions& o)
     // The scene render and simulate build: the same placement, the same treatment of strands.
     HairScene scene = buildLoadedScene(std::move(head), parts, o.verticesPerStrand);
     nlohmann::json out = {{"kind", "groom_on_head"},
-                          {"head", {{"file", o.head.empty() ? defaultHeadPath().string() : o.head},
-                                    {"diagonal", diagonal},
-                                    {"bbox", {{b.min.x, b.min.y, b.min.z}, {b.max.x, b.max.y, b.max.z}}}}},
+                          {"head",
+                           {{"file", o.head.empty() ? defaultHeadPath().string() : o.head},
+                            {"diagonal", diagonal},
+                            {"bbox", {{b.min.x, b.min.y, b.min.z}, {b.max.x, b.max.y, b.max.z}}}}},
                           {"files", files},
                           {"strands", scene.strands.strandCount()},
                           {"vertices_per_strand", o.verticesPerStrand},
                           {"placement", scene.placement->toJson()},
-                          {"short_strands", {{"shorter_than", scene.loaded.shortThreshold},
-                                             {"reference", "head diagonal"},
-                                             {"kept_rigid", scene.loaded.rigid},
-                                             {"dropped_zero_length", scene.loaded.dropped},
-                                             {"treatment", kTreatment}}},
+                          {"short_strands",
+                           {{"shorter_than", scene.loaded.shortThreshold},
+                            {"reference", "head diagonal"},
+                            {"kept_rigid", scene.loaded.rigid},
+                            {"dropped_zero_length", scene.loaded.dropped},
+                            {"treatment", kTreatment}}},
                           {"pinned_tips", scene.loaded.pinnedTips},
                           {"warnings", scene.warnings}};
     std::cout << out.dump() << "\n";
     return 0;
 }
 
-}  // namespace
+} // namespace
 
 nlohmann::json describeGroom(const HairAsset& asset, uint32_t verticesPerStrand)
 {
@@ -103,7 +106,8 @@ nlohmann::json describeGroom(const HairAsset& asset, uint32_t verticesPerStrand)
     }
     out["units"] = {{"guess", unitsGuess(diagonal)}, {"diagonal", diagonal}};
     out["up_axis"] = asset.zUp ? "z" : "y";
-    out["up_axis_from"] = asset.format == HairFormat::CyHair ? "the format (cyHair files are z-up)" : "the format (TressFX is y-up)";
+    out["up_axis_from"] =
+        asset.format == HairFormat::CyHair ? "the format (cyHair files are z-up)" : "the format (TressFX is y-up)";
     out["mirror_z"] = asset.mirroredZ;
     out["pinned_tips"] = pinnedTips;
     out["pinned_root_vertices_max"] = pinnedRoots;
@@ -121,12 +125,16 @@ std::function<int()> addInspectCommand(CLI::App& app)
 {
     auto o = std::make_shared<InspectOptions>();
     CLI::App* cmd = app.add_subcommand(
-        "inspect", "print what a hair or mesh file holds, as one JSON object; with --head, where a groom's roots land on it");
+        "inspect",
+        "print what a hair or mesh file holds, as one JSON object; with --head, where a groom's roots land on it");
     cmd->add_option("file", o->file,
-                    "a hair file (.tfx: TressFX 2/3/4, .hair: cyHair) or a mesh (.obj through tinyobjloader, others through assimp)");
+                    "a hair file (.tfx: TressFX 2/3/4, .hair: cyHair) or a mesh (.obj through tinyobjloader, others "
+                    "through assimp)");
     cmd->add_option("--hair", o->hair, "a groom file (repeat for a groom in parts), placed on --head as render would");
-    cmd->add_option("--head", o->head, "head description (.json) or mesh to place the groom on (default with --hair: models/head.json)");
-    cmd->add_option("--vertices", o->verticesPerStrand, "vertices per strand after resampling (what short strands are measured against)")
+    cmd->add_option("--head", o->head,
+                    "head description (.json) or mesh to place the groom on (default with --hair: models/head.json)");
+    cmd->add_option("--vertices", o->verticesPerStrand,
+                    "vertices per strand after resampling (what short strands are measured against)")
         ->check(CLI::Range(kMinVerticesPerStrand, kMaxVerticesPerStrand))
         ->capture_default_str();
     return [o, cmd]() -> int {
@@ -136,7 +144,8 @@ std::function<int()> addInspectCommand(CLI::App& app)
             throw UserError("inspect: name a file, or a groom with --hair (and a head with --head)");
         if (!o->hair.empty() || !o->head.empty()) {
             if (!o->file.empty() && !isHairFile(o->file))
-                throw UserError("inspect: " + o->file + " is not a hair file (.tfx, .hair): with --head, inspect places a groom");
+                throw UserError("inspect: " + o->file +
+                                " is not a hair file (.tfx, .hair): with --head, inspect places a groom");
             return inspectGroomOnHead(*o);
         }
         if (isHairFile(o->file)) {
@@ -155,4 +164,4 @@ std::function<int()> addInspectCommand(CLI::App& app)
     };
 }
 
-}  // namespace wisp
+} // namespace wisp

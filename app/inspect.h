@@ -29,4 +29,4 @@ std::function<int()> addInspectCommand(CLI::App& app);
 // up axis, pinned tips, lengths and short strands (against the groom's own size).
 nlohmann::json describeGroom(const HairAsset& asset, uint32_t verticesPerStrand);
 
-}  // namespace wisp
+} // namespace wisp

@@ -8,9 +8,9 @@
 #include "app/image_io.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "gpu/check.h"
 #include "gpu/frame.h"
 #include "renderer/renderer.h"
-#include "gpu/check.h"
 
 #include <chrono>
 #include <cmath>
@@ -34,13 +34,13 @@ void progress(uint32_t done, uint32_t total, double elapsed)
 {
     bool tty = isatty(STDERR_FILENO) != 0;
     if (!tty && done != total && done % std::max(1u, total / 10) != 0)
-        return;  // logs get a line every 10%
+        return; // logs get a line every 10%
     constexpr int kWidth = 30;
     int filled = int(double(kWidth) * done / std::max(total, 1u));
     double eta = done > 0 ? elapsed / done * (total - done) : 0.0;
     std::fprintf(stderr, "%srecord [%s%s] %u/%u frames, %.1f s, ETA %.1f s%s", tty ? "\r" : "",
-                 std::string(size_t(filled), '#').c_str(), std::string(size_t(kWidth - filled), '.').c_str(), done, total,
-                 elapsed, eta, tty && done != total ? "" : "\n");
+                 std::string(size_t(filled), '#').c_str(), std::string(size_t(kWidth - filled), '.').c_str(), done,
+                 total, elapsed, eta, tty && done != total ? "" : "\n");
     std::fflush(stderr);
 }
 
@@ -63,7 +63,8 @@ void writeContactSheet(const std::filesystem::path& path, const std::vector<Pict
                     uint32_t sum = 0, n = 0;
                     for (uint32_t dy = 0; dy < kShrink; ++dy)
                         for (uint32_t dx = 0; dx < kShrink; ++dx) {
-                            uint32_t sx = std::min(p.width - 1, x * kShrink + dx), sy = std::min(p.height - 1, y * kShrink + dy);
+                            uint32_t sx = std::min(p.width - 1, x * kShrink + dx),
+                                     sy = std::min(p.height - 1, y * kShrink + dy);
                             sum += p.rgba[(size_t(sy) * p.width + sx) * 4 + size_t(c)];
                             ++n;
                         }
@@ -76,10 +77,11 @@ void writeContactSheet(const std::filesystem::path& path, const std::vector<Pict
 void encodeVideo(const std::filesystem::path& dir, const std::filesystem::path& video, float fps)
 {
     writeAtomically(video, [&](const std::filesystem::path& temp) {
-        std::string command = "ffmpeg -nostdin -hide_banner -loglevel error -y -framerate " + std::to_string(fps) + " -i '" +
-                              (dir / "frame_%05d.png").string() +
-                              "' -vf 'scale=trunc(iw/2)*2:trunc(ih/2)*2' -c:v libx264 -pix_fmt yuv420p -movflags +faststart '" +
-                              temp.string() + "'";
+        std::string command =
+            "ffmpeg -nostdin -hide_banner -loglevel error -y -framerate " + std::to_string(fps) + " -i '" +
+            (dir / "frame_%05d.png").string() +
+            "' -vf 'scale=trunc(iw/2)*2:trunc(ih/2)*2' -c:v libx264 -pix_fmt yuv420p -movflags +faststart '" +
+            temp.string() + "'";
         int status = std::system(command.c_str());
         if (status != 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
             throw UserError("--video " + video.string() + ": ffmpeg failed (exit status " +
@@ -108,20 +110,22 @@ std::string leftAfterLoss(const RecordOptions& o, uint32_t written)
 
 // Simulates, renders and writes the frames, counting in `written` those on disk; returns the
 // contact sheet's pictures.
-std::vector<Picture> recordFrames(const vk::Context& ctx, HairSession& session, const RecordOptions& o, uint32_t& written)
+std::vector<Picture> recordFrames(const vk::Context& ctx, HairSession& session, const RecordOptions& o,
+                                  uint32_t& written)
 {
     Renderer renderer(ctx, o.settings, 1);
     renderer.setHead(session.scene().head);
     session.attachTo(renderer);
     Frame frame(ctx, 1);
-    OrbitCamera framing = OrbitCamera::framing(renderer.sceneBounds(), float(o.settings.width) / float(o.settings.height));
+    OrbitCamera framing =
+        OrbitCamera::framing(renderer.sceneBounds(), float(o.settings.width) / float(o.settings.height));
     uint32_t stepsPerFrame = session.clock().stepsPerFrame(o.fps);
     std::vector<Picture> sheet;
     uint32_t sheetEvery = std::max(1u, (o.frames + 11) / 12);
     auto start = std::chrono::steady_clock::now();
     MemorySample memoryStart;
     for (uint32_t f = 0; f < o.frames; ++f) {
-        renderer.setSteps(session.nextSteps(stepsPerFrame));  // without hair, time passes for the camera and light
+        renderer.setSteps(session.nextSteps(stepsPerFrame)); // without hair, time passes for the camera and light
         OrbitCamera camera = poseFrame(renderer, session.timeline(), session.clock().seconds(), framing);
         Picture picture = renderFrame(ctx, renderer, frame, camera);
         writePng(framePath(o.outDir, f), picture.width, picture.height, picture.rgba);
@@ -129,7 +133,7 @@ std::vector<Picture> recordFrames(const vk::Context& ctx, HairSession& session, 
         if (f % sheetEvery == 0)
             sheet.push_back(std::move(picture));
         if (f == 0)
-            memoryStart = sampleMemory();  // after the first frame: every resource exists
+            memoryStart = sampleMemory(); // after the first frame: every resource exists
         progress(f + 1, o.frames, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }
     // Before the contact sheet and the video, which the loop does not hold: a long recording's
@@ -139,7 +143,7 @@ std::vector<Picture> recordFrames(const vk::Context& ctx, HairSession& session, 
     return sheet;
 }
 
-}  // namespace
+} // namespace
 
 void checkRecordOutputs(const RecordOptions& o)
 {
@@ -168,7 +172,7 @@ int runRecord(const vk::Context& ctx, HairSession& session, const RecordOptions&
         sheet = recordFrames(ctx, session, o, written);
     } catch (const vk::DeviceLost& e) {
         if (written > 0 && isatty(STDERR_FILENO))
-            std::fputc('\n', stderr);  // ends the progress bar's line
+            std::fputc('\n', stderr); // ends the progress bar's line
         throw vk::DeviceLost(e.what() + std::string("; ") + leftAfterLoss(o, written));
     }
     writeContactSheet(o.outDir / "contact_sheet.png", sheet);
@@ -184,4 +188,4 @@ int runRecord(const vk::Context& ctx, HairSession& session, const RecordOptions&
     return 0;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -5,8 +5,8 @@
 #pragma once
 
 #include "app/hair_session.h"
-#include "renderer/settings.h"
 #include "gpu/context.h"
+#include "renderer/settings.h"
 
 #include <filesystem>
 #include <string>
@@ -14,8 +14,8 @@
 namespace wisp {
 
 struct RecordOptions {
-    std::filesystem::path outDir;    // frame_00000.png ... and contact_sheet.png
-    std::filesystem::path video;     // empty: no video
+    std::filesystem::path outDir; // frame_00000.png ... and contact_sheet.png
+    std::filesystem::path video;  // empty: no video
     uint32_t frames = 120;
     float fps = 30.0f;
     RenderSettings settings;
@@ -29,4 +29,4 @@ void checkRecordOutputs(const RecordOptions& options);
 // sheet or video is made.
 int runRecord(const vk::Context& ctx, HairSession& session, const RecordOptions& options);
 
-}  // namespace wisp
+} // namespace wisp

@@ -31,14 +31,14 @@ int run(const GlobalOptions& g, RecordCommand& c)
     rec.settings = session.settings.render;
     if (session.scene && c.frames->count() == 0 && session.sceneLength() > 0.0)
         rec.frames = std::max(1u, uint32_t(std::ceil(session.sceneLength() * double(rec.fps) - 1e-6)));
-    checkRecordOutputs(rec);  // before any loading
+    checkRecordOutputs(rec); // before any loading
     HairScene scene = buildCheckedScene(g, session, &rec.settings);
     vk::Context ctx(contextOptions(g));
     HairSession hair(ctx, std::move(scene), session.settings.sim, session.timeline, session.source);
     return runRecord(ctx, hair, rec);
 }
 
-}  // namespace
+} // namespace
 
 CommandRun addRecordCommand(CLI::App& app, const GlobalOptions& global)
 {
@@ -55,11 +55,12 @@ CommandRun addRecordCommand(CLI::App& app, const GlobalOptions& global)
                                 "frames to record (with --scene, by default as many as the scene lasts)")
                     ->check(CLI::Range(1u, 1000000u))
                     ->capture_default_str();
-    cmd->add_option("--fps", c->options.fps, "frames per simulated second (each frame is round(step_hz / fps) fixed steps)")
+    cmd->add_option("--fps", c->options.fps,
+                    "frames per simulated second (each frame is round(step_hz / fps) fixed steps)")
         ->check(within(1.0, 1000.0))
         ->capture_default_str();
     c->shared = std::make_unique<SessionCommandLine>(cmd, SessionCommandLine::Uses{});
     return [c, &global] { return c->command->parsed() ? run(global, *c) : -1; };
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -29,7 +29,7 @@ struct RenderCommand {
     std::string outFile;
     uint32_t frames = 0;
     float fps = 30.0f;
-    uint32_t profileFrames = 0;  // > 0: time this many frames (after profileWarmup) instead of writing a picture
+    uint32_t profileFrames = 0; // > 0: time this many frames (after profileWarmup) instead of writing a picture
     uint32_t profileWarmup = 60;
 };
 
@@ -66,7 +66,7 @@ int runProfile(const GlobalOptions& g, SessionOptions& o, const RenderCommand& c
                           {"hair_raster_drawn", path == HairRaster::Compute ? "compute" : "graphics"},
                           {"settings", settingsJson(o.settings)}};
     if (path == HairRaster::Compute)
-        out["raster"] = {{"segments", raster.segments}, {"hidden", raster.hidden}, {"fragments", raster.fragments},
+        out["raster"] = {{"segments", raster.segments}, {"hidden", raster.hidden},     {"fragments", raster.fragments},
                          {"capacity", raster.capacity}, {"overflow", raster.overflow}, {"max_pixel", raster.maxPixel}};
     for (const PassTiming& t : timings)
         out["ms"][t.name] = {{"median", t.medianMs}, {"p95", t.p95Ms}};
@@ -81,7 +81,7 @@ int run(const GlobalOptions& g, const RenderCommand& c)
     SessionOptions o = c.shared->resolve();
     if (c.profileFrames > 0)
         return runProfile(g, o, c);
-    checkPngOutput(c.outFile);  // fail before any GPU work
+    checkPngOutput(c.outFile); // fail before any GPU work
     const RenderSettings& settings = o.settings.render;
     HairScene scene = buildCheckedScene(g, o, &settings);
     vk::Context ctx(contextOptions(g));
@@ -96,7 +96,7 @@ int run(const GlobalOptions& g, const RenderCommand& c)
     }
     int status = validationStatus(ctx);
     if (status != 0)
-        return status;  // a picture made with validation errors is not trusted: nothing written
+        return status; // a picture made with validation errors is not trusted: nothing written
     writePng(c.outFile, picture.width, picture.height, picture.rgba);
     std::cout << c.outFile << "\n";
     for (const std::string& line : loaded)
@@ -106,8 +106,8 @@ int run(const GlobalOptions& g, const RenderCommand& c)
     if (picture.raster.capacity > 0) {
         std::cout << describeRasterStats(picture.raster) << "\n";
         if (picture.raster.overflow > 0)
-            std::cerr << "wisp: warning: the compute path's fragment buffer was full: " << picture.raster.overflow << " of "
-                      << picture.raster.fragments << " hair fragments were dropped ('" << ctx.report().name
+            std::cerr << "wisp: warning: the compute path's fragment buffer was full: " << picture.raster.overflow
+                      << " of " << picture.raster.fragments << " hair fragments were dropped ('" << ctx.report().name
                       << "' holds no larger buffer); lower the resolution or strands_per_guide\n";
     }
     if (picture.oit.capacity > 0) {
@@ -118,7 +118,7 @@ int run(const GlobalOptions& g, const RenderCommand& c)
     return 0;
 }
 
-}  // namespace
+} // namespace
 
 CommandRun addRenderCommand(CLI::App& app, const GlobalOptions& global)
 {
@@ -127,9 +127,10 @@ CommandRun addRenderCommand(CLI::App& app, const GlobalOptions& global)
         "render", "render one frame offscreen into a PNG: the head and its simulated hair, shaded and shadowed");
     c->command = cmd;
     c->out = cmd->add_option("--out", c->outFile, "output PNG file (its folder must exist)");
-    cmd->add_option("--profile", c->profileFrames,
-                    "time this many frames (physics and every pass, after --warmup frames) and print per-pass GPU ms as "
-                    "JSON, instead of writing a picture")
+    cmd->add_option(
+           "--profile", c->profileFrames,
+           "time this many frames (physics and every pass, after --warmup frames) and print per-pass GPU ms as "
+           "JSON, instead of writing a picture")
         ->check(CLI::Range(1u, 100000u));
     cmd->add_option("--warmup", c->profileWarmup, "frames before timing with --profile")
         ->check(CLI::Range(0u, 100000u))
@@ -142,4 +143,4 @@ CommandRun addRenderCommand(CLI::App& app, const GlobalOptions& global)
     return [c, &global] { return c->command->parsed() ? run(global, *c) : -1; };
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -95,7 +95,7 @@ struct Reader {
     {
         expect(v, pointer, v.is_object(), "an object");
         for (const auto& item : v.items()) {
-            const std::string& key = item.key();  // clang 14 lambdas cannot capture a structured binding
+            const std::string& key = item.key(); // clang 14 lambdas cannot capture a structured binding
             bool found = std::any_of(known.begin(), known.end(), [&](const char* k) { return key == k; });
             if (!found) {
                 std::string names;
@@ -308,8 +308,8 @@ void readPhysics(const Reader& r, const Json& v, Scene& scene)
     }
     if (v.contains("grid_atomics")) {
         r.expect(v["grid_atomics"], pointerTo(at, "grid_atomics"), v["grid_atomics"].is_string(), "a string");
-        scene.gridAtomics =
-            SimSettings::GridAtomics(int(r.setting(v["grid_atomics"], pointerTo(at, "grid_atomics"), "grid_atomics").number));
+        scene.gridAtomics = SimSettings::GridAtomics(
+            int(r.setting(v["grid_atomics"], pointerTo(at, "grid_atomics"), "grid_atomics").number));
     }
 }
 
@@ -392,7 +392,7 @@ Json vecJson(const float* v, size_t n)
     return a;
 }
 
-}  // namespace
+} // namespace
 
 double Scene::length() const
 {
@@ -473,7 +473,8 @@ Scene parseScene(const std::string& content, const std::filesystem::path& path)
             const SettingSpec* spec = findSetting(item.key());
             if (!spec)
                 r.fail(pointer, "unknown setting (known: " + settingNames() + ")");
-            scene.settings.emplace_back(spec->name, settingText(*spec, r.setting(item.value(), pointer, spec->name.c_str())));
+            scene.settings.emplace_back(spec->name,
+                                        settingText(*spec, r.setting(item.value(), pointer, spec->name.c_str())));
         }
     }
     if (doc.contains("interpolation")) {
@@ -869,4 +870,4 @@ SceneState SceneTimeline::at(double seconds) const
     return s;
 }
 
-}  // namespace wisp
+} // namespace wisp

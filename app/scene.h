@@ -25,11 +25,11 @@ namespace wisp {
 // Allowed values of the channels that are not settings (the light's and the wind's are the
 // settings table's light_azimuth, light_elevation, light_intensity and wind; positions and radii
 // are kPositionRange and kRadiusRange of app/hair_source.h).
-inline constexpr Range kSceneTimeRange{0.0, 3600.0};            // seconds
-inline constexpr Range kSceneCameraYawRange{-3600.0, 3600.0};   // degrees (no wrapping: 0 -> 360 is one turn)
-inline constexpr Range kSceneCameraPitchRange{-85.0, 85.0};     // degrees, OrbitCamera's limits
-inline constexpr Range kSceneCameraDistanceRange{0.1, 10.0};    // times the default framing's distance
-inline constexpr Range kSceneHeadYawRange{-80.0, 80.0};         // degrees, as far as the window turns it
+inline constexpr Range kSceneTimeRange{0.0, 3600.0};          // seconds
+inline constexpr Range kSceneCameraYawRange{-3600.0, 3600.0}; // degrees (no wrapping: 0 -> 360 is one turn)
+inline constexpr Range kSceneCameraPitchRange{-85.0, 85.0};   // degrees, OrbitCamera's limits
+inline constexpr Range kSceneCameraDistanceRange{0.1, 10.0};  // times the default framing's distance
+inline constexpr Range kSceneHeadYawRange{-80.0, 80.0};       // degrees, as far as the window turns it
 
 // How a channel moves between two keys that set it: straight (linear) or easing out of one key
 // and into the next (smoothstep: every key is a moment of rest).
@@ -37,23 +37,23 @@ enum class SceneInterpolation { Linear, Smooth };
 
 // One keyframe: its time and whichever channels it sets (every channel is optional).
 struct SceneKey {
-    double time = 0.0;                      // seconds
-    std::optional<float> cameraYawDeg;      // around +y; 0 looks at the face
-    std::optional<float> cameraPitchDeg;    // above the target's horizontal plane
-    std::optional<float> cameraDistance;    // times the default framing's distance
-    std::optional<glm::vec3> cameraTarget;  // head units (default: the framing's target)
-    std::optional<glm::vec4> sphere;        // xyz, radius (head units; radius 0: none)
+    double time = 0.0;                     // seconds
+    std::optional<float> cameraYawDeg;     // around +y; 0 looks at the face
+    std::optional<float> cameraPitchDeg;   // above the target's horizontal plane
+    std::optional<float> cameraDistance;   // times the default framing's distance
+    std::optional<glm::vec3> cameraTarget; // head units (default: the framing's target)
+    std::optional<glm::vec4> sphere;       // xyz, radius (head units; radius 0: none)
     std::optional<float> lightAzimuthDeg;
     std::optional<float> lightElevationDeg;
     std::optional<float> lightIntensity;
-    std::optional<glm::vec3> wind;    // m/s²
-    std::optional<float> headYawDeg;  // about the vertical axis through the head's centre
+    std::optional<glm::vec3> wind;   // m/s²
+    std::optional<float> headYawDeg; // about the vertical axis through the head's centre
     bool operator==(const SceneKey&) const = default;
 };
 
 // A hair file of a loaded groom, with its own parameters (absent: the groom's or the default).
 struct SceneHairFile {
-    std::string path;  // as written: relative to the scene file, absolute, or "shared:REL"
+    std::string path; // as written: relative to the scene file, absolute, or "shared:REL"
     std::optional<float> globalStiffness, localStiffness, damping, drag;
     bool operator==(const SceneHairFile&) const = default;
 };
@@ -62,34 +62,34 @@ struct SceneHairFile {
 // line's). Names follow the command line's options (--hair-length is "hair_length").
 struct SceneHair {
     std::optional<uint32_t> guides, vertices, seed;
-    std::optional<float> hairLength, lengthVariation, curl;  // metres, fraction, metres
+    std::optional<float> hairLength, lengthVariation, curl; // metres, fraction, metres
     std::optional<bool> poisson;
     std::vector<SceneHairFile> files;
-    std::optional<float> scale;  // placement of loaded hair (as --hair-scale, ...)
+    std::optional<float> scale; // placement of loaded hair (as --hair-scale, ...)
     std::optional<glm::vec3> offset;
     std::optional<bool> zUp, mirrorZ;
-    std::optional<float> globalStiffness, localStiffness, damping, drag;  // every part
+    std::optional<float> globalStiffness, localStiffness, damping, drag; // every part
     bool operator==(const SceneHair&) const = default;
 };
 
 struct Scene {
     std::string description;
-    std::string head;  // as written; empty: the default head
+    std::string head; // as written; empty: the default head
     SceneHair hair;
-    std::optional<std::vector<Ellipsoid>> colliders;  // head space; absent: the head's (or fitted)
+    std::optional<std::vector<Ellipsoid>> colliders; // head space; absent: the head's (or fitted)
     // "physics": the sphere, and three settings written here by older scenes (as "settings" would
     // hold them). wind and sphere are the values while no key sets those channels (as --wind and
     // --sphere).
-    std::optional<glm::vec3> wind;    // m/s²
-    std::optional<glm::vec4> sphere;  // head units
+    std::optional<glm::vec3> wind;   // m/s²
+    std::optional<glm::vec4> sphere; // head units
     std::optional<float> repulsion;
     std::optional<SimSettings::GridAtomics> gridAtomics;
     // Settings as NAME=VALUE (the text --set takes), in the file's order (a later one wins).
     std::vector<std::pair<std::string, std::string>> settings;
     SceneInterpolation interpolation = SceneInterpolation::Smooth;
-    std::optional<double> duration;  // seconds; absent: the last key's time
-    bool loop = false;               // the keys repeat every length() seconds (a soak runs for hours)
-    std::vector<SceneKey> keys;      // by increasing time
+    std::optional<double> duration; // seconds; absent: the last key's time
+    bool loop = false;              // the keys repeat every length() seconds (a soak runs for hours)
+    std::vector<SceneKey> keys;     // by increasing time
     bool operator==(const Scene&) const = default;
 
     // The length of the animation: `duration`, else the last key's time (0 without keys).
@@ -125,7 +125,7 @@ void applyScene(const Scene& scene, const std::filesystem::path& sceneFile, Sett
 
 // A camera relative to the default framing (absent values: the framing's).
 struct CameraPose {
-    std::optional<float> yawDeg, pitchDeg, distance;  // distance: times the framing's
+    std::optional<float> yawDeg, pitchDeg, distance; // distance: times the framing's
     std::optional<glm::vec3> target;
 };
 // `framing` (OrbitCamera::framing) moved to `pose`; near and far planes follow the distance.
@@ -140,9 +140,9 @@ glm::mat4 headYawTransform(const Bounds& head, float yawDeg);
 // Every channel at one time.
 struct SceneState {
     CameraPose camera;
-    glm::vec4 sphere{0.0f};  // xyz, radius; 0: none
+    glm::vec4 sphere{0.0f}; // xyz, radius; 0: none
     LightSettings light;
-    glm::vec3 wind{0.0f};  // m/s²
+    glm::vec3 wind{0.0f}; // m/s²
     float headYawDeg = 0.0f;
 };
 
@@ -173,4 +173,4 @@ private:
     Track<glm::vec4> sphere_;
 };
 
-}  // namespace wisp
+} // namespace wisp

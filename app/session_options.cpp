@@ -16,7 +16,8 @@ SessionCommandLine::SessionCommandLine(CLI::App* cmd, Uses uses) : command_(cmd)
     for (const SettingSpec& spec : settingSpecs()) {
         if (spec.option.empty() || (!uses.draws && drawsOnly(spec.group)))
             continue;
-        std::string help = spec.help + " (" + spec.allowed() + "; default " + settingText(spec, spec.get(defaults)) + ")";
+        std::string help =
+            spec.help + " (" + spec.allowed() + "; default " + settingText(spec, spec.get(defaults)) + ")";
         if (spec.type == SettingType::OnOff)
             cmd->add_flag(spec.option, settingFlags_[spec.option], spec.help);
         else
@@ -41,7 +42,8 @@ SessionCommandLine::SessionCommandLine(CLI::App* cmd, Uses uses) : command_(cmd)
                     "hair file to load instead of growing guides (TressFX .tfx 2/3/4, cyHair .hair); repeat for a "
                     "groom in parts")
         ->check(CLI::ExistingFile);
-    cmd->add_option("--hair-scale", hairScale_, "scale loaded hair by this (default: automatic when units clearly differ)")
+    cmd->add_option("--hair-scale", hairScale_,
+                    "scale loaded hair by this (default: automatic when units clearly differ)")
         ->check(CLI::Validator(
             [](std::string& text) {
                 try {
@@ -82,7 +84,7 @@ SessionOptions SessionCommandLine::resolve() const
     o.source.noHair = noHair_;
     if (given("--hair")) {
         o.source.hairFiles = hairFiles_;
-        o.source.scenePartOverrides.clear();  // other files: the scene's per-file values do not apply
+        o.source.scenePartOverrides.clear(); // other files: the scene's per-file values do not apply
     }
     if (given("--hair-scale"))
         o.source.hairScale = hairScale_;
@@ -112,8 +114,9 @@ SessionOptions SessionCommandLine::resolve() const
     for (const SettingSpec& spec : settingSpecs()) {
         if (spec.option.empty() || !given(spec.option))
             continue;
-        SettingValue v = spec.type == SettingType::OnOff ? SettingValue{.number = settingFlags_.at(spec.option) ? 1.0 : 0.0}
-                                                           : parseSetting(spec, settingOptions_.at(spec.option), spec.option);
+        SettingValue v = spec.type == SettingType::OnOff
+                             ? SettingValue{.number = settingFlags_.at(spec.option) ? 1.0 : 0.0}
+                             : parseSetting(spec, settingOptions_.at(spec.option), spec.option);
         setSetting(o.settings, spec, v, spec.option);
         explicitSettings.push_back(spec.name);
     }
@@ -154,4 +157,4 @@ SessionOptions SessionCommandLine::resolve() const
     return o;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -37,9 +37,9 @@ struct SessionOptions {
 class SessionCommandLine {
 public:
     struct Uses {
-        bool scene = true;    // --scene
-        bool noHair = true;   // --no-hair
-        bool draws = true;    // the image size and the drawing settings (simulate draws nothing)
+        bool scene = true;  // --scene
+        bool noHair = true; // --no-hair
+        bool draws = true;  // the image size and the drawing settings (simulate draws nothing)
     };
     // Registers the options on `command` (which must outlive this object; neither moves).
     SessionCommandLine(CLI::App* command, Uses uses);
@@ -49,14 +49,14 @@ public:
     // After parsing: the options resolved, every value checked (UserError names the option, the
     // scene file and pointer, or the --set). Loads the scene file, not what it names.
     SessionOptions resolve() const;
-    bool given(const std::string& option) const;  // the option was on the command line
+    bool given(const std::string& option) const; // the option was on the command line
 
 private:
     CLI::App* command_;
     Uses uses_;
-    std::map<std::string, std::string> settingOptions_;  // option -> its text as given
-    std::map<std::string, bool> settingFlags_;           // on/off settings taken as flags (--poisson)
-    std::vector<std::string> sets_;                      // --set NAME=VALUE, in order
+    std::map<std::string, std::string> settingOptions_; // option -> its text as given
+    std::map<std::string, bool> settingFlags_;          // on/off settings taken as flags (--poisson)
+    std::vector<std::string> sets_;                     // --set NAME=VALUE, in order
     std::string sceneFile_, headFile_;
     bool noHair_ = false;
     std::vector<std::string> hairFiles_, partOverrides_;
@@ -66,4 +66,4 @@ private:
     uint32_t width_ = RenderSettings{}.width, height_ = RenderSettings{}.height;
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -15,7 +15,8 @@ CommandRun addSettingsCommand(CLI::App& app)
 {
     auto json = std::make_shared<bool>(false);
     CLI::App* cmd = app.add_subcommand(
-        "settings", "list every setting --set takes: names, units, allowed values, defaults, what a change needs, options");
+        "settings",
+        "list every setting --set takes: names, units, allowed values, defaults, what a change needs, options");
     cmd->add_flag("--json", *json, "print JSON instead of text");
     return [cmd, json] {
         if (!cmd->parsed())
@@ -28,4 +29,4 @@ CommandRun addSettingsCommand(CLI::App& app)
     };
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -132,8 +132,7 @@ void checkNumber(const SettingSpec& spec, double v, const std::string& where, si
 
 // ---- Binding a table entry to the field it lives in ----------------------------------------
 
-template <typename T>
-SettingValue valueOf(const T& field)
+template <typename T> SettingValue valueOf(const T& field)
 {
     SettingValue v;
     if constexpr (std::is_same_v<T, float>)
@@ -151,8 +150,7 @@ SettingValue valueOf(const T& field)
     return v;
 }
 
-template <typename T>
-void store(T& field, const SettingValue& v)
+template <typename T> void store(T& field, const SettingValue& v)
 {
     if constexpr (std::is_same_v<T, bool>)
         field = v.number != 0.0;
@@ -167,8 +165,7 @@ void store(T& field, const SettingValue& v)
 }
 
 // A spec reading and writing the field `ref` returns (ref: Settings& -> T&).
-template <typename Ref>
-SettingSpec field(SettingSpec spec, Ref ref)
+template <typename Ref> SettingSpec field(SettingSpec spec, Ref ref)
 {
     spec.get = [ref](const Settings& s) { return valueOf(ref(const_cast<Settings&>(s))); };
     spec.put = [ref](Settings& s, const SettingValue& v) { store(ref(s), v); };
@@ -191,8 +188,13 @@ std::vector<SettingSpec> buildSpecs()
     };
     auto number = [](std::string name, std::string unit, Range range, SettingChange change, std::string option,
                      std::string help) {
-        return SettingSpec{.name = std::move(name), .type = T::Number, .unit = std::move(unit), .range = range,
-                           .help = std::move(help), .change = change, .option = std::move(option)};
+        return SettingSpec{.name = std::move(name),
+                           .type = T::Number,
+                           .unit = std::move(unit),
+                           .range = range,
+                           .help = std::move(help),
+                           .change = change,
+                           .option = std::move(option)};
     };
     auto integer = [&](std::string name, Range range, SettingChange change, std::string option, std::string help,
                        std::string unit = "") {
@@ -201,13 +203,20 @@ std::vector<SettingSpec> buildSpecs()
         return spec;
     };
     auto onOff = [](std::string name, SettingChange change, std::string option, std::string help) {
-        return SettingSpec{.name = std::move(name), .type = T::OnOff, .help = std::move(help), .change = change,
+        return SettingSpec{.name = std::move(name),
+                           .type = T::OnOff,
+                           .help = std::move(help),
+                           .change = change,
                            .option = std::move(option)};
     };
     auto choice = [](std::string name, std::vector<std::string> choices, SettingChange change, std::string option,
                      std::string help) {
-        return SettingSpec{.name = std::move(name), .type = T::Choice, .choices = std::move(choices),
-                           .help = std::move(help), .change = change, .option = std::move(option)};
+        return SettingSpec{.name = std::move(name),
+                           .type = T::Choice,
+                           .choices = std::move(choices),
+                           .help = std::move(help),
+                           .change = change,
+                           .option = std::move(option)};
     };
     auto partValue = [&](std::string name, std::string unit, Range range, std::string option, std::string help) {
         SettingSpec spec = number(std::move(name), std::move(unit), range, kSolver, std::move(option),
@@ -218,102 +227,138 @@ std::vector<SettingSpec> buildSpecs()
     const Range fraction{0.0, 1.0};
 
     // ---- Growth: the hair grown on the scalp ----
-    add(field(integer("guides", {1, kMaxGuides}, kRestart, "--guides", "guide strands grown on the scalp"),
-              [](Settings& x) -> auto& { return x.growth.guides; }));
-    add(field(integer("vertices_per_strand", {kMinVerticesPerStrand, kMaxVerticesPerStrand}, kRestart, "--vertices",
-                      "vertices per simulated guide (loaded hair is resampled to it)"),
-              [](Settings& x) -> auto& { return x.growth.verticesPerStrand; }));
-    add(field(number("hair_length", "m", {0.01, 2.0}, kRestart, "--hair-length",
-                     "mean grown strand length (scaled to the head's units)"),
-              [](Settings& x) -> auto& { return x.growth.lengthMetres; }));
-    add(field(number("length_variation", "", {0.0, 0.9}, kRestart, "--length-variation",
-                     "relative spread of grown strand lengths"),
-              [](Settings& x) -> auto& { return x.growth.lengthVariation; }));
-    add(field(number("curl", "m", {0.0, 0.1}, kRestart, "--curl", "curl radius of grown strands (0: straight)"),
-              [](Settings& x) -> auto& { return x.growth.curlRadiusMetres; }));
-    add(field(number("curl_turns", "", {0.0, 20.0}, kRestart, "", "helix turns of a curled strand along its length"),
-              [](Settings& x) -> auto& { return x.growth.curlTurns; }));
-    add(field(number("style_gravity", "", {0.0, 4.0}, kRestart, "",
-                     "how fast grown strands bend down and outward as they grow"),
-              [](Settings& x) -> auto& { return x.growth.styleGravity; }));
-    add(field(onOff("poisson", kRestart, "--poisson", "blue-noise (Poisson-disk) roots instead of area-weighted random"),
-              [](Settings& x) -> auto& { return x.growth.poissonDisk; }));
-    add(field(integer("seed", {0.0, 4294967295.0}, kRestart, "--seed", "seed for root sampling and strand variation"),
-              [](Settings& x) -> auto& { return x.growth.seed; }));
+    add(field(
+        integer("guides", {1, kMaxGuides}, kRestart, "--guides", "guide strands grown on the scalp"),
+        [](Settings & x) -> auto& { return x.growth.guides; }));
+    add(field(
+        integer("vertices_per_strand", {kMinVerticesPerStrand, kMaxVerticesPerStrand}, kRestart, "--vertices",
+                "vertices per simulated guide (loaded hair is resampled to it)"),
+        [](Settings & x) -> auto& { return x.growth.verticesPerStrand; }));
+    add(field(
+        number("hair_length", "m", {0.01, 2.0}, kRestart, "--hair-length",
+               "mean grown strand length (scaled to the head's units)"),
+        [](Settings & x) -> auto& { return x.growth.lengthMetres; }));
+    add(field(
+        number("length_variation", "", {0.0, 0.9}, kRestart, "--length-variation",
+               "relative spread of grown strand lengths"),
+        [](Settings & x) -> auto& { return x.growth.lengthVariation; }));
+    add(field(
+        number("curl", "m", {0.0, 0.1}, kRestart, "--curl", "curl radius of grown strands (0: straight)"),
+        [](Settings & x) -> auto& { return x.growth.curlRadiusMetres; }));
+    add(field(
+        number("curl_turns", "", {0.0, 20.0}, kRestart, "", "helix turns of a curled strand along its length"),
+        [](Settings & x) -> auto& { return x.growth.curlTurns; }));
+    add(field(
+        number("style_gravity", "", {0.0, 4.0}, kRestart, "",
+               "how fast grown strands bend down and outward as they grow"),
+        [](Settings & x) -> auto& { return x.growth.styleGravity; }));
+    add(field(
+        onOff("poisson", kRestart, "--poisson", "blue-noise (Poisson-disk) roots instead of area-weighted random"),
+        [](Settings & x) -> auto& { return x.growth.poissonDisk; }));
+    add(field(
+        integer("seed", {0.0, 4294967295.0}, kRestart, "--seed", "seed for root sampling and strand variation"),
+        [](Settings & x) -> auto& { return x.growth.seed; }));
 
     // ---- Simulation ----
     group = SettingGroup::Simulation;
-    add(field(number("step_hz", "1/s", {30.0, 1000.0}, kSolver, "--step-hz",
-                     "fixed simulation steps per simulated second"),
-              [](Settings& x) -> auto& { return x.sim.stepHz; }));
-    add(field(integer("substeps", {1, 16}, kSolver, "--substeps", "integrate/FTL passes per step"),
-              [](Settings& x) -> auto& { return x.sim.substeps; }));
-    add(field(number("gravity", "m/s^2", {0.0, 100.0}, kSolver, "", "downward acceleration (scaled to the head's units)"),
-              [](Settings& x) -> auto& { return x.sim.gravity; }));
-    add(field(SettingSpec{.name = "wind", .type = T::Vector, .unit = "m/s^2", .range = {-100.0, 100.0},
-                          .help = "wind x,y,z (scaled to the head's units), gusting around this",
-                          .change = kLive, .option = "--wind"},
-              [](Settings& x) -> auto& { return x.sim.wind; }));
-    add(field(number("wind_frequency", "Hz", {0.0, 10.0}, kLive, "", "frequency of the wind's gusts"),
-              [](Settings& x) -> auto& { return x.sim.windFrequency; }));
-    add(field(integer("grid", {8, 256}, kSolver, "--grid", "hair-hair grid nodes per axis"),
-              [](Settings& x) -> auto& { return x.sim.gridResolution; }));
-    add(field(choice("grid_atomics", {"fixed", "float"}, kSolver, "--grid-atomics",
-                     "hair grid sums: 64-bit fixed point (deterministic) or float atomics"),
-              [](Settings& x) -> auto& { return x.sim.gridAtomics; }));
-    add(field(number("friction", "", fraction, kSolver, "--friction", "hair-hair friction: blend toward the grid velocity"),
-              [](Settings& x) -> auto& { return x.sim.gridFriction; }));
-    add(field(number("repulsion", "", fraction, kSolver, "--repulsion",
-                     "hair-hair repulsion along the density gradient (keeps volume; 0: off)"),
-              [](Settings& x) -> auto& { return x.sim.gridRepulsion; }));
-    add(field(number("penalty_stiffness", "1/s^2", {0.0, 100000.0}, kSolver, "",
-                     "k of the colliders' penalty force k * depth * n"),
-              [](Settings& x) -> auto& { return x.sim.penaltyStiffness; }));
-    add(field(number("collision_margin", "m", {0.0, 0.05}, kSolver, "",
-                     "how far outside their surface the colliders act"),
-              [](Settings& x) -> auto& { return x.sim.collisionMarginMetres; }));
-    add(field(partValue("global_stiffness", "", fraction, "--global-stiffness",
-                        "pull toward the rest pose per step at the root"),
-              [](Settings& x) -> auto& { return x.sim.globalStiffness; }));
-    add(field(partValue("local_stiffness", "", fraction, "--local-stiffness",
-                        "pull of each segment toward its rest direction per step"),
-              [](Settings& x) -> auto& { return x.sim.localStiffness; }));
-    add(field(partValue("damping", "", fraction, "--damping", "FTL velocity correction s_damp (Muller 2012)"),
-              [](Settings& x) -> auto& { return x.sim.ftlDamping; }));
-    add(field(partValue("drag", "1/s", {0.0, 100.0}, "--drag", "air drag"),
-              [](Settings& x) -> auto& { return x.sim.drag; }));
+    add(field(
+        number("step_hz", "1/s", {30.0, 1000.0}, kSolver, "--step-hz", "fixed simulation steps per simulated second"),
+        [](Settings & x) -> auto& { return x.sim.stepHz; }));
+    add(field(
+        integer("substeps", {1, 16}, kSolver, "--substeps", "integrate/FTL passes per step"),
+        [](Settings & x) -> auto& { return x.sim.substeps; }));
+    add(field(
+        number("gravity", "m/s^2", {0.0, 100.0}, kSolver, "", "downward acceleration (scaled to the head's units)"),
+        [](Settings & x) -> auto& { return x.sim.gravity; }));
+    add(field(
+        SettingSpec{.name = "wind",
+                    .type = T::Vector,
+                    .unit = "m/s^2",
+                    .range = {-100.0, 100.0},
+                    .help = "wind x,y,z (scaled to the head's units), gusting around this",
+                    .change = kLive,
+                    .option = "--wind"},
+        [](Settings & x) -> auto& { return x.sim.wind; }));
+    add(field(
+        number("wind_frequency", "Hz", {0.0, 10.0}, kLive, "", "frequency of the wind's gusts"),
+        [](Settings & x) -> auto& { return x.sim.windFrequency; }));
+    add(field(
+        integer("grid", {8, 256}, kSolver, "--grid", "hair-hair grid nodes per axis"),
+        [](Settings & x) -> auto& { return x.sim.gridResolution; }));
+    add(field(
+        choice("grid_atomics", {"fixed", "float"}, kSolver, "--grid-atomics",
+               "hair grid sums: 64-bit fixed point (deterministic) or float atomics"),
+        [](Settings & x) -> auto& { return x.sim.gridAtomics; }));
+    add(field(
+        number("friction", "", fraction, kSolver, "--friction", "hair-hair friction: blend toward the grid velocity"),
+        [](Settings & x) -> auto& { return x.sim.gridFriction; }));
+    add(field(
+        number("repulsion", "", fraction, kSolver, "--repulsion",
+               "hair-hair repulsion along the density gradient (keeps volume; 0: off)"),
+        [](Settings & x) -> auto& { return x.sim.gridRepulsion; }));
+    add(field(
+        number("penalty_stiffness", "1/s^2", {0.0, 100000.0}, kSolver, "",
+               "k of the colliders' penalty force k * depth * n"),
+        [](Settings & x) -> auto& { return x.sim.penaltyStiffness; }));
+    add(field(
+        number("collision_margin", "m", {0.0, 0.05}, kSolver, "", "how far outside their surface the colliders act"),
+        [](Settings & x) -> auto& { return x.sim.collisionMarginMetres; }));
+    add(field(
+        partValue("global_stiffness", "", fraction, "--global-stiffness",
+                  "pull toward the rest pose per step at the root"),
+        [](Settings & x) -> auto& { return x.sim.globalStiffness; }));
+    add(field(
+        partValue("local_stiffness", "", fraction, "--local-stiffness",
+                  "pull of each segment toward its rest direction per step"),
+        [](Settings & x) -> auto& { return x.sim.localStiffness; }));
+    add(field(
+        partValue("damping", "", fraction, "--damping", "FTL velocity correction s_damp (Muller 2012)"),
+        [](Settings & x) -> auto& { return x.sim.ftlDamping; }));
+    add(field(
+        partValue("drag", "1/s", {0.0, 100.0}, "--drag", "air drag"),
+        [](Settings & x) -> auto& { return x.sim.drag; }));
 
     // ---- Strands drawn from the guides ----
     group = SettingGroup::Strands;
-    add(field(integer("strands_per_guide", {1, 4096}, kLive, "",
-                      "strands drawn per guide (more than 64 through instancing)"),
-              [](Settings& x) -> auto& { return x.render.strands.strandsPerGuide; }));
-    add(field(integer("divisions", {1, 1024}, kLive, "", "segments per drawn strand (more than 64 through more patches)"),
-              [](Settings& x) -> auto& { return x.render.strands.divisions; }));
-    add(field(choice("interpolation", {"single", "multi", "mixed"}, kLive, "",
-                     "strands around one guide (clumps), between three, or both"),
-              [](Settings& x) -> auto& { return x.render.strands.interpolation; }));
-    add(field(number("deviation", "m", {0.0, 0.1}, kLive, "", "strength of random strand deviations"),
-              [](Settings& x) -> auto& { return x.render.strands.deviationMetres; }));
-    add(field(number("clump_radius", "m", {0.0, 0.1}, kLive, "", "radius of the disc single-strand interpolation fills"),
-              [](Settings& x) -> auto& { return x.render.strands.clumpRadiusMetres; }));
-    add(field(number("width", "m", {0.00001, 0.01}, kLive, "", "strand width at the root"),
-              [](Settings& x) -> auto& { return x.render.strands.widthMetres; }));
-    add(field(number("min_pixel_width", "px", {0.25, 4.0}, kLive, "",
-                     "narrower ribbons are widened to this, their alpha scaled by the true coverage"),
-              [](Settings& x) -> auto& { return x.render.strands.minPixelWidth; }));
-    add(field(onOff("lod", kLive, "", "fewer, wider strands with camera distance"),
-              [](Settings& x) -> auto& { return x.render.strands.lod; }));
-    add(field(number("lod_min", "", {0.01, 1.0}, kLive, "",
-                     "the smallest share of strands LOD keeps, however far the camera"),
-              [](Settings& x) -> auto& { return x.render.strands.lodMinFraction; }));
-    add(field(onOff("show_guides", kLive, "", "also draw the simulated guides as lines"),
-              [](Settings& x) -> auto& { return x.render.strands.showGuides; }));
-    add(field(choice("hair_raster", {"graphics", "compute", "auto"}, kLive, "",
-                     "how the hair is drawn: tessellation and geometry shaders, or compute (analytic coverage, fragments "
-                     "binned per pixel, the nearest oit_k sorted; the meshes too); auto: the faster on the device "
-                     "(compute on every device measured)"),
-              [](Settings& x) -> auto& { return x.render.hairRaster; }));
+    add(field(
+        integer("strands_per_guide", {1, 4096}, kLive, "", "strands drawn per guide (more than 64 through instancing)"),
+        [](Settings & x) -> auto& { return x.render.strands.strandsPerGuide; }));
+    add(field(
+        integer("divisions", {1, 1024}, kLive, "", "segments per drawn strand (more than 64 through more patches)"),
+        [](Settings & x) -> auto& { return x.render.strands.divisions; }));
+    add(field(
+        choice("interpolation", {"single", "multi", "mixed"}, kLive, "",
+               "strands around one guide (clumps), between three, or both"),
+        [](Settings & x) -> auto& { return x.render.strands.interpolation; }));
+    add(field(
+        number("deviation", "m", {0.0, 0.1}, kLive, "", "strength of random strand deviations"),
+        [](Settings & x) -> auto& { return x.render.strands.deviationMetres; }));
+    add(field(
+        number("clump_radius", "m", {0.0, 0.1}, kLive, "", "radius of the disc single-strand interpolation fills"),
+        [](Settings & x) -> auto& { return x.render.strands.clumpRadiusMetres; }));
+    add(field(
+        number("width", "m", {0.00001, 0.01}, kLive, "", "strand width at the root"),
+        [](Settings & x) -> auto& { return x.render.strands.widthMetres; }));
+    add(field(
+        number("min_pixel_width", "px", {0.25, 4.0}, kLive, "",
+               "narrower ribbons are widened to this, their alpha scaled by the true coverage"),
+        [](Settings & x) -> auto& { return x.render.strands.minPixelWidth; }));
+    add(field(
+        onOff("lod", kLive, "", "fewer, wider strands with camera distance"),
+        [](Settings & x) -> auto& { return x.render.strands.lod; }));
+    add(field(
+        number("lod_min", "", {0.01, 1.0}, kLive, "",
+               "the smallest share of strands LOD keeps, however far the camera"),
+        [](Settings & x) -> auto& { return x.render.strands.lodMinFraction; }));
+    add(field(
+        onOff("show_guides", kLive, "", "also draw the simulated guides as lines"),
+        [](Settings & x) -> auto& { return x.render.strands.showGuides; }));
+    add(field(
+        choice("hair_raster", {"graphics", "compute", "auto"}, kLive, "",
+               "how the hair is drawn: tessellation and geometry shaders, or compute (analytic coverage, fragments "
+               "binned per pixel, the nearest oit_k sorted; the meshes too); auto: the faster on the device "
+               "(compute on every device measured)"),
+        [](Settings & x) -> auto& { return x.render.hairRaster; }));
 
     // ---- The target, the light and the shadows ----
     group = SettingGroup::Light;
@@ -324,59 +369,77 @@ std::vector<SettingSpec> buildSpecs()
     };
     samples.put = [](Settings& x, const SettingValue& v) { x.render.samples = 1u << uint32_t(v.number); };
     add(samples);
-    add(field(number("light_azimuth", "deg", {-360.0, 360.0}, kLive, "--light-azimuth",
-                     "key light angle around the up axis (0: in front of the face)"),
-              [](Settings& x) -> auto& { return x.render.light.azimuthDeg; }));
-    add(field(number("light_elevation", "deg", {-89.0, 89.0}, kLive, "--light-elevation",
-                     "key light angle above the horizon"),
-              [](Settings& x) -> auto& { return x.render.light.elevationDeg; }));
-    add(field(number("light_intensity", "", {0.0, 20.0}, kLive, "--light-intensity", "key light strength"),
-              [](Settings& x) -> auto& { return x.render.light.intensity; }));
-    add(field(number("ambient", "", {0.0, 4.0}, kLive, "", "strength of the hemisphere ambient light"),
-              [](Settings& x) -> auto& { return x.render.ambient; }));
-    add(field(number("exposure", "", {0.01, 16.0}, kLive, "", "exposure before tone mapping"),
-              [](Settings& x) -> auto& { return x.render.exposure; }));
-    add(field(onOff("shadows", kLive, "", "the key light's shadows (head and hair cast on each other)"),
-              [](Settings& x) -> auto& { return x.render.shadows.enabled; }));
-    add(field(integer("shadow_size", {64, 8192}, kRenderer, "", "shadow and deep opacity map size per side", "texels"),
-              [](Settings& x) -> auto& { return x.render.shadows.mapSize; }));
-    add(field(integer("pcf_samples", {1, gpu::kMaxPcfSamples}, kLive, "",
-                      "percentage-closer filtering taps per shadow lookup"),
-              [](Settings& x) -> auto& { return x.render.shadows.pcfSamples; }));
-    add(field(number("pcf_radius", "texels", {0.0, 16.0}, kLive, "", "radius of the PCF disk"),
-              [](Settings& x) -> auto& { return x.render.shadows.pcfRadiusTexels; }));
-    add(field(integer("dom_layers", {0, gpu::kMaxDomLayers}, kLive, "",
-                      "deep opacity map layers for hair self-shadowing (0: PCF on the hair's depth instead)"),
-              [](Settings& x) -> auto& { return x.render.shadows.domLayers; }));
-    add(field(number("dom_spacing", "m", {0.0005, 0.2}, kLive, "", "depth of one deep opacity layer"),
-              [](Settings& x) -> auto& { return x.render.shadows.domSpacingMetres; }));
-    add(field(number("dom_density", "", {0.0, 20.0}, kLive, "",
-                     "kappa of the hair's transmittance exp(-kappa * opacity) toward the light"),
-              [](Settings& x) -> auto& { return x.render.shadows.domKappa; }));
-    add(field(number("shadow_strands", "", {0.01, 1.0}, kLive, "",
-                     "share of the strands drawn into the light's maps (fewer, wider: the same coverage)"),
-              [](Settings& x) -> auto& { return x.render.shadows.strandFraction; }));
+    add(field(
+        number("light_azimuth", "deg", {-360.0, 360.0}, kLive, "--light-azimuth",
+               "key light angle around the up axis (0: in front of the face)"),
+        [](Settings & x) -> auto& { return x.render.light.azimuthDeg; }));
+    add(field(
+        number("light_elevation", "deg", {-89.0, 89.0}, kLive, "--light-elevation",
+               "key light angle above the horizon"),
+        [](Settings & x) -> auto& { return x.render.light.elevationDeg; }));
+    add(field(
+        number("light_intensity", "", {0.0, 20.0}, kLive, "--light-intensity", "key light strength"),
+        [](Settings & x) -> auto& { return x.render.light.intensity; }));
+    add(field(
+        number("ambient", "", {0.0, 4.0}, kLive, "", "strength of the hemisphere ambient light"),
+        [](Settings & x) -> auto& { return x.render.ambient; }));
+    add(field(
+        number("exposure", "", {0.01, 16.0}, kLive, "", "exposure before tone mapping"),
+        [](Settings & x) -> auto& { return x.render.exposure; }));
+    add(field(
+        onOff("shadows", kLive, "", "the key light's shadows (head and hair cast on each other)"),
+        [](Settings & x) -> auto& { return x.render.shadows.enabled; }));
+    add(field(
+        integer("shadow_size", {64, 8192}, kRenderer, "", "shadow and deep opacity map size per side", "texels"),
+        [](Settings & x) -> auto& { return x.render.shadows.mapSize; }));
+    add(field(
+        integer("pcf_samples", {1, gpu::kMaxPcfSamples}, kLive, "",
+                "percentage-closer filtering taps per shadow lookup"),
+        [](Settings & x) -> auto& { return x.render.shadows.pcfSamples; }));
+    add(field(
+        number("pcf_radius", "texels", {0.0, 16.0}, kLive, "", "radius of the PCF disk"),
+        [](Settings & x) -> auto& { return x.render.shadows.pcfRadiusTexels; }));
+    add(field(
+        integer("dom_layers", {0, gpu::kMaxDomLayers}, kLive, "",
+                "deep opacity map layers for hair self-shadowing (0: PCF on the hair's depth instead)"),
+        [](Settings & x) -> auto& { return x.render.shadows.domLayers; }));
+    add(field(
+        number("dom_spacing", "m", {0.0005, 0.2}, kLive, "", "depth of one deep opacity layer"),
+        [](Settings & x) -> auto& { return x.render.shadows.domSpacingMetres; }));
+    add(field(
+        number("dom_density", "", {0.0, 20.0}, kLive, "",
+               "kappa of the hair's transmittance exp(-kappa * opacity) toward the light"),
+        [](Settings & x) -> auto& { return x.render.shadows.domKappa; }));
+    add(field(
+        number("shadow_strands", "", {0.01, 1.0}, kLive, "",
+               "share of the strands drawn into the light's maps (fewer, wider: the same coverage)"),
+        [](Settings & x) -> auto& { return x.render.shadows.strandFraction; }));
 
     // ---- Transparency ----
     group = SettingGroup::Transparency;
-    add(field(choice("transparency", {"oit", "msaa"}, kRenderer, "",
-                     "hair blending: sorted per-pixel lists, or opaque coverage with MSAA"),
-              [](Settings& x) -> auto& { return x.render.transparency.mode; }));
-    add(field(integer("oit_k", {1, gpu::kMaxOitK}, kLive, "",
-                      "nearest hair fragments sorted per pixel (the rest blended unsorted)"),
-              [](Settings& x) -> auto& { return x.render.transparency.oitK; }));
-    add(field(integer("oit_nodes_per_pixel", {0, 256}, kRenderer, "",
-                      "OIT fragment pool per pixel, 0 = automatic (up to 24 as memory allows; fragments past it are "
-                      "dropped and counted)"),
-              [](Settings& x) -> auto& { return x.render.transparency.oitNodesPerPixel; }));
-    add(field(number("hair_opacity", "", {0.01, 1.0}, kLive, "", "opacity of one strand that covers its pixel"),
-              [](Settings& x) -> auto& { return x.render.transparency.hairOpacity; }));
+    add(field(
+        choice("transparency", {"oit", "msaa"}, kRenderer, "",
+               "hair blending: sorted per-pixel lists, or opaque coverage with MSAA"),
+        [](Settings & x) -> auto& { return x.render.transparency.mode; }));
+    add(field(
+        integer("oit_k", {1, gpu::kMaxOitK}, kLive, "",
+                "nearest hair fragments sorted per pixel (the rest blended unsorted)"),
+        [](Settings & x) -> auto& { return x.render.transparency.oitK; }));
+    add(field(
+        integer("oit_nodes_per_pixel", {0, 256}, kRenderer, "",
+                "OIT fragment pool per pixel, 0 = automatic (up to 24 as memory allows; fragments past it are "
+                "dropped and counted)"),
+        [](Settings & x) -> auto& { return x.render.transparency.oitNodesPerPixel; }));
+    add(field(
+        number("hair_opacity", "", {0.01, 1.0}, kLive, "", "opacity of one strand that covers its pixel"),
+        [](Settings & x) -> auto& { return x.render.transparency.hairOpacity; }));
 
     // ---- The hair's look (shading/hair_look.h) ----
     group = SettingGroup::Look;
-    add(field(choice("shading", {"karis", "kajiya", "lut"}, kLive, "",
-                     "hair shading model (lut: tables from the reference BSDF)"),
-              [](Settings& x) -> auto& { return x.render.hair.model; }));
+    add(field(
+        choice("shading", {"karis", "kajiya", "lut"}, kLive, "",
+               "hair shading model (lut: tables from the reference BSDF)"),
+        [](Settings & x) -> auto& { return x.render.hair.model; }));
     SettingSpec preset = choice("hair_preset", {}, kLive, "",
                                 "a hair colour by name: sets melanin and pheomelanin (custom: neither preset's)");
     for (const HairPreset& p : kHairPresets)
@@ -394,18 +457,23 @@ std::vector<SettingSpec> buildSpecs()
     preset.put = [](Settings& x, const SettingValue& v) {
         size_t i = size_t(v.number);
         if (i < kHairPresets.size())
-            applyHairPreset(x.render.hair, kHairPresets[i].name);  // "custom" keeps the look as it is
+            applyHairPreset(x.render.hair, kHairPresets[i].name); // "custom" keeps the look as it is
     };
     add(preset);
-    add(field(number("melanin", "", shading::kMelaninRange, kLive, "",
-                     "eumelanin concentration (black ~8, brown ~1.3, blonde ~0.2)"),
-              [](Settings& x) -> auto& { return x.render.hair.eumelanin; }));
-    add(field(number("pheomelanin", "", shading::kMelaninRange, kLive, "", "pheomelanin concentration (red)"),
-              [](Settings& x) -> auto& { return x.render.hair.pheomelanin; }));
-    SettingSpec color{.name = "hair_color", .type = T::Color, .range = shading::kColorRange,
+    add(field(
+        number("melanin", "", shading::kMelaninRange, kLive, "",
+               "eumelanin concentration (black ~8, brown ~1.3, blonde ~0.2)"),
+        [](Settings & x) -> auto& { return x.render.hair.eumelanin; }));
+    add(field(
+        number("pheomelanin", "", shading::kMelaninRange, kLive, "", "pheomelanin concentration (red)"),
+        [](Settings & x) -> auto& { return x.render.hair.pheomelanin; }));
+    SettingSpec color{.name = "hair_color",
+                      .type = T::Color,
+                      .range = shading::kColorRange,
                       .help = "the colour the hair should look (linear RGB), instead of melanin (melanin: from "
                               "the melanin concentrations)",
-                      .change = kLive, .unsetText = "melanin"};
+                      .change = kLive,
+                      .unsetText = "melanin"};
     color.get = [](const Settings& x) {
         return x.render.hair.useColor ? valueOf(x.render.hair.color) : SettingValue{.unset = true};
     };
@@ -415,18 +483,24 @@ std::vector<SettingSpec> buildSpecs()
             x.render.hair.color = glm::vec3(v.vector);
     };
     add(color);
-    add(field(number("beta_m", "", shading::kBetaRange, kLive, "", "longitudinal roughness of the fibre (highlight width)"),
-              [](Settings& x) -> auto& { return x.render.hair.betaM; }));
-    add(field(number("beta_n", "", shading::kBetaRange, kLive, "", "azimuthal roughness of the fibre"),
-              [](Settings& x) -> auto& { return x.render.hair.betaN; }));
-    add(field(number("cuticle_tilt", "deg", shading::kAlphaDegRange, kLive, "", "cuticle scale tilt (shifts the highlights)"),
-              [](Settings& x) -> auto& { return x.render.hair.cuticleTiltDeg; }));
-    add(field(number("ior", "", shading::kEtaRange, kLive, "", "index of refraction of the fibre"),
-              [](Settings& x) -> auto& { return x.render.hair.eta; }));
-    add(field(number("color_variation", "", fraction, kLive, "", "per-strand spread of the hair colour"),
-              [](Settings& x) -> auto& { return x.render.hair.variation; }));
-    add(field(number("streaks", "", fraction, kLive, "", "lighter and darker streaks along strands"),
-              [](Settings& x) -> auto& { return x.render.hair.streaks; }));
+    add(field(
+        number("beta_m", "", shading::kBetaRange, kLive, "", "longitudinal roughness of the fibre (highlight width)"),
+        [](Settings & x) -> auto& { return x.render.hair.betaM; }));
+    add(field(
+        number("beta_n", "", shading::kBetaRange, kLive, "", "azimuthal roughness of the fibre"),
+        [](Settings & x) -> auto& { return x.render.hair.betaN; }));
+    add(field(
+        number("cuticle_tilt", "deg", shading::kAlphaDegRange, kLive, "", "cuticle scale tilt (shifts the highlights)"),
+        [](Settings & x) -> auto& { return x.render.hair.cuticleTiltDeg; }));
+    add(field(
+        number("ior", "", shading::kEtaRange, kLive, "", "index of refraction of the fibre"),
+        [](Settings & x) -> auto& { return x.render.hair.eta; }));
+    add(field(
+        number("color_variation", "", fraction, kLive, "", "per-strand spread of the hair colour"),
+        [](Settings & x) -> auto& { return x.render.hair.variation; }));
+    add(field(
+        number("streaks", "", fraction, kLive, "", "lighter and darker streaks along strands"),
+        [](Settings & x) -> auto& { return x.render.hair.streaks; }));
     return s;
 }
 
@@ -449,7 +523,7 @@ std::string typeWord(const SettingSpec& spec)
     return "number";
 }
 
-}  // namespace
+} // namespace
 
 const char* groupName(SettingGroup group)
 {
@@ -632,7 +706,7 @@ SettingValue settingFromJson(const SettingSpec& spec, const Json& json, const st
         break;
     case SettingType::Choice:
         wanted = "a string (" + spec.allowed() + ")";
-        if (json.is_number())  // numeric choices (samples) may be written as numbers
+        if (json.is_number()) // numeric choices (samples) may be written as numbers
             return parseSetting(spec, json.dump(), where);
         break;
     case SettingType::Vector:
@@ -750,12 +824,12 @@ std::string settingsTable()
     for (const SettingSpec& s : settingSpecs()) {
         std::string allowed = s.type == SettingType::Vector || s.type == SettingType::Color
                                   ? rangeText(s.range, "") + " each" + (s.optional() ? " | " + s.unsetText : "")
-                                  : (s.type == SettingType::Number || s.type == SettingType::Integer)
-                                        ? rangeText(s.range, "") + (s.optional() ? " | " + s.unsetText : "")
-                                        : s.allowed();
+                              : (s.type == SettingType::Number || s.type == SettingType::Integer)
+                                  ? rangeText(s.range, "") + (s.optional() ? " | " + s.unsetText : "")
+                                  : s.allowed();
         out << column(s.name, 21) << column(s.unit, 7) << column(allowed, 40)
-            << column(settingText(s, s.get(defaults)), 12) << column(changeName(s.change), 9)
-            << column(s.option, 20) << s.help << "\n";
+            << column(settingText(s, s.get(defaults)), 12) << column(changeName(s.change), 9) << column(s.option, 20)
+            << s.help << "\n";
     }
     return out.str();
 }
@@ -848,4 +922,4 @@ SettingEdit editSetting(Settings& settings, const SettingSpec& spec, const Setti
     return edit;
 }
 
-}  // namespace wisp
+} // namespace wisp

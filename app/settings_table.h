@@ -30,17 +30,17 @@ struct Settings {
 };
 
 enum class SettingType {
-    Number,   // a real number within `range`
-    Integer,  // a whole number within `range`
-    OnOff,    // on | off (true | false, 1 | 0 are read too)
-    Choice,   // one of `choices`
-    Vector,   // x,y,z, each within `range`
-    Color,    // r,g,b (linear), each within `range`
+    Number,  // a real number within `range`
+    Integer, // a whole number within `range`
+    OnOff,   // on | off (true | false, 1 | 0 are read too)
+    Choice,  // one of `choices`
+    Vector,  // x,y,z, each within `range`
+    Color,   // r,g,b (linear), each within `range`
 };
 
 // What a setting is about: the panel's sections, and which commands take it (simulate draws nothing).
 enum class SettingGroup { Growth, Simulation, Strands, Light, Transparency, Look };
-const char* groupName(SettingGroup group);  // "growth", "simulation", "strands", "light", "transparency", "look"
+const char* groupName(SettingGroup group); // "growth", "simulation", "strands", "light", "transparency", "look"
 inline bool drawsOnly(SettingGroup group)
 {
     return group != SettingGroup::Growth && group != SettingGroup::Simulation;
@@ -48,19 +48,19 @@ inline bool drawsOnly(SettingGroup group)
 
 // What a changed value needs before it shows, cheapest first (the window does the largest needed).
 enum class SettingChange {
-    Live,      // the next frame uses it
-    Renderer,  // it sizes the renderer's images or buffers: the renderer is rebuilt
-    Solver,    // the solver packs it: the solver is rebuilt (the hair starts again from rest)
-    Restart,   // it shapes the hair as it is grown: a new run (`wisp view --set NAME=VALUE`)
+    Live,     // the next frame uses it
+    Renderer, // it sizes the renderer's images or buffers: the renderer is rebuilt
+    Solver,   // the solver packs it: the solver is rebuilt (the hair starts again from rest)
+    Restart,  // it shapes the hair as it is grown: a new run (`wisp view --set NAME=VALUE`)
 };
-const char* changeName(SettingChange change);  // "live", "renderer", "solver", "restart"
+const char* changeName(SettingChange change); // "live", "renderer", "solver", "restart"
 
 // A value of any setting. Numbers are doubles holding what the field holds (a float field's value
 // as the shortest decimal that reads back as the same float).
 struct SettingValue {
-    double number = 0.0;     // Number, Integer; OnOff 0 or 1; Choice: the index into `choices`
-    glm::dvec3 vector{0.0};  // Vector, Color
-    bool unset = false;      // an optional setting left to its default (see SettingSpec::unsetText)
+    double number = 0.0;    // Number, Integer; OnOff 0 or 1; Choice: the index into `choices`
+    glm::dvec3 vector{0.0}; // Vector, Color
+    bool unset = false;     // an optional setting left to its default (see SettingSpec::unsetText)
     bool operator==(const SettingValue&) const = default;
 };
 
@@ -68,16 +68,16 @@ struct SettingSpec {
     std::string name;
     SettingGroup group = SettingGroup::Growth;
     SettingType type = SettingType::Number;
-    std::string unit;                  // "" for counts, fractions and choices
-    Range range{0.0, 0.0};             // Number and Integer; each component of Vector and Color
-    std::vector<std::string> choices;  // Choice, in the order of the enum (or the values) it stands for
+    std::string unit;                 // "" for counts, fractions and choices
+    Range range{0.0, 0.0};            // Number and Integer; each component of Vector and Color
+    std::vector<std::string> choices; // Choice, in the order of the enum (or the values) it stands for
     std::string help;
     SettingChange change = SettingChange::Live;
-    std::string option;     // the command-line option that sets it too ("--step-hz"), or ""
-    std::string unsetText;  // an optional setting: the word for "left to its default" ("part"); "" otherwise
-    bool saved = true;      // false: derived from other settings (hair_preset), not written into scenes
+    std::string option;    // the command-line option that sets it too ("--step-hz"), or ""
+    std::string unsetText; // an optional setting: the word for "left to its default" ("part"); "" otherwise
+    bool saved = true;     // false: derived from other settings (hair_preset), not written into scenes
     std::function<SettingValue(const Settings&)> get;
-    std::function<void(Settings&, const SettingValue&)> put;  // a value checkSetting() accepted
+    std::function<void(Settings&, const SettingValue&)> put; // a value checkSetting() accepted
 
     bool optional() const { return !unsetText.empty(); }
     // "1 .. 4096", "0.01 .. 2 m", "single | multi | mixed", "on | off", "x,y,z in -100 .. 100 m/s^2"
@@ -139,9 +139,9 @@ PanelControl panelControl(const SettingSpec& spec);
 // The panel's edit of one setting: checked as --set checks it and written into `settings`, or the
 // one line to show under the control. `change` is what the edit needs.
 struct SettingEdit {
-    std::string error;  // "" when applied
+    std::string error; // "" when applied
     SettingChange change = SettingChange::Live;
 };
 SettingEdit editSetting(Settings& settings, const SettingSpec& spec, const SettingValue& value);
 
-}  // namespace wisp
+} // namespace wisp

@@ -2,18 +2,18 @@
 // submitted alone so the positions before and after it give the kinetic energy of the motion.
 #include "app/simulate.h"
 
-#include "physics/gpu_solver.h"
-#include "gpu/frame.h"
 #include "core/error.h"
+#include "gpu/frame.h"
+#include "physics/gpu_solver.h"
 #include "renderer/physics_pass.h"
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cstdio>
-#include <unistd.h>
-#include <map>
 #include <iostream>
+#include <map>
+#include <unistd.h>
 
 namespace wisp {
 
@@ -51,7 +51,8 @@ SimulationReport simulateHeadless(const vk::Context& ctx, HairSession& session, 
         std::vector<glm::vec4> before = solver.readState().positions;
         submit(1);
         report.state = solver.readState();
-        report.last = measure(report.state, before, stepSeconds, scene.strands, session.setup(), last);  // the step just run
+        report.last =
+            measure(report.state, before, stepSeconds, scene.strands, session.setup(), last); // the step just run
         report.worst.maxStretch = std::max(report.worst.maxStretch, report.last.maxStretch);
         report.worst.maxPenetration = std::max(report.worst.maxPenetration, report.last.maxPenetration);
         report.worst.rootDrift = std::max(report.worst.rootDrift, report.last.rootDrift);
@@ -69,13 +70,15 @@ SimulationReport simulateHeadless(const vk::Context& ctx, HairSession& session, 
     return report;
 }
 
-SimulationReport simulateHeadless(const vk::Context& ctx, const HairScene& scene, const SimSettings& sim, uint32_t steps,
-                                  const Motion& motion, uint32_t sampleEvery, const std::function<void(uint32_t)>& progress)
+SimulationReport simulateHeadless(const vk::Context& ctx, const HairScene& scene, const SimSettings& sim,
+                                  uint32_t steps, const Motion& motion, uint32_t sampleEvery,
+                                  const std::function<void(uint32_t)>& progress)
 {
     HairSession session(ctx, scene, sim, stillTimeline(glm::vec4(0.0f), sim.wind));
     session.setPoses([&](double seconds) {
         float t = float(seconds);
-        return StepPose{.head = motion.head(t), .sphere = motion.sphere(t), .wind = motion.wind ? motion.wind(t) : sim.wind};
+        return StepPose{
+            .head = motion.head(t), .sphere = motion.sphere(t), .wind = motion.wind ? motion.wind(t) : sim.wind};
     });
     // The solver starts from rest where the motion has the head at time 0.
     session.reset(motion.head(0.0f));
@@ -190,8 +193,11 @@ int runSimulate(const vk::Context& ctx, HairSession& session, const SimulateOpti
         stepMs.push_back({{"step", step}, {"ms", value}});
     nlohmann::json parts = nlohmann::json::array();
     for (const PartSettings& p : scene.strands.parts)
-        parts.push_back({{"name", p.name}, {"global_stiffness", p.globalStiffness}, {"local_stiffness", p.localStiffness},
-                         {"damping", p.ftlDamping}, {"drag", p.drag}});
+        parts.push_back({{"name", p.name},
+                         {"global_stiffness", p.globalStiffness},
+                         {"local_stiffness", p.localStiffness},
+                         {"damping", p.ftlDamping},
+                         {"drag", p.drag}});
     nlohmann::json out = {{"steps", o.steps},
                           {"strands", scene.strands.strandCount()},
                           {"vertices", scene.strands.vertexCount()},
@@ -203,13 +209,15 @@ int runSimulate(const vk::Context& ctx, HairSession& session, const SimulateOpti
                           {"max_penetration", r.last.maxPenetration / diagonal},
                           {"root_drift", r.last.rootDrift},
                           {"nonfinite_resets", r.nonfiniteResets},
-                          {"worst", {{"max_stretch", r.worst.maxStretch},
-                                     {"max_penetration", r.worst.maxPenetration / diagonal},
-                                     {"root_drift", r.worst.rootDrift},
-                                     {"kinetic_energy", r.worst.kineticEnergy}}},
-                          {"memory", {{"host_rss_bytes", {r.memoryStart.hostResidentBytes, r.memoryEnd.hostResidentBytes}},
-                                      {"device_allocations", {r.memoryStart.device.allocations, r.memoryEnd.device.allocations}},
-                                      {"device_bytes", {r.memoryStart.device.bytes, r.memoryEnd.device.bytes}}}},
+                          {"worst",
+                           {{"max_stretch", r.worst.maxStretch},
+                            {"max_penetration", r.worst.maxPenetration / diagonal},
+                            {"root_drift", r.worst.rootDrift},
+                            {"kinetic_energy", r.worst.kineticEnergy}}},
+                          {"memory",
+                           {{"host_rss_bytes", {r.memoryStart.hostResidentBytes, r.memoryEnd.hostResidentBytes}},
+                            {"device_allocations", {r.memoryStart.device.allocations, r.memoryEnd.device.allocations}},
+                            {"device_bytes", {r.memoryStart.device.bytes, r.memoryEnd.device.bytes}}}},
                           {"kinetic_energy", energy},
                           {"gpu_ms_per_step", r.gpuMsPerStep},
                           {"gpu_ms_per_step_over_time", stepMs},
@@ -225,15 +233,17 @@ int runSimulate(const vk::Context& ctx, HairSession& session, const SimulateOpti
         std::printf("%zu guides x %u vertices in %zu part(s), %u steps at %g Hz x %u substeps on %s\n",
                     scene.strands.strandCount(), scene.strands.verticesPerStrand, scene.strands.parts.size(), o.steps,
                     double(sim.stepHz), setup.substeps, ctx.report().name.c_str());
-        std::printf("  max stretch       %.3g\n  max penetration   %.3g of the head's diagonal\n  root drift        %.3g\n"
-                    "  non-finite resets %u\n  kinetic energy    %.4g (last)\n  GPU time per step %.4f ms\n",
-                    double(r.last.maxStretch), double(r.last.maxPenetration / diagonal), double(r.last.rootDrift),
-                    r.nonfiniteResets, double(r.last.kineticEnergy), r.gpuMsPerStep);
+        std::printf(
+            "  max stretch       %.3g\n  max penetration   %.3g of the head's diagonal\n  root drift        %.3g\n"
+            "  non-finite resets %u\n  kinetic energy    %.4g (last)\n  GPU time per step %.4f ms\n",
+            double(r.last.maxStretch), double(r.last.maxPenetration / diagonal), double(r.last.rootDrift),
+            r.nonfiniteResets, double(r.last.kineticEnergy), r.gpuMsPerStep);
         for (const std::string& line : describeLoadedHair(scene))
             std::printf("  %s\n", line.c_str());
-        std::printf("  worst over %zu samples: stretch %.3g, penetration %.3g, root drift %.3g\n  memory            %s\n",
-                    r.energy.size(), double(r.worst.maxStretch), double(r.worst.maxPenetration / diagonal),
-                    double(r.worst.rootDrift), describeMemory(r.memoryStart, r.memoryEnd).c_str());
+        std::printf(
+            "  worst over %zu samples: stretch %.3g, penetration %.3g, root drift %.3g\n  memory            %s\n",
+            r.energy.size(), double(r.worst.maxStretch), double(r.worst.maxPenetration / diagonal),
+            double(r.worst.rootDrift), describeMemory(r.memoryStart, r.memoryEnd).c_str());
     }
     if (ctx.validationMessages() > 0) {
         std::fprintf(stderr, "wisp: %u Vulkan validation messages (printed above)\n", ctx.validationMessages());
@@ -242,4 +252,4 @@ int runSimulate(const vk::Context& ctx, HairSession& session, const SimulateOpti
     return 0;
 }
 
-}  // namespace wisp
+} // namespace wisp

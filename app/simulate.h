@@ -6,9 +6,9 @@
 #include "app/headless.h"
 #include "app/scene.h"
 #include "app/settings_table.h"
+#include "gpu/context.h"
 #include "physics/hair_scene.h"
 #include "physics/simulation.h"
-#include "gpu/context.h"
 
 #include <functional>
 #include <optional>
@@ -21,27 +21,27 @@ namespace wisp {
 // scripted motion.
 struct Motion {
     std::function<glm::mat4(float)> head = [](float) { return glm::mat4(1.0f); };
-    std::function<glm::vec4(float)> sphere = [](float) { return glm::vec4(0.0f); };  // xyz, radius (0: none)
-    std::function<glm::vec3(float)> wind;  // m/s²; empty: the settings' wind throughout
+    std::function<glm::vec4(float)> sphere = [](float) { return glm::vec4(0.0f); }; // xyz, radius (0: none)
+    std::function<glm::vec3(float)> wind; // m/s²; empty: the settings' wind throughout
 };
 
 struct SimulationReport {
-    SimMetrics last;                                     // after the final step
-    SimMetrics worst;                                    // the largest of each metric over every sample
-    std::vector<std::pair<uint32_t, float>> energy;      // (step, kinetic energy) every sample
-    std::vector<std::pair<uint32_t, double>> stepMs;     // (step, GPU ms per step since the last sample)
+    SimMetrics last;                                 // after the final step
+    SimMetrics worst;                                // the largest of each metric over every sample
+    std::vector<std::pair<uint32_t, float>> energy;  // (step, kinetic energy) every sample
+    std::vector<std::pair<uint32_t, double>> stepMs; // (step, GPU ms per step since the last sample)
     double gpuMsPerStep = 0.0;
     uint32_t nonfiniteResets = 0;
-    SimState state;                                      // the final state
-    MemorySample memoryStart, memoryEnd;                 // after the first sample, and at the end
+    SimState state;                      // the final state
+    MemorySample memoryStart, memoryEnd; // after the first sample, and at the end
 };
 
 // Runs `session`'s next `steps` fixed steps on the GPU, sampling every `sampleEvery` steps.
-SimulationReport simulateHeadless(const vk::Context& ctx, HairSession& session, uint32_t steps, uint32_t sampleEvery = 25,
-                                  const std::function<void(uint32_t)>& progress = {});
+SimulationReport simulateHeadless(const vk::Context& ctx, HairSession& session, uint32_t steps,
+                                  uint32_t sampleEvery = 25, const std::function<void(uint32_t)>& progress = {});
 // The same for `scene` from rest, posed by `motion` (each step at its end).
-SimulationReport simulateHeadless(const vk::Context& ctx, const HairScene& scene, const SimSettings& sim, uint32_t steps,
-                                  const Motion& motion = {}, uint32_t sampleEvery = 25,
+SimulationReport simulateHeadless(const vk::Context& ctx, const HairScene& scene, const SimSettings& sim,
+                                  uint32_t steps, const Motion& motion = {}, uint32_t sampleEvery = 25,
                                   const std::function<void(uint32_t)>& progress = {});
 
 // Per-dispatch GPU time of a physics step: warm up, then time every step on its own.
@@ -54,7 +54,7 @@ std::vector<DispatchTiming> profilePhysics(const vk::Context& ctx, HairSession& 
                                            uint32_t timedSteps);
 
 struct SimulateOptions {
-    Settings settings;  // every setting, for the JSON output
+    Settings settings; // every setting, for the JSON output
     uint32_t steps = 1000;
     bool json = false;
     // Steps between samples of the kinetic energy (each reads the state back). Frequent samples of a
@@ -62,10 +62,10 @@ struct SimulateOptions {
     // kernels about twice as slowly (measured: 1.76 ms a step sampling every 100 steps, 3.9 ms every
     // 25, at 3.2 M vertices; consistent with the GPU lowering its clocks, not confirmed).
     uint32_t sampleEvery = 100;
-    bool profile = false;     // per-dispatch timings instead of the quality run
-    uint32_t warmup = 60;     // steps before timing (profile)
+    bool profile = false; // per-dispatch timings instead of the quality run
+    uint32_t warmup = 60; // steps before timing (profile)
 };
 
 int runSimulate(const vk::Context& ctx, HairSession& session, const SimulateOptions& options);
 
-}  // namespace wisp
+} // namespace wisp

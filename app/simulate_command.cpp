@@ -29,7 +29,7 @@ int run(const GlobalOptions& g, SimulateCommand& c)
     return runSimulate(ctx, hair, c.options);
 }
 
-}  // namespace
+} // namespace
 
 CommandRun addSimulateCommand(CLI::App& app, const GlobalOptions& global)
 {
@@ -37,7 +37,9 @@ CommandRun addSimulateCommand(CLI::App& app, const GlobalOptions& global)
     CLI::App* cmd = app.add_subcommand("simulate", "physics only, headless: quality metrics as text or JSON");
     c->command = cmd;
     SimulateOptions& o = c->options;
-    cmd->add_option("--steps", o.steps, "fixed simulation steps to run")->check(CLI::Range(1u, 10000000u))->capture_default_str();
+    cmd->add_option("--steps", o.steps, "fixed simulation steps to run")
+        ->check(CLI::Range(1u, 10000000u))
+        ->capture_default_str();
     cmd->add_flag("--json", o.json, "print one JSON object");
     cmd->add_option("--sample-every", o.sampleEvery,
                     "steps between samples of the kinetic energy (each reads the state back)")
@@ -45,9 +47,12 @@ CommandRun addSimulateCommand(CLI::App& app, const GlobalOptions& global)
         ->capture_default_str();
     cmd->add_flag("--profile", o.profile,
                   "time each kernel: --warmup steps, then --steps steps each timed on its own (median and p95)");
-    cmd->add_option("--warmup", o.warmup, "steps before timing with --profile")->check(CLI::Range(0u, 100000u))->capture_default_str();
-    c->shared = std::make_unique<SessionCommandLine>(cmd, SessionCommandLine::Uses{.scene = true, .noHair = false, .draws = false});
+    cmd->add_option("--warmup", o.warmup, "steps before timing with --profile")
+        ->check(CLI::Range(0u, 100000u))
+        ->capture_default_str();
+    c->shared = std::make_unique<SessionCommandLine>(
+        cmd, SessionCommandLine::Uses{.scene = true, .noHair = false, .draws = false});
     return [c, &global] { return c->command->parsed() ? run(global, *c) : -1; };
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -38,10 +38,11 @@ void Swapchain::recreate(VkExtent2D wanted)
         if ((f.format == VK_FORMAT_B8G8R8A8_SRGB || f.format == VK_FORMAT_R8G8B8A8_SRGB) &&
             f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR)
             format = f;
-    VkExtent2D extent = caps.currentExtent.width != UINT32_MAX
-                            ? caps.currentExtent
-                            : VkExtent2D{std::clamp(wanted.width, caps.minImageExtent.width, caps.maxImageExtent.width),
-                                         std::clamp(wanted.height, caps.minImageExtent.height, caps.maxImageExtent.height)};
+    VkExtent2D extent =
+        caps.currentExtent.width != UINT32_MAX
+            ? caps.currentExtent
+            : VkExtent2D{std::clamp(wanted.width, caps.minImageExtent.width, caps.maxImageExtent.width),
+                         std::clamp(wanted.height, caps.minImageExtent.height, caps.maxImageExtent.height)};
     uint32_t imageCount = caps.minImageCount + 1;
     if (caps.maxImageCount > 0)
         imageCount = std::min(imageCount, caps.maxImageCount);
@@ -65,7 +66,7 @@ void Swapchain::recreate(VkExtent2D wanted)
                                   .oldSwapchain = old};
     VkSwapchainKHR handle = VK_NULL_HANDLE;
     VK_CHECK(vkCreateSwapchainKHR(ctx.device(), &info, nullptr, &handle));
-    handle_ = VK_NULL_HANDLE;  // keep `old` alive until the new one exists
+    handle_ = VK_NULL_HANDLE; // keep `old` alive until the new one exists
     destroy();
     if (old)
         vkDestroySwapchainKHR(ctx.device(), old, nullptr);
@@ -96,8 +97,8 @@ bool Swapchain::acquire(VkSemaphore acquired, uint32_t& index)
 TrackedImage& Swapchain::beginImage(uint32_t index)
 {
     TrackedImage& image = images_[index];
-    image.layout = VK_IMAGE_LAYOUT_UNDEFINED;                 // its previous contents are not needed
-    image.stages = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;      // wait for the acquire semaphore's stage
+    image.layout = VK_IMAGE_LAYOUT_UNDEFINED;            // its previous contents are not needed
+    image.stages = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT; // wait for the acquire semaphore's stage
     image.accesses = VK_ACCESS_2_NONE;
     image.written = false;
     return image;
@@ -119,4 +120,4 @@ bool Swapchain::present(uint32_t index)
     return true;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -89,4 +89,4 @@ private:
     VkExtent2D swapExtent_{};
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -32,7 +32,7 @@ SweepAxis parseSweepAxis(const std::string& spec, const Settings& base)
         if (value.empty())
             throw UserError("--vary " + spec + ": an empty value");
         Settings probe = base;
-        setSetting(probe, setting, parseSetting(setting, value, "--vary " + spec), "--vary " + spec);  // checked now
+        setSetting(probe, setting, parseSetting(setting, value, "--vary " + spec), "--vary " + spec); // checked now
         axis.values.push_back(value);
     }
     return axis;
@@ -76,11 +76,11 @@ private:
 
 // What one point of the grid measured.
 struct SweepPoint {
-    std::vector<std::string> values;  // one per axis
-    std::vector<PassTiming> timings;  // the passes it ran, in their order, then the frame
+    std::vector<std::string> values; // one per axis
+    std::vector<PassTiming> timings; // the passes it ran, in their order, then the frame
     OitStats oit;
     RasterStats raster;
-    HairRaster drawn = HairRaster::Graphics;  // hair_raster as resolved for the device (auto: compute)
+    HairRaster drawn = HairRaster::Graphics; // hair_raster as resolved for the device (auto: compute)
     uint64_t strands = 0;
     uint64_t segments = 0;
     uint32_t width = 0;
@@ -99,7 +99,8 @@ std::vector<std::string> passColumns(const std::vector<SweepPoint>& points)
     return columns;
 }
 
-std::string resultsCsv(const vk::Context& ctx, const std::vector<SweepAxis>& axes, const std::vector<SweepPoint>& points)
+std::string resultsCsv(const vk::Context& ctx, const std::vector<SweepAxis>& axes,
+                       const std::vector<SweepPoint>& points)
 {
     std::vector<std::string> passes = passColumns(points);
     std::ostringstream csv;
@@ -114,8 +115,9 @@ std::string resultsCsv(const vk::Context& ctx, const std::vector<SweepAxis>& axe
             csv << v << ",";
         double frameMs = 0.0;
         for (const std::string& p : passes) {
-            auto t = std::find_if(point.timings.begin(), point.timings.end(), [&](const PassTiming& x) { return x.name == p; });
-            bool ran = t != point.timings.end();  // a pass this point did not run counts 0
+            auto t = std::find_if(point.timings.begin(), point.timings.end(),
+                                  [&](const PassTiming& x) { return x.name == p; });
+            bool ran = t != point.timings.end(); // a pass this point did not run counts 0
             csv << (ran ? t->medianMs : 0.0) << "," << (ran ? t->p95Ms : 0.0) << ",";
             if (p == "frame" && ran)
                 frameMs = t->medianMs;
@@ -123,13 +125,13 @@ std::string resultsCsv(const vk::Context& ctx, const std::vector<SweepAxis>& axe
         csv << (frameMs > 0.0 ? 1000.0 / frameMs : 0.0) << "," << point.strands << "," << point.segments << ","
             << point.oit.fragments << "," << point.oit.overflow << "," << point.raster.segments << ","
             << point.raster.fragments << "," << point.raster.overflow << ","
-            << (point.drawn == HairRaster::Compute ? "compute" : "graphics") << "," << point.width << "," << point.height
-            << ",\"" << ctx.report().name << "\",\"" << ctx.report().driverInfo << "\"\n";
+            << (point.drawn == HairRaster::Compute ? "compute" : "graphics") << "," << point.width << ","
+            << point.height << ",\"" << ctx.report().name << "\",\"" << ctx.report().driverInfo << "\"\n";
     }
     return csv.str();
 }
 
-}  // namespace
+} // namespace
 
 int runSweep(const vk::Context& ctx, const SweepOptions& o, const SessionOptions& base)
 {
@@ -170,7 +172,7 @@ int runSweep(const vk::Context& ctx, const SweepOptions& o, const SessionOptions
     // results.csv appears whole or not at all.
     std::filesystem::path csvPath = o.outDir / "results.csv";
     writeFileAtomically(csvPath, resultsCsv(ctx, o.axes, measured));
-    folder.keep();  // the results are whole: the charts failing below leaves them
+    folder.keep(); // the results are whole: the charts failing below leaves them
     std::printf("%s\n", csvPath.string().c_str());
 
     // The chart script: beside the executable (a bundle), else in the source tree.
@@ -189,4 +191,4 @@ int runSweep(const vk::Context& ctx, const SweepOptions& o, const SessionOptions
     return ctx.validationMessages() > 0 ? kExitInternalError : 0;
 }
 
-}  // namespace wisp
+} // namespace wisp

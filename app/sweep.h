@@ -31,4 +31,4 @@ struct SweepOptions {
 // starts from.
 int runSweep(const vk::Context& ctx, const SweepOptions& options, const SessionOptions& base);
 
-}  // namespace wisp
+} // namespace wisp

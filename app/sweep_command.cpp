@@ -26,21 +26,25 @@ struct SweepCommand {
 void checkSweepGrid(const vk::DeviceReport& device, const std::vector<SweepAxis>& axes, const SessionOptions& base)
 {
     if (!base.source.hairFiles.empty())
-        return;  // loaded per point; the solver checks its own memory
+        return; // loaded per point; the solver checks its own memory
     std::vector<size_t> at(axes.size(), 0);
     for (size_t axis = 0; axis < axes.size();) {
         Settings s = base.settings;
         for (size_t a = 0; a < axes.size(); ++a)
             applySetting(s, axes[a].name + "=" + axes[a].values[at[a]]);
-        checkWorkload({.guides = s.growth.guides, .verticesPerStrand = s.growth.verticesPerStrand, .sim = s.sim,
+        checkWorkload({.guides = s.growth.guides,
+                       .verticesPerStrand = s.growth.verticesPerStrand,
+                       .sim = s.sim,
                        .render = &s.render},
                       device);
         for (axis = 0; axis < axes.size() && ++at[axis] == axes[axis].values.size(); ++axis)
-            at[axis] = 0;  // the next point, odometer-wise
+            at[axis] = 0; // the next point, odometer-wise
     }
     if (axes.empty())
-        checkWorkload({.guides = base.settings.growth.guides, .verticesPerStrand = base.settings.growth.verticesPerStrand,
-                       .sim = base.settings.sim, .render = &base.settings.render},
+        checkWorkload({.guides = base.settings.growth.guides,
+                       .verticesPerStrand = base.settings.growth.verticesPerStrand,
+                       .sim = base.settings.sim,
+                       .render = &base.settings.render},
                       device);
 }
 
@@ -55,25 +59,26 @@ int run(const GlobalOptions& g, SweepCommand& c)
     return runSweep(ctx, c.options, base);
 }
 
-}  // namespace
+} // namespace
 
 CommandRun addSweepCommand(CLI::App& app, const GlobalOptions& global)
 {
     auto c = std::make_shared<SweepCommand>();
-    CLI::App* cmd = app.add_subcommand(
-        "sweep",
-        "per-pass GPU timings over a grid of settings: results.csv, fps.png, frame.png and passes.png (python3-matplotlib)");
+    CLI::App* cmd = app.add_subcommand("sweep", "per-pass GPU timings over a grid of settings: results.csv, fps.png, "
+                                                "frame.png and passes.png (python3-matplotlib)");
     c->command = cmd;
     cmd->add_option("--out", c->out, "output folder (created)")->required();
-    cmd->add_option("--vary", c->varies, "NAME=V1,V2,... for a setting from 'wisp settings'; several make a grid")->required();
+    cmd->add_option("--vary", c->varies, "NAME=V1,V2,... for a setting from 'wisp settings'; several make a grid")
+        ->required();
     cmd->add_option("--warmup", c->options.warmup, "frames before timing each point")
         ->check(CLI::Range(0u, 100000u))
         ->capture_default_str();
     cmd->add_option("--frames", c->options.frames, "frames timed at each point (median and p95)")
         ->check(CLI::Range(1u, 100000u))
         ->capture_default_str();
-    c->shared = std::make_unique<SessionCommandLine>(cmd, SessionCommandLine::Uses{.scene = false, .noHair = false, .draws = true});
+    c->shared = std::make_unique<SessionCommandLine>(
+        cmd, SessionCommandLine::Uses{.scene = false, .noHair = false, .draws = true});
     return [c, &global] { return c->command->parsed() ? run(global, *c) : -1; };
 }
 
-}  // namespace wisp
+} // namespace wisp

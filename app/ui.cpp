@@ -3,10 +3,10 @@
 #include "app/ui.h"
 
 #include "core/error.h"
-#include "gpu/frame.h"
-#include "renderer/render_target.h"
 #include "gpu/check.h"
 #include "gpu/context.h"
+#include "gpu/frame.h"
+#include "renderer/render_target.h"
 
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
@@ -26,9 +26,9 @@ void checkImGuiVk(VkResult result)
         std::fprintf(stderr, "wisp: ImGui's Vulkan backend: %s\n", vk::resultName(result));
 }
 
-constexpr size_t kHistory = 240;  // frames in the GPU-time graph
+constexpr size_t kHistory = 240; // frames in the GPU-time graph
 
-}  // namespace
+} // namespace
 
 UiOverlay::UiOverlay(const vk::Context& ctx, GLFWwindow* window, uint32_t framesInFlight) : ctx_(ctx)
 {
@@ -54,15 +54,15 @@ UiOverlay::UiOverlay(const vk::Context& ctx, GLFWwindow* window, uint32_t frames
                                        .initialLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                                        .finalLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
     VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-    VkSubpassDescription subpass{.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS,
-                                 .colorAttachmentCount = 1,
-                                 .pColorAttachments = &ref};
+    VkSubpassDescription subpass{
+        .pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS, .colorAttachmentCount = 1, .pColorAttachments = &ref};
     VkSubpassDependency dependency{.srcSubpass = VK_SUBPASS_EXTERNAL,
                                    .dstSubpass = 0,
                                    .srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
                                    .dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
                                    .srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
-                                   .dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT};
+                                   .dstAccessMask =
+                                       VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT};
     VkRenderPassCreateInfo rpInfo{.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO,
                                   .attachmentCount = 1,
                                   .pAttachments = &attachment,
@@ -78,9 +78,9 @@ UiOverlay::UiOverlay(const vk::Context& ctx, GLFWwindow* window, uint32_t frames
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGuiIO& io = ImGui::GetIO();
-    io.IniFilename = nullptr;  // nothing written beside the user's files
+    io.IniFilename = nullptr; // nothing written beside the user's files
     ImGui::StyleColorsDark();
-    ImGui_ImplGlfw_InitForVulkan(window, true);  // chains the window's own callbacks
+    ImGui_ImplGlfw_InitForVulkan(window, true); // chains the window's own callbacks
     ImGui_ImplVulkan_InitInfo info{.Instance = ctx.instance(),
                                    .PhysicalDevice = ctx.physicalDevice(),
                                    .Device = ctx.device(),
@@ -102,7 +102,7 @@ UiOverlay::UiOverlay(const vk::Context& ctx, GLFWwindow* window, uint32_t frames
 
 UiOverlay::~UiOverlay()
 {
-    vkDeviceWaitIdle(ctx_.device());  // unchecked: after a lost device it fails at once, and destructors do not throw
+    vkDeviceWaitIdle(ctx_.device()); // unchecked: after a lost device it fails at once, and destructors do not throw
     ImGui_ImplVulkan_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
@@ -150,7 +150,7 @@ bool settingControl(const SettingSpec& spec, SettingValue& value, std::map<std::
     if (held)
         value = edits[spec.name];
     ImGui::BeginDisabled(!c.enabled);
-    if (spec.optional()) {  // a box for "its own default" beside the value's control
+    if (spec.optional()) { // a box for "its own default" beside the value's control
         bool own = !value.unset;
         ImGui::PushID(label);
         if (ImGui::Checkbox("##set", &own)) {
@@ -221,8 +221,9 @@ bool settingControl(const SettingSpec& spec, SettingValue& value, std::map<std::
     ImGui::EndDisabled();
     if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
         std::string when = !c.enabled ? "needs a restart: --set " + spec.name + "=..."
-                           : spec.change == SettingChange::Live ? std::string("applies at once")
-                                                                : "applies when let go: rebuilds the " + std::string(changeName(spec.change));
+                           : spec.change == SettingChange::Live
+                               ? std::string("applies at once")
+                               : "applies when let go: rebuilds the " + std::string(changeName(spec.change));
         ImGui::SetTooltip("%s\n%s\n%s", spec.help.c_str(), spec.allowed().c_str(), when.c_str());
     }
     if (spec.change == SettingChange::Live)
@@ -237,10 +238,10 @@ bool settingControl(const SettingSpec& spec, SettingValue& value, std::map<std::
         edits.erase(spec.name);
         return true;
     }
-    return changed;  // a click: a checkbox, a list
+    return changed; // a click: a checkbox, a list
 }
 
-}  // namespace
+} // namespace
 
 void UiOverlay::build(const PanelData& data, const Settings& shown, const ApplySetting& apply, bool visible)
 {
@@ -269,7 +270,8 @@ void UiOverlay::build(const PanelData& data, const Settings& shown, const ApplyS
             float top = history.empty() ? 1.0f : *std::max_element(history.begin(), history.end());
             char label[64];
             std::snprintf(label, sizeof(label), "frame %.2f ms", total);
-            ImGui::PlotLines("##frame", history.data(), int(history.size()), 0, label, 0.0f, top * 1.2f, ImVec2(-1, 60));
+            ImGui::PlotLines("##frame", history.data(), int(history.size()), 0, label, 0.0f, top * 1.2f,
+                             ImVec2(-1, 60));
             for (const auto& [name, ms] : data.passes) {
                 ImGui::Text("%-14s %7.3f ms", name.c_str(), ms);
                 ImGui::SameLine(200);
@@ -319,4 +321,4 @@ void UiOverlay::record(VkCommandBuffer cmd, FrameContext&)
     vkCmdEndRenderPass(cmd);
 }
 
-}  // namespace wisp
+} // namespace wisp

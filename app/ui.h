@@ -26,15 +26,15 @@ namespace wisp {
 namespace vk {
 class Context;
 struct ScopeTime;
-}
+} // namespace vk
 class RenderTarget;
 
 // What the panel shows, gathered by the window each frame.
 struct PanelData {
-    std::string status;                      // Viewer::status()
-    std::string help;                        // viewerHelp()
-    std::vector<std::string> counts;         // one line each
-    std::vector<std::pair<std::string, double>> passes;  // GPU ms of the last completed frame
+    std::string status;                                 // Viewer::status()
+    std::string help;                                   // viewerHelp()
+    std::vector<std::string> counts;                    // one line each
+    std::vector<std::pair<std::string, double>> passes; // GPU ms of the last completed frame
 };
 
 class UiOverlay : public Pass {
@@ -64,10 +64,10 @@ private:
     vk::RenderPass renderPass_;
     vk::Framebuffer framebuffer_;
     vk::DescriptorPool pool_;
-    std::deque<float> frameHistory_;  // GPU ms of recent frames, for the graph
-    std::map<std::string, SettingValue> edits_;  // a control being dragged: its value until released
-    std::map<std::string, std::string> errors_;  // the last error per setting
-    bool drawn_ = false;                         // build() made draw data this frame
+    std::deque<float> frameHistory_;            // GPU ms of recent frames, for the graph
+    std::map<std::string, SettingValue> edits_; // a control being dragged: its value until released
+    std::map<std::string, std::string> errors_; // the last error per setting
+    bool drawn_ = false;                        // build() made draw data this frame
 };
 
-}  // namespace wisp
+} // namespace wisp

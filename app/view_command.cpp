@@ -22,7 +22,7 @@ struct ViewCommand {
 
 int run(const GlobalOptions& g, ViewCommand& c)
 {
-    requireDisplay();  // before any loading
+    requireDisplay(); // before any loading
     SessionOptions session = c.shared->resolve();
     WindowOptions& o = c.options;
     o.context = contextOptions(g);
@@ -39,7 +39,7 @@ int run(const GlobalOptions& g, ViewCommand& c)
     return runWindow(std::move(o));
 }
 
-}  // namespace
+} // namespace
 
 CommandRun addViewCommand(CLI::App& app, const GlobalOptions& global)
 {
@@ -51,16 +51,18 @@ CommandRun addViewCommand(CLI::App& app, const GlobalOptions& global)
     cmd->footer("Keys and mouse: " + viewerHelp());
     c->shared = std::make_unique<SessionCommandLine>(cmd, SessionCommandLine::Uses{});
     WindowOptions& o = c->options;
-    cmd->add_option("--frames", o.maxFrames, "close after this many frames (0 = run until closed)")->check(CLI::NonNegativeNumber);
+    cmd->add_option("--frames", o.maxFrames, "close after this many frames (0 = run until closed)")
+        ->check(CLI::NonNegativeNumber);
     cmd->add_option("--screenshot", o.screenshot, "write the last frame to this PNG when closing");
     cmd->add_flag("--screenshot-panel", o.screenshotPanel, "the --screenshot includes the ImGui panel");
-    cmd->add_option("--script", o.script,
-                    "replay timed input events from this file: lines 'FRAME press|release|tap KEY' or "
-                    "'FRAME drag-sphere|drag-light|orbit DX DY' or 'FRAME set NAME=VALUE' (a setting, as set in the "
-                    "panel) (KEY: left right up down pageup pagedown j l i k a d w plus minus space n r p f5 o h t f2 f3 "
-                    "escape)")
+    cmd->add_option(
+           "--script", o.script,
+           "replay timed input events from this file: lines 'FRAME press|release|tap KEY' or "
+           "'FRAME drag-sphere|drag-light|orbit DX DY' or 'FRAME set NAME=VALUE' (a setting, as set in the "
+           "panel) (KEY: left right up down pageup pagedown j l i k a d w plus minus space n r p f5 o h t f2 f3 "
+           "escape)")
         ->check(CLI::ExistingFile);
     return [c, &global] { return c->command->parsed() ? run(global, *c) : -1; };
 }
 
-}  // namespace wisp
+} // namespace wisp

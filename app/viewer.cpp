@@ -5,7 +5,6 @@
 #include "app/settings_table.h"
 #include "core/error.h"
 
-
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -17,12 +16,12 @@ namespace wisp {
 
 namespace {
 
-constexpr float kSphereSpeed = 0.35f;        // scene sizes per second, keys held
+constexpr float kSphereSpeed = 0.35f; // scene sizes per second, keys held
 constexpr float kLightDegreesPerSecond = 60.0f;
-constexpr float kHeadTurnDeg = 30.0f;        // per press of A or D
+constexpr float kHeadTurnDeg = 30.0f; // per press of A or D
 constexpr float kHeadTurnLimitDeg = 80.0f;
-constexpr float kHeadSpring = 5.0f;          // rad/s: the head's turn settles in about a second
-constexpr float kWindDefault = 4.0f;         // m/s²
+constexpr float kHeadSpring = 5.0f;  // rad/s: the head's turn settles in about a second
+constexpr float kWindDefault = 4.0f; // m/s²
 constexpr float kWindStep = 1.25f;
 
 // How high and low the light goes: the light_elevation setting's range.
@@ -41,7 +40,7 @@ void cameraAxes(const OrbitCamera& camera, glm::vec3& right, glm::vec3& up, glm:
     forward = -glm::vec3(v[0][2], v[1][2], v[2][2]);
 }
 
-}  // namespace
+} // namespace
 
 const std::vector<ViewerKeyInfo>& viewerKeys()
 {
@@ -104,9 +103,13 @@ void Viewer::press(ViewerKey key)
 {
     held_.insert(key);
     switch (key) {
-    case ViewerKey::SphereLeft: case ViewerKey::SphereRight: case ViewerKey::SphereUp:
-    case ViewerKey::SphereDown: case ViewerKey::SphereNear: case ViewerKey::SphereFar:
-        sphereOn_ = true;  // moving it brings it into play
+    case ViewerKey::SphereLeft:
+    case ViewerKey::SphereRight:
+    case ViewerKey::SphereUp:
+    case ViewerKey::SphereDown:
+    case ViewerKey::SphereNear:
+    case ViewerKey::SphereFar:
+        sphereOn_ = true; // moving it brings it into play
         break;
     case ViewerKey::HeadLeft:
         headYawTarget_ = std::max(headYawTarget_ - kHeadTurnDeg, -kHeadTurnLimitDeg);
@@ -114,24 +117,52 @@ void Viewer::press(ViewerKey key)
     case ViewerKey::HeadRight:
         headYawTarget_ = std::min(headYawTarget_ + kHeadTurnDeg, kHeadTurnLimitDeg);
         break;
-    case ViewerKey::Wind: windOn_ = !windOn_; break;
-    case ViewerKey::WindStronger: windStrength_ = std::min(windStrength_ * kWindStep, 50.0f); windOn_ = true; break;
-    case ViewerKey::WindWeaker: windStrength_ = std::max(windStrength_ / kWindStep, 0.1f); break;
-    case ViewerKey::Pause: paused_ = !paused_; break;
+    case ViewerKey::Wind:
+        windOn_ = !windOn_;
+        break;
+    case ViewerKey::WindStronger:
+        windStrength_ = std::min(windStrength_ * kWindStep, 50.0f);
+        windOn_ = true;
+        break;
+    case ViewerKey::WindWeaker:
+        windStrength_ = std::max(windStrength_ / kWindStep, 0.1f);
+        break;
+    case ViewerKey::Pause:
+        paused_ = !paused_;
+        break;
     case ViewerKey::Step:
         paused_ = true;
         ++steps_;
         break;
-    case ViewerKey::Reset: reset_ = true; break;
-    case ViewerKey::Screenshot: screenshot_ = true; break;
-    case ViewerKey::Reload: reload_ = true; break;
-    case ViewerKey::SphereToggle: sphereOn_ = !sphereOn_; break;
-    case ViewerKey::Help: help_ = !help_; break;
-    case ViewerKey::Quit: quit_ = true; break;
-    case ViewerKey::Play: playing_ = !playing_; break;
-    case ViewerKey::SaveScene: save_ = true; break;
-    case ViewerKey::LoadScene: load_ = true; break;
-    default: break;
+    case ViewerKey::Reset:
+        reset_ = true;
+        break;
+    case ViewerKey::Screenshot:
+        screenshot_ = true;
+        break;
+    case ViewerKey::Reload:
+        reload_ = true;
+        break;
+    case ViewerKey::SphereToggle:
+        sphereOn_ = !sphereOn_;
+        break;
+    case ViewerKey::Help:
+        help_ = !help_;
+        break;
+    case ViewerKey::Quit:
+        quit_ = true;
+        break;
+    case ViewerKey::Play:
+        playing_ = !playing_;
+        break;
+    case ViewerKey::SaveScene:
+        save_ = true;
+        break;
+    case ViewerKey::LoadScene:
+        load_ = true;
+        break;
+    default:
+        break;
     }
 }
 
@@ -151,9 +182,11 @@ void Viewer::update(float seconds)
     move += forward * (heldKey(ViewerKey::SphereFar) - heldKey(ViewerKey::SphereNear));
     sphereCentre_ += move * (kSphereSpeed * size_ * seconds);
 
-    light_.azimuthDeg += (heldKey(ViewerKey::LightRight) - heldKey(ViewerKey::LightLeft)) * kLightDegreesPerSecond * seconds;
+    light_.azimuthDeg +=
+        (heldKey(ViewerKey::LightRight) - heldKey(ViewerKey::LightLeft)) * kLightDegreesPerSecond * seconds;
     light_.azimuthDeg = std::remainder(light_.azimuthDeg, 360.0f);
-    light_.elevationDeg += (heldKey(ViewerKey::LightUp) - heldKey(ViewerKey::LightDown)) * kLightDegreesPerSecond * seconds;
+    light_.elevationDeg +=
+        (heldKey(ViewerKey::LightUp) - heldKey(ViewerKey::LightDown)) * kLightDegreesPerSecond * seconds;
     light_.elevationDeg = std::clamp(light_.elevationDeg, float(elevationRange().min), float(elevationRange().max));
 
     // The head turns toward its target like a critically damped spring: a smooth start and stop,
@@ -168,7 +201,8 @@ void Viewer::dragSphere(float dx, float dy, float viewportHeight)
     glm::vec3 right, up, forward;
     cameraAxes(camera_, right, up, forward);
     float depth = std::max(glm::dot(sphereCentre_ - camera_.position(), forward), 0.1f * size_);
-    float unitsPerPixel = 2.0f * depth * std::tan(glm::radians(camera_.fovYDeg) * 0.5f) / std::max(viewportHeight, 1.0f);
+    float unitsPerPixel =
+        2.0f * depth * std::tan(glm::radians(camera_.fovYDeg) * 0.5f) / std::max(viewportHeight, 1.0f);
     sphereCentre_ += (right * dx - up * dy) * unitsPerPixel;
     sphereOn_ = true;
 }
@@ -231,11 +265,12 @@ uint32_t Viewer::takeSteps()
 std::string Viewer::status() const
 {
     char text[320];
-    std::snprintf(text, sizeof(text),
-                  "sphere %s at (%.4f, %.4f, %.4f) r %.4f, light azimuth %.1f elevation %.1f, head yaw %.1f, wind %s %.2f m/s2%s",
-                  sphereOn_ ? "on" : "off", double(sphereCentre_.x), double(sphereCentre_.y), double(sphereCentre_.z),
-                  double(sphereRadius_), double(light_.azimuthDeg), double(light_.elevationDeg), double(headYaw_),
-                  windOn_ ? "on" : "off", double(windStrength_), paused_ ? ", paused" : "");
+    std::snprintf(
+        text, sizeof(text),
+        "sphere %s at (%.4f, %.4f, %.4f) r %.4f, light azimuth %.1f elevation %.1f, head yaw %.1f, wind %s %.2f m/s2%s",
+        sphereOn_ ? "on" : "off", double(sphereCentre_.x), double(sphereCentre_.y), double(sphereCentre_.z),
+        double(sphereRadius_), double(light_.azimuthDeg), double(light_.elevationDeg), double(headYaw_),
+        windOn_ ? "on" : "off", double(windStrength_), paused_ ? ", paused" : "");
     return text;
 }
 
@@ -253,7 +288,7 @@ std::vector<ScriptEvent> loadScript(const std::filesystem::path& path)
         std::istringstream words(line);
         std::string frame, action;
         if (!(words >> frame))
-            continue;  // blank or comment
+            continue; // blank or comment
         ScriptEvent e;
         auto [end, ec] = std::from_chars(frame.data(), frame.data() + frame.size(), e.frame);
         if (ec != std::errc() || end != frame.data() + frame.size())
@@ -261,7 +296,7 @@ std::vector<ScriptEvent> loadScript(const std::filesystem::path& path)
         if (!(words >> action))
             throw UserError(where + "an action is missing after the frame number");
         if (action == "press" || action == "release" || action == "tap") {
-            e.kind = action == "press" ? ScriptEvent::Kind::Press
+            e.kind = action == "press"     ? ScriptEvent::Kind::Press
                      : action == "release" ? ScriptEvent::Kind::Release
                                            : ScriptEvent::Kind::Tap;
             std::string name;
@@ -276,7 +311,7 @@ std::vector<ScriptEvent> loadScript(const std::filesystem::path& path)
             }
             e.key = found->key;
         } else if (action == "drag-sphere" || action == "drag-light" || action == "orbit") {
-            e.kind = action == "drag-sphere" ? ScriptEvent::Kind::DragSphere
+            e.kind = action == "drag-sphere"  ? ScriptEvent::Kind::DragSphere
                      : action == "drag-light" ? ScriptEvent::Kind::DragLight
                                               : ScriptEvent::Kind::Orbit;
             if (!(words >> e.dx >> e.dy) || !std::isfinite(e.dx) || !std::isfinite(e.dy) || std::abs(e.dx) > 1e5f ||
@@ -295,7 +330,8 @@ std::vector<ScriptEvent> loadScript(const std::filesystem::path& path)
             throw UserError(where + "unexpected '" + extra + "' at the end of the line");
         events.push_back(e);
     }
-    std::stable_sort(events.begin(), events.end(), [](const ScriptEvent& a, const ScriptEvent& b) { return a.frame < b.frame; });
+    std::stable_sort(events.begin(), events.end(),
+                     [](const ScriptEvent& a, const ScriptEvent& b) { return a.frame < b.frame; });
     return events;
 }
 
@@ -307,19 +343,31 @@ std::vector<std::string> playScript(const std::vector<ScriptEvent>& events, uint
         if (e.frame != frame)
             continue;
         switch (e.kind) {
-        case ScriptEvent::Kind::Press: viewer.press(e.key); break;
-        case ScriptEvent::Kind::Release: viewer.release(e.key); break;
+        case ScriptEvent::Kind::Press:
+            viewer.press(e.key);
+            break;
+        case ScriptEvent::Kind::Release:
+            viewer.release(e.key);
+            break;
         case ScriptEvent::Kind::Tap:
             viewer.press(e.key);
             viewer.release(e.key);
             break;
-        case ScriptEvent::Kind::DragSphere: viewer.dragSphere(e.dx, e.dy, viewportHeight); break;
-        case ScriptEvent::Kind::DragLight: viewer.dragLight(e.dx, e.dy); break;
-        case ScriptEvent::Kind::Orbit: viewer.orbit(e.dx, e.dy); break;
-        case ScriptEvent::Kind::Set: assignments.push_back(e.assignment); break;
+        case ScriptEvent::Kind::DragSphere:
+            viewer.dragSphere(e.dx, e.dy, viewportHeight);
+            break;
+        case ScriptEvent::Kind::DragLight:
+            viewer.dragLight(e.dx, e.dy);
+            break;
+        case ScriptEvent::Kind::Orbit:
+            viewer.orbit(e.dx, e.dy);
+            break;
+        case ScriptEvent::Kind::Set:
+            assignments.push_back(e.assignment);
+            break;
         }
     }
     return assignments;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -12,19 +12,39 @@
 
 #include <filesystem>
 #include <set>
-#include <utility>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace wisp {
 
 enum class ViewerKey {
-    SphereLeft, SphereRight, SphereUp, SphereDown, SphereNear, SphereFar,  // arrows, Page Up / Down
-    LightLeft, LightRight, LightUp, LightDown,                              // J L I K
-    HeadLeft, HeadRight,                                                    // A D
-    Wind, WindStronger, WindWeaker,                                         // W + -
-    Pause, Step, Reset, Screenshot, Reload, SphereToggle, Help, Quit,       // Space N R P F5 O H Esc
-    Play, SaveScene, LoadScene,                                             // T F2 F3
+    SphereLeft,
+    SphereRight,
+    SphereUp,
+    SphereDown,
+    SphereNear,
+    SphereFar, // arrows, Page Up / Down
+    LightLeft,
+    LightRight,
+    LightUp,
+    LightDown, // J L I K
+    HeadLeft,
+    HeadRight, // A D
+    Wind,
+    WindStronger,
+    WindWeaker, // W + -
+    Pause,
+    Step,
+    Reset,
+    Screenshot,
+    Reload,
+    SphereToggle,
+    Help,
+    Quit, // Space N R P F5 O H Esc
+    Play,
+    SaveScene,
+    LoadScene, // T F2 F3
 };
 
 struct ViewerKeyInfo {
@@ -43,7 +63,7 @@ public:
     Viewer(const OrbitCamera& camera, const Bounds& scene, const glm::vec4& sphere, const LightSettings& light,
            const glm::vec3& wind);
 
-    void press(ViewerKey key);    // one-shot actions, and held keys start moving things
+    void press(ViewerKey key); // one-shot actions, and held keys start moving things
     void release(ViewerKey key);
     // Advances held-key motion and the head's turn by `seconds`.
     void update(float seconds);
@@ -63,14 +83,14 @@ public:
 
     OrbitCamera& camera() { return camera_; }
     const LightSettings& light() const { return light_; }
-    glm::vec4 sphere() const;          // xyz, radius; radius 0 when off
-    glm::mat4 headTransform() const;   // a turn about the vertical axis through the head's centre
+    glm::vec4 sphere() const;        // xyz, radius; radius 0 when off
+    glm::mat4 headTransform() const; // a turn about the vertical axis through the head's centre
     float headYawDeg() const { return headYaw_; }
-    glm::vec3 wind() const;            // m/s², zero when off
+    glm::vec3 wind() const; // m/s², zero when off
     bool paused() const { return paused_; }
     bool helpShown() const { return help_; }
     // One-shot requests, each returned once (true) and then cleared.
-    uint32_t takeSteps();              // single steps asked for while paused
+    uint32_t takeSteps(); // single steps asked for while paused
     bool takeReset() { return std::exchange(reset_, false); }
     bool takeScreenshot() { return std::exchange(screenshot_, false); }
     bool takeReload() { return std::exchange(reload_, false); }
@@ -110,11 +130,11 @@ struct ScriptEvent {
     Kind kind = Kind::Tap;
     ViewerKey key = ViewerKey::Help;
     float dx = 0.0f, dy = 0.0f;
-    std::string assignment;  // Set: NAME=VALUE
+    std::string assignment; // Set: NAME=VALUE
 };
 std::vector<ScriptEvent> loadScript(const std::filesystem::path& path);
 // Applies the events of `frame` to the viewer; returns that frame's setting assignments.
 std::vector<std::string> playScript(const std::vector<ScriptEvent>& events, uint32_t frame, Viewer& viewer,
                                     float viewportHeight);
 
-}  // namespace wisp
+} // namespace wisp

@@ -32,40 +32,95 @@ namespace wisp {
 namespace {
 
 constexpr uint32_t kFramesInFlight = 2;
-constexpr uint32_t kMaxStepsPerFrame = 8;  // beyond this the simulation slows down instead of spiralling
-constexpr float kScriptedFps = 60.0f;      // a scripted run (--frames) takes this rate's steps a frame
+constexpr uint32_t kMaxStepsPerFrame = 8; // beyond this the simulation slows down instead of spiralling
+constexpr float kScriptedFps = 60.0f;     // a scripted run (--frames) takes this rate's steps a frame
 
 // GLFW keys to the viewer's (the one table of what each key does is app/viewer.cpp).
 bool viewerKeyOf(int glfwKey, ViewerKey& key)
 {
     switch (glfwKey) {
-    case GLFW_KEY_LEFT: key = ViewerKey::SphereLeft; return true;
-    case GLFW_KEY_RIGHT: key = ViewerKey::SphereRight; return true;
-    case GLFW_KEY_UP: key = ViewerKey::SphereUp; return true;
-    case GLFW_KEY_DOWN: key = ViewerKey::SphereDown; return true;
-    case GLFW_KEY_PAGE_UP: key = ViewerKey::SphereNear; return true;
-    case GLFW_KEY_PAGE_DOWN: key = ViewerKey::SphereFar; return true;
-    case GLFW_KEY_J: key = ViewerKey::LightLeft; return true;
-    case GLFW_KEY_L: key = ViewerKey::LightRight; return true;
-    case GLFW_KEY_I: key = ViewerKey::LightUp; return true;
-    case GLFW_KEY_K: key = ViewerKey::LightDown; return true;
-    case GLFW_KEY_A: key = ViewerKey::HeadLeft; return true;
-    case GLFW_KEY_D: key = ViewerKey::HeadRight; return true;
-    case GLFW_KEY_W: key = ViewerKey::Wind; return true;
-    case GLFW_KEY_EQUAL: case GLFW_KEY_KP_ADD: key = ViewerKey::WindStronger; return true;
-    case GLFW_KEY_MINUS: case GLFW_KEY_KP_SUBTRACT: key = ViewerKey::WindWeaker; return true;
-    case GLFW_KEY_SPACE: key = ViewerKey::Pause; return true;
-    case GLFW_KEY_N: key = ViewerKey::Step; return true;
-    case GLFW_KEY_R: key = ViewerKey::Reset; return true;
-    case GLFW_KEY_P: key = ViewerKey::Screenshot; return true;
-    case GLFW_KEY_F5: key = ViewerKey::Reload; return true;
-    case GLFW_KEY_O: key = ViewerKey::SphereToggle; return true;
-    case GLFW_KEY_H: key = ViewerKey::Help; return true;
-    case GLFW_KEY_ESCAPE: key = ViewerKey::Quit; return true;
-    case GLFW_KEY_T: key = ViewerKey::Play; return true;
-    case GLFW_KEY_F2: key = ViewerKey::SaveScene; return true;
-    case GLFW_KEY_F3: key = ViewerKey::LoadScene; return true;
-    default: return false;
+    case GLFW_KEY_LEFT:
+        key = ViewerKey::SphereLeft;
+        return true;
+    case GLFW_KEY_RIGHT:
+        key = ViewerKey::SphereRight;
+        return true;
+    case GLFW_KEY_UP:
+        key = ViewerKey::SphereUp;
+        return true;
+    case GLFW_KEY_DOWN:
+        key = ViewerKey::SphereDown;
+        return true;
+    case GLFW_KEY_PAGE_UP:
+        key = ViewerKey::SphereNear;
+        return true;
+    case GLFW_KEY_PAGE_DOWN:
+        key = ViewerKey::SphereFar;
+        return true;
+    case GLFW_KEY_J:
+        key = ViewerKey::LightLeft;
+        return true;
+    case GLFW_KEY_L:
+        key = ViewerKey::LightRight;
+        return true;
+    case GLFW_KEY_I:
+        key = ViewerKey::LightUp;
+        return true;
+    case GLFW_KEY_K:
+        key = ViewerKey::LightDown;
+        return true;
+    case GLFW_KEY_A:
+        key = ViewerKey::HeadLeft;
+        return true;
+    case GLFW_KEY_D:
+        key = ViewerKey::HeadRight;
+        return true;
+    case GLFW_KEY_W:
+        key = ViewerKey::Wind;
+        return true;
+    case GLFW_KEY_EQUAL:
+    case GLFW_KEY_KP_ADD:
+        key = ViewerKey::WindStronger;
+        return true;
+    case GLFW_KEY_MINUS:
+    case GLFW_KEY_KP_SUBTRACT:
+        key = ViewerKey::WindWeaker;
+        return true;
+    case GLFW_KEY_SPACE:
+        key = ViewerKey::Pause;
+        return true;
+    case GLFW_KEY_N:
+        key = ViewerKey::Step;
+        return true;
+    case GLFW_KEY_R:
+        key = ViewerKey::Reset;
+        return true;
+    case GLFW_KEY_P:
+        key = ViewerKey::Screenshot;
+        return true;
+    case GLFW_KEY_F5:
+        key = ViewerKey::Reload;
+        return true;
+    case GLFW_KEY_O:
+        key = ViewerKey::SphereToggle;
+        return true;
+    case GLFW_KEY_H:
+        key = ViewerKey::Help;
+        return true;
+    case GLFW_KEY_ESCAPE:
+        key = ViewerKey::Quit;
+        return true;
+    case GLFW_KEY_T:
+        key = ViewerKey::Play;
+        return true;
+    case GLFW_KEY_F2:
+        key = ViewerKey::SaveScene;
+        return true;
+    case GLFW_KEY_F3:
+        key = ViewerKey::LoadScene;
+        return true;
+    default:
+        return false;
     }
 }
 
@@ -127,7 +182,8 @@ struct Surface {
     {
         VK_CHECK(glfwCreateWindowSurface(ctx.instance(), window, nullptr, &handle));
         VkBool32 presentable = VK_FALSE;
-        VkResult r = vkGetPhysicalDeviceSurfaceSupportKHR(ctx.physicalDevice(), ctx.queueFamily(), handle, &presentable);
+        VkResult r =
+            vkGetPhysicalDeviceSurfaceSupportKHR(ctx.physicalDevice(), ctx.queueFamily(), handle, &presentable);
         if (r != VK_SUCCESS || !presentable) {
             vkDestroySurfaceKHR(instance, handle, nullptr);
             VK_CHECK(r);
@@ -172,17 +228,17 @@ private:
     std::vector<ScriptEvent> script_;
     Frame frame_;
     std::unique_ptr<PresentBlitPass> present_;
-    std::unique_ptr<ReadbackPass> readback_;  // the --screenshot of the last frame
+    std::unique_ptr<ReadbackPass> readback_; // the --screenshot of the last frame
     std::vector<vk::Semaphore> acquired_;
     Viewer viewer_;
     OrbitCamera framing_;
     Mouse mouse_;
-    UiOverlay ui_;  // after the window's callbacks: ImGui's GLFW backend chains them
+    UiOverlay ui_; // after the window's callbacks: ImGui's GLFW backend chains them
 
-    SceneTimeline timeline_;   // a scene's keys, played while the viewer is playing
-    SimSettings sim_;          // what the solver runs with
-    Settings pending_;         // the settings as the panel edits them this frame
-    std::optional<SettingChange> change_;  // the largest change the edits need
+    SceneTimeline timeline_;              // a scene's keys, played while the viewer is playing
+    SimSettings sim_;                     // what the solver runs with
+    Settings pending_;                    // the settings as the panel edits them this frame
+    std::optional<SettingChange> change_; // the largest change the edits need
     bool rebuildSwapchain_ = false;
     uint32_t framesDrawn_ = 0, screenshots_ = 0, scenesSaved_ = 0;
     std::filesystem::path lastSaved_;
@@ -197,7 +253,8 @@ Window::Window(WindowOptions options)
       surface_(ctx_, window_.handle), swapchain_(ctx_, surface_.handle, framebufferSize()),
       session_(ctx_, std::move(options_.scene), options_.settings.sim, options_.timeline, options_.source),
       frame_(ctx_, kFramesInFlight),
-      viewer_(OrbitCamera::framing(session_.headBounds(), float(swapchain_.extent().width) / float(swapchain_.extent().height)),
+      viewer_(OrbitCamera::framing(session_.headBounds(),
+                                   float(swapchain_.extent().width) / float(swapchain_.extent().height)),
               session_.headBounds(), options_.sphere, options_.settings.render.light, options_.settings.sim.wind),
       framing_(viewer_.camera()), ui_(ctx_, window_.handle, kFramesInFlight), timeline_(options_.timeline),
       sim_(options_.settings.sim)
@@ -221,7 +278,7 @@ Window::Window(WindowOptions options)
         if (!viewerKeyOf(glfwKey, key))
             return;
         if (self->ui_.wantsKeyboard() && action == GLFW_PRESS)
-            return;  // typing into the panel
+            return; // typing into the panel
         if (action == GLFW_PRESS)
             self->viewer_.press(key);
         else if (action == GLFW_RELEASE)
@@ -300,13 +357,14 @@ void Window::buildPanel(const std::vector<std::string>& scriptedSets)
         HairDrawCounts c = renderer_->hairCounts();
         OitStats oit = renderer_->oitStats(framesDrawn_ % kFramesInFlight);
         if (oit.overflow > 0 && oit.automatic && oit.capacity < oit.limit) {
-            frame_.waitIdle();  // the automatic pool grows for the next frame
+            frame_.waitIdle(); // the automatic pool grows for the next frame
             renderer_->growOit(oit);
         }
         panel.counts.push_back("guides " + std::to_string(c.guides) + " x " +
                                std::to_string(session_.scene().strands.verticesPerStrand) + " vertices, simulated");
-        panel.counts.push_back("strands drawn " + std::to_string(c.strands()) + " (" + std::to_string(c.strandsPerGuide) +
-                               " per guide, before LOD), segments " + std::to_string(c.segments()));
+        panel.counts.push_back("strands drawn " + std::to_string(c.strands()) + " (" +
+                               std::to_string(c.strandsPerGuide) + " per guide, before LOD), segments " +
+                               std::to_string(c.segments()));
         // The hair's fragments as the path that draws it holds them (the other reports zeros).
         if (renderer_->hairRaster() == HairRaster::Compute) {
             RasterStats raster = renderer_->rasterStats(framesDrawn_ % kFramesInFlight);
@@ -382,7 +440,7 @@ void Window::applyEdits()
 {
     if (!change_)
         return;
-    viewer_.setLight(pending_.render.light);  // the light and the wind are the viewer's
+    viewer_.setLight(pending_.render.light); // the light and the wind are the viewer's
     viewer_.setWind(pending_.sim.wind);
     if (change_ == SettingChange::Solver) {
         frame_.waitIdle();
@@ -406,7 +464,7 @@ void Window::drawFrame()
     VkSemaphore acquire = acquired_[fc.slot];
     uint32_t imageIndex = 0;
     if (!swapchain_.acquire(acquire, imageIndex)) {
-        frame_.submit(fc);  // empty, keeps the slot's fence in step
+        frame_.submit(fc); // empty, keeps the slot's fence in step
         rebuildSwapchain_ = true;
         return;
     }
@@ -418,7 +476,7 @@ void Window::drawFrame()
     // run, --frames, takes one 60 Hz frame's worth each frame, so it repeats).
     bool scripted = options_.maxFrames > 0;
     viewer_.update(scripted ? 1.0f / kScriptedFps : float(std::min(elapsed, 0.1)));
-    if (viewer_.playing()) {  // the scene's keys drive the camera, sphere, light, wind and head
+    if (viewer_.playing()) { // the scene's keys drive the camera, sphere, light, wind and head
         SceneState st = timeline_.at(session_.clock().seconds());
         viewer_.pose(poseCamera(framing_, st.camera), st.sphere, st.light, st.wind, st.headYawDeg);
     }
@@ -445,7 +503,7 @@ void Window::drawFrame()
     bool last = scripted && framesDrawn_ + 1 >= options_.maxFrames;
     bool shot = viewer_.takeScreenshot();
     std::unique_ptr<ReadbackPass> shotReadback;
-    if (shot) {  // screenshots are the scene, taken before the panel is drawn over it
+    if (shot) { // screenshots are the scene, taken before the panel is drawn over it
         shotReadback = std::make_unique<ReadbackPass>(ctx_, renderer_->target());
         passes.push_back(shotReadback.get());
     }
@@ -466,7 +524,7 @@ void Window::drawFrame()
     if (!swapchain_.present(imageIndex))
         rebuildSwapchain_ = true;
     ++framesDrawn_;
-    if (shot) {  // P: the frame as drawn, beside the working folder's other files
+    if (shot) { // P: the frame as drawn, beside the working folder's other files
         frame_.waitIdle();
         char name[64];
         std::snprintf(name, sizeof(name), "wisp-screenshot-%03u.png", ++screenshots_);
@@ -484,18 +542,19 @@ int Window::run()
         glfwPollEvents();
         int width = 0, height = 0;
         glfwGetFramebufferSize(window_.handle, &width, &height);
-        if (width == 0 || height == 0) {  // minimized: draw nothing until restored
+        if (width == 0 || height == 0) { // minimized: draw nothing until restored
             glfwWaitEvents();
             continue;
         }
-        if (rebuildSwapchain_ || uint32_t(width) != swapchain_.extent().width || uint32_t(height) != swapchain_.extent().height) {
+        if (rebuildSwapchain_ || uint32_t(width) != swapchain_.extent().width ||
+            uint32_t(height) != swapchain_.extent().height) {
             frame_.waitIdle();
             swapchain_.recreate({uint32_t(width), uint32_t(height)});
             renderer_->resize(swapchain_.extent());
             ui_.setTarget(renderer_->target());
             rebuildSwapchain_ = false;
         }
-        if (viewer_.takeReload()) {  // F5: every shader, the solver's kernels and the renderer's pipelines
+        if (viewer_.takeReload()) { // F5: every shader, the solver's kernels and the renderer's pipelines
             frame_.waitIdle();
             if (rebuildShaders()) {
                 session_.reloadShaders();
@@ -532,7 +591,7 @@ int Window::run()
     return 0;
 }
 
-}  // namespace
+} // namespace
 
 void requireDisplay()
 {
@@ -552,4 +611,4 @@ int runWindow(WindowOptions options)
     return window.run();
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -9,10 +9,10 @@
 #include "app/hair_source.h"
 #include "app/scene.h"
 #include "app/settings_table.h"
+#include "gpu/context.h"
 #include "physics/hair_scene.h"
 #include "physics/simulation.h"
 #include "renderer/settings.h"
-#include "gpu/context.h"
 
 #include <cstdint>
 #include <string>
@@ -21,22 +21,22 @@ namespace wisp {
 
 struct WindowOptions {
     vk::ContextOptions context;
-    Settings settings;                 // every setting, edited live in the panel
-    HairScene scene;                   // the head and its hair (no strands: the head alone)
-    glm::vec4 sphere{0.0f};            // the user's sphere (xyz, radius; 0 = none)
-    uint32_t maxFrames = 0;  // 0 = until the window is closed
-    std::string screenshot;  // PNG of the last frame, written on exit when set
-    std::string script;      // timed input events (app/viewer.h), replayed by frame number
-    bool screenshotPanel = false;  // the screenshot includes the panel (else the scene alone)
+    Settings settings;            // every setting, edited live in the panel
+    HairScene scene;              // the head and its hair (no strands: the head alone)
+    glm::vec4 sphere{0.0f};       // the user's sphere (xyz, radius; 0 = none)
+    uint32_t maxFrames = 0;       // 0 = until the window is closed
+    std::string screenshot;       // PNG of the last frame, written on exit when set
+    std::string script;           // timed input events (app/viewer.h), replayed by frame number
+    bool screenshotPanel = false; // the screenshot includes the panel (else the scene alone)
     // A scene's keys, played from the start (T toggles playing; the keys and drags work while it
     // is stopped), and what F2 saves the window's state with.
     SceneTimeline timeline;
-    double sceneLength = 0.0;         // seconds; 0: nothing to play
-    HairSource source;                // the head and hair as given (what F2 saves)
+    double sceneLength = 0.0; // seconds; 0: nothing to play
+    HairSource source;        // the head and hair as given (what F2 saves)
 };
 
 // Throws UserError, pointing to `wisp render`, when there is no display to open a window on.
 void requireDisplay();
 int runWindow(WindowOptions options);
 
-}  // namespace wisp
+} // namespace wisp

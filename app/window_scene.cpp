@@ -50,11 +50,12 @@ SceneTimeline loadWindowScene(const std::filesystem::path& path, const SceneStat
     for (const auto& [name, value] : loaded.settings) {
         const SettingSpec& spec = settingSpec(name);
         if (spec.change == SettingChange::Restart)
-            continue;  // the hair stays
+            continue; // the hair stays
         if (std::string error = apply(spec, parseSetting(spec, value, name)); !error.empty())
-            std::fprintf(stderr, "wisp: %s: %s=%s: %s\n", path.string().c_str(), name.c_str(), value.c_str(), error.c_str());
+            std::fprintf(stderr, "wisp: %s: %s=%s: %s\n", path.string().c_str(), name.c_str(), value.c_str(),
+                         error.c_str());
     }
     return SceneTimeline(loaded.keys, loaded.interpolation, now);
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -26,4 +26,4 @@ std::filesystem::path saveWindowScene(uint32_t number, const HairSource& source,
 using ApplySetting = std::function<std::string(const SettingSpec&, const SettingValue&)>;
 SceneTimeline loadWindowScene(const std::filesystem::path& path, const SceneState& now, const ApplySetting& apply);
 
-}  // namespace wisp
+} // namespace wisp

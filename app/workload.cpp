@@ -8,9 +8,9 @@
 #include "renderer/guide_pass.h"
 #include "renderer/hair_pass.h"
 #include "renderer/light_maps.h"
+#include "renderer/mesh_raster.h"
 #include "renderer/oit.h"
 #include "renderer/render_target.h"
-#include "renderer/mesh_raster.h"
 #include "renderer/strand_raster.h"
 
 #include <algorithm>
@@ -39,7 +39,7 @@ bool drawnInCompute(const Workload& w, const vk::DeviceReport& device)
     return w.render && w.guides > 0 && resolveHairRaster(w.render->hairRaster, device.type) == HairRaster::Compute;
 }
 
-}  // namespace
+} // namespace
 
 GpuMemory estimateGpuMemory(const Workload& w)
 {
@@ -108,24 +108,25 @@ void checkWorkload(const Workload& w, const vk::DeviceReport& device)
     if (m.total() <= device.deviceLocalBytes)
         return;
     std::string parts = "simulation " + mib(m.simulation) + " for " + std::to_string(w.guides) + " guides x " +
-                        std::to_string(w.verticesPerStrand) + " vertices and a " + std::to_string(w.sim.gridResolution) +
-                        "^3 grid";
+                        std::to_string(w.verticesPerStrand) + " vertices and a " +
+                        std::to_string(w.sim.gridResolution) + "^3 grid";
     std::string lower = "lower --guides, --vertices or --grid";
     if (w.render) {
-        parts += ", hair " + mib(m.hair) + ", target " + mib(m.target) + " (" + std::to_string(w.render->width) + " x " +
-                 std::to_string(w.render->height) + " x " + std::to_string(w.render->samples) + " samples), light maps " +
-                 mib(m.lightMaps) + ", OIT " + mib(m.oit);
+        parts += ", hair " + mib(m.hair) + ", target " + mib(m.target) + " (" + std::to_string(w.render->width) +
+                 " x " + std::to_string(w.render->height) + " x " + std::to_string(w.render->samples) +
+                 " samples), light maps " + mib(m.lightMaps) + ", OIT " + mib(m.oit);
         lower += ", the size, samples, shadow_size or oit_nodes_per_pixel";
         if (drawnInCompute(w, device)) {
             const StrandSettings& s = w.render->strands;
             parts += ", compute raster " + mib(m.raster) + " (" + std::to_string(w.guides * s.strandsPerGuide) +
                      " strands x " + std::to_string(s.divisions) + " divisions)";
-            lower = "lower --guides, --vertices or --grid, strands_per_guide, divisions, the size, samples, shadow_size "
-                    "or oit_nodes_per_pixel";
+            lower =
+                "lower --guides, --vertices or --grid, strands_per_guide, divisions, the size, samples, shadow_size "
+                "or oit_nodes_per_pixel";
         }
     }
     throw UserError("the workload needs " + mib(m.total()) + " of GPU memory (" + parts + "), but '" + device.name +
                     "' has " + mib(device.deviceLocalBytes) + "; " + lower);
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -17,24 +17,24 @@ struct DeviceReport;
 }
 
 struct Workload {
-    uint64_t guides = 0;               // simulated guide strands (0: the head alone, nothing simulated)
+    uint64_t guides = 0; // simulated guide strands (0: the head alone, nothing simulated)
     uint32_t verticesPerStrand = 0;
-    SimSettings sim;                   // the grid's resolution and sums
-    const RenderSettings* render = nullptr;  // null: the simulation alone (wisp simulate)
+    SimSettings sim;                        // the grid's resolution and sums
+    const RenderSettings* render = nullptr; // null: the simulation alone (wisp simulate)
 };
 
 // Device memory by owner, in bytes. Estimates from the counts and settings, following what each
 // owner allocates; the render parts are device-local images and buffers only.
 struct GpuMemory {
-    uint64_t simulation = 0;  // the solver's buffers: solverDeviceBytes (fixed-point grid, the larger)
-    uint64_t hair = 0;        // the hair pass's guide triangles and lookup tables, the guide lines' indices
-    uint64_t target = 0;      // MSAA colour and depth, the resolved colour
-    uint64_t lightMaps = 0;   // the light's two depth maps and its opacity layers
-    uint64_t oit = 0;         // list heads, resolved colour, and the node pool when its size is set
-                              // (an automatic pool takes what the device allows: at least a node a pixel);
-                              // made with transparency=oit whichever path draws the hair
-    uint64_t raster = 0;      // the compute path's strand vertices (camera and light), per-pixel buffers,
-                              // first fragment buffer, light buffers and hair image, when it draws the hair
+    uint64_t simulation = 0; // the solver's buffers: solverDeviceBytes (fixed-point grid, the larger)
+    uint64_t hair = 0;       // the hair pass's guide triangles and lookup tables, the guide lines' indices
+    uint64_t target = 0;     // MSAA colour and depth, the resolved colour
+    uint64_t lightMaps = 0;  // the light's two depth maps and its opacity layers
+    uint64_t oit = 0;        // list heads, resolved colour, and the node pool when its size is set
+                             // (an automatic pool takes what the device allows: at least a node a pixel);
+                             // made with transparency=oit whichever path draws the hair
+    uint64_t raster = 0;     // the compute path's strand vertices (camera and light), per-pixel buffers,
+                             // first fragment buffer, light buffers and hair image, when it draws the hair
     uint64_t total() const { return simulation + hair + target + lightMaps + oit + raster; }
 };
 
@@ -51,4 +51,4 @@ void checkCounts(const Workload& w);
 // than the device has.
 void checkWorkload(const Workload& w, const vk::DeviceReport& device);
 
-}  // namespace wisp
+} // namespace wisp

@@ -22,15 +22,15 @@ namespace wisp {
 namespace {
 
 constexpr uint64_t kMaxPoints = 100'000'000;          // more than any groom Wisp can simulate
-constexpr uint64_t kMaxFileBytes = uint64_t(4) << 30;  // 4 GiB: 100M tfx4 points are 1.6 GB
-constexpr uint32_t kMinFileVerticesPerStrand = 2;      // tfx3 / tfx4 numVerticesPerStrand range
+constexpr uint64_t kMaxFileBytes = uint64_t(4) << 30; // 4 GiB: 100M tfx4 points are 1.6 GB
+constexpr uint32_t kMinFileVerticesPerStrand = 2;     // tfx3 / tfx4 numVerticesPerStrand range
 constexpr uint32_t kMaxFileVerticesPerStrand = 1024;
 
 constexpr uint64_t kTfx3HeaderBytes = 296;
 constexpr uint64_t kTfx3VertexOffsetAt = 144;
-constexpr uint64_t kTfx3Stride = 12;  // float x, y, z
+constexpr uint64_t kTfx3Stride = 12; // float x, y, z
 constexpr uint64_t kTfx4HeaderBytes = 160;
-constexpr uint64_t kTfx4Stride = 16;  // float x, y, z, w (inverse mass)
+constexpr uint64_t kTfx4Stride = 16; // float x, y, z, w (inverse mass)
 
 constexpr uint64_t kCyHairHeaderBytes = 128;
 constexpr uint32_t kCySegments = 1u << 0;
@@ -68,7 +68,7 @@ glm::mat3 rotationXyzDegrees(glm::vec3 degrees)
     float cx = std::cos(r.x), sx = std::sin(r.x);
     float cy = std::cos(r.y), sy = std::sin(r.y);
     float cz = std::cos(r.z), sz = std::sin(r.z);
-    glm::mat3 rx(1, 0, 0, 0, cx, sx, 0, -sx, cx);  // column-major
+    glm::mat3 rx(1, 0, 0, 0, cx, sx, 0, -sx, cx); // column-major
     glm::mat3 ry(cy, 0, -sy, 0, 1, 0, sy, 0, cy);
     glm::mat3 rz(cz, sz, 0, -sz, cz, 0, 0, 0, 1);
     return rz * ry * rx;
@@ -116,14 +116,12 @@ public:
             fail(next.at, "the header's " + counted + " need positions from byte " + str(offset) + " to byte " +
                               str(offset + bytes) + ", but its " + next.name + " start at byte " + str(next.offset) +
                               " (the offset at byte " + str(next.at) + "): the positions hold " +
-                              str((next.offset - offset) / strideBytes) + " of the " + str(count) + " strands it claims");
+                              str((next.offset - offset) / strideBytes) + " of the " + str(count) +
+                              " strands it claims");
         }
     }
 
-    uint32_t u32(uint64_t at) const
-    {
-        return byte(at) | byte(at + 1) << 8 | byte(at + 2) << 16 | byte(at + 3) << 24;
-    }
+    uint32_t u32(uint64_t at) const { return byte(at) | byte(at + 1) << 8 | byte(at + 2) << 16 | byte(at + 3) << 24; }
     uint16_t u16(uint64_t at) const { return static_cast<uint16_t>(byte(at) | byte(at + 1) << 8); }
     float f32(uint64_t at) const { return std::bit_cast<float>(u32(at)); }
 
@@ -165,8 +163,8 @@ HairAsset loadTfx3(const BinaryFile& file)
     uint32_t offset = file.u32(kTfx3VertexOffsetAt);
     checkTfxCounts(file, strands, perStrand);
     if (offset < kTfx3HeaderBytes)
-        file.fail(kTfx3VertexOffsetAt, "vertex offset " + str(offset) + " lies inside the " + str(kTfx3HeaderBytes) +
-                                           "-byte header");
+        file.fail(kTfx3VertexOffsetAt,
+                  "vertex offset " + str(offset) + " lies inside the " + str(kTfx3HeaderBytes) + "-byte header");
     file.need(offset, uint64_t(strands) * perStrand * kTfx3Stride, "vertex data",
               str(strands) + "*" + str(perStrand) + "*" + str(kTfx3Stride));
     file.fitsBefore(offset, uint64_t(strands) * perStrand * kTfx3Stride, uint64_t(perStrand) * kTfx3Stride, strands,
@@ -260,7 +258,8 @@ HairAsset loadCyHair(const BinaryFile& file)
         for (uint32_t i = 0; i < hairCount; ++i) {
             uint16_t segments = file.u16(segmentsAt + 2 * uint64_t(i));
             if (segments == 0)
-                file.fail(segmentsAt + 2 * uint64_t(i), "strand " + str(i) + " has 0 segments: a strand needs at least 2 points");
+                file.fail(segmentsAt + 2 * uint64_t(i),
+                          "strand " + str(i) + " has 0 segments: a strand needs at least 2 points");
             sum += segments + 1u;
         }
         if (sum != pointCount)
@@ -283,8 +282,9 @@ HairAsset loadCyHair(const BinaryFile& file)
         uint64_t bytesPerPoint;
         const char* name;
     };
-    for (Trailing t : {Trailing{kCyThickness, 4, "the thickness array"}, Trailing{kCyTransparency, 4, "the transparency array"},
-                       Trailing{kCyColors, 12, "the colors array"}}) {
+    for (Trailing t :
+         {Trailing{kCyThickness, 4, "the thickness array"}, Trailing{kCyTransparency, 4, "the transparency array"},
+          Trailing{kCyColors, 12, "the colors array"}}) {
         if (arrays & t.bit) {
             file.need(at, t.bytesPerPoint * pointCount, t.name, str(pointCount) + "*" + str(t.bytesPerPoint));
             at += t.bytesPerPoint * pointCount;
@@ -383,7 +383,7 @@ HairAsset loadTfx2(const std::filesystem::path& path, const std::string& data)
     glm::vec3 scale(1.0f), rotationDeg(0.0f), translation(0.0f);
     bool bothEnds = false;
     uint64_t numStrands = 0;
-    size_t numStrandsLine = 0;  // 1-based; 0 while not seen
+    size_t numStrandsLine = 0; // 1-based; 0 while not seen
 
     size_t i = 0;
     for (; i < file.lineCount(); ++i) {
@@ -424,7 +424,7 @@ HairAsset loadTfx2(const std::filesystem::path& path, const std::string& data)
             file.count(line, w[1]);
         } else if (!std::isalpha(static_cast<unsigned char>(key.front()))) {
             file.fail(line, "expected a header key or a 'strand' line, found '" + file.text(i) + "'");
-        }  // other keys ("is sorted 1", exporter extras) carry nothing Wisp uses
+        } // other keys ("is sorted 1", exporter extras) carry nothing Wisp uses
     }
     size_t lastLine = std::max<size_t>(file.lineCount(), 1);
     if (numStrandsLine == 0)
@@ -432,7 +432,8 @@ HairAsset loadTfx2(const std::filesystem::path& path, const std::string& data)
     if (numStrands == 0)
         file.fail(numStrandsLine, "numStrands is 0: the file holds no strands");
     if (numStrands > kMaxPoints / 2)
-        file.fail(numStrandsLine, "numStrands " + str(numStrands) + " is more than Wisp reads (" + str(kMaxPoints / 2) + ")");
+        file.fail(numStrandsLine,
+                  "numStrands " + str(numStrands) + " is more than Wisp reads (" + str(kMaxPoints / 2) + ")");
     size_t following = file.lineCount() - i;
     if (numStrands * 3 > following)
         file.fail(numStrandsLine, "numStrands " + str(numStrands) + " needs at least " + str(numStrands * 3) +
@@ -465,7 +466,7 @@ HairAsset loadTfx2(const std::filesystem::path& path, const std::string& data)
             file.fail(line, "expected 'strand " + str(s) + " numVerts K texcoord U V', found '" + file.text(i) + "'");
         if (uint64_t index = file.count(line, w[1]); index != s)
             file.fail(line, "strand " + str(index) + " is out of order: expected strand " + str(s));
-        uint64_t k = file.count(line, w[3]);  // texcoord u v (v written as 000000 by the exporter): not used
+        uint64_t k = file.count(line, w[3]); // texcoord u v (v written as 000000 by the exporter): not used
         if (k < 2)
             file.fail(line, "strand " + str(s) + " has " + str(k) + " points: a strand needs at least 2");
         if (k > file.lineCount() - line)
@@ -539,8 +540,8 @@ std::string readWholeFile(const std::filesystem::path& path)
     if (ec)
         throw UserError(path.string() + ": cannot read hair file: " + ec.message());
     if (size > kMaxFileBytes)
-        throw UserError(path.string() + ": byte 0: the file is " + str(size) + " bytes, more than the " + str(kMaxFileBytes) +
-                        " a hair file Wisp reads may have");
+        throw UserError(path.string() + ": byte 0: the file is " + str(size) + " bytes, more than the " +
+                        str(kMaxFileBytes) + " a hair file Wisp reads may have");
     std::ifstream in(path, std::ios::binary);
     if (!in)
         throw UserError(path.string() + ": cannot open hair file");
@@ -551,7 +552,7 @@ std::string readWholeFile(const std::filesystem::path& path)
     return data;
 }
 
-}  // namespace
+} // namespace
 
 const char* formatName(HairFormat format)
 {
@@ -649,7 +650,7 @@ std::vector<glm::vec3> resampleStrand(const std::vector<glm::vec3>& points, uint
         throw std::invalid_argument("resampleStrand: count must be at least 2, got " + str(count));
     if (points.empty())
         throw std::invalid_argument("resampleStrand: the strand has no points");
-    std::vector<double> arc(points.size(), 0.0);  // arc length from the root to each point
+    std::vector<double> arc(points.size(), 0.0); // arc length from the root to each point
     for (size_t k = 1; k < points.size(); ++k)
         arc[k] = arc[k - 1] + glm::length(glm::dvec3(points[k]) - glm::dvec3(points[k - 1]));
     double total = arc.back();
@@ -659,7 +660,7 @@ std::vector<glm::vec3> resampleStrand(const std::vector<glm::vec3>& points, uint
     std::vector<glm::vec3> out;
     out.reserve(count);
     out.push_back(points.front());
-    size_t seg = 1;  // the segment [seg - 1, seg] holding the current target
+    size_t seg = 1; // the segment [seg - 1, seg] holding the current target
     for (uint32_t k = 1; k + 1 < count; ++k) {
         double target = total * k / (count - 1);
         while (seg + 1 < points.size() && arc[seg] < target)
@@ -716,4 +717,4 @@ nlohmann::json describeHairAsset(const HairAsset& asset)
             {"bbox", {{b.min.x, b.min.y, b.min.z}, {b.max.x, b.max.y, b.max.z}}}};
 }
 
-}  // namespace wisp
+} // namespace wisp

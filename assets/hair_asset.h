@@ -23,9 +23,9 @@ enum class HairFormat { Tfx2, Tfx3, Tfx4, CyHair };
 const char* formatName(HairFormat format);
 
 struct HairStrand {
-    std::vector<glm::vec3> points;  // root first, file units, as stored (no axis fixes applied)
-    uint32_t pinnedRoot = 1;        // leading vertices that are immovable (>= 1)
-    bool pinnedTip = false;         // tfx2/tfx3 bothEndsImmovable
+    std::vector<glm::vec3> points; // root first, file units, as stored (no axis fixes applied)
+    uint32_t pinnedRoot = 1;       // leading vertices that are immovable (>= 1)
+    bool pinnedTip = false;        // tfx2/tfx3 bothEndsImmovable
 };
 
 struct HairAsset {
@@ -33,12 +33,12 @@ struct HairAsset {
     std::filesystem::path source;
     std::vector<HairStrand> strands;
     bool zUp = false;       // cyHair files are z-up (FORMATS.md)
-    bool mirroredZ = false;  // TressFX 3 files are left-handed: z mirrored against their meshes
+    bool mirroredZ = false; // TressFX 3 files are left-handed: z mirrored against their meshes
 
-    size_t totalVertices() const;  // sum over strands, as in the file
-    uint32_t minVertices() const;  // 0 when there are no strands
+    size_t totalVertices() const; // sum over strands, as in the file
+    uint32_t minVertices() const; // 0 when there are no strands
     uint32_t maxVertices() const;
-    Bounds bounds() const;  // of every point; zero bounds when there are none
+    Bounds bounds() const; // of every point; zero bounds when there are none
 };
 
 // Reads a hair file, telling the format by content: "HAIR" magic -> cyHair; text starting with a
@@ -95,4 +95,4 @@ inline float shortStrandLength(float headDiagonal, uint32_t verticesPerStrand)
 // "vertices_per_strand":[min,max],"bbox":[[x,y,z],[x,y,z]]}
 nlohmann::json describeHairAsset(const HairAsset& asset);
 
-}  // namespace wisp
+} // namespace wisp

@@ -62,7 +62,7 @@ struct Reader {
     }
 };
 
-}  // namespace
+} // namespace
 
 HeadDescription loadHeadDescription(const std::filesystem::path& path)
 {
@@ -185,4 +185,4 @@ std::filesystem::path defaultHeadPath()
     return std::filesystem::path(WISP_MODELS_DIR) / "head.json";
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -14,9 +14,9 @@ namespace wisp {
 
 struct Ellipsoid {
     std::string name;
-    glm::vec3 center{0.0f};       // asset units
-    glm::vec3 radii{1.0f};        // asset units, > 0
-    glm::vec3 rotationDeg{0.0f};  // XYZ Euler angles in degrees, applied as R = Rz * Ry * Rx
+    glm::vec3 center{0.0f};      // asset units
+    glm::vec3 radii{1.0f};       // asset units, > 0
+    glm::vec3 rotationDeg{0.0f}; // XYZ Euler angles in degrees, applied as R = Rz * Ry * Rx
     bool operator==(const Ellipsoid&) const = default;
 };
 
@@ -31,11 +31,11 @@ struct ScalpRule {
 
 struct HeadDescription {
     std::string name;
-    std::filesystem::path meshPath;  // resolved against the description's folder
+    std::filesystem::path meshPath; // resolved against the description's folder
     std::string units = "m";
     glm::vec3 up{0.0f, 1.0f, 0.0f};
     glm::vec3 front{0.0f, 0.0f, 1.0f};
-    std::optional<ScalpRule> scalp;  // absent for a bare mesh
+    std::optional<ScalpRule> scalp; // absent for a bare mesh
     std::vector<Ellipsoid> colliders;
 };
 
@@ -53,4 +53,4 @@ std::vector<uint32_t> scalpTriangles(const Mesh& mesh, const ScalpRule& rule);
 // models/head.json beside the executable's install or in the source tree.
 std::filesystem::path defaultHeadPath();
 
-}  // namespace wisp
+} // namespace wisp

@@ -64,10 +64,10 @@ glm::vec3 unitOr(glm::dvec3 v)
     return len > 0.0 && std::isfinite(len) ? glm::vec3(v / len) : glm::vec3(0.0f, 1.0f, 0.0f);
 }
 
-}  // namespace
+} // namespace
 
 std::vector<glm::vec3> computeVertexNormals(const std::vector<glm::vec3>& positions,
-                                           const std::vector<uint32_t>& indices)
+                                            const std::vector<uint32_t>& indices)
 {
     // In double: the cross products of finite float coordinates (up to 3.4e38) stay finite.
     std::vector<glm::dvec3> sums(positions.size(), glm::dvec3(0.0));
@@ -75,7 +75,7 @@ std::vector<glm::vec3> computeVertexNormals(const std::vector<glm::vec3>& positi
         glm::dvec3 a = positions[indices[t]];
         glm::dvec3 b = positions[indices[t + 1]];
         glm::dvec3 c = positions[indices[t + 2]];
-        glm::dvec3 n = glm::cross(b - a, c - a);  // length = 2 * area: area weighting
+        glm::dvec3 n = glm::cross(b - a, c - a); // length = 2 * area: area weighting
         for (size_t k = 0; k < 3; ++k)
             sums[indices[t + k]] += n;
     }
@@ -144,8 +144,9 @@ void checkObj(const std::filesystem::path& path, std::istream& in)
         ++lineNumber;
         // A NUL byte: binary data (an executable, an image, a binary mesh named .obj), not OBJ text.
         if (size_t nul = line.find('\0'); nul != std::string::npos)
-            badFile(path, lineNumber, "byte " + std::to_string(lineStart + std::streamoff(nul)) +
-                                          " is a NUL: the file holds binary data, not OBJ text");
+            badFile(path, lineNumber,
+                    "byte " + std::to_string(lineStart + std::streamoff(nul)) +
+                        " is a NUL: the file holds binary data, not OBJ text");
         lineStart = in.tellg();
         std::vector<std::string> args = objWords(line);
         if (args.empty() || args.front()[0] == '#')
@@ -155,8 +156,9 @@ void checkObj(const std::filesystem::path& path, std::istream& in)
         if (key == "v" || key == "vn" || key == "vt") {
             size_t need = key == "vt" ? 1 : 3;
             if (args.size() < need)
-                badFile(path, lineNumber, "'" + key + "' needs " + std::to_string(need) + " numbers, found " +
-                                              std::to_string(args.size()));
+                badFile(path, lineNumber,
+                        "'" + key + "' needs " + std::to_string(need) + " numbers, found " +
+                            std::to_string(args.size()));
             for (size_t i = 0; i < need; ++i) {
                 float value = 0.0f;
                 if (!parseFloat(args[i], value))
@@ -174,7 +176,8 @@ void checkObj(const std::filesystem::path& path, std::istream& in)
                 size_t start = 0;
                 for (int part = 0; part < 3 && start <= corner.size(); ++part) {
                     size_t slash = corner.find('/', start);
-                    std::string field = corner.substr(start, slash == std::string::npos ? std::string::npos : slash - start);
+                    std::string field =
+                        corner.substr(start, slash == std::string::npos ? std::string::npos : slash - start);
                     start = slash == std::string::npos ? corner.size() + 1 : slash + 1;
                     if (field.empty() && part > 0)
                         continue;
@@ -184,9 +187,9 @@ void checkObj(const std::filesystem::path& path, std::istream& in)
                         badFile(path, lineNumber, "face corner '" + corner + "' is not a valid index");
                     long resolved = index < 0 ? counts[part] + index + 1 : index;
                     if (resolved < 1 || resolved > counts[part])
-                        badFile(path, lineNumber, "face corner '" + corner + "' names " + names[part] + " " +
-                                                      std::to_string(index) + " but only " + std::to_string(counts[part]) +
-                                                      " are defined before it");
+                        badFile(path, lineNumber,
+                                "face corner '" + corner + "' names " + names[part] + " " + std::to_string(index) +
+                                    " but only " + std::to_string(counts[part]) + " are defined before it");
                 }
             }
         }
@@ -207,8 +210,8 @@ Mesh loadWithAssimp(const std::filesystem::path& path)
 {
     Assimp::Importer importer;
     const aiScene* scene = importer.ReadFile(path.string(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                                                aiProcess_GenSmoothNormals | aiProcess_PreTransformVertices |
-                                                                aiProcess_SortByPType);
+                                                                aiProcess_GenSmoothNormals |
+                                                                aiProcess_PreTransformVertices | aiProcess_SortByPType);
     if (!scene || !scene->mRootNode)
         throw UserError(path.string() + ": cannot read mesh: " + importer.GetErrorString());
     Mesh mesh;
@@ -235,11 +238,11 @@ Mesh loadWithAssimp(const std::filesystem::path& path)
     return mesh;
 }
 
-}  // namespace
+} // namespace
 
 void checkNotDegenerate(const Mesh& mesh, const std::filesystem::path& path)
 {
-    double largest = 0.0;  // twice the largest triangle's area, in double (float squares overflow)
+    double largest = 0.0; // twice the largest triangle's area, in double (float squares overflow)
     for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
         glm::dvec3 a = mesh.positions[mesh.indices[t]];
         glm::dvec3 b = mesh.positions[mesh.indices[t + 1]];
@@ -251,8 +254,8 @@ void checkNotDegenerate(const Mesh& mesh, const std::filesystem::path& path)
     Bounds b = mesh.bounds();
     if (b.diagonal() == 0.0f)
         throw UserError(path.string() + ": the mesh is degenerate: all its " + std::to_string(mesh.sourceVertices) +
-                        " vertices lie at one point (" + std::to_string(b.min.x) + ", " + std::to_string(b.min.y) + ", " +
-                        std::to_string(b.min.z) + ")");
+                        " vertices lie at one point (" + std::to_string(b.min.x) + ", " + std::to_string(b.min.y) +
+                        ", " + std::to_string(b.min.z) + ")");
     throw UserError(path.string() + ": the mesh is degenerate: none of its " + std::to_string(mesh.triangleCount()) +
                     " triangles has an area (its vertices lie on a line)");
 }
@@ -278,17 +281,19 @@ Mesh parseObj(std::istream& file, const std::filesystem::path& path)
         for (const tinyobj::index_t& idx : shape.mesh.indices)
             if (idx.vertex_index < 0 || size_t(idx.vertex_index) >= vertexCount ||
                 (idx.normal_index >= 0 && size_t(idx.normal_index) >= normalCount))
-                throw UserError(path.string() + ": a face names a vertex or normal that does not exist" +
-                                (warnings.empty() ? std::string() : " (" + warnings.substr(0, warnings.find('\n')) + ")"));
+                throw UserError(
+                    path.string() + ": a face names a vertex or normal that does not exist" +
+                    (warnings.empty() ? std::string() : " (" + warnings.substr(0, warnings.find('\n')) + ")"));
 
     Mesh mesh;
     mesh.sourceVertices = vertexCount;
     bool haveNormals = !attrib.normals.empty();
-    std::map<std::pair<int, int>, uint32_t> corners;  // (position, normal) -> vertex
+    std::map<std::pair<int, int>, uint32_t> corners; // (position, normal) -> vertex
     for (const tinyobj::shape_t& shape : shapes) {
         for (const tinyobj::index_t& idx : shape.mesh.indices) {
             int normal = haveNormals ? idx.normal_index : -1;
-            auto [it, inserted] = corners.try_emplace({idx.vertex_index, normal}, static_cast<uint32_t>(mesh.positions.size()));
+            auto [it, inserted] =
+                corners.try_emplace({idx.vertex_index, normal}, static_cast<uint32_t>(mesh.positions.size()));
             if (inserted) {
                 const float* p = &attrib.vertices[3 * static_cast<size_t>(idx.vertex_index)];
                 mesh.positions.emplace_back(p[0], p[1], p[2]);
@@ -305,7 +310,7 @@ Mesh parseObj(std::istream& file, const std::filesystem::path& path)
     bool anyMissing = false;
     for (const auto& [key, vertex] : corners)
         anyMissing = anyMissing || key.second < 0;
-    if (anyMissing) {  // some corners had no normal: smooth normals over shared positions
+    if (anyMissing) { // some corners had no normal: smooth normals over shared positions
         std::vector<glm::vec3> smooth = computeVertexNormals(mesh.positions, mesh.indices);
         for (const auto& [key, vertex] : corners)
             if (key.second < 0)
@@ -332,4 +337,4 @@ Mesh loadMesh(const std::filesystem::path& path)
     return mesh;
 }
 
-}  // namespace wisp
+} // namespace wisp

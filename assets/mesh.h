@@ -18,9 +18,9 @@ namespace wisp {
 
 struct Mesh {
     std::vector<glm::vec3> positions;
-    std::vector<glm::vec3> normals;   // same count as positions, unit length
-    std::vector<uint32_t> indices;    // three per triangle, counter-clockwise seen from outside
-    size_t sourceVertices = 0;        // distinct positions in the file (before splitting by normal)
+    std::vector<glm::vec3> normals; // same count as positions, unit length
+    std::vector<uint32_t> indices;  // three per triangle, counter-clockwise seen from outside
+    size_t sourceVertices = 0;      // distinct positions in the file (before splitting by normal)
 
     size_t triangleCount() const { return indices.size() / 3; }
     Bounds bounds() const;
@@ -42,6 +42,6 @@ Mesh makeSphereMesh(uint32_t stacks = 24, uint32_t slices = 48);
 
 // Area-weighted vertex normals from the triangles (used when a file has none).
 std::vector<glm::vec3> computeVertexNormals(const std::vector<glm::vec3>& positions,
-                                           const std::vector<uint32_t>& indices);
+                                            const std::vector<uint32_t>& indices);
 
-}  // namespace wisp
+} // namespace wisp

@@ -42,7 +42,7 @@ glm::vec3 closestOnTriangle(glm::vec3 p, glm::vec3 a, glm::vec3 b, glm::vec3 c)
         return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
     float denom = va + vb + vc;
     if (!(std::abs(denom) > 0.0f))
-        return a;  // a degenerate triangle: its first corner
+        return a; // a degenerate triangle: its first corner
     float v = vb / denom, w = vc / denom;
     return a + ab * v + ac * w;
 }
@@ -101,14 +101,14 @@ void symmetricEigen(glm::dmat3 a, glm::dvec3& values, glm::dmat3& vectors)
                 glm::dmat3 j(1.0);
                 j[p][p] = c;
                 j[q][q] = c;
-                j[q][p] = s;   // column q, row p
-                j[p][q] = -s;  // column p, row q
+                j[q][p] = s;  // column q, row p
+                j[p][q] = -s; // column p, row q
                 a = glm::transpose(j) * a * j;
                 vectors = vectors * j;
             }
     }
     values = glm::dvec3(a[0][0], a[1][1], a[2][2]);
-    for (int i = 0; i < 2; ++i)  // sort descending
+    for (int i = 0; i < 2; ++i) // sort descending
         for (int k = 0; k < 2 - i; ++k)
             if (values[k] < values[k + 1]) {
                 std::swap(values[k], values[k + 1]);
@@ -147,7 +147,7 @@ std::optional<Sphere> fitSphere(const std::vector<glm::vec3>& points)
     glm::dmat3 axes;
     symmetricEigen(cov, values, axes);
     if (!(values[0] > 0.0) || values[1] < 1e-4 * values[0])
-        return std::nullopt;  // a line (or a point)
+        return std::nullopt; // a line (or a point)
     double scale = std::sqrt(values[0]);
     bool planar = values[2] < 0.02 * values[0];
     Sphere out;
@@ -204,7 +204,8 @@ std::optional<Sphere> fitSphere(const std::vector<glm::vec3>& points)
         residual += d * d;
     }
     residual = std::sqrt(residual / double(points.size()));
-    out.reliable = !planar && 2.0 * std::sqrt(values[1]) >= 0.5 * double(out.radius) && residual < 0.1 * double(out.radius);
+    out.reliable =
+        !planar && 2.0 * std::sqrt(values[1]) >= 0.5 * double(out.radius) && residual < 0.1 * double(out.radius);
     return out;
 }
 
@@ -278,7 +279,7 @@ std::string number(float v)
     return text;
 }
 
-}  // namespace
+} // namespace
 
 HeadRegion headRegion(const Mesh& mesh)
 {
@@ -292,7 +293,7 @@ HeadRegion headRegion(const Mesh& mesh)
     lo.fill(INFINITY);
     hi.fill(-INFINITY);
     for (const glm::vec3& v : mesh.positions) {
-        int k = std::clamp(int((b.max.y - v.y) / height * kSlices), 0, kSlices - 1);  // 0: the top slice
+        int k = std::clamp(int((b.max.y - v.y) / height * kSlices), 0, kSlices - 1); // 0: the top slice
         lo[size_t(k)] = std::min(lo[size_t(k)], v.x);
         hi[size_t(k)] = std::max(hi[size_t(k)], v.x);
     }
@@ -385,7 +386,8 @@ MeshDistance::Closest MeshDistance::closest(glm::vec3 p) const
         if (node.count > 0) {
             for (uint32_t k = node.first; k < node.first + node.count; ++k) {
                 uint32_t t = order_[k];
-                glm::vec3 q = closestOnTriangle(p, mesh_.positions[mesh_.indices[3 * t]], mesh_.positions[mesh_.indices[3 * t + 1]],
+                glm::vec3 q = closestOnTriangle(p, mesh_.positions[mesh_.indices[3 * t]],
+                                                mesh_.positions[mesh_.indices[3 * t + 1]],
                                                 mesh_.positions[mesh_.indices[3 * t + 2]]);
                 float d2 = glm::dot(q - p, q - p);
                 if (d2 < best2) {
@@ -400,7 +402,7 @@ MeshDistance::Closest MeshDistance::closest(glm::vec3 p) const
         float dr = boxDistance2(p, nodes_[right].lo, nodes_[right].hi);
         if (top + 2 > 64)
             continue;  // deeper than any tree of 2^32 triangles: cannot happen
-        if (dl < dr) {  // the nearer child is popped first
+        if (dl < dr) { // the nearer child is popped first
             stack[top++] = right;
             stack[top++] = left;
         } else {
@@ -440,8 +442,8 @@ RootFit measureRoots(const std::vector<glm::vec3>& roots, const MeshDistance& he
 
 std::string GroomPlacement::describe() const
 {
-    std::string how = method == Method::File    ? "as in the file"
-                      : method == Method::Units ? "in the head's units"
+    std::string how = method == Method::File     ? "as in the file"
+                      : method == Method::Units  ? "in the head's units"
                       : method == Method::Fitted ? "fitted to the scalp"
                                                  : "as given";
     std::string text = how + ": scale " + number(placement.scale) + ", offset (" + number(placement.offset.x) + ", " +
@@ -454,8 +456,8 @@ std::string GroomPlacement::describe() const
 
 nlohmann::json GroomPlacement::toJson() const
 {
-    const char* how = method == Method::File    ? "file"
-                      : method == Method::Units ? "units"
+    const char* how = method == Method::File     ? "file"
+                      : method == Method::Units  ? "units"
                       : method == Method::Fitted ? "fitted"
                                                  : "given";
     return {{"method", how},
@@ -463,13 +465,14 @@ nlohmann::json GroomPlacement::toJson() const
             {"offset", {placement.offset.x, placement.offset.y, placement.offset.z}},
             {"up_axis", placement.zUpToYUp ? "z" : "y"},
             {"mirror_z", placement.mirrorZ},
-            {"roots", {{"count", fit.roots},
-                       {"median", fit.median},
-                       {"p90", fit.p90},
-                       {"max", fit.max},
-                       {"on_surface", fit.onSurface},
-                       {"on_surface_within", kRootOnSurface},
-                       {"unit", "fraction of the head's bounding-box diagonal"}}}};
+            {"roots",
+             {{"count", fit.roots},
+              {"median", fit.median},
+              {"p90", fit.p90},
+              {"max", fit.max},
+              {"on_surface", fit.onSurface},
+              {"on_surface_within", kRootOnSurface},
+              {"unit", "fraction of the head's bounding-box diagonal"}}}};
 }
 
 GroomPlacement placeGroom(const std::vector<glm::vec3>& roots, const Bounds& groomBounds, const HairPlacement& defaults,
@@ -486,10 +489,10 @@ GroomPlacement placeGroom(const std::vector<glm::vec3>& roots, const Bounds& gro
     probe.strands.push_back({.points = {groomBounds.min, groomBounds.max}});
     float unitScale = autoPlacement(probe, headBounds).scale;
 
-    std::vector<bool> ups = request.zUp ? std::vector<bool>{*request.zUp}
-                                        : std::vector<bool>{defaults.zUpToYUp, !defaults.zUpToYUp};
-    std::vector<bool> mirrors = request.mirrorZ ? std::vector<bool>{*request.mirrorZ}
-                                                : std::vector<bool>{defaults.mirrorZ, !defaults.mirrorZ};
+    std::vector<bool> ups =
+        request.zUp ? std::vector<bool>{*request.zUp} : std::vector<bool>{defaults.zUpToYUp, !defaults.zUpToYUp};
+    std::vector<bool> mirrors =
+        request.mirrorZ ? std::vector<bool>{*request.mirrorZ} : std::vector<bool>{defaults.mirrorZ, !defaults.mirrorZ};
 
     GroomPlacement best;
     if (request.placesByHand()) {
@@ -523,7 +526,7 @@ GroomPlacement placeGroom(const std::vector<glm::vec3>& roots, const Bounds& gro
     // sphere fitted to the top 30% of the head).
     std::vector<glm::vec3> top;
     HeadRegion region = headRegion(head);
-    float cut = region.top - 0.5f * (region.top - region.neck);  // the skull above the eyes
+    float cut = region.top - 0.5f * (region.top - region.neck); // the skull above the eyes
     for (const glm::vec3& v : head.positions)
         if (v.y >= cut)
             top.push_back(v);
@@ -560,8 +563,9 @@ GroomPlacement placeGroom(const std::vector<glm::vec3>& roots, const Bounds& gro
                 glm::vec3 headTop(headBounds.center().x, headBounds.max.y, headBounds.center().z);
                 starts.push_back(headTop - glm::vec3(rb.center().x, rb.max.y, rb.center().z));
                 if (cranium)
-                    for (glm::vec3 d : {glm::vec3(0, 1, 0), glm::vec3(0, 0, -1), glm::vec3(0, 0, 1), glm::vec3(1, 0, 0),
-                                        glm::vec3(-1, 0, 0), glm::normalize(glm::vec3(0, 1, -1)), glm::normalize(glm::vec3(0, 1, 1))})
+                    for (glm::vec3 d :
+                         {glm::vec3(0, 1, 0), glm::vec3(0, 0, -1), glm::vec3(0, 0, 1), glm::vec3(1, 0, 0),
+                          glm::vec3(-1, 0, 0), glm::normalize(glm::vec3(0, 1, -1)), glm::normalize(glm::vec3(0, 1, 1))})
                         starts.push_back(cranium->centre + cranium->radius * d - rb.center());
             }
             for (glm::vec3 start : starts) {
@@ -580,4 +584,4 @@ GroomPlacement placeGroom(const std::vector<glm::vec3>& roots, const Bounds& gro
     return best;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -39,12 +39,12 @@ public:
 private:
     struct Node {
         glm::vec3 lo, hi;
-        uint32_t first = 0;  // leaf: first triangle in order_; inner: the right child (left is next)
-        uint32_t count = 0;  // triangles in a leaf; 0 for an inner node
+        uint32_t first = 0; // leaf: first triangle in order_; inner: the right child (left is next)
+        uint32_t count = 0; // triangles in a leaf; 0 for an inner node
     };
     uint32_t build(uint32_t begin, uint32_t end, std::vector<glm::vec3>& centroids);
     const Mesh& mesh_;
-    std::vector<uint32_t> order_;  // triangle indices, grouped by leaf
+    std::vector<uint32_t> order_; // triangle indices, grouped by leaf
     std::vector<Node> nodes_;
 };
 
@@ -62,7 +62,7 @@ struct RootFit {
     float median = 0.0f;
     float p90 = 0.0f;
     float max = 0.0f;
-    float onSurface = 0.0f;  // share of the roots within kRootOnSurface
+    float onSurface = 0.0f; // share of the roots within kRootOnSurface
     bool onHead() const { return onSurface >= kRootsOnHead; }
     bool offHead() const { return onSurface < kRootsOffHead; }
 };
@@ -85,7 +85,7 @@ struct GroomPlacement {
     HairPlacement placement;
     Method method = Method::File;
     RootFit fit;
-    std::string describe() const;  // "fitted to the scalp: scale 0.4, offset (0, 1.2, -3), z-up turned y-up"
+    std::string describe() const; // "fitted to the scalp: scale 0.4, offset (0, 1.2, -3), z-up turned y-up"
     nlohmann::json toJson() const;
 };
 
@@ -98,4 +98,4 @@ struct GroomPlacement {
 GroomPlacement placeGroom(const std::vector<glm::vec3>& roots, const Bounds& groomBounds, const HairPlacement& defaults,
                           const Mesh& head, const PlacementRequest& request = {});
 
-}  // namespace wisp
+} // namespace wisp

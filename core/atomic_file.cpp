@@ -19,9 +19,10 @@ std::filesystem::path temporaryBeside(const std::filesystem::path& path)
     return temp;
 }
 
-}  // namespace
+} // namespace
 
-void writeAtomically(const std::filesystem::path& path, const std::function<bool(const std::filesystem::path& temp)>& write)
+void writeAtomically(const std::filesystem::path& path,
+                     const std::function<bool(const std::filesystem::path& temp)>& write)
 {
     std::filesystem::path temp = temporaryBeside(path);
     auto removeTemp = [&] {
@@ -57,4 +58,4 @@ void writeFileAtomically(const std::filesystem::path& path, std::string_view byt
     });
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -13,8 +13,9 @@ namespace wisp {
 // `write` fills the temporary path it is given and returns false when it could not (disk full, not
 // writable); it may also throw its own error. Either way no temporary file stays behind, and a
 // failure throws UserError naming `path`.
-void writeAtomically(const std::filesystem::path& path, const std::function<bool(const std::filesystem::path& temp)>& write);
+void writeAtomically(const std::filesystem::path& path,
+                     const std::function<bool(const std::filesystem::path& temp)>& write);
 // The same for bytes already in memory.
 void writeFileAtomically(const std::filesystem::path& path, std::string_view bytes);
 
-}  // namespace wisp
+} // namespace wisp

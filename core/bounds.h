@@ -14,4 +14,4 @@ struct Bounds {
     float diagonal() const { return glm::length(max - min); }
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -14,8 +14,8 @@ public:
     using std::runtime_error::runtime_error;
 };
 
-inline constexpr int kExitInternalError = 1;  // a bug, or validation messages with --validation
-inline constexpr int kExitUserError = 2;      // bad input or environment: nothing was written
-inline constexpr int kExitDeviceLost = 3;     // the GPU device was lost mid-run (VK_ERROR_DEVICE_LOST)
+inline constexpr int kExitInternalError = 1; // a bug, or validation messages with --validation
+inline constexpr int kExitUserError = 2;     // bad input or environment: nothing was written
+inline constexpr int kExitDeviceLost = 3;    // the GPU device was lost mid-run (VK_ERROR_DEVICE_LOST)
 
-}  // namespace wisp
+} // namespace wisp

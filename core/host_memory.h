@@ -20,4 +20,4 @@ inline uint64_t hostResidentBytes()
     return read == 2 ? uint64_t(resident) * uint64_t(sysconf(_SC_PAGESIZE)) : 0;
 }
 
-}  // namespace wisp
+} // namespace wisp

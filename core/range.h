@@ -9,4 +9,4 @@ struct Range {
     constexpr bool contains(double v) const { return v >= min && v <= max; }
 };
 
-}  // namespace wisp
+} // namespace wisp

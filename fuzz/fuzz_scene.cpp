@@ -42,14 +42,12 @@ void inRange(uint32_t v, const Range& r, const std::string& what)
 {
     inRange(double(v), r, what);
 }
-template <glm::length_t N>
-void inRange(const glm::vec<N, float>& v, const Range& r, const std::string& what)
+template <glm::length_t N> void inRange(const glm::vec<N, float>& v, const Range& r, const std::string& what)
 {
     for (glm::length_t i = 0; i < N; ++i)
         inRange(v[i], r, what + "[" + std::to_string(i) + "]");
 }
-template <typename T>
-void inRange(const std::optional<T>& v, const Range& r, const std::string& what)
+template <typename T> void inRange(const std::optional<T>& v, const Range& r, const std::string& what)
 {
     if (v)
         inRange(*v, r, what);
@@ -169,7 +167,7 @@ void checkScene(const wisp::Scene& s)
     }
 }
 
-}  // namespace
+} // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 {

@@ -4,9 +4,9 @@
 // hair and mesh contracts live here; the scene's in fuzz_scene.cpp.
 #pragma once
 
-#include "core/error.h"
 #include "assets/hair_asset.h"
 #include "assets/mesh.h"
+#include "core/error.h"
 
 #include <cmath>
 #include <cstdio>
@@ -66,8 +66,7 @@ inline void checkMesh(const Mesh& mesh)
 }
 
 // Runs `load` and checks its result with `check`; a UserError ends the input quietly.
-template <typename Load, typename Check>
-void run(Load&& load, Check&& check)
+template <typename Load, typename Check> void run(Load&& load, Check&& check)
 {
     try {
         check(load());
@@ -75,4 +74,4 @@ void run(Load&& load, Check&& check)
     }
 }
 
-}  // namespace wisp::fuzz
+} // namespace wisp::fuzz

@@ -15,7 +15,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     uint32_t version = std::bit_cast<uint32_t>((data[0] & 1u) ? 4.0f : 3.0f);
     std::string bytes(4, '\0');
     for (int k = 0; k < 4; ++k)
-        bytes[size_t(k)] = char((version >> (8 * k)) & 0xffu);  // little-endian, as the files are
+        bytes[size_t(k)] = char((version >> (8 * k)) & 0xffu); // little-endian, as the files are
     bytes.append(reinterpret_cast<const char*>(data) + 1, size - 1);
     wisp::fuzz::run([&] { return wisp::parseHairAsset(bytes, "fuzz.tfx"); }, wisp::fuzz::checkHair);
     return 0;

@@ -9,8 +9,9 @@ namespace wisp::vk {
 const char* resultName(VkResult result)
 {
     switch (result) {
-#define WISP_RESULT(name) \
-    case name: return #name;
+#define WISP_RESULT(name)                                                                                              \
+    case name:                                                                                                         \
+        return #name;
         WISP_RESULT(VK_SUCCESS)
         WISP_RESULT(VK_NOT_READY)
         WISP_RESULT(VK_TIMEOUT)
@@ -36,7 +37,8 @@ const char* resultName(VkResult result)
         WISP_RESULT(VK_ERROR_NATIVE_WINDOW_IN_USE_KHR)
         WISP_RESULT(VK_ERROR_OUT_OF_DATE_KHR)
 #undef WISP_RESULT
-    default: return "VkResult (unnamed)";
+    default:
+        return "VkResult (unnamed)";
     }
 }
 
@@ -49,4 +51,4 @@ void failCheck(const char* call, VkResult result, const char* file, int line)
                              std::to_string(static_cast<int>(result)) + ") at " + where);
 }
 
-}  // namespace wisp::vk
+} // namespace wisp::vk

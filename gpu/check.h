@@ -20,11 +20,11 @@ public:
 const char* resultName(VkResult result);
 [[noreturn]] void failCheck(const char* call, VkResult result, const char* file, int line);
 
-}  // namespace wisp::vk
+} // namespace wisp::vk
 
-#define VK_CHECK(call)                                                        \
-    do {                                                                      \
-        VkResult vkCheckResult_ = (call);                                     \
-        if (vkCheckResult_ != VK_SUCCESS)                                     \
-            ::wisp::vk::failCheck(#call, vkCheckResult_, __FILE__, __LINE__); \
+#define VK_CHECK(call)                                                                                                 \
+    do {                                                                                                               \
+        VkResult vkCheckResult_ = (call);                                                                              \
+        if (vkCheckResult_ != VK_SUCCESS)                                                                              \
+            ::wisp::vk::failCheck(#call, vkCheckResult_, __FILE__, __LINE__);                                          \
     } while (false)

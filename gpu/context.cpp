@@ -93,16 +93,21 @@ uint64_t injectedDeviceLoss()
     return n;
 }
 
-}  // namespace
+} // namespace
 
 const char* DeviceReport::typeName() const
 {
     switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
-    default: return "other";
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+        return "discrete GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+        return "integrated GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+        return "virtual GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+        return "CPU";
+    default:
+        return "other";
     }
 }
 
@@ -132,11 +137,16 @@ std::vector<std::string> DeviceReport::missing(bool needSwapchain) const
 int deviceTypeRank(VkPhysicalDeviceType type)
 {
     switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 3;
-    default: return 4;
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+        return 0;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+        return 1;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+        return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+        return 3;
+    default:
+        return 4;
     }
 }
 
@@ -180,7 +190,8 @@ std::vector<DeviceReport> queryDevices(VkInstance instance)
             .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT};
         VkPhysicalDeviceVulkan12Features f12{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
                                              .pNext = atomicFloatExt ? &atomicFloat : nullptr};
-        VkPhysicalDeviceVulkan13Features f13{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES, .pNext = &f12};
+        VkPhysicalDeviceVulkan13Features f13{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
+                                             .pNext = &f12};
         VkPhysicalDeviceFeatures2 features{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
                                            .pNext = r.vulkan13 ? &f13 : nullptr};
         vkGetPhysicalDeviceFeatures2(pd, &features);
@@ -268,7 +279,7 @@ const DeviceReport& selectDevice(const std::vector<DeviceReport>& devices, const
     for (const DeviceReport* d : order)
         if (d->missing(needSwapchain).empty())
             return *d;
-    return requireUsable(*order.front());  // throws, naming what the best device lacks
+    return requireUsable(*order.front()); // throws, naming what the best device lacks
 }
 
 Context::Context(const ContextOptions& options) : deviceLostAtSubmission_(injectedDeviceLoss())
@@ -313,7 +324,8 @@ Context::Context(const ContextOptions& options) : deviceLostAtSubmission_(inject
 
     VkDebugUtilsMessengerCreateInfoEXT messengerInfo{
         .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
-        .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
+        .messageSeverity =
+            VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
         .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
         .pfnUserCallback = &Context::onMessage,
         .pUserData = this};
@@ -410,8 +422,8 @@ Context::Context(const ContextOptions& options) : deviceLostAtSubmission_(inject
                                       .ppEnabledExtensionNames = deviceExtensionNames.data()};
         VK_CHECK(vkCreateDevice(physical_, &deviceInfo, nullptr, &device_));
         vkGetDeviceQueue(device_, report_.queueFamily, 0, &queue_);
-        cmdPushDescriptorSet_ = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
-            vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
+        cmdPushDescriptorSet_ =
+            reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
         uploadPool_ = createCommandPool("context.upload");
     } catch (...) {
         destroy();
@@ -428,7 +440,7 @@ void Context::destroy()
 {
     uploadPool_.reset();
     if (device_) {
-        vkDeviceWaitIdle(device_);  // a lost device returns VK_ERROR_DEVICE_LOST at once: nothing left to wait for
+        vkDeviceWaitIdle(device_); // a lost device returns VK_ERROR_DEVICE_LOST at once: nothing left to wait for
         vkDestroyDevice(device_, nullptr);
         device_ = VK_NULL_HANDLE;
     }
@@ -489,8 +501,12 @@ VkDeviceMemory allocate(const Context& ctx, VkMemoryRequirements req, Memory use
     VkMemoryPropertyFlags required = 0;
     VkMemoryPropertyFlags preferred = 0;
     switch (use) {
-    case Memory::DeviceLocal: preferred = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT; break;
-    case Memory::Upload: required = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT; break;
+    case Memory::DeviceLocal:
+        preferred = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+        break;
+    case Memory::Upload:
+        required = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+        break;
     case Memory::Readback:
         required = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
         preferred = VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
@@ -512,7 +528,7 @@ VkDeviceMemory allocate(const Context& ctx, VkMemoryRequirements req, Memory use
     return memory;
 }
 
-}  // namespace
+} // namespace
 
 Buffer Context::createBuffer(const BufferDesc& desc) const
 {
@@ -545,7 +561,8 @@ Buffer Context::createBufferWithData(const BufferDesc& desc, const void* data, s
     target.usage |= kTransferDst;
     Buffer buffer = createBuffer(target);
     std::string stagingName = std::string(desc.name) + ".staging";
-    Buffer staging = createBuffer({.size = bytes, .usage = kTransferSrc, .memory = Memory::Upload, .name = stagingName.c_str()});
+    Buffer staging =
+        createBuffer({.size = bytes, .usage = kTransferSrc, .memory = Memory::Upload, .name = stagingName.c_str()});
     std::memcpy(staging.mapped(), data, bytes);
     submitAndWait([&](VkCommandBuffer cmd) {
         VkBufferCopy region{.size = bytes};
@@ -579,14 +596,14 @@ Image Context::createImage(const ImageDesc& desc) const
         throw;
     }
     VK_CHECK(vkBindImageMemory(device_, image, memory, 0));
-    VkImageViewCreateInfo viewInfo{
-        .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
-        .image = image,
-        .viewType = desc.layers > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D,
-        .format = desc.format,
-        .subresourceRange = {isDepthFormat(desc.format) ? VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT)
-                                                        : VkImageAspectFlags(VK_IMAGE_ASPECT_COLOR_BIT),
-                             0, 1, 0, desc.layers}};
+    VkImageViewCreateInfo viewInfo{.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
+                                   .image = image,
+                                   .viewType = desc.layers > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D,
+                                   .format = desc.format,
+                                   .subresourceRange = {isDepthFormat(desc.format)
+                                                            ? VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT)
+                                                            : VkImageAspectFlags(VK_IMAGE_ASPECT_COLOR_BIT),
+                                                        0, 1, 0, desc.layers}};
     VkImageView view = VK_NULL_HANDLE;
     VK_CHECK(vkCreateImageView(device_, &viewInfo, nullptr, &view));
     setName(image, VK_OBJECT_TYPE_IMAGE, desc.name);
@@ -651,17 +668,18 @@ VkResult Context::queueSubmit(const VkSubmitInfo2& info, VkFence fence) const
 {
     ++submissions_;
     if (deviceLostAtSubmission_ > 0 && submissions_ >= deviceLostAtSubmission_)
-        return VK_ERROR_DEVICE_LOST;  // injected: see context.h
+        return VK_ERROR_DEVICE_LOST; // injected: see context.h
     return vkQueueSubmit2(queue_, 1, &info, fence);
 }
 
-}  // namespace wisp::vk
+} // namespace wisp::vk
 
 namespace wisp::vk {
 
 std::vector<DeviceReport> enumerateDevices()
 {
-    VkApplicationInfo app{.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO, .pApplicationName = "wisp", .apiVersion = VK_API_VERSION_1_3};
+    VkApplicationInfo app{
+        .sType = VK_STRUCTURE_TYPE_APPLICATION_INFO, .pApplicationName = "wisp", .apiVersion = VK_API_VERSION_1_3};
     VkInstanceCreateInfo info{.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO, .pApplicationInfo = &app};
     VkInstance instance = VK_NULL_HANDLE;
     VkResult created = vkCreateInstance(&info, nullptr, &instance);
@@ -680,4 +698,4 @@ std::vector<DeviceReport> enumerateDevices()
     }
 }
 
-}  // namespace wisp::vk
+} // namespace wisp::vk

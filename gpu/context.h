@@ -16,11 +16,11 @@
 namespace wisp::vk {
 
 struct ContextOptions {
-    bool validation = false;                      // Khronos validation layer + messenger
-    bool synchronizationValidation = false;       // also the layer's synchronization checks
-    std::string gpu;                              // "" = best device; an index; or a name substring
-    std::vector<std::string> instanceExtensions;  // e.g. what GLFW needs for a surface
-    bool presentation = false;                    // enable VK_KHR_swapchain on the device
+    bool validation = false;                     // Khronos validation layer + messenger
+    bool synchronizationValidation = false;      // also the layer's synchronization checks
+    std::string gpu;                             // "" = best device; an index; or a name substring
+    std::vector<std::string> instanceExtensions; // e.g. what GLFW needs for a surface
+    bool presentation = false;                   // enable VK_KHR_swapchain on the device
 };
 
 // What one physical device offers of what Wisp uses; `wisp info` prints it and the Context
@@ -32,21 +32,21 @@ struct DeviceReport {
     uint32_t apiVersion = 0;
     std::string driverName;
     std::string driverInfo;
-    uint32_t queueFamily = UINT32_MAX;  // first graphics+compute family
-    bool vulkan13 = false;              // dynamic rendering and synchronization2 are core there
+    uint32_t queueFamily = UINT32_MAX; // first graphics+compute family
+    bool vulkan13 = false;             // dynamic rendering and synchronization2 are core there
     bool dynamicRendering = false;
     bool synchronization2 = false;
-    bool maintenance4 = false;          // glslang's SPIR-V 1.6 uses LocalSizeId, which needs it
+    bool maintenance4 = false; // glslang's SPIR-V 1.6 uses LocalSizeId, which needs it
     bool tessellationShader = false;
     bool geometryShader = false;
     bool fragmentStoresAndAtomics = false;
     bool vertexPipelineStoresAndAtomics = false;
     bool pipelineStatisticsQuery = false;
-    bool timestamps = false;            // timestampComputeAndGraphics and valid bits on the queue
-    bool pushDescriptor = false;        // VK_KHR_push_descriptor
-    bool floatAtomicAdd = false;        // VK_EXT_shader_atomic_float shaderBufferFloat32AtomicAdd
-    bool int64Atomics = false;          // shaderInt64 and shaderBufferInt64Atomics (the fixed-point grid)
-    bool swapchain = false;             // VK_KHR_swapchain
+    bool timestamps = false;     // timestampComputeAndGraphics and valid bits on the queue
+    bool pushDescriptor = false; // VK_KHR_push_descriptor
+    bool floatAtomicAdd = false; // VK_EXT_shader_atomic_float shaderBufferFloat32AtomicAdd
+    bool int64Atomics = false;   // shaderInt64 and shaderBufferInt64Atomics (the fixed-point grid)
+    bool swapchain = false;      // VK_KHR_swapchain
     uint32_t timestampValidBits = 0;
     float timestampPeriodNs = 0.0f;
     uint32_t maxTessellationGenerationLevel = 0;
@@ -108,16 +108,14 @@ public:
     // reaching the driver, as on a lost device; from there on the code runs as after a real loss.
     VkResult queueSubmit(const VkSubmitInfo2& info, VkFence fence) const;
     void setName(uint64_t handle, VkObjectType type, const char* name) const;
-    template <typename T>
-    void setName(T handle, VkObjectType type, const char* name) const
+    template <typename T> void setName(T handle, VkObjectType type, const char* name) const
     {
         setName(reinterpret_cast<uint64_t>(handle), type, name);
     }
-    void pushDescriptorSet(VkCommandBuffer cmd, VkPipelineBindPoint bindPoint, VkPipelineLayout layout,
-                           uint32_t set, uint32_t count, const VkWriteDescriptorSet* writes) const;
+    void pushDescriptorSet(VkCommandBuffer cmd, VkPipelineBindPoint bindPoint, VkPipelineLayout layout, uint32_t set,
+                           uint32_t count, const VkWriteDescriptorSet* writes) const;
 
-    uint32_t memoryTypeIndex(uint32_t typeBits, VkMemoryPropertyFlags required,
-                             VkMemoryPropertyFlags preferred) const;
+    uint32_t memoryTypeIndex(uint32_t typeBits, VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred) const;
 
 private:
     void destroy();
@@ -134,18 +132,17 @@ private:
     PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet_ = nullptr;
     mutable std::atomic<uint32_t> validationMessages_{0};
     uint64_t deviceLostAtSubmission_ = 0;
-    bool shaderStats_ = false;  // WISP_INJECT_DEVICE_LOST; 0: none
+    bool shaderStats_ = false; // WISP_INJECT_DEVICE_LOST; 0: none
     mutable uint64_t submissions_ = 0;
 
     static VKAPI_ATTR VkBool32 VKAPI_CALL onMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                     VkDebugUtilsMessageTypeFlagsEXT types,
-                                                    const VkDebugUtilsMessengerCallbackDataEXT* data,
-                                                    void* user);
+                                                    const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
 };
 
-}  // namespace wisp::vk
+} // namespace wisp::vk
 
 namespace wisp::vk {
 // Every physical device with its report, from a short-lived instance (for `wisp info`).
 std::vector<DeviceReport> enumerateDevices();
-}  // namespace wisp::vk
+} // namespace wisp::vk

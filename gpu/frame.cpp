@@ -48,12 +48,12 @@ AccessInfo describe(Access access)
         return {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, false};
     case Access::ComputeRead:
-        return {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
-                VK_IMAGE_LAYOUT_GENERAL, false};
+        return {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                false};
     case Access::ComputeWrite:
         return {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                VK_IMAGE_LAYOUT_GENERAL, true};
+                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                true};
     case Access::VertexShaderRead:
         return {VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_TESSELLATION_CONTROL_SHADER_BIT |
                     VK_PIPELINE_STAGE_2_TESSELLATION_EVALUATION_SHADER_BIT | VK_PIPELINE_STAGE_2_GEOMETRY_SHADER_BIT,
@@ -63,7 +63,8 @@ AccessInfo describe(Access access)
                 false};
     case Access::FragmentStorageWrite:
         return {VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_GENERAL, true};
+                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                true};
     case Access::VertexInput:
         return {VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT, VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT,
                 VK_IMAGE_LAYOUT_UNDEFINED, false};
@@ -99,7 +100,7 @@ Frame::Frame(const vk::Context& ctx, uint32_t framesInFlight) : ctx_(ctx)
 
 Frame::~Frame()
 {
-    vkDeviceWaitIdle(ctx_.device());  // unchecked: after a lost device it fails at once, and destructors do not throw
+    vkDeviceWaitIdle(ctx_.device()); // unchecked: after a lost device it fails at once, and destructors do not throw
 }
 
 void Frame::retireSlot(Slot& slot)
@@ -110,7 +111,7 @@ void Frame::retireSlot(Slot& slot)
         timings_ = slot.timer.read();
         slot.submitted = false;
     }
-    slot.context.retired.clear();  // the GPU is done with them: destroy now
+    slot.context.retired.clear(); // the GPU is done with them: destroy now
 }
 
 FrameContext& Frame::begin(std::span<TrackedImage* const> transientImages)
@@ -143,7 +144,7 @@ void Frame::barrier(VkCommandBuffer cmd, const PassIo& io)
         // A read in a stage the last write (or transition) was not made visible to.
         bool unseen = t.dirty && (next.stage & ~t.visible) != 0;
         if (layoutChange || hazard || unseen) {
-            bool chained = !layoutChange && !hazard;  // only visibility for new stages
+            bool chained = !layoutChange && !hazard; // only visibility for new stages
             imageBarriers.push_back({.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
                                      .srcStageMask = chained ? t.visible : t.stages,
                                      .srcAccessMask = t.written ? t.accesses : VK_ACCESS_2_NONE,
@@ -167,7 +168,7 @@ void Frame::barrier(VkCommandBuffer cmd, const PassIo& io)
                 t.layout = next.layout;
                 t.visible = next.stage;
             }
-        } else {  // read after read in the same layout: later writers must wait for both
+        } else { // read after read in the same layout: later writers must wait for both
             t.stages |= next.stage;
             t.accesses |= next.access;
         }
@@ -255,11 +256,13 @@ void Frame::submit(FrameContext& frame, VkSemaphore wait, VkPipelineStageFlags2 
 {
     Slot& slot = slots_[frame.slot];
     VK_CHECK(vkEndCommandBuffer(frame.cmd));
-    VkSemaphoreSubmitInfo waitInfo{.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO, .semaphore = wait, .stageMask = waitStage};
+    VkSemaphoreSubmitInfo waitInfo{
+        .sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO, .semaphore = wait, .stageMask = waitStage};
     VkSemaphoreSubmitInfo signalInfo{.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO,
                                      .semaphore = signal,
                                      .stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT};
-    VkCommandBufferSubmitInfo cmdInfo{.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = frame.cmd};
+    VkCommandBufferSubmitInfo cmdInfo{.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO,
+                                      .commandBuffer = frame.cmd};
     VkSubmitInfo2 submit{.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2,
                          .waitSemaphoreInfoCount = wait ? 1u : 0u,
                          .pWaitSemaphoreInfos = &waitInfo,
@@ -278,4 +281,4 @@ void Frame::waitIdle()
         retireSlot(slots_[(frameNumber_ + i) % slots_.size()]);
 }
 
-}  // namespace wisp
+} // namespace wisp

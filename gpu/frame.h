@@ -3,8 +3,8 @@
 // for the hazards those declarations imply, then brackets the pass's record() with timestamps.
 #pragma once
 
-#include "gpu/pass.h"
 #include "gpu/handle.h"
+#include "gpu/pass.h"
 #include "gpu/resources.h"
 #include "gpu/timestamps.h"
 
@@ -25,11 +25,10 @@ using Retired = std::variant<vk::Buffer, vk::Image, vk::Pipeline, vk::PipelineLa
 
 struct FrameContext {
     VkCommandBuffer cmd = VK_NULL_HANDLE;
-    uint32_t slot = 0;          // which in-flight slot, for per-slot buffers
-    uint64_t frameNumber = 0;   // frames begun since the start
+    uint32_t slot = 0;        // which in-flight slot, for per-slot buffers
+    uint64_t frameNumber = 0; // frames begun since the start
     std::vector<Retired> retired;
-    template <typename T>
-    void retire(T&& owner) { retired.emplace_back(std::forward<T>(owner)); }
+    template <typename T> void retire(T&& owner) { retired.emplace_back(std::forward<T>(owner)); }
 };
 
 class Frame {
@@ -72,4 +71,4 @@ private:
     std::vector<vk::ScopeTime> timings_;
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -9,14 +9,15 @@
 
 namespace wisp::vk {
 
-template <typename T, void (*Destroy)(VkDevice, T, const VkAllocationCallbacks*)>
-class DeviceHandle {
+template <typename T, void (*Destroy)(VkDevice, T, const VkAllocationCallbacks*)> class DeviceHandle {
 public:
     DeviceHandle() = default;
     DeviceHandle(VkDevice device, T handle) : device_(device), handle_(handle) {}
     ~DeviceHandle() { reset(); }
     DeviceHandle(DeviceHandle&& other) noexcept
-        : device_(other.device_), handle_(std::exchange(other.handle_, VK_NULL_HANDLE)) {}
+        : device_(other.device_), handle_(std::exchange(other.handle_, VK_NULL_HANDLE))
+    {
+    }
     DeviceHandle& operator=(DeviceHandle&& other) noexcept
     {
         if (this != &other) {
@@ -35,7 +36,7 @@ public:
             Destroy(device_, std::exchange(handle_, VK_NULL_HANDLE), nullptr);
     }
     T get() const { return handle_; }
-    operator T() const { return handle_; }  // NOLINT: handles pass straight into vk* calls
+    operator T() const { return handle_; } // NOLINT: handles pass straight into vk* calls
     explicit operator bool() const { return handle_ != VK_NULL_HANDLE; }
 
 private:
@@ -57,4 +58,4 @@ using RenderPass = DeviceHandle<VkRenderPass, vkDestroyRenderPass>;
 using Framebuffer = DeviceHandle<VkFramebuffer, vkDestroyFramebuffer>;
 using DescriptorPool = DeviceHandle<VkDescriptorPool, vkDestroyDescriptorPool>;
 
-}  // namespace wisp::vk
+} // namespace wisp::vk

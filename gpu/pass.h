@@ -13,24 +13,24 @@ struct FrameContext;
 
 // The ways a pass touches a resource. Each maps to a stage, an access mask and, for images, a layout.
 enum class Access {
-    ColorAttachment,   // written (and blended) as a colour attachment
-    DepthAttachment,   // depth tested and written
-    DepthTestOnly,     // depth tested, not written (read-only depth layout: it can be sampled meanwhile)
-    DepthSampled,      // a depth image sampled in compute shaders, in the read-only depth layout
-    ResolveTarget,     // written by a multisample resolve at the end of rendering
-    TransferSrc,       // copied or blitted from
-    TransferDst,       // copied or blitted to
-    FragmentSampled,   // sampled in fragment shaders
-    GraphicsSampled,   // sampled in any graphics stage (vertex, tessellation, geometry, fragment)
-    ComputeSampled,    // sampled (or fetched) in compute shaders
-    ComputeRead,       // storage read in compute shaders
-    ComputeWrite,      // storage write (or read-modify-write) in compute shaders
-    VertexShaderRead,  // storage read in vertex, tessellation or geometry shaders
-    FragmentStorageRead,   // storage read in fragment shaders
-    FragmentStorageWrite,  // storage write (atomics included) in fragment shaders
-    VertexInput,       // read as a vertex buffer
-    IndirectRead,      // read as the arguments of an indirect draw or dispatch
-    Present,           // handed to the presentation engine
+    ColorAttachment,      // written (and blended) as a colour attachment
+    DepthAttachment,      // depth tested and written
+    DepthTestOnly,        // depth tested, not written (read-only depth layout: it can be sampled meanwhile)
+    DepthSampled,         // a depth image sampled in compute shaders, in the read-only depth layout
+    ResolveTarget,        // written by a multisample resolve at the end of rendering
+    TransferSrc,          // copied or blitted from
+    TransferDst,          // copied or blitted to
+    FragmentSampled,      // sampled in fragment shaders
+    GraphicsSampled,      // sampled in any graphics stage (vertex, tessellation, geometry, fragment)
+    ComputeSampled,       // sampled (or fetched) in compute shaders
+    ComputeRead,          // storage read in compute shaders
+    ComputeWrite,         // storage write (or read-modify-write) in compute shaders
+    VertexShaderRead,     // storage read in vertex, tessellation or geometry shaders
+    FragmentStorageRead,  // storage read in fragment shaders
+    FragmentStorageWrite, // storage write (atomics included) in fragment shaders
+    VertexInput,          // read as a vertex buffer
+    IndirectRead,         // read as the arguments of an indirect draw or dispatch
+    Present,              // handed to the presentation engine
 };
 
 struct AccessInfo {
@@ -45,15 +45,15 @@ AccessInfo describe(Access access);
 struct TrackedImage {
     VkImage image = VK_NULL_HANDLE;
     VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
-    bool transient = true;  // contents do not survive the frame: starts each frame undefined
+    bool transient = true; // contents do not survive the frame: starts each frame undefined
     VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
     VkPipelineStageFlags2 stages = VK_PIPELINE_STAGE_2_NONE;
     VkAccessFlags2 accesses = VK_ACCESS_2_NONE;
-    bool written = false;  // the last access set includes a write
+    bool written = false; // the last access set includes a write
     // Since the last write or layout transition: the stages a barrier has made it visible to.
     // A later read in another stage needs a barrier of its own, chained from these.
     VkPipelineStageFlags2 visible = VK_PIPELINE_STAGE_2_NONE;
-    bool dirty = false;    // a write or layout transition has happened (its visibility matters)
+    bool dirty = false; // a write or layout transition has happened (its visibility matters)
 };
 
 struct TrackedBuffer {
@@ -61,7 +61,7 @@ struct TrackedBuffer {
     VkPipelineStageFlags2 stages = VK_PIPELINE_STAGE_2_NONE;
     VkAccessFlags2 accesses = VK_ACCESS_2_NONE;
     bool written = false;
-    VkPipelineStageFlags2 visible = VK_PIPELINE_STAGE_2_NONE;  // as for images
+    VkPipelineStageFlags2 visible = VK_PIPELINE_STAGE_2_NONE; // as for images
     bool dirty = false;
 };
 
@@ -91,8 +91,7 @@ public:
 
 // One stage of an owner that runs as several passes (StrandRaster, MeshRaster): the owner declares
 // and records each stage, `Owner::declare(Stage, PassIo&)` and `Owner::record(Stage, cmd, frame)`.
-template <typename Owner, typename Stage>
-class StagePass : public Pass {
+template <typename Owner, typename Stage> class StagePass : public Pass {
 public:
     StagePass(Owner& owner, Stage stage, const char* name) : owner_(owner), stage_(stage), name_(name) {}
     const char* name() const override { return name_; }
@@ -105,4 +104,4 @@ private:
     const char* name_;
 };
 
-}  // namespace wisp
+} // namespace wisp

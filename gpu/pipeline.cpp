@@ -6,10 +6,10 @@
 
 #include <array>
 #include <cstdio>
-#include <vector>
 #include <fstream>
 #include <stdexcept>
 #include <unistd.h>
+#include <vector>
 
 #ifndef WISP_SHADER_DIR
 #error "WISP_SHADER_DIR must name the build tree's shader directory"
@@ -37,16 +37,22 @@ VkShaderStageFlagBits stageOf(const std::string& fileName)
         std::string e = std::string(ext) + ".spv";
         return fileName.size() >= e.size() && fileName.compare(fileName.size() - e.size(), e.size(), e) == 0;
     };
-    if (ends(".vert")) return VK_SHADER_STAGE_VERTEX_BIT;
-    if (ends(".tesc")) return VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT;
-    if (ends(".tese")) return VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT;
-    if (ends(".geom")) return VK_SHADER_STAGE_GEOMETRY_BIT;
-    if (ends(".frag")) return VK_SHADER_STAGE_FRAGMENT_BIT;
-    if (ends(".comp")) return VK_SHADER_STAGE_COMPUTE_BIT;
+    if (ends(".vert"))
+        return VK_SHADER_STAGE_VERTEX_BIT;
+    if (ends(".tesc"))
+        return VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT;
+    if (ends(".tese"))
+        return VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT;
+    if (ends(".geom"))
+        return VK_SHADER_STAGE_GEOMETRY_BIT;
+    if (ends(".frag"))
+        return VK_SHADER_STAGE_FRAGMENT_BIT;
+    if (ends(".comp"))
+        return VK_SHADER_STAGE_COMPUTE_BIT;
     throw std::runtime_error("shader '" + fileName + "' has no known stage extension");
 }
 
-}  // namespace
+} // namespace
 
 ShaderModule loadShader(const Context& ctx, const std::string& fileName)
 {
@@ -73,7 +79,8 @@ PipelineLayoutBundle createPipelineLayout(const Context& ctx, const PipelineLayo
 {
     std::vector<VkDescriptorSetLayoutBinding> bindings;
     for (const DescriptorBinding& b : desc.bindings)
-        bindings.push_back({.binding = b.binding, .descriptorType = b.type, .descriptorCount = 1, .stageFlags = b.stages});
+        bindings.push_back(
+            {.binding = b.binding, .descriptorType = b.type, .descriptorCount = 1, .stageFlags = b.stages});
     VkDescriptorSetLayoutCreateInfo setInfo{.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
                                             .flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR,
                                             .bindingCount = static_cast<uint32_t>(bindings.size()),
@@ -109,30 +116,30 @@ Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& 
                           .pName = "main"});
     }
 
-    VkVertexInputBindingDescription binding{.binding = 0, .stride = desc.vertexStride,
-                                            .inputRate = VK_VERTEX_INPUT_RATE_VERTEX};
+    VkVertexInputBindingDescription binding{
+        .binding = 0, .stride = desc.vertexStride, .inputRate = VK_VERTEX_INPUT_RATE_VERTEX};
     std::vector<VkVertexInputAttributeDescription> attributes;
     for (const VertexAttribute& a : desc.attributes)
         attributes.push_back({.location = a.location, .binding = 0, .format = a.format, .offset = a.offset});
-    VkPipelineVertexInputStateCreateInfo vertexInput{
-        .sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
-        .vertexBindingDescriptionCount = desc.vertexStride ? 1u : 0u,
-        .pVertexBindingDescriptions = &binding,
-        .vertexAttributeDescriptionCount = static_cast<uint32_t>(attributes.size()),
-        .pVertexAttributeDescriptions = attributes.data()};
+    VkPipelineVertexInputStateCreateInfo vertexInput{.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
+                                                     .vertexBindingDescriptionCount = desc.vertexStride ? 1u : 0u,
+                                                     .pVertexBindingDescriptions = &binding,
+                                                     .vertexAttributeDescriptionCount =
+                                                         static_cast<uint32_t>(attributes.size()),
+                                                     .pVertexAttributeDescriptions = attributes.data()};
     VkPipelineInputAssemblyStateCreateInfo inputAssembly{
         .sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO, .topology = desc.topology};
-    VkPipelineTessellationStateCreateInfo tessellation{
-        .sType = VK_STRUCTURE_TYPE_PIPELINE_TESSELLATION_STATE_CREATE_INFO,
-        .patchControlPoints = desc.patchControlPoints};
-    VkPipelineViewportStateCreateInfo viewport{.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO,
-                                               .viewportCount = 1,
-                                               .scissorCount = 1};
+    VkPipelineTessellationStateCreateInfo tessellation{.sType =
+                                                           VK_STRUCTURE_TYPE_PIPELINE_TESSELLATION_STATE_CREATE_INFO,
+                                                       .patchControlPoints = desc.patchControlPoints};
+    VkPipelineViewportStateCreateInfo viewport{
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO, .viewportCount = 1, .scissorCount = 1};
     VkPipelineRasterizationStateCreateInfo raster{.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO,
                                                   .polygonMode = VK_POLYGON_MODE_FILL,
                                                   .cullMode = desc.cullMode,
                                                   .frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE,
-                                                  .depthBiasEnable = desc.depthBiasConstant != 0.0f || desc.depthBiasSlope != 0.0f,
+                                                  .depthBiasEnable =
+                                                      desc.depthBiasConstant != 0.0f || desc.depthBiasSlope != 0.0f,
                                                   .depthBiasConstantFactor = desc.depthBiasConstant,
                                                   .depthBiasSlopeFactor = desc.depthBiasSlope,
                                                   .lineWidth = 1.0f};
@@ -201,29 +208,38 @@ void printShaderStats(const Context& ctx, VkPipeline pipeline, const char* name)
     uint32_t count = 0;
     VK_CHECK(properties(ctx.device(), &info, &count, nullptr));
     for (uint32_t e = 0; e < count; ++e) {
-        VkPipelineExecutableInfoKHR executable{.sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR,
-                                               .pipeline = pipeline,
-                                               .executableIndex = e};
+        VkPipelineExecutableInfoKHR executable{
+            .sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR, .pipeline = pipeline, .executableIndex = e};
         uint32_t n = 0;
         VK_CHECK(statistics(ctx.device(), &executable, &n, nullptr));
-        std::vector<VkPipelineExecutableStatisticKHR> stats(n, {.sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR});
+        std::vector<VkPipelineExecutableStatisticKHR> stats(
+            n, {.sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR});
         VK_CHECK(statistics(ctx.device(), &executable, &n, stats.data()));
         std::string line = std::string("wisp: shader stats ") + name + ":";
         for (const VkPipelineExecutableStatisticKHR& st : stats) {
             line += " " + std::string(st.name) + "=";
             switch (st.format) {
-            case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_BOOL32_KHR: line += st.value.b32 ? "true" : "false"; break;
-            case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_INT64_KHR: line += std::to_string(st.value.i64); break;
-            case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_UINT64_KHR: line += std::to_string(st.value.u64); break;
-            case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_FLOAT64_KHR: line += std::to_string(st.value.f64); break;
-            default: line += "?";
+            case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_BOOL32_KHR:
+                line += st.value.b32 ? "true" : "false";
+                break;
+            case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_INT64_KHR:
+                line += std::to_string(st.value.i64);
+                break;
+            case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_UINT64_KHR:
+                line += std::to_string(st.value.u64);
+                break;
+            case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_FLOAT64_KHR:
+                line += std::to_string(st.value.f64);
+                break;
+            default:
+                line += "?";
             }
         }
         std::fprintf(stderr, "%s\n", line.c_str());
     }
 }
 
-}  // namespace
+} // namespace
 
 Pipeline createComputePipeline(const Context& ctx, VkPipelineLayout layout, const std::string& shader, const char* name,
                                const std::vector<uint32_t>& constants)
@@ -237,14 +253,15 @@ Pipeline createComputePipeline(const Context& ctx, VkPipelineLayout layout, cons
                                         .pMapEntries = entries.data(),
                                         .dataSize = constants.size() * 4,
                                         .pData = constants.data()};
-    VkComputePipelineCreateInfo info{.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
-                                     .flags = ctx.shaderStats() ? VkPipelineCreateFlags(VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR) : 0u,
-                                     .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
-                                               .stage = stageOf(file),
-                                               .module = module,
-                                               .pName = "main",
-                                               .pSpecializationInfo = constants.empty() ? nullptr : &specialization},
-                                     .layout = layout};
+    VkComputePipelineCreateInfo info{
+        .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+        .flags = ctx.shaderStats() ? VkPipelineCreateFlags(VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR) : 0u,
+        .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                  .stage = stageOf(file),
+                  .module = module,
+                  .pName = "main",
+                  .pSpecializationInfo = constants.empty() ? nullptr : &specialization},
+        .layout = layout};
     VkPipeline pipeline = VK_NULL_HANDLE;
     VK_CHECK(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
     ctx.setName(pipeline, VK_OBJECT_TYPE_PIPELINE, name);
@@ -280,20 +297,22 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccess
                              .srcAccessMask = srcAccess,
                              .dstStageMask = dstStage,
                              .dstAccessMask = dstAccess};
-    VkDependencyInfo dep{.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1, .pMemoryBarriers = &barrier};
+    VkDependencyInfo dep{
+        .sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1, .pMemoryBarriers = &barrier};
     vkCmdPipelineBarrier2(cmd, &dep);
 }
 
 void computeToComputeBarrier(VkCommandBuffer cmd)
 {
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 }
 
 void transferToHostBarrier(VkCommandBuffer cmd)
 {
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
-                  VK_ACCESS_2_HOST_READ_BIT);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
 }
 
 uint32_t groupCount(uint32_t items, uint32_t groupSize)
@@ -301,4 +320,4 @@ uint32_t groupCount(uint32_t items, uint32_t groupSize)
     return (items + groupSize - 1) / groupSize;
 }
 
-}  // namespace wisp::vk
+} // namespace wisp::vk

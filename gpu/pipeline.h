@@ -25,7 +25,7 @@ struct DescriptorBinding {
 };
 
 struct PipelineLayoutDesc {
-    std::vector<DescriptorBinding> bindings;  // set 0, a push-descriptor set
+    std::vector<DescriptorBinding> bindings; // set 0, a push-descriptor set
     uint32_t pushConstantBytes = 0;
     VkShaderStageFlags pushConstantStages = VK_SHADER_STAGE_ALL_GRAPHICS;
     const char* name = "unnamed layout";
@@ -44,15 +44,15 @@ struct VertexAttribute {
 };
 
 enum class Blend {
-    None,            // the fragment replaces the attachment
-    Alpha,           // src * a + dst * (1 - a)
-    Premultiplied,   // src + dst * (1 - a): colours already multiplied by their alpha
-    Additive,        // src + dst (accumulation, e.g. deep opacity layers)
+    None,          // the fragment replaces the attachment
+    Alpha,         // src * a + dst * (1 - a)
+    Premultiplied, // src + dst * (1 - a): colours already multiplied by their alpha
+    Additive,      // src + dst (accumulation, e.g. deep opacity layers)
 };
 
 struct GraphicsPipelineDesc {
     VkPipelineLayout layout = VK_NULL_HANDLE;
-    std::vector<std::string> shaders;  // file names in shaderDirectory(), stage from the extension
+    std::vector<std::string> shaders; // file names in shaderDirectory(), stage from the extension
     uint32_t vertexStride = 0;
     std::vector<VertexAttribute> attributes;
     VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
@@ -65,7 +65,7 @@ struct GraphicsPipelineDesc {
     float depthBiasConstant = 0.0f;
     float depthBiasSlope = 0.0f;
     Blend blend = Blend::None;
-    bool colorWrite = true;  // false: the attachment is bound but never written (fragments only store)
+    bool colorWrite = true; // false: the attachment is bound but never written (fragments only store)
     VkFormat colorFormat = VK_FORMAT_UNDEFINED;
     VkFormat depthFormat = VK_FORMAT_UNDEFINED;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
@@ -87,19 +87,25 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccess
 void computeToComputeBarrier(VkCommandBuffer cmd);
 // Copies (transfer writes) made visible to the host once the submission's fence signals.
 void transferToHostBarrier(VkCommandBuffer cmd);
-uint32_t groupCount(uint32_t items, uint32_t groupSize);  // ceil(items / groupSize)
+uint32_t groupCount(uint32_t items, uint32_t groupSize); // ceil(items / groupSize)
 
 // One descriptor of a push-descriptor set (Context::pushDescriptorSet): a buffer, or an image (and
 // its sampler, for combined image samplers). `info` must outlive the push.
 inline VkWriteDescriptorSet bufferWrite(uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* info)
 {
-    return {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstBinding = binding, .descriptorCount = 1,
-            .descriptorType = type, .pBufferInfo = info};
+    return {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+            .dstBinding = binding,
+            .descriptorCount = 1,
+            .descriptorType = type,
+            .pBufferInfo = info};
 }
 inline VkWriteDescriptorSet imageWrite(uint32_t binding, VkDescriptorType type, const VkDescriptorImageInfo* info)
 {
-    return {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstBinding = binding, .descriptorCount = 1,
-            .descriptorType = type, .pImageInfo = info};
+    return {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+            .dstBinding = binding,
+            .descriptorCount = 1,
+            .descriptorType = type,
+            .pImageInfo = info};
 }
 
-}  // namespace wisp::vk
+} // namespace wisp::vk

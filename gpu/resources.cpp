@@ -23,7 +23,7 @@ AllocationTable& allocationTable()
     return table;
 }
 
-}  // namespace
+} // namespace
 
 void trackDeviceMemory(VkDeviceMemory memory, VkDeviceSize bytes)
 {
@@ -36,7 +36,7 @@ void trackDeviceMemory(VkDeviceMemory memory, VkDeviceSize bytes)
 
 void freeDeviceMemory(VkDevice device, VkDeviceMemory memory)
 {
-    vkFreeMemory(device, memory, nullptr);  // unmaps too
+    vkFreeMemory(device, memory, nullptr); // unmaps too
     AllocationTable& t = allocationTable();
     std::lock_guard lock(t.mutex);
     if (auto it = t.sizes.find(memory); it != t.sizes.end()) {
@@ -129,4 +129,4 @@ bool isDepthFormat(VkFormat format)
     }
 }
 
-}  // namespace wisp::vk
+} // namespace wisp::vk

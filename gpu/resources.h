@@ -35,9 +35,9 @@ inline constexpr VkBufferUsageFlags kTransferSrc = VK_BUFFER_USAGE_TRANSFER_SRC_
 inline constexpr VkBufferUsageFlags kTransferDst = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 
 enum class Memory {
-    DeviceLocal,  // fastest for the GPU; filled by copies or shaders
-    Upload,       // host-visible, coherent, persistently mapped: written by the CPU each frame
-    Readback,     // host-visible, cached where possible, persistently mapped: read by the CPU
+    DeviceLocal, // fastest for the GPU; filled by copies or shaders
+    Upload,      // host-visible, coherent, persistently mapped: written by the CPU each frame
+    Readback,    // host-visible, cached where possible, persistently mapped: read by the CPU
 };
 
 struct BufferDesc {
@@ -59,9 +59,9 @@ public:
     void reset();
 
     VkBuffer get() const { return buffer_; }
-    operator VkBuffer() const { return buffer_; }  // NOLINT
+    operator VkBuffer() const { return buffer_; } // NOLINT
     VkDeviceSize size() const { return size_; }
-    void* mapped() const { return mapped_; }  // null for device-local memory
+    void* mapped() const { return mapped_; } // null for device-local memory
     explicit operator bool() const { return buffer_ != VK_NULL_HANDLE; }
 
 private:
@@ -77,7 +77,7 @@ struct ImageDesc {
     VkExtent2D extent = {0, 0};
     VkImageUsageFlags usage = 0;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
-    uint32_t layers = 1;  // more than one: a 2D array (and its view)
+    uint32_t layers = 1; // more than one: a 2D array (and its view)
     const char* name = "unnamed image";
 };
 
@@ -121,6 +121,6 @@ struct DeviceMemoryStats {
 };
 DeviceMemoryStats deviceMemoryStats();
 void trackDeviceMemory(VkDeviceMemory memory, VkDeviceSize bytes);
-void freeDeviceMemory(VkDevice device, VkDeviceMemory memory);  // vkFreeMemory, and forgets it
+void freeDeviceMemory(VkDevice device, VkDeviceMemory memory); // vkFreeMemory, and forgets it
 
-}  // namespace wisp::vk
+} // namespace wisp::vk

@@ -62,4 +62,4 @@ std::vector<ScopeTime> GpuTimer::read() const
     return out;
 }
 
-}  // namespace wisp::vk
+} // namespace wisp::vk

@@ -22,7 +22,7 @@ public:
     GpuTimer() = default;
     GpuTimer(const Context& ctx, uint32_t maxScopes, const char* name);
 
-    void reset(VkCommandBuffer cmd);  // at the start of the frame's command buffer
+    void reset(VkCommandBuffer cmd); // at the start of the frame's command buffer
     void begin(VkCommandBuffer cmd, const std::string& scope);
     void end(VkCommandBuffer cmd);
     // The scopes of the last frame recorded into this timer; call after its fence signalled.
@@ -38,4 +38,4 @@ private:
     uint32_t open_ = UINT32_MAX;
 };
 
-}  // namespace wisp::vk
+} // namespace wisp::vk

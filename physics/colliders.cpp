@@ -67,7 +67,7 @@ Ellipsoid fitBand(const Mesh& mesh, float yTop, float yBottom, float insideFract
     return e;
 }
 
-}  // namespace
+} // namespace
 
 std::vector<Ellipsoid> fitColliders(const Mesh& mesh)
 {
@@ -76,7 +76,7 @@ std::vector<Ellipsoid> fitColliders(const Mesh& mesh)
     // busts with shoulders or heads alone, are cut where they narrow, not at fixed fractions.
     HeadRegion region = headRegion(mesh);
     float head = std::max(region.top - region.neck, 1e-6f * b.size().y);
-    float craniumCut = region.top - 0.5f * head;  // above the eyes
+    float craniumCut = region.top - 0.5f * head; // above the eyes
     float neckTop = region.neck + 0.25f * head, neckBottom = std::max(region.neck - 0.15f * head, b.min.y);
     Ellipsoid cranium = fitBand(mesh, b.max.y, craniumCut, 0.0f, "cranium");
     // The skull: as wide and deep as the top band, as tall as it is wide, its top at the head's
@@ -94,7 +94,7 @@ std::vector<Ellipsoid> fitColliders(const Mesh& mesh)
         cranium.radii *= std::max(r[k], 1e-3f);
     }
     std::vector<Ellipsoid> out = {cranium, fitBand(mesh, neckTop, neckBottom, 0.9f, "neck")};
-    if (neckBottom > b.min.y + 1e-6f * b.size().y)  // a bust: its shoulders
+    if (neckBottom > b.min.y + 1e-6f * b.size().y) // a bust: its shoulders
         out.push_back(fitBand(mesh, neckBottom, b.min.y, 0.0f, "shoulders"));
     return out;
 }
@@ -114,7 +114,7 @@ void inscribeColliders(std::vector<Ellipsoid>& colliders, const Mesh& mesh, cons
                 continue;
             glm::vec3 d = mesh.positions[v] - e.center;
             float distance = glm::length(d);
-            float radius = glm::length((glm::transpose(R) * d) / e.radii);  // 1 on the surface
+            float radius = glm::length((glm::transpose(R) * d) / e.radii); // 1 on the surface
             if (radius < scale && distance > 0.0f)
                 scale = std::min(scale, radius * (1.0f + tolerance / distance));
         }
@@ -127,7 +127,7 @@ void shrinkCollidersToRestPose(std::vector<Ellipsoid>& colliders, const StrandSe
     uint32_t V = strands.verticesPerStrand;
     for (Ellipsoid& e : colliders) {
         glm::mat3 R = rotationFromDegrees(e.rotationDeg);
-        std::vector<float> inside;  // normalized radii of the free vertices inside this collider
+        std::vector<float> inside; // normalized radii of the free vertices inside this collider
         size_t free = 0;
         for (size_t s = 0; s < strands.strandCount(); ++s)
             for (uint32_t i = strands.strands[s].pinnedRoot; i < V; ++i) {
@@ -140,7 +140,7 @@ void shrinkCollidersToRestPose(std::vector<Ellipsoid>& colliders, const StrandSe
         if (inside.size() <= allowed)
             continue;
         std::sort(inside.begin(), inside.end());
-        float scale = inside[allowed];  // all but `allowed` of the inside vertices end up outside
+        float scale = inside[allowed]; // all but `allowed` of the inside vertices end up outside
         e.radii *= std::max(scale, 0.05f);
     }
 }
@@ -168,4 +168,4 @@ float unitsPerMetre(const Head& head)
     return std::max(head.mesh.bounds().diagonal(), 1e-6f) / 0.6f;
 }
 
-}  // namespace wisp
+} // namespace wisp

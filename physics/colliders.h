@@ -11,7 +11,7 @@
 namespace wisp {
 
 gpu::Ellipsoid toGpu(const Ellipsoid& e);
-glm::mat3 rotationFromDegrees(const glm::vec3& xyzDegrees);  // R = Rz * Ry * Rx
+glm::mat3 rotationFromDegrees(const glm::vec3& xyzDegrees); // R = Rz * Ry * Rx
 
 // How far `p` (head space) lies inside the deepest collider; 0 when outside all.
 float penetrationDepth(const std::vector<gpu::Ellipsoid>& colliders, const glm::vec3& p);
@@ -32,7 +32,7 @@ std::vector<Ellipsoid> fitColliders(const Mesh& mesh);
 // inside it.
 void inscribeColliders(std::vector<Ellipsoid>& colliders, const Mesh& mesh, const std::vector<uint32_t>& scalpTriangles,
                        float tolerance);
-inline constexpr float kInscribedTolerance = 0.0025f;  // of the head's bounding-box diagonal
+inline constexpr float kInscribedTolerance = 0.0025f; // of the head's bounding-box diagonal
 
 // A styled groom's rest pose must start outside the colliders, or they fight its style: each
 // collider shrinks (uniformly about its centre) until 99% of the strands' free rest vertices lie
@@ -46,4 +46,4 @@ ScalpRule defaultScalpRule(const Ellipsoid& cranium);
 // Scene scale in asset units per metre: from the description's units, else from the bust's size.
 float unitsPerMetre(const Head& head);
 
-}  // namespace wisp
+} // namespace wisp

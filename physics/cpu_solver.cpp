@@ -33,7 +33,7 @@ inline float strandRestLength(const StrandRef& s, uint i)
     return (*s.rest)[s.base + i].segmentLength;
 }
 
-}  // namespace gpu
+} // namespace gpu
 
 #include "shaders/shared/sim_strand.h"
 
@@ -81,7 +81,7 @@ void CpuSolver::integrateStrand(uint32_t s, const SimStep& step)
     std::vector<vec4>& velocities = state_.velocities;
     std::vector<vec4>& tangents = state_.tangents;
     uint32_t V = params.verticesPerStrand;
-    uint32_t base = s * V;  // strand-major: vertex i is at base + i
+    uint32_t base = s * V; // strand-major: vertex i is at base + i
     auto write = [&](uint32_t g, const WalkedVertex& v) {
         positions[g] = vec4(v.position, positions[g].w);
         velocities[g] = vec4(v.velocity, 0.0f);
@@ -104,8 +104,9 @@ void CpuSolver::integrateStrand(uint32_t s, const SimStep& step)
 
     if (!walk.finite) {
         for (uint32_t i = 0; i < V; ++i) {
-            uint32_t j = base + std::min(i + 1u, V - 1u);  // the segment ending at vertex j
-            write(base + i, restVertex(params, step, rest_[base + i].position, rest_[j - 1].position, rest_[j].position));
+            uint32_t j = base + std::min(i + 1u, V - 1u); // the segment ending at vertex j
+            write(base + i,
+                  restVertex(params, step, rest_[base + i].position, rest_[j - 1].position, rest_[j].position));
         }
         state_.nonfiniteResets += 1;
     }
@@ -157,9 +158,10 @@ void CpuSolver::gridGather(const SimStep& step)
             vec4 node = gridVelocity_[gridIndex(cell.base + cornerOffset(k), params.gridResolution)];
             gs = gridAccumulate(gs, cell.frac, k, vec3(node), node.w);
         }
-        vec3 v = gridBlend(vec3(state_.velocities[g]), gs, params.gridFriction, params.gridRepulsion, params.gridCellSize);
+        vec3 v =
+            gridBlend(vec3(state_.velocities[g]), gs, params.gridFriction, params.gridRepulsion, params.gridCellSize);
         state_.velocities[g] = vec4(v, 0.0f);
     }
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -1,7 +1,7 @@
 // physics/cpu_solver.h: the CPU reference solver: the same steps as the compute kernels
 // (shaders/sim_integrate.comp, grid_*.comp), over the same shared algorithm and math
-// (shaders/shared/sim_strand.h, sim.h), in plain C++. Tests run both on the same input and compare; it is also a readable statement of
-// the algorithm. Single-threaded and meant for small workloads.
+// (shaders/shared/sim_strand.h, sim.h), in plain C++. Tests run both on the same input and compare; it is also a
+// readable statement of the algorithm. Single-threaded and meant for small workloads.
 #pragma once
 
 #include "physics/simulation.h"
@@ -39,4 +39,4 @@ private:
 // Rest vertices as the GPU stores them (position + segment length).
 std::vector<gpu::RestVertex> restVertices(const StrandSet& strands);
 
-}  // namespace wisp
+} // namespace wisp

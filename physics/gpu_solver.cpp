@@ -2,10 +2,10 @@
 #include "physics/gpu_solver.h"
 
 #include "core/error.h"
-#include "physics/cpu_solver.h"
 #include "gpu/check.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
+#include "physics/cpu_solver.h"
 
 #include <array>
 #include <cstring>
@@ -13,7 +13,8 @@
 namespace wisp {
 
 static_assert(sizeof(gpu::SimParams) == 1744, "SimParams must match its std140 layout");
-static_assert(sizeof(gpu::SimStep) == 112 && sizeof(gpu::SimStep) <= 128, "SimStep must match its push-constant layout");
+static_assert(sizeof(gpu::SimStep) == 112 && sizeof(gpu::SimStep) <= 128,
+              "SimStep must match its push-constant layout");
 static_assert(offsetof(gpu::SimStep, wind) == 96);
 static_assert(sizeof(gpu::RestVertex) == 16 && sizeof(gpu::StrandInfo) == 16 && sizeof(gpu::GridNode) == 16);
 static_assert(offsetof(gpu::SimParams, parts) == 80 && offsetof(gpu::SimParams, colliders) == 208);
@@ -26,8 +27,7 @@ uint64_t mebibytes(uint64_t bytes)
 }
 
 // Strand-major (the CPU's order) to the GPU's interleaved slots (gpu::vertexSlot), and back.
-template <typename T>
-std::vector<T> toSlots(const std::vector<T>& strandMajor, uint32_t strands, uint32_t V, T padding)
+template <typename T> std::vector<T> toSlots(const std::vector<T>& strandMajor, uint32_t strands, uint32_t V, T padding)
 {
     std::vector<T> out(size_t(gpu::paddedStrandCount(strands)) * V, padding);
     for (uint32_t s = 0; s < strands; ++s)
@@ -36,8 +36,7 @@ std::vector<T> toSlots(const std::vector<T>& strandMajor, uint32_t strands, uint
     return out;
 }
 
-template <typename T>
-std::vector<T> fromSlots(const std::vector<T>& slots, uint32_t strands, uint32_t V)
+template <typename T> std::vector<T> fromSlots(const std::vector<T>& slots, uint32_t strands, uint32_t V)
 {
     std::vector<T> out(size_t(strands) * V);
     for (uint32_t s = 0; s < strands; ++s)
@@ -46,9 +45,10 @@ std::vector<T> fromSlots(const std::vector<T>& slots, uint32_t strands, uint32_t
     return out;
 }
 
-}  // namespace
+} // namespace
 
-GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const SimSetup& setup, const glm::mat4& headTransform)
+GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const SimSetup& setup,
+                     const glm::mat4& headTransform)
     : ctx_(ctx), setup_(setup), model_(strands), vertexCount_(uint32_t(strands.vertexCount()))
 {
     // The grid's sums: fixed point where asked for and possible, else float atomics (and back).
@@ -62,20 +62,23 @@ GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const Sim
     if (!fixedGrid_)
         setup_.params.gridFixedScale = 0.0f;
     // Refused before anything is allocated, here or on the device.
-    deviceBytes_ = solverDeviceBytes(strands.strandCount(), strands.verticesPerStrand, setup.params.gridNodeCount, fixedGrid_);
+    deviceBytes_ =
+        solverDeviceBytes(strands.strandCount(), strands.verticesPerStrand, setup.params.gridNodeCount, fixedGrid_);
     if (deviceBytes_ > ctx.report().deviceLocalBytes)
         throw UserError("the simulation needs " + std::to_string(mebibytes(deviceBytes_)) + " MiB of GPU memory (" +
-                        std::to_string(strands.strandCount()) + " strands x " + std::to_string(strands.verticesPerStrand) +
-                        " vertices, " + std::to_string(setup.params.gridNodeCount) + " grid nodes), but '" +
-                        ctx.report().name + "' has " + std::to_string(mebibytes(ctx.report().deviceLocalBytes)) + " MiB");
+                        std::to_string(strands.strandCount()) + " strands x " +
+                        std::to_string(strands.verticesPerStrand) + " vertices, " +
+                        std::to_string(setup.params.gridNodeCount) + " grid nodes), but '" + ctx.report().name +
+                        "' has " + std::to_string(mebibytes(ctx.report().deviceLocalBytes)) + " MiB");
     uint32_t count = uint32_t(strands.strandCount());
     uint32_t V = strands.verticesPerStrand;
     SimState strandMajor = initialState(strands, headTransform);
-    SimState initial;  // in slots; padding slots are pinned (w = 0) and never touched
+    SimState initial; // in slots; padding slots are pinned (w = 0) and never touched
     initial.positions = toSlots(strandMajor.positions, count, V, glm::vec4(0.0f));
     initial.velocities = toSlots(strandMajor.velocities, count, V, glm::vec4(0.0f));
     initial.tangents = toSlots(strandMajor.tangents, count, V, glm::vec4(0.0f));
-    std::vector<gpu::RestVertex> rest = toSlots(restVertices(strands), count, V, gpu::RestVertex{glm::vec3(0.0f), 1.0f});
+    std::vector<gpu::RestVertex> rest =
+        toSlots(restVertices(strands), count, V, gpu::RestVertex{glm::vec3(0.0f), 1.0f});
     slotCount_ = uint32_t(initial.positions.size());
     size_t vec4Bytes = size_t(slotCount_) * sizeof(glm::vec4);
     size_t gridBytes = size_t(setup.params.gridNodeCount) *
@@ -84,33 +87,40 @@ GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const Sim
     constexpr VkBufferUsageFlags kStorageCopy = vk::kStorage | vk::kTransferSrc | vk::kTransferDst;
     params_ = ctx.createBufferWithData({.size = sizeof(gpu::SimParams), .usage = vk::kUniform, .name = "sim.params"},
                                        &setup_.params, sizeof(gpu::SimParams));
-    positions_ = ctx.createBufferWithData({.size = vec4Bytes, .usage = kStorageCopy | vk::kVertex, .name = "guide.positions"},
-                                          initial.positions.data(), vec4Bytes);
+    positions_ =
+        ctx.createBufferWithData({.size = vec4Bytes, .usage = kStorageCopy | vk::kVertex, .name = "guide.positions"},
+                                 initial.positions.data(), vec4Bytes);
     velocities_ = ctx.createBufferWithData({.size = vec4Bytes, .usage = kStorageCopy, .name = "guide.velocities"},
                                            initial.velocities.data(), vec4Bytes);
-    tangents_ = ctx.createBufferWithData({.size = vec4Bytes, .usage = kStorageCopy | vk::kVertex, .name = "guide.tangents"},
-                                         initial.tangents.data(), vec4Bytes);
-    rest_ = ctx.createBufferWithData({.size = rest.size() * sizeof(gpu::RestVertex), .usage = kStorageCopy, .name = "guide.rest"},
-                                     rest.data(), rest.size() * sizeof(gpu::RestVertex));
-    strands_ = ctx.createBufferWithData({.size = strands.strands.size() * sizeof(gpu::StrandInfo), .usage = kStorageCopy,
-                                         .name = "guide.strands"},
-                                        strands.strands.data(), strands.strands.size() * sizeof(gpu::StrandInfo));
+    tangents_ =
+        ctx.createBufferWithData({.size = vec4Bytes, .usage = kStorageCopy | vk::kVertex, .name = "guide.tangents"},
+                                 initial.tangents.data(), vec4Bytes);
+    rest_ = ctx.createBufferWithData(
+        {.size = rest.size() * sizeof(gpu::RestVertex), .usage = kStorageCopy, .name = "guide.rest"}, rest.data(),
+        rest.size() * sizeof(gpu::RestVertex));
+    strands_ = ctx.createBufferWithData(
+        {.size = strands.strands.size() * sizeof(gpu::StrandInfo), .usage = kStorageCopy, .name = "guide.strands"},
+        strands.strands.data(), strands.strands.size() * sizeof(gpu::StrandInfo));
     grid_ = ctx.createBuffer({.size = gridBytes, .usage = kStorageCopy, .name = "grid.accumulators"});
-    gridVelocity_ = ctx.createBuffer({.size = size_t(setup.params.gridNodeCount) * sizeof(glm::vec4), .usage = kStorageCopy,
+    gridVelocity_ = ctx.createBuffer({.size = size_t(setup.params.gridNodeCount) * sizeof(glm::vec4),
+                                      .usage = kStorageCopy,
                                       .name = "grid.velocity"});
     gpu::SimCounters zero{};
-    counters_ = ctx.createBufferWithData({.size = sizeof(gpu::SimCounters), .usage = kStorageCopy, .name = "sim.counters"},
-                                         &zero, sizeof(zero));
+    counters_ = ctx.createBufferWithData(
+        {.size = sizeof(gpu::SimCounters), .usage = kStorageCopy, .name = "sim.counters"}, &zero, sizeof(zero));
     positionsTrack_ = {.buffer = positions_.get()};
     tangentsTrack_ = {.buffer = tangents_.get()};
 
-    std::vector<vk::DescriptorBinding> bindings = {{gpu::kSimBindingParams, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
-    for (uint32_t b : {gpu::kSimBindingPositions, gpu::kSimBindingVelocities, gpu::kSimBindingRest, gpu::kSimBindingStrands,
-                       gpu::kSimBindingTangents, gpu::kSimBindingGrid, gpu::kSimBindingGridVelocity, gpu::kSimBindingCounters})
+    std::vector<vk::DescriptorBinding> bindings = {
+        {gpu::kSimBindingParams, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
+    for (uint32_t b :
+         {gpu::kSimBindingPositions, gpu::kSimBindingVelocities, gpu::kSimBindingRest, gpu::kSimBindingStrands,
+          gpu::kSimBindingTangents, gpu::kSimBindingGrid, gpu::kSimBindingGridVelocity, gpu::kSimBindingCounters})
         bindings.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT});
-    vk::PipelineLayoutBundle layout = vk::createPipelineLayout(
-        ctx, {.bindings = bindings, .pushConstantBytes = sizeof(gpu::SimStep),
-              .pushConstantStages = VK_SHADER_STAGE_COMPUTE_BIT, .name = "sim.layout"});
+    vk::PipelineLayoutBundle layout = vk::createPipelineLayout(ctx, {.bindings = bindings,
+                                                                     .pushConstantBytes = sizeof(gpu::SimStep),
+                                                                     .pushConstantStages = VK_SHADER_STAGE_COMPUTE_BIT,
+                                                                     .name = "sim.layout"});
     setLayout_ = std::move(layout.setLayout);
     layout_ = std::move(layout.layout);
     createPipelines();
@@ -122,9 +132,10 @@ void GpuSolver::createPipelines()
     // The fixed-point grid's kernels are separate SPIR-V (they need 64-bit integer atomics, the
     // float ones need float atomics); the splatting substep is a specialization of integrate.
     std::string variant = fixedGrid_ ? "_fixed" : "";
-    integrate_ = vk::createComputePipeline(ctx, layout_, "sim_integrate" + variant + ".comp", "sim.integrate", {/*kSplatToGrid=*/0});
-    integrateSplat_ = vk::createComputePipeline(ctx, layout_, "sim_integrate" + variant + ".comp", "sim.integrate+splat",
-                                                {/*kSplatToGrid=*/1});
+    integrate_ = vk::createComputePipeline(ctx, layout_, "sim_integrate" + variant + ".comp", "sim.integrate",
+                                           {/*kSplatToGrid=*/0});
+    integrateSplat_ = vk::createComputePipeline(ctx, layout_, "sim_integrate" + variant + ".comp",
+                                                "sim.integrate+splat", {/*kSplatToGrid=*/1});
     clear_ = vk::createComputePipeline(ctx, layout_, "grid_clear" + variant + ".comp", "grid.clear");
     normalize_ = vk::createComputePipeline(ctx, layout_, "grid_normalize" + variant + ".comp", "grid.normalize");
     gather_ = vk::createComputePipeline(ctx, layout_, "grid_gather.comp", "grid.gather");
@@ -144,8 +155,8 @@ void GpuSolver::reset(const glm::mat4& headTransform)
     std::vector<glm::vec4> velocities = toSlots(strandMajor.velocities, count, V, glm::vec4(0.0f));
     std::vector<glm::vec4> tangents = toSlots(strandMajor.tangents, count, V, glm::vec4(0.0f));
     size_t bytes = positions.size() * sizeof(glm::vec4);
-    vk::Buffer staging = ctx_.createBuffer({.size = 3 * bytes, .usage = vk::kTransferSrc, .memory = vk::Memory::Upload,
-                                            .name = "guide.reset.staging"});
+    vk::Buffer staging = ctx_.createBuffer(
+        {.size = 3 * bytes, .usage = vk::kTransferSrc, .memory = vk::Memory::Upload, .name = "guide.reset.staging"});
     char* mapped = static_cast<char*>(staging.mapped());
     std::memcpy(mapped, positions.data(), bytes);
     std::memcpy(mapped + bytes, velocities.data(), bytes);
@@ -162,13 +173,19 @@ void GpuSolver::reset(const glm::mat4& headTransform)
 
 void GpuSolver::recordStep(VkCommandBuffer cmd, const gpu::SimStep& step, vk::GpuTimer* timer)
 {
-    std::array<VkDescriptorBufferInfo, 9> infos = {
-        VkDescriptorBufferInfo{params_, 0, VK_WHOLE_SIZE}, {positions_, 0, VK_WHOLE_SIZE}, {velocities_, 0, VK_WHOLE_SIZE},
-        {rest_, 0, VK_WHOLE_SIZE}, {strands_, 0, VK_WHOLE_SIZE}, {tangents_, 0, VK_WHOLE_SIZE},
-        {grid_, 0, VK_WHOLE_SIZE}, {gridVelocity_, 0, VK_WHOLE_SIZE}, {counters_, 0, VK_WHOLE_SIZE}};
-    std::array<uint32_t, 9> bindingOf = {gpu::kSimBindingParams, gpu::kSimBindingPositions, gpu::kSimBindingVelocities,
-                                         gpu::kSimBindingRest, gpu::kSimBindingStrands, gpu::kSimBindingTangents,
-                                         gpu::kSimBindingGrid, gpu::kSimBindingGridVelocity, gpu::kSimBindingCounters};
+    std::array<VkDescriptorBufferInfo, 9> infos = {VkDescriptorBufferInfo{params_, 0, VK_WHOLE_SIZE},
+                                                   {positions_, 0, VK_WHOLE_SIZE},
+                                                   {velocities_, 0, VK_WHOLE_SIZE},
+                                                   {rest_, 0, VK_WHOLE_SIZE},
+                                                   {strands_, 0, VK_WHOLE_SIZE},
+                                                   {tangents_, 0, VK_WHOLE_SIZE},
+                                                   {grid_, 0, VK_WHOLE_SIZE},
+                                                   {gridVelocity_, 0, VK_WHOLE_SIZE},
+                                                   {counters_, 0, VK_WHOLE_SIZE}};
+    std::array<uint32_t, 9> bindingOf = {
+        gpu::kSimBindingParams, gpu::kSimBindingPositions,    gpu::kSimBindingVelocities,
+        gpu::kSimBindingRest,   gpu::kSimBindingStrands,      gpu::kSimBindingTangents,
+        gpu::kSimBindingGrid,   gpu::kSimBindingGridVelocity, gpu::kSimBindingCounters};
     std::array<VkWriteDescriptorSet, 9> writes{};
     for (size_t i = 0; i < writes.size(); ++i)
         writes[i] = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
@@ -223,7 +240,7 @@ void GpuSolver::recordStep(VkCommandBuffer cmd, const gpu::SimStep& step, vk::Gp
     end();
     begin("grid_gather");
     dispatch(gather_, vertexGroups, step);
-    vk::computeToComputeBarrier(cmd);  // the next step's integrate reads the gathered velocities
+    vk::computeToComputeBarrier(cmd); // the next step's integrate reads the gathered velocities
     end();
 }
 
@@ -231,8 +248,8 @@ std::vector<uint8_t> GpuSolver::download(const vk::Buffer& buffer) const
 {
     // One host buffer, kept across readbacks (samples read up to 3 x 51 MB at 3.2 M vertices).
     if (readback_.size() < buffer.size())
-        readback_ = ctx_.createBuffer({.size = buffer.size(), .usage = vk::kTransferDst, .memory = vk::Memory::Readback,
-                                       .name = "sim.readback"});
+        readback_ = ctx_.createBuffer(
+            {.size = buffer.size(), .usage = vk::kTransferDst, .memory = vk::Memory::Readback, .name = "sim.readback"});
     const vk::Buffer& host = readback_;
     ctx_.submitAndWait([&](VkCommandBuffer cmd) {
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
@@ -285,4 +302,4 @@ std::vector<gpu::GridNode> GpuSolver::readGrid() const
     return out;
 }
 
-}  // namespace wisp
+} // namespace wisp

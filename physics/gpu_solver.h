@@ -6,11 +6,11 @@
 // model and the maths stay in physics/ and shaders/shared/.
 #pragma once
 
-#include "physics/simulation.h"
-#include "gpu/pass.h"
 #include "gpu/handle.h"
+#include "gpu/pass.h"
 #include "gpu/resources.h"
 #include "gpu/timestamps.h"
+#include "physics/simulation.h"
 
 namespace wisp {
 
@@ -42,7 +42,7 @@ public:
     const SimSetup& setup() const { return setup_; }
     const vk::Buffer& positions() const { return positions_; }
     const vk::Buffer& tangents() const { return tangents_; }
-    const vk::Buffer& params() const { return params_; }  // the SimParams uniform block (colliders)
+    const vk::Buffer& params() const { return params_; } // the SimParams uniform block (colliders)
     // For passes that read the simulation's output in the same frame.
     TrackedBuffer& positionsTrack() { return positionsTrack_; }
     TrackedBuffer& tangentsTrack() { return tangentsTrack_; }
@@ -57,17 +57,17 @@ private:
 
     const vk::Context& ctx_;
     SimSetup setup_;
-    StrandSet model_;          // the strands as given, kept for reset()
+    StrandSet model_; // the strands as given, kept for reset()
     uint32_t vertexCount_ = 0;
-    uint32_t slotCount_ = 0;  // vertices in the interleaved buffers, padding included
+    uint32_t slotCount_ = 0; // vertices in the interleaved buffers, padding included
     bool fixedGrid_ = false;
     uint64_t deviceBytes_ = 0;
     vk::Buffer params_, positions_, velocities_, rest_, strands_, tangents_, grid_, gridVelocity_, counters_;
     TrackedBuffer positionsTrack_, tangentsTrack_;
-    mutable vk::Buffer readback_;  // host-visible, reused by every readState/readGrid
+    mutable vk::Buffer readback_; // host-visible, reused by every readState/readGrid
     vk::DescriptorSetLayout setLayout_;
     vk::PipelineLayout layout_;
     vk::Pipeline integrate_, integrateSplat_, clear_, normalize_, gather_;
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -34,7 +34,7 @@ RootSample pointOnTriangle(const Mesh& mesh, uint32_t t, float u1, float u2)
     return {p, len > 0.0f ? n / len : glm::normalize(face), t};
 }
 
-}  // namespace
+} // namespace
 
 std::vector<RootSample> sampleRoots(const Mesh& mesh, const std::vector<uint32_t>& triangles, uint32_t count,
                                     bool poissonDisk, uint32_t seed)
@@ -98,7 +98,7 @@ std::vector<RootSample> sampleRoots(const Mesh& mesh, const std::vector<uint32_t
             out.push_back(s);
             misses = 0;
         } else if (++misses > 64) {
-            radius *= 0.9f;  // too dense for this radius: rebuild the grid at the new cell size
+            radius *= 0.9f; // too dense for this radius: rebuild the grid at the new cell size
             grid.clear();
             for (uint32_t j = 0; j < out.size(); ++j)
                 grid[key(glm::ivec3(glm::floor(out[j].position / radius)))].push_back(j);
@@ -118,7 +118,7 @@ StrandSet growGuides(const Mesh& mesh, const ScalpRule& scalp, const std::vector
     set.rest.reserve(size_t(s.guides) * s.verticesPerStrand);
     Random rng{s.seed ^ 0xA511E9B3u};
     const glm::vec3 down(0.0f, -1.0f, 0.0f);
-    const float clearance = 0.002f * unitsPerMetre;  // grown hair rests just outside the colliders
+    const float clearance = 0.002f * unitsPerMetre; // grown hair rests just outside the colliders
     std::vector<glm::vec3> points(s.verticesPerStrand);
     // Strands are combed down, away from the crown and back (swept off the face): the bend
     // direction is gravity plus an outward-and-back pull (straight down alone cannot bend a strand
@@ -131,7 +131,7 @@ StrandSet growGuides(const Mesh& mesh, const ScalpRule& scalp, const std::vector
         glm::vec3 outward = root.position - crown;
         outward.y = 0.0f;
         outward = glm::length(outward) > 1e-6f * unitsPerMetre ? glm::normalize(outward) : glm::vec3(0.0f);
-        glm::vec3 comb = glm::normalize(outward + glm::vec3(0.0f, 0.0f, -2.5f));  // the head faces +z
+        glm::vec3 comb = glm::normalize(outward + glm::vec3(0.0f, 0.0f, -2.5f)); // the head faces +z
 
         float length = s.lengthMetres * unitsPerMetre * (1.0f + s.lengthVariation * (2.0f * rng.next() - 1.0f));
         float segment = length / float(s.verticesPerStrand - 1);
@@ -144,7 +144,7 @@ StrandSet growGuides(const Mesh& mesh, const ScalpRule& scalp, const std::vector
             glm::vec3 bend = 1.5f * (1.0f - u) * comb + (u + 0.2f) * down;
             dir = glm::normalize(dir + s.styleGravity * bend);
             glm::vec3 p = points[i - 1] + segment * dir;
-            for (const gpu::Ellipsoid& e : colliders) {  // drape over the head instead of through it
+            for (const gpu::Ellipsoid& e : colliders) { // drape over the head instead of through it
                 gpu::Contact c = gpu::ellipsoidContact(e, p, clearance);
                 if (c.depth > 0.0f)
                     p += c.depth * c.normal;
@@ -153,11 +153,12 @@ StrandSet growGuides(const Mesh& mesh, const ScalpRule& scalp, const std::vector
             dir = glm::normalize(p - points[i - 1]);
             points[i] = p;
         }
-        if (s.curlRadiusMetres > 0.0f) {  // a helix around the grown strand, growing from the root
+        if (s.curlRadiusMetres > 0.0f) { // a helix around the grown strand, growing from the root
             float radius = s.curlRadiusMetres * unitsPerMetre;
             for (uint32_t i = 1; i < s.verticesPerStrand; ++i) {
                 glm::vec3 t = glm::normalize(points[i] - points[i - 1]);
-                glm::vec3 u = glm::normalize(glm::cross(t, std::abs(t.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)));
+                glm::vec3 u =
+                    glm::normalize(glm::cross(t, std::abs(t.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)));
                 glm::vec3 w = glm::cross(t, u);
                 float along = float(i) / float(s.verticesPerStrand - 1);
                 float angle = curlPhase + 6.2831853f * s.curlTurns * along;
@@ -169,4 +170,4 @@ StrandSet growGuides(const Mesh& mesh, const ScalpRule& scalp, const std::vector
     return set;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -15,14 +15,14 @@ namespace wisp {
 inline constexpr uint32_t kMaxGuides = 2'000'000;
 
 struct GrowthSettings {
-    uint32_t guides = 1000;             // number of guide strands
-    uint32_t verticesPerStrand = 16;    // V
-    float lengthMetres = 0.24f;         // mean strand length (scaled by the head's units)
-    float lengthVariation = 0.15f;      // relative spread of lengths
-    float styleGravity = 1.0f;          // how fast strands bend down and outward as they grow
-    float curlRadiusMetres = 0.0f;      // helix radius of curls, 0 = straight
-    float curlTurns = 3.0f;             // helix turns along a strand
-    bool poissonDisk = false;           // blue-noise roots instead of plain area-weighted
+    uint32_t guides = 1000;          // number of guide strands
+    uint32_t verticesPerStrand = 16; // V
+    float lengthMetres = 0.24f;      // mean strand length (scaled by the head's units)
+    float lengthVariation = 0.15f;   // relative spread of lengths
+    float styleGravity = 1.0f;       // how fast strands bend down and outward as they grow
+    float curlRadiusMetres = 0.0f;   // helix radius of curls, 0 = straight
+    float curlTurns = 3.0f;          // helix turns along a strand
+    bool poissonDisk = false;        // blue-noise roots instead of plain area-weighted
     uint32_t seed = 1;
 };
 
@@ -40,4 +40,4 @@ std::vector<RootSample> sampleRoots(const Mesh& mesh, const std::vector<uint32_t
 StrandSet growGuides(const Mesh& mesh, const ScalpRule& scalp, const std::vector<gpu::Ellipsoid>& colliders,
                      const GrowthSettings& settings, float unitsPerMetre);
 
-}  // namespace wisp
+} // namespace wisp

@@ -24,8 +24,9 @@ void prepareHead(HairScene& scene)
         scene.colliders = fitColliders(scene.head.mesh);
         scene.collidersFitted = true;
     }
-    scene.scalp = scene.head.description.scalp ? *scene.head.description.scalp : defaultScalpRule(scene.colliders.front());
-    if (scene.collidersFitted)  // the scalp outside them, within a quarter of a percent of the head
+    scene.scalp =
+        scene.head.description.scalp ? *scene.head.description.scalp : defaultScalpRule(scene.colliders.front());
+    if (scene.collidersFitted) // the scalp outside them, within a quarter of a percent of the head
         inscribeColliders(scene.colliders, scene.head.mesh, scalpTriangles(scene.head.mesh, scene.scalp),
                           kInscribedTolerance * scene.head.mesh.bounds().diagonal());
     scene.gpuColliders.clear();
@@ -33,7 +34,7 @@ void prepareHead(HairScene& scene)
         scene.gpuColliders.push_back(toGpu(e));
 }
 
-}  // namespace
+} // namespace
 
 HairScene buildGrownScene(const std::filesystem::path& headFile, const GrowthSettings& growth)
 {
@@ -72,7 +73,7 @@ std::string percent(float fraction)
     return text;
 }
 
-}  // namespace
+} // namespace
 
 HairScene buildLoadedScene(Head head, const std::vector<HairPartSource>& parts, uint32_t verticesPerStrand,
                            const PlacementRequest& request)
@@ -94,9 +95,10 @@ HairScene buildLoadedScene(Head head, const std::vector<HairPartSource>& parts, 
         assets.push_back(loadHairAsset(parts[index].file));
         strandCount += assets.back().strands.size();
         if (strandCount > kMaxGuides)
-            throw UserError(parts[index].file.string() + ": " + std::to_string(assets.back().strands.size()) + " strands" +
-                            (index > 0 ? " (" + std::to_string(strandCount) + " with the parts before it)" : std::string()) +
-                            ", more than the " + std::to_string(kMaxGuides) + " guides Wisp simulates");
+            throw UserError(
+                parts[index].file.string() + ": " + std::to_string(assets.back().strands.size()) + " strands" +
+                (index > 0 ? " (" + std::to_string(strandCount) + " with the parts before it)" : std::string()) +
+                ", more than the " + std::to_string(kMaxGuides) + " guides Wisp simulates");
     }
 
     // One placement for the whole groom, from the roots of the parts that have none of their own.
@@ -116,10 +118,11 @@ HairScene buildLoadedScene(Head head, const std::vector<HairPartSource>& parts, 
         }
     }
     if (!roots.empty()) {
-        const HairAsset& lead = assets[size_t(std::find_if(parts.begin(), parts.end(),
-                                                            [](const HairPartSource& p) { return !p.placement; }) -
-                                              parts.begin())];
-        HairPlacement defaults{.scale = 1.0f, .offset = glm::vec3(0.0f), .zUpToYUp = lead.zUp, .mirrorZ = lead.mirroredZ};
+        const HairAsset& lead = assets[size_t(
+            std::find_if(parts.begin(), parts.end(), [](const HairPartSource& p) { return !p.placement; }) -
+            parts.begin())];
+        HairPlacement defaults{
+            .scale = 1.0f, .offset = glm::vec3(0.0f), .zUpToYUp = lead.zUp, .mirrorZ = lead.mirroredZ};
         scene.placement = placeGroom(roots, groomBounds, defaults, scene.head.mesh, request);
         const GroomPlacement& placed = *scene.placement;
         std::string where = "the groom's roots are not on the head: " + placed.describe() + " leaves " +
@@ -162,7 +165,7 @@ HairScene buildLoadedScene(Head head, const std::vector<HairPartSource>& parts, 
                                 std::to_string(asset.strands.size()) +
                                 " in the file) is too long for floats once placed: its length overflows");
             if (!(length > 0.0f)) {
-                ++scene.loaded.dropped;  // every point at one place: nothing to draw or simulate
+                ++scene.loaded.dropped; // every point at one place: nothing to draw or simulate
                 continue;
             }
             bool rigid = length < scene.loaded.shortThreshold;
@@ -172,9 +175,9 @@ HairScene buildLoadedScene(Head head, const std::vector<HairPartSource>& parts, 
             for (size_t i = 1; i < points.size(); ++i)
                 if (!(glm::length(points[i] - points[i - 1]) > 0.0f))
                     throw UserError(source.file.string() + ": strand " + std::to_string(s) + " (of " +
-                                    std::to_string(asset.strands.size()) + " in the file) is " + std::to_string(length) +
-                                    " long, too short to split into " + std::to_string(verticesPerStrand - 1) +
-                                    " segments in floats at its position");
+                                    std::to_string(asset.strands.size()) + " in the file) is " +
+                                    std::to_string(length) + " long, too short to split into " +
+                                    std::to_string(verticesPerStrand - 1) + " segments in floats at its position");
             scene.strands.add(points, index, rigid ? verticesPerStrand : strand.pinnedRoot, strand.pinnedTip && !rigid);
         }
     }
@@ -194,7 +197,8 @@ std::vector<std::string> describeLoadedHair(const HairScene& scene)
         return out;
     const RootFit& fit = scene.placement->fit;
     out.push_back("hair placement: " + scene.placement->describe() + "; roots: median " + percent(fit.median) +
-                  " of the head's size from its surface, " + percent(fit.onSurface) + " within " + percent(kRootOnSurface));
+                  " of the head's size from its surface, " + percent(fit.onSurface) + " within " +
+                  percent(kRootOnSurface));
     char threshold[32];
     std::snprintf(threshold, sizeof(threshold), "%.3g", double(scene.loaded.shortThreshold));
     out.push_back("hair strands: " + std::to_string(scene.strands.strandCount()) + " simulated, " +
@@ -209,11 +213,12 @@ nlohmann::json loadedHairJson(const HairScene& scene)
     if (!scene.placement)
         return nullptr;
     return {{"placement", scene.placement->toJson()},
-            {"short_strands", {{"shorter_than", scene.loaded.shortThreshold},
-                               {"kept_rigid", scene.loaded.rigid},
-                               {"dropped_zero_length", scene.loaded.dropped}}},
+            {"short_strands",
+             {{"shorter_than", scene.loaded.shortThreshold},
+              {"kept_rigid", scene.loaded.rigid},
+              {"dropped_zero_length", scene.loaded.dropped}}},
             {"pinned_tips", scene.loaded.pinnedTips},
             {"warnings", scene.warnings}};
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -4,10 +4,10 @@
 // runs it in a hair session (app/hair_session.h).
 #pragma once
 
-#include "physics/growth.h"
 #include "assets/hair_asset.h"
 #include "assets/head.h"
 #include "assets/placement.h"
+#include "physics/growth.h"
 #include "physics/strands.h"
 
 #include <nlohmann/json_fwd.hpp>
@@ -21,21 +21,21 @@ namespace wisp {
 
 // What loading a groom did with its strands (zero for grown hair).
 struct LoadedStrands {
-    size_t dropped = 0;           // of no length at all: nothing to draw or simulate
-    size_t rigid = 0;             // shorter than shortThreshold: kept rigid (assets/hair_asset.h)
-    float shortThreshold = 0.0f;  // head units
-    size_t pinnedTips = 0;        // both ends pinned (TressFX bothEndsImmovable)
+    size_t dropped = 0;          // of no length at all: nothing to draw or simulate
+    size_t rigid = 0;            // shorter than shortThreshold: kept rigid (assets/hair_asset.h)
+    float shortThreshold = 0.0f; // head units
+    size_t pinnedTips = 0;       // both ends pinned (TressFX bothEndsImmovable)
 };
 
 struct HairScene {
     Head head;
-    std::vector<Ellipsoid> colliders;          // head space
-    std::vector<gpu::Ellipsoid> gpuColliders;  // the same, as the solver takes them
+    std::vector<Ellipsoid> colliders;         // head space
+    std::vector<gpu::Ellipsoid> gpuColliders; // the same, as the solver takes them
     ScalpRule scalp;
-    bool collidersFitted = false;              // true when the head came without colliders
+    bool collidersFitted = false; // true when the head came without colliders
     float unitsPerMetre = 1.0f;
     StrandSet strands;
-    std::optional<GroomPlacement> placement;  // loaded hair: how it was placed, the roots against the head
+    std::optional<GroomPlacement> placement; // loaded hair: how it was placed, the roots against the head
     LoadedStrands loaded;
     // Warnings for the person (roots off the head under a placement given by hand), one line each.
     std::vector<std::string> warnings;
@@ -49,8 +49,8 @@ HairScene buildGrownScene(Head head, const GrowthSettings& growth);
 // One hair file of a groom, with how to place it and its own simulation parameters.
 struct HairPartSource {
     std::filesystem::path file;
-    std::optional<HairPlacement> placement;  // none: the groom's placement (all parts together)
-    PartSettings settings;                    // name defaults to the file's stem
+    std::optional<HairPlacement> placement; // none: the groom's placement (all parts together)
+    PartSettings settings;                  // name defaults to the file's stem
 };
 
 // Loads the head and the hair files (each a part), resampled to `verticesPerStrand`, placed
@@ -74,4 +74,4 @@ nlohmann::json loadedHairJson(const HairScene& scene);
 // The default parameters of a loaded (styled) part: it keeps its shape more than grown hair.
 PartSettings styledPartDefaults();
 
-}  // namespace wisp
+} // namespace wisp

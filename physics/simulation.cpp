@@ -75,7 +75,8 @@ gpu::SimStep makeStep(const SimSetup& setup, const glm::mat4& headTransform, con
     step.headTransform = headTransform;
     step.sphereCenter = glm::vec3(sphere);
     step.sphereRadius = sphere.w;
-    step.gridOrigin = glm::vec3(headTransform * glm::vec4(setup.gridCenterHead, 1.0f)) - glm::vec3(0.5f * setup.gridSide);
+    step.gridOrigin =
+        glm::vec3(headTransform * glm::vec4(setup.gridCenterHead, 1.0f)) - glm::vec3(0.5f * setup.gridSide);
     step.time = time;
     step.wind = setup.wind;
     step.windFrequency = setup.windFrequency;
@@ -102,7 +103,8 @@ SimState initialState(const StrandSet& strands, const glm::mat4& headTransform)
         for (uint32_t i = 0; i < V; ++i) {
             size_t g = s * V + i;
             bool pinned = i < info.pinnedRoot || (info.pinnedTip != 0u && i == V - 1);
-            state.positions[g] = glm::vec4(glm::vec3(headTransform * glm::vec4(strands.rest[g], 1.0f)), pinned ? 0.0f : 1.0f);
+            state.positions[g] =
+                glm::vec4(glm::vec3(headTransform * glm::vec4(strands.rest[g], 1.0f)), pinned ? 0.0f : 1.0f);
             uint32_t j = std::min(i + 1, V - 1);
             glm::vec3 t = strands.rest[s * V + j] - strands.rest[s * V + j - 1];
             state.tangents[g] = glm::vec4(glm::mat3(headTransform) * glm::normalize(t), 0.0f);
@@ -127,17 +129,19 @@ SimMetrics measure(const SimState& state, const std::vector<glm::vec4>& previous
             glm::vec3 motion = (p - glm::vec3(previous[g])) / stepSeconds;
             m.kineticEnergy += 0.5f * glm::dot(motion, motion);
             bool pinned = i < info.pinnedRoot || (info.pinnedTip != 0u && i == V - 1);
-            if (!pinned) {  // roots sit on the scalp, which the colliders enclose by design
+            if (!pinned) { // roots sit on the scalp, which the colliders enclose by design
                 glm::vec3 local = glm::transpose(R) * (p - t);
                 for (const gpu::Ellipsoid& e : colliders)
                     m.maxPenetration = std::max(m.maxPenetration, gpu::ellipsoidContact(e, local, 0.0f).depth);
                 if (step.sphereRadius > 0.0f)
-                    m.maxPenetration = std::max(m.maxPenetration, step.sphereRadius - glm::length(p - step.sphereCenter));
+                    m.maxPenetration =
+                        std::max(m.maxPenetration, step.sphereRadius - glm::length(p - step.sphereCenter));
             }
             if (pinned)
-                m.rootDrift = std::max(m.rootDrift, glm::length(p - glm::vec3(step.headTransform * glm::vec4(strands.rest[g], 1.0f))));
+                m.rootDrift = std::max(
+                    m.rootDrift, glm::length(p - glm::vec3(step.headTransform * glm::vec4(strands.rest[g], 1.0f))));
             bool parentPinned = i > 0 && (i - 1 < info.pinnedRoot);
-            if (i > 0 && !(pinned && parentPinned)) {  // a segment between two pinned vertices is rigid, not simulated
+            if (i > 0 && !(pinned && parentPinned)) { // a segment between two pinned vertices is rigid, not simulated
                 float rest = glm::length(strands.rest[g] - strands.rest[g - 1]);
                 float now = glm::length(p - glm::vec3(state.positions[g - 1]));
                 m.maxStretch = std::max(m.maxStretch, std::abs(now - rest) / rest);
@@ -147,4 +151,4 @@ SimMetrics measure(const SimState& state, const std::vector<glm::vec4>& previous
     return m;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -13,16 +13,16 @@
 namespace wisp {
 
 struct SimSettings {
-    float stepHz = 120.0f;                  // fixed steps per simulated second
-    uint32_t substeps = 2;                  // integrate/FTL substeps per step
-    float gravity = 9.81f;                  // m/s², downward (scaled to the head's units)
-    glm::vec3 wind{0.0f};                   // m/s² (scaled to the head's units)
-    float windFrequency = 0.35f;            // Hz of gusts
-    uint32_t gridResolution = 32;           // hair-hair grid nodes per axis
-    float gridFriction = 0.05f;             // Petrovic blend toward the grid velocity
-    float gridRepulsion = 0.0f;             // volume-keeping push along the density gradient
-    float penaltyStiffness = 4000.0f;       // 1/s²
-    float collisionMarginMetres = 0.003f;   // colliders act this far outside their surface
+    float stepHz = 120.0f;                // fixed steps per simulated second
+    uint32_t substeps = 2;                // integrate/FTL substeps per step
+    float gravity = 9.81f;                // m/s², downward (scaled to the head's units)
+    glm::vec3 wind{0.0f};                 // m/s² (scaled to the head's units)
+    float windFrequency = 0.35f;          // Hz of gusts
+    uint32_t gridResolution = 32;         // hair-hair grid nodes per axis
+    float gridFriction = 0.05f;           // Petrovic blend toward the grid velocity
+    float gridRepulsion = 0.0f;           // volume-keeping push along the density gradient
+    float penaltyStiffness = 4000.0f;     // 1/s²
+    float collisionMarginMetres = 0.003f; // colliders act this far outside their surface
     // Every part's parameters when set, over each part's own (PartSettings: grown hair's, or a
     // loaded groom's styled defaults); a part's own override (--part) still wins.
     std::optional<float> globalStiffness, localStiffness, ftlDamping, drag;
@@ -35,12 +35,12 @@ struct SimSettings {
 // Everything needed to run: packed parameters plus the grid's placement relative to the head.
 struct SimSetup {
     gpu::SimParams params{};
-    uint32_t substeps = 1;           // integrate/FTL passes per step (each params.dt long)
-    glm::vec3 wind{0.0f};            // the settings' wind, asset units / s² (a step may have its own)
-    float windFrequency = 0.0f;      // Hz of the gusts
-    float unitsPerMetre = 1.0f;      // the head's units
-    glm::vec3 gridCenterHead{0.0f};  // grid centre in head space (the grid follows the head)
-    float gridSide = 0.0f;           // asset units
+    uint32_t substeps = 1;          // integrate/FTL passes per step (each params.dt long)
+    glm::vec3 wind{0.0f};           // the settings' wind, asset units / s² (a step may have its own)
+    float windFrequency = 0.0f;     // Hz of the gusts
+    float unitsPerMetre = 1.0f;     // the head's units
+    glm::vec3 gridCenterHead{0.0f}; // grid centre in head space (the grid follows the head)
+    float gridSide = 0.0f;          // asset units
 };
 
 SimSetup makeSimSetup(const SimSettings& settings, const StrandSet& strands,
@@ -62,9 +62,9 @@ gpu::SimStep makeStep(const SimSetup& setup, const glm::mat4& headTransform, con
 
 // The simulated state, one entry per vertex (world space).
 struct SimState {
-    std::vector<glm::vec4> positions;   // xyz, w = inverse mass (0 pinned)
-    std::vector<glm::vec4> velocities;  // xyz
-    std::vector<glm::vec4> tangents;    // xyz
+    std::vector<glm::vec4> positions;  // xyz, w = inverse mass (0 pinned)
+    std::vector<glm::vec4> velocities; // xyz
+    std::vector<glm::vec4> tangents;   // xyz
     uint32_t nonfiniteResets = 0;
 };
 
@@ -72,9 +72,10 @@ struct SimState {
 SimState initialState(const StrandSet& strands, const glm::mat4& headTransform);
 
 struct SimMetrics {
-    float maxStretch = 0.0f;       // max |length - rest| / rest over the simulated segments (not those between pinned vertices)
-    float maxPenetration = 0.0f;   // deepest vertex inside any collider (or the sphere), asset units
-    float rootDrift = 0.0f;        // max distance of a pinned vertex from where the head puts it
+    float maxStretch =
+        0.0f; // max |length - rest| / rest over the simulated segments (not those between pinned vertices)
+    float maxPenetration = 0.0f; // deepest vertex inside any collider (or the sphere), asset units
+    float rootDrift = 0.0f;      // max distance of a pinned vertex from where the head puts it
     // 0.5 sum |dx/dt|² over the last step (unit mass per vertex): the motion a viewer sees. Not
     // from the velocity buffer: Muller's correction term keeps a steady velocity along each strand
     // (about s_damp g dt / (1 - s_damp) at rest) that FTL cancels every step; it is damping
@@ -85,4 +86,4 @@ struct SimMetrics {
 SimMetrics measure(const SimState& state, const std::vector<glm::vec4>& previous, float stepSeconds,
                    const StrandSet& strands, const SimSetup& setup, const gpu::SimStep& step);
 
-}  // namespace wisp
+} // namespace wisp

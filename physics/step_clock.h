@@ -49,7 +49,7 @@ public:
 private:
     float stepHz_;
     uint64_t done_ = 0;
-    double pending_ = 0.0;  // real seconds not yet spent in a step
+    double pending_ = 0.0; // real seconds not yet spent in a step
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -25,7 +25,7 @@ void StrandSet::add(const std::vector<glm::vec3>& points, uint32_t part, uint32_
     }
     uint32_t index = static_cast<uint32_t>(strands.size());
     strands.push_back({.part = part,
-                       .pinnedRoot = std::clamp<uint32_t>(pinnedRoot, 1, verticesPerStrand),  // V: rigid
+                       .pinnedRoot = std::clamp<uint32_t>(pinnedRoot, 1, verticesPerStrand), // V: rigid
                        .pinnedTip = pinnedTip ? 1u : 0u,
                        .seed = gpu::hashUint(index * 2654435761u + 17u)});
     rest.insert(rest.end(), points.begin(), points.end());
@@ -73,8 +73,12 @@ std::vector<glm::uvec4> guideTriangles(const StrandSet& strands)
     glm::vec3 size = glm::max(b.size(), glm::vec3(1e-6f));
     float cell = std::max(std::cbrt(2.0f * size.x * size.y * size.z / float(n)), 1e-3f * glm::length(size));
     glm::ivec3 dims = glm::ivec3(size / cell) + 1;
-    auto cellOf = [&](const glm::vec3& p) { return glm::clamp(glm::ivec3((p - b.min) / cell), glm::ivec3(0), dims - 1); };
-    auto key = [&](glm::ivec3 c) { return (size_t(c.z) * size_t(dims.y) + size_t(c.y)) * size_t(dims.x) + size_t(c.x); };
+    auto cellOf = [&](const glm::vec3& p) {
+        return glm::clamp(glm::ivec3((p - b.min) / cell), glm::ivec3(0), dims - 1);
+    };
+    auto key = [&](glm::ivec3 c) {
+        return (size_t(c.z) * size_t(dims.y) + size_t(c.y)) * size_t(dims.x) + size_t(c.x);
+    };
     std::vector<std::vector<uint32_t>> grid(size_t(dims.x) * dims.y * dims.z);
     for (uint32_t s = 0; s < n; ++s)
         grid[key(cellOf(strands.rest[size_t(s) * V]))].push_back(s);
@@ -83,7 +87,7 @@ std::vector<glm::uvec4> guideTriangles(const StrandSet& strands)
         glm::ivec3 c = cellOf(p);
         uint32_t best[2] = {s, s};
         float bestD[2] = {1e30f, 1e30f};
-        size_t seen = 0;  // other guides looked at: once all of them, nothing closer is left
+        size_t seen = 0; // other guides looked at: once all of them, nothing closer is left
         // Grow the search ring until two neighbours are found and no closer one can lie outside it
         // (the ring clamped to the grid: roots on a line or a plane make a grid one cell thick).
         for (int r = 1;; ++r) {
@@ -92,8 +96,8 @@ std::vector<glm::uvec4> guideTriangles(const StrandSet& strands)
                     for (int x = std::max(c.x - r, 0); x <= std::min(c.x + r, dims.x - 1); ++x) {
                         int ring = std::max({std::abs(x - c.x), std::abs(y - c.y), std::abs(z - c.z)});
                         if (r > 1 && ring < r - 1)
-                            continue;  // inner cells were searched in earlier rings
-                        bool first = r == 1 || ring == r;  // a cell of ring r - 1 is looked at again
+                            continue;                     // inner cells were searched in earlier rings
+                        bool first = r == 1 || ring == r; // a cell of ring r - 1 is looked at again
                         for (uint32_t o : grid[key({x, y, z})]) {
                             if (o == s)
                                 continue;
@@ -120,4 +124,4 @@ std::vector<glm::uvec4> guideTriangles(const StrandSet& strands)
     return out;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -16,22 +16,22 @@ inline constexpr uint32_t kMaxVerticesPerStrand = 64;
 
 struct PartSettings {
     std::string name = "guides";
-    float globalStiffness = 0.015f;  // per step at the root, [0, 1]
-    float localStiffness = 0.04f;    // per step, [0, 1]
-    float ftlDamping = 0.9f;         // s_damp, [0, 1]
-    float drag = 0.6f;               // 1/s
+    float globalStiffness = 0.015f; // per step at the root, [0, 1]
+    float localStiffness = 0.04f;   // per step, [0, 1]
+    float ftlDamping = 0.9f;        // s_damp, [0, 1]
+    float drag = 0.6f;              // 1/s
 };
 
 struct StrandSet {
     uint32_t verticesPerStrand = 16;
-    std::vector<glm::vec3> rest;           // strandCount() * V, head space, root first
-    std::vector<gpu::StrandInfo> strands;  // one per strand
-    std::vector<PartSettings> parts;       // indexed by StrandInfo::part
+    std::vector<glm::vec3> rest;          // strandCount() * V, head space, root first
+    std::vector<gpu::StrandInfo> strands; // one per strand
+    std::vector<PartSettings> parts;      // indexed by StrandInfo::part
 
     size_t strandCount() const { return strands.size(); }
     size_t vertexCount() const { return rest.size(); }
-    float maxLength() const;  // longest strand's rest length
-    Bounds bounds() const;    // of the rest pose
+    float maxLength() const; // longest strand's rest length
+    Bounds bounds() const;   // of the rest pose
     // Appends a strand; `points` must already have verticesPerStrand entries.
     void add(const std::vector<glm::vec3>& points, uint32_t part, uint32_t pinnedRoot, bool pinnedTip);
 };
@@ -41,4 +41,4 @@ struct StrandSet {
 // guide is its own neighbour.
 std::vector<glm::uvec4> guideTriangles(const StrandSet& strands);
 
-}  // namespace wisp
+} // namespace wisp

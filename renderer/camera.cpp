@@ -23,7 +23,7 @@ glm::mat4 OrbitCamera::view() const
 glm::mat4 OrbitCamera::projection(float aspect) const
 {
     glm::mat4 p = glm::perspectiveRH_ZO(glm::radians(fovYDeg), aspect, nearPlane, farPlane);
-    p[1][1] *= -1.0f;  // Vulkan clip space has y pointing down
+    p[1][1] *= -1.0f; // Vulkan clip space has y pointing down
     return p;
 }
 
@@ -63,4 +63,4 @@ OrbitCamera OrbitCamera::framing(const Bounds& bounds, float aspect)
     return c;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -12,20 +12,20 @@ namespace wisp {
 
 struct OrbitCamera {
     glm::vec3 target{0.0f};
-    float yawDeg = 25.0f;    // around +y; 0 looks at the face (+z) from the front
-    float pitchDeg = 10.0f;  // above the target's horizontal plane
-    float distance = 1.0f;   // asset units
+    float yawDeg = 25.0f;   // around +y; 0 looks at the face (+z) from the front
+    float pitchDeg = 10.0f; // above the target's horizontal plane
+    float distance = 1.0f;  // asset units
     float fovYDeg = 30.0f;
     float nearPlane = 0.01f;
     float farPlane = 100.0f;
-    float sceneRadius = 1.0f;  // the framed bounds' half diagonal: the planes and the zoom follow it
+    float sceneRadius = 1.0f; // the framed bounds' half diagonal: the planes and the zoom follow it
 
     glm::vec3 position() const;
     glm::mat4 view() const;
     glm::mat4 projection(float aspect) const;
 
     void orbit(float dYawDeg, float dPitchDeg);
-    void zoom(float factor);  // distance *= factor, kept within sensible bounds
+    void zoom(float factor); // distance *= factor, kept within sensible bounds
     void pan(float dxUnits, float dyUnits);
 
     // Near and far planes around a scene of sceneRadius whose centre is `targetOffset` from the
@@ -38,12 +38,12 @@ struct OrbitCamera {
         nearPlane = std::max(distance - kNearReach * sceneRadius - targetOffset, kMinNearFraction * distance);
         farPlane = distance + kFarReach * sceneRadius + targetOffset;
     }
-    static constexpr float kNearReach = 3.0f;          // scene radii in front of the centre kept in view
-    static constexpr float kFarReach = 8.0f;           // and behind it
-    static constexpr float kMinNearFraction = 0.02f;  // of the distance
+    static constexpr float kNearReach = 3.0f;        // scene radii in front of the centre kept in view
+    static constexpr float kFarReach = 8.0f;         // and behind it
+    static constexpr float kMinNearFraction = 0.02f; // of the distance
 
     // A three-quarter view that fits `bounds` in the frame with a margin.
     static OrbitCamera framing(const Bounds& bounds, float aspect);
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -37,4 +37,4 @@ void FrameUniforms::push(const vk::Context& ctx, VkCommandBuffer cmd, VkPipeline
     ctx.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &write);
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -25,4 +25,4 @@ private:
     std::vector<vk::Buffer> buffers_;
 };
 
-}  // namespace wisp
+} // namespace wisp

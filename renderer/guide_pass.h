@@ -2,8 +2,8 @@
 // the solver's positions buffer (the physics' view until the strands renderer takes over).
 #pragma once
 
-#include "gpu/pass.h"
 #include "gpu/handle.h"
+#include "gpu/pass.h"
 #include "gpu/resources.h"
 
 namespace wisp {
@@ -42,4 +42,4 @@ private:
     vk::Buffer indices_;
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -2,15 +2,15 @@
 // draw: guides x length chunks patches of one control point, one instance per chunk of 64 strands.
 #include "renderer/hair_pass.h"
 
-#include "physics/gpu_solver.h"
+#include "gpu/check.h"
+#include "gpu/context.h"
 #include "gpu/frame.h"
+#include "gpu/pipeline.h"
+#include "physics/gpu_solver.h"
 #include "renderer/frame_uniforms.h"
 #include "renderer/light_maps.h"
 #include "renderer/oit.h"
 #include "renderer/render_target.h"
-#include "gpu/check.h"
-#include "gpu/context.h"
-#include "gpu/pipeline.h"
 
 #include <algorithm>
 #include <array>
@@ -21,10 +21,11 @@ namespace wisp {
 
 namespace {
 // Results come back in the order of the bits: GS invocations, GS primitives, TES invocations.
-constexpr VkQueryPipelineStatisticFlags kStatistics = VK_QUERY_PIPELINE_STATISTIC_GEOMETRY_SHADER_INVOCATIONS_BIT |
-                                                      VK_QUERY_PIPELINE_STATISTIC_GEOMETRY_SHADER_PRIMITIVES_BIT |
-                                                      VK_QUERY_PIPELINE_STATISTIC_TESSELLATION_EVALUATION_SHADER_INVOCATIONS_BIT;
-}  // namespace
+constexpr VkQueryPipelineStatisticFlags kStatistics =
+    VK_QUERY_PIPELINE_STATISTIC_GEOMETRY_SHADER_INVOCATIONS_BIT |
+    VK_QUERY_PIPELINE_STATISTIC_GEOMETRY_SHADER_PRIMITIVES_BIT |
+    VK_QUERY_PIPELINE_STATISTIC_TESSELLATION_EVALUATION_SHADER_INVOCATIONS_BIT;
+} // namespace
 
 static_assert(sizeof(gpu::HairPush) == 96, "HairPush must fit the 128 bytes of push constants every device has");
 
@@ -57,9 +58,9 @@ HairPass::HairPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
         statistics_ = vk::QueryPool(ctx.device(), pool);
     }
     std::vector<glm::uvec4> triangles = guideTriangles(strands);
-    triangles_ = ctx.createBufferWithData({.size = triangles.size() * sizeof(glm::uvec4), .usage = vk::kStorage,
-                                           .name = "hair.triangles"},
-                                          triangles.data(), triangles.size() * sizeof(glm::uvec4));
+    triangles_ = ctx.createBufferWithData(
+        {.size = triangles.size() * sizeof(glm::uvec4), .usage = vk::kStorage, .name = "hair.triangles"},
+        triangles.data(), triangles.size() * sizeof(glm::uvec4));
     constexpr VkShaderStageFlags kTessellation =
         VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT | VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT;
     constexpr VkShaderStageFlags kFragment = VK_SHADER_STAGE_FRAGMENT_BIT;
@@ -97,12 +98,12 @@ HairPass::HairPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
                                     .cullMode = VK_CULL_MODE_NONE,
                                     .colorFormat = RenderTarget::kColorFormat,
                                     .depthFormat = RenderTarget::kDepthFormat,
-                                    .samples = target.samples(),  // coverage is the fragment's sample mask (hair.frag)
+                                    .samples = target.samples(), // coverage is the fragment's sample mask (hair.frag)
                                     .name = "hair.pipeline"};
     pipeline_ = vk::createGraphicsPipeline(ctx, camera);
     vk::GraphicsPipelineDesc oit = camera;
     oit.shaders.back() = "hair_oit.frag";
-    oit.depthWrite = false;  // tested against the head, never hiding other hair
+    oit.depthWrite = false; // tested against the head, never hiding other hair
     oit.colorWrite = false;
     oit.name = "hair.oit.pipeline";
     oitPipeline_ = vk::createGraphicsPipeline(ctx, oit);
@@ -133,8 +134,8 @@ void HairPass::setLut(const shading::HairLut& lut, FrameContext* frame)
                                         .usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                                         .layers = gpu::kHairLutLayers,
                                         .name = "hair.lut"});
-    vk::Buffer staging = ctx_.createBuffer({.size = lut.bytes(), .usage = vk::kTransferSrc, .memory = vk::Memory::Upload,
-                                            .name = "hair.lut.staging"});
+    vk::Buffer staging = ctx_.createBuffer(
+        {.size = lut.bytes(), .usage = vk::kTransferSrc, .memory = vk::Memory::Upload, .name = "hair.lut.staging"});
     std::memcpy(staging.mapped(), lut.texels.data(), lut.bytes());
     ctx_.submitAndWait([&](VkCommandBuffer cmd) {
         VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, gpu::kHairLutLayers};
@@ -146,8 +147,8 @@ void HairPass::setLut(const shading::HairLut& lut, FrameContext* frame)
                                      .newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                      .image = image.get(),
                                      .subresourceRange = range};
-        VkDependencyInfo dep{.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .imageMemoryBarrierCount = 1,
-                             .pImageMemoryBarriers = &toCopy};
+        VkDependencyInfo dep{
+            .sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .imageMemoryBarrierCount = 1, .pImageMemoryBarriers = &toCopy};
         vkCmdPipelineBarrier2(cmd, &dep);
         VkBufferImageCopy region{.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, gpu::kHairLutLayers},
                                  .imageExtent = {n, n, 1}};
@@ -172,7 +173,7 @@ void HairPass::setLut(const shading::HairLut& lut, FrameContext* frame)
 
 void HairPass::declareGuides(PassIo& io)
 {
-    io.use(solver_.positionsTrack(), Access::VertexShaderRead);  // tessellation reads the guides
+    io.use(solver_.positionsTrack(), Access::VertexShaderRead); // tessellation reads the guides
 }
 
 void HairPass::declare(PassIo& io)
@@ -243,7 +244,7 @@ void HairPass::recordFromLight(VkCommandBuffer cmd, FrameContext& frame, LightDr
     if (which == LightDraw::Depth)
         draw(cmd, frame, depthPipeline_, {}, lightPush_);
     else
-        draw(cmd, frame, opacityPipeline_, {lightMaps_->hairDepthWrite()}, lightPush_);  // z0: where the layers start
+        draw(cmd, frame, opacityPipeline_, {lightMaps_->hairDepthWrite()}, lightPush_); // z0: where the layers start
 }
 
 void HairPass::record(VkCommandBuffer cmd, FrameContext& frame)
@@ -261,7 +262,8 @@ void HairPass::record(VkCommandBuffer cmd, FrameContext& frame)
         oitInfos = {VkDescriptorBufferInfo{oit_->headsBuffer(), 0, VK_WHOLE_SIZE},
                     VkDescriptorBufferInfo{oit_->nodesBuffer(), 0, VK_WHOLE_SIZE},
                     VkDescriptorBufferInfo{oit_->countersBuffer(), 0, VK_WHOLE_SIZE}};
-        const uint32_t bindings[3] = {gpu::kHairBindingOitHeads, gpu::kHairBindingOitNodes, gpu::kHairBindingOitCounters};
+        const uint32_t bindings[3] = {gpu::kHairBindingOitHeads, gpu::kHairBindingOitNodes,
+                                      gpu::kHairBindingOitCounters};
         for (uint32_t i = 0; i < 3; ++i)
             extra.push_back({.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
                              .dstBinding = bindings[i],
@@ -280,4 +282,4 @@ void HairPass::record(VkCommandBuffer cmd, FrameContext& frame)
     target_.endRendering(cmd);
 }
 
-}  // namespace wisp
+} // namespace wisp

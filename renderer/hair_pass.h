@@ -3,11 +3,11 @@
 // fragments, reading the guides straight from the solver's buffers in the same frame.
 #pragma once
 
-#include "physics/strands.h"
-#include "gpu/pass.h"
-#include "renderer/settings.h"
 #include "gpu/handle.h"
+#include "gpu/pass.h"
 #include "gpu/resources.h"
+#include "physics/strands.h"
+#include "renderer/settings.h"
 #include "shaders/shared/strands.h"
 #include "shading/hair_lut.h"
 
@@ -28,13 +28,13 @@ class Oit;
 // never cap it (the CLI and UI report these).
 struct HairDrawCounts {
     uint32_t guides = 0;
-    uint32_t strandsPerGuide = 0;   // as drawn (before LOD)
-    uint32_t divisions = 0;         // segments per strand
-    uint32_t lengthChunks = 0;      // patches along a strand: ceil(divisions / 64)
-    uint32_t strandsPerPatch = 0;   // lines a patch holds: <= 64 and <= maxPatchVertices / (divisions + 1)
-    uint32_t strandChunks = 0;      // instances: ceil(strands per guide / strandsPerPatch)
-    uint32_t patchesPerDraw = 0;    // patches one draw holds: its tessellated vertices per instance
-                                    // stay within gpu::kMaxTessVerticesPerDraw
+    uint32_t strandsPerGuide = 0; // as drawn (before LOD)
+    uint32_t divisions = 0;       // segments per strand
+    uint32_t lengthChunks = 0;    // patches along a strand: ceil(divisions / 64)
+    uint32_t strandsPerPatch = 0; // lines a patch holds: <= 64 and <= maxPatchVertices / (divisions + 1)
+    uint32_t strandChunks = 0;    // instances: ceil(strands per guide / strandsPerPatch)
+    uint32_t patchesPerDraw = 0;  // patches one draw holds: its tessellated vertices per instance
+                                  // stay within gpu::kMaxTessVerticesPerDraw
     uint64_t patches() const { return uint64_t(guides) * lengthChunks; }
     uint64_t draws() const { return patchesPerDraw ? (patches() + patchesPerDraw - 1) / patchesPerDraw : 0; }
     uint64_t strands() const { return uint64_t(guides) * strandsPerGuide; }
@@ -44,7 +44,7 @@ HairDrawCounts hairDrawCounts(uint32_t guides, const StrandSettings& settings);
 
 class HairPass : public Pass {
 public:
-    static constexpr VkFormat kLutFormat = VK_FORMAT_R32G32B32A32_SFLOAT;  // the lookup tables' layers
+    static constexpr VkFormat kLutFormat = VK_FORMAT_R32G32B32A32_SFLOAT; // the lookup tables' layers
     // The device memory for `guides` guides: a triangle of guides each, and the lookup tables.
     static constexpr uint64_t deviceBytes(uint64_t guides)
     {
@@ -95,23 +95,23 @@ private:
     GpuSolver& solver_;
     vk::DescriptorSetLayout setLayout_;
     vk::PipelineLayout layout_;
-    vk::Pipeline pipeline_;       // camera, MSAA coverage
-    vk::Pipeline oitPipeline_;    // camera, fragments into the linked lists
-    vk::Pipeline depthPipeline_;  // light, depth only
-    vk::Pipeline opacityPipeline_;  // light, deep opacity layers
+    vk::Pipeline pipeline_;        // camera, MSAA coverage
+    vk::Pipeline oitPipeline_;     // camera, fragments into the linked lists
+    vk::Pipeline depthPipeline_;   // light, depth only
+    vk::Pipeline opacityPipeline_; // light, deep opacity layers
     LightMaps* lightMaps_ = nullptr;
     vk::Image lut_;
     vk::Sampler lutSampler_;
     VkDescriptorImageInfo lutInfo_{};
     Oit* oit_ = nullptr;
     vk::Buffer triangles_;
-    vk::QueryPool statistics_;  // empty where the device has no pipeline statistics
+    vk::QueryPool statistics_; // empty where the device has no pipeline statistics
     gpu::HairPush push_{};
     gpu::HairPush lightPush_{};
     // Binds `pipeline`, pushes the guide bindings plus `extra`, and draws every patch and instance.
-    void draw(VkCommandBuffer cmd, FrameContext& frame, VkPipeline pipeline, const std::vector<VkWriteDescriptorSet>& extra,
-              gpu::HairPush push);
+    void draw(VkCommandBuffer cmd, FrameContext& frame, VkPipeline pipeline,
+              const std::vector<VkWriteDescriptorSet>& extra, gpu::HairPush push);
     HairDrawCounts counts_;
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -1,12 +1,12 @@
 // renderer/light_maps.cpp: the light's maps, their samplers, and the shadow and opacity passes.
 #include "renderer/light_maps.h"
 
-#include "gpu/frame.h"
-#include "renderer/hair_pass.h"
-#include "renderer/mesh_pass.h"
 #include "gpu/check.h"
 #include "gpu/context.h"
+#include "gpu/frame.h"
 #include "gpu/pipeline.h"
+#include "renderer/hair_pass.h"
+#include "renderer/mesh_pass.h"
 #include "shaders/shared/shadows.h"
 
 #include <cstring>
@@ -29,20 +29,22 @@ void LightMaps::resize(uint32_t size)
     // Transfer destination and storage: the compute hair path writes the hair's maps.
     constexpr VkImageUsageFlags kDepthUsage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                                               VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-    headDepth_ = ctx_.createImage({.format = kDepthFormat, .extent = extent, .usage = kDepthUsage, .name = "light.head_depth"});
-    hairDepth_ = ctx_.createImage({.format = kDepthFormat, .extent = extent, .usage = kDepthUsage, .name = "light.hair_depth"});
-    hairValues_ = ctx_.createImage({.format = kDepthValueFormat,
-                                    .extent = extent,
-                                    .usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                                             VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                                    .name = "light.hair_depth_values"});
+    headDepth_ =
+        ctx_.createImage({.format = kDepthFormat, .extent = extent, .usage = kDepthUsage, .name = "light.head_depth"});
+    hairDepth_ =
+        ctx_.createImage({.format = kDepthFormat, .extent = extent, .usage = kDepthUsage, .name = "light.hair_depth"});
+    hairValues_ = ctx_.createImage(
+        {.format = kDepthValueFormat,
+         .extent = extent,
+         .usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+         .name = "light.hair_depth_values"});
     opacity_ = ctx_.createImage({.format = kOpacityFormat,
                                  .extent = extent,
                                  .usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                                           VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_STORAGE_BIT,
                                  .name = "light.opacity"});
     headTrack_ = {.image = headDepth_.get(), .aspect = VK_IMAGE_ASPECT_DEPTH_BIT, .transient = false};
-    drawnKey_ = HeadShadowKey{};  // a new map: drawn again
+    drawnKey_ = HeadShadowKey{}; // a new map: drawn again
     headStale_ = true;
     hairTrack_ = {.image = hairDepth_.get(), .aspect = VK_IMAGE_ASPECT_DEPTH_BIT};
     valuesTrack_ = {.image = hairValues_.get()};
@@ -74,7 +76,7 @@ void LightMaps::useHairDepthValues(bool values)
 void LightMaps::declareRead(PassIo& io, Access access)
 {
     io.use(headTrack_, access);
-    io.use(hairTrack_, access);  // (bound to the hair's PCF either way)
+    io.use(hairTrack_, access); // (bound to the hair's PCF either way)
     if (values_)
         io.use(valuesTrack_, access);
     io.use(opacityTrack_, access);
@@ -112,7 +114,7 @@ void beginRendering(VkCommandBuffer cmd, uint32_t size, const VkRenderingAttachm
     vkCmdSetScissor(cmd, 0, 1, &scissor);
 }
 
-}  // namespace
+} // namespace
 
 void LightMaps::beginDepth(VkCommandBuffer cmd, const vk::Image& image) const
 {
@@ -180,4 +182,4 @@ void OpacityPass::record(VkCommandBuffer cmd, FrameContext& frame)
     vkCmdEndRendering(cmd);
 }
 
-}  // namespace wisp
+} // namespace wisp

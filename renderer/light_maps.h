@@ -7,8 +7,8 @@
 //                           depth falls in behind the texel's first hair depth (Yuksel & Keyser 2008)
 #pragma once
 
-#include "gpu/pass.h"
 #include "gpu/handle.h"
+#include "gpu/pass.h"
 #include "gpu/resources.h"
 
 #include <glm/glm.hpp>
@@ -30,7 +30,7 @@ class HairPass;
 struct HeadShadowKey {
     glm::mat4 lightViewProjection{1.0f};
     glm::mat4 headTransform{1.0f};
-    glm::vec4 sphere{0.0f};  // the user's sphere casts too
+    glm::vec4 sphere{0.0f}; // the user's sphere casts too
     uint32_t enabled = 0;
     uint32_t size = 0;
     uint32_t pad0 = 0;
@@ -49,7 +49,8 @@ public:
     static constexpr uint64_t deviceBytes(uint32_t size)
     {
         return uint64_t(size) * size *
-               (2 * vk::formatBytes(kDepthFormat) + vk::formatBytes(kDepthValueFormat) + vk::formatBytes(kOpacityFormat));
+               (2 * vk::formatBytes(kDepthFormat) + vk::formatBytes(kDepthValueFormat) +
+                vk::formatBytes(kOpacityFormat));
     }
 
     LightMaps(const vk::Context& ctx, uint32_t size);
@@ -75,7 +76,11 @@ public:
     // This frame's key for the head's depth (before the frame's passes are declared).
     void setHeadKey(const HeadShadowKey& key);
     bool headDepthStale() const { return headStale_; }
-    void headDepthDrawn() { drawnKey_ = key_; headStale_ = false; }
+    void headDepthDrawn()
+    {
+        drawnKey_ = key_;
+        headStale_ = false;
+    }
 
     // For a pass whose shaders read the maps: the accesses to declare, and the descriptor
     // writes for bindings kBindingShadowHead..kBindingOpacity (valid while this object lives).
@@ -96,9 +101,9 @@ private:
     bool values_ = false;
     HeadShadowKey key_, drawnKey_;
     bool headStale_ = true;
-    vk::Sampler compare_;  // depth compare, bilinear (each PCF tap is itself a 2x2 filter)
-    vk::Sampler nearest_;  // the hair's first depth as a value
-    vk::Sampler linear_;   // the opacity layers
+    vk::Sampler compare_; // depth compare, bilinear (each PCF tap is itself a 2x2 filter)
+    vk::Sampler nearest_; // the hair's first depth as a value
+    vk::Sampler linear_;  // the opacity layers
     std::array<VkDescriptorImageInfo, 4> infos_{};
     void updateInfos();
 };
@@ -110,7 +115,7 @@ public:
     const char* name() const override { return "shadow"; }
     void declare(PassIo& io) override;
     void record(VkCommandBuffer cmd, FrameContext& frame) override;
-    void setEnabled(bool enabled) { enabled_ = enabled; }  // off: the maps are only cleared
+    void setEnabled(bool enabled) { enabled_ = enabled; } // off: the maps are only cleared
     // Off: the hair's depth map is left alone (the compute path writes it).
     void setHairDepth(bool drawn) { hairDepth_ = drawn; }
 
@@ -137,4 +142,4 @@ private:
     bool enabled_ = true;
 };
 
-}  // namespace wisp
+} // namespace wisp

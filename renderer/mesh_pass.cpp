@@ -1,12 +1,12 @@
 // renderer/mesh_pass.cpp: mesh upload, the mesh pipeline, and its draw.
 #include "renderer/mesh_pass.h"
 
+#include "gpu/context.h"
 #include "gpu/frame.h"
+#include "gpu/pipeline.h"
 #include "renderer/frame_uniforms.h"
 #include "renderer/light_maps.h"
 #include "renderer/render_target.h"
-#include "gpu/context.h"
-#include "gpu/pipeline.h"
 #include "shaders/shared/mesh_params.h"
 #include "shaders/shared/mesh_raster.h"
 #include "shaders/shared/shadows.h"
@@ -28,7 +28,7 @@ namespace {
 struct MeshVertex {
     glm::vec3 position;
     glm::vec3 normal;
-    float scalp;  // 0..1, kMeshLocationScalp
+    float scalp; // 0..1, kMeshLocationScalp
 };
 static_assert(sizeof(MeshVertex) == 28);
 static_assert(sizeof(gpu::MeshShadowPush) == 80);
@@ -49,7 +49,7 @@ private:
     bool shadow_;
 };
 
-}  // namespace
+} // namespace
 
 std::vector<float> scalpCoverage(const Mesh& head, const StrandSet& strands)
 {
@@ -67,10 +67,13 @@ std::vector<float> scalpCoverage(const Mesh& head, const StrandSet& strands)
     }
     // A hash grid of the roots, cells of about two roots each.
     glm::vec3 size = glm::max(b.size(), glm::vec3(1e-6f * std::max(b.diagonal(), 1e-6f)));
-    float cell = std::max(std::sqrt((size.x * size.y + size.y * size.z + size.z * size.x) * 2.0f / float(n)), 1e-4f * b.diagonal());
+    float cell = std::max(std::sqrt((size.x * size.y + size.y * size.z + size.z * size.x) * 2.0f / float(n)),
+                          1e-4f * b.diagonal());
     glm::ivec3 dims = glm::min(glm::ivec3(size / cell) + 1, glm::ivec3(256));
     glm::vec3 step = size / glm::vec3(dims) + glm::vec3(1e-12f);
-    auto cellOf = [&](glm::vec3 p) { return glm::clamp(glm::ivec3(glm::floor((p - b.min) / step)), glm::ivec3(0), dims - 1); };
+    auto cellOf = [&](glm::vec3 p) {
+        return glm::clamp(glm::ivec3(glm::floor((p - b.min) / step)), glm::ivec3(0), dims - 1);
+    };
     std::vector<std::vector<uint32_t>> grid(size_t(dims.x) * dims.y * dims.z);
     auto key = [&](glm::ivec3 c) { return (size_t(c.z) * dims.y + c.y) * dims.x + c.x; };
     for (uint32_t s = 0; s < n; ++s)
@@ -107,17 +110,19 @@ MeshPass::MeshPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
     : ctx_(ctx), target_(target), uniforms_(uniforms)
 {
     vk::PipelineLayoutBundle layout = vk::createPipelineLayout(
-        ctx, {.bindings = {{.binding = gpu::kFrameParamsBinding,
-                            .type = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
-                            .stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT},
-                           {gpu::kBindingShadowHead, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
-                           {gpu::kBindingShadowHair, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
-                           {gpu::kBindingHairDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
-                           {gpu::kBindingOpacity, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
-                           {gpu::kMeshBindingShadowMask, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}},
-              .pushConstantBytes = sizeof(gpu::MeshPush),
-              .pushConstantStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-              .name = "mesh.layout"});
+        ctx,
+        {.bindings =
+             {{.binding = gpu::kFrameParamsBinding,
+               .type = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+               .stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT},
+              {gpu::kBindingShadowHead, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
+              {gpu::kBindingShadowHair, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
+              {gpu::kBindingHairDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
+              {gpu::kBindingOpacity, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
+              {gpu::kMeshBindingShadowMask, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}},
+         .pushConstantBytes = sizeof(gpu::MeshPush),
+         .pushConstantStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+         .name = "mesh.layout"});
     // (The light's maps are read by mesh_shadow.comp; the shading reads the mask at binding 8.)
     setLayout_ = std::move(layout.setLayout);
     layout_ = std::move(layout.layout);
@@ -125,14 +130,17 @@ MeshPass::MeshPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
         .layout = layout_,
         .shaders = {"mesh.vert", "mesh.frag"},
         .vertexStride = sizeof(MeshVertex),
-        .attributes = {{.location = gpu::kMeshLocationPosition, .format = VK_FORMAT_R32G32B32_SFLOAT,
+        .attributes = {{.location = gpu::kMeshLocationPosition,
+                        .format = VK_FORMAT_R32G32B32_SFLOAT,
                         .offset = offsetof(MeshVertex, position)},
-                       {.location = gpu::kMeshLocationNormal, .format = VK_FORMAT_R32G32B32_SFLOAT,
+                       {.location = gpu::kMeshLocationNormal,
+                        .format = VK_FORMAT_R32G32B32_SFLOAT,
                         .offset = offsetof(MeshVertex, normal)},
-                       {.location = gpu::kMeshLocationScalp, .format = VK_FORMAT_R32_SFLOAT,
+                       {.location = gpu::kMeshLocationScalp,
+                        .format = VK_FORMAT_R32_SFLOAT,
                         .offset = offsetof(MeshVertex, scalp)}},
-        .cullMode = VK_CULL_MODE_NONE,  // meshes from the wild are not always closed or consistently wound
-        .depthWrite = false,            // the depth pass has written it; the same surfaces pass LESS_OR_EQUAL
+        .cullMode = VK_CULL_MODE_NONE, // meshes from the wild are not always closed or consistently wound
+        .depthWrite = false,           // the depth pass has written it; the same surfaces pass LESS_OR_EQUAL
         .colorFormat = RenderTarget::kColorFormat,
         .depthFormat = RenderTarget::kDepthFormat,
         .samples = target.samples(),
@@ -141,7 +149,7 @@ MeshPass::MeshPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
     vk::GraphicsPipelineDesc depth = shade;
     depth.shaders = {"mesh.vert"};
     depth.depthWrite = true;
-    depth.colorFormat = VK_FORMAT_UNDEFINED;  // depth alone
+    depth.colorFormat = VK_FORMAT_UNDEFINED; // depth alone
     depth.name = "mesh.depth.pipeline";
     depthPipeline_ = vk::createGraphicsPipeline(ctx, depth);
 
@@ -160,8 +168,9 @@ MeshPass::MeshPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
               .name = "mesh.shadow.layout"});
     shadowSetLayout_ = std::move(shadow.setLayout);
     shadowLayout_ = std::move(shadow.layout);
-    shadowPipeline_ = vk::createComputePipeline(
-        ctx, shadowLayout_, target.multisampled() ? "mesh_shadow.comp" : "mesh_shadow_single.comp", "mesh.shadow.pipeline");
+    shadowPipeline_ = vk::createComputePipeline(ctx, shadowLayout_,
+                                                target.multisampled() ? "mesh_shadow.comp" : "mesh_shadow_single.comp",
+                                                "mesh.shadow.pipeline");
     nearest_ = vk::createSampler(ctx, VK_FILTER_NEAREST, false, "mesh.nearest.sampler");
     depthPass_ = std::make_unique<MeshStagePass>(*this, false);
     shadowMaskPass_ = std::make_unique<MeshStagePass>(*this, true);
@@ -170,14 +179,17 @@ MeshPass::MeshPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
         ctx, {.layout = layout_,
               .shaders = {"mesh_light.vert"},
               .vertexStride = sizeof(MeshVertex),
-              .attributes = {{.location = gpu::kMeshLocationPosition, .format = VK_FORMAT_R32G32B32_SFLOAT,
+              .attributes = {{.location = gpu::kMeshLocationPosition,
+                              .format = VK_FORMAT_R32G32B32_SFLOAT,
                               .offset = offsetof(MeshVertex, position)},
-                             {.location = gpu::kMeshLocationNormal, .format = VK_FORMAT_R32G32B32_SFLOAT,
+                             {.location = gpu::kMeshLocationNormal,
+                              .format = VK_FORMAT_R32G32B32_SFLOAT,
                               .offset = offsetof(MeshVertex, normal)},
-                             {.location = gpu::kMeshLocationScalp, .format = VK_FORMAT_R32_SFLOAT,
+                             {.location = gpu::kMeshLocationScalp,
+                              .format = VK_FORMAT_R32_SFLOAT,
                               .offset = offsetof(MeshVertex, scalp)}},
               .cullMode = VK_CULL_MODE_NONE,
-              .depthBiasConstant = 2.0f,  // keeps lit surfaces from shadowing themselves (acne)
+              .depthBiasConstant = 2.0f, // keeps lit surfaces from shadowing themselves (acne)
               .depthBiasSlope = 2.0f,
               .depthFormat = LightMaps::kDepthFormat,
               .name = "mesh.light_depth.pipeline"});
@@ -201,12 +213,14 @@ MeshPass::GpuMesh MeshPass::upload(const Mesh& mesh, const char* name, const std
         vertices[i] = {mesh.positions[i], mesh.normals[i], i < scalp.size() ? scalp[i] : 0.0f};
     std::string base = name;
     GpuMesh out;
-    out.vertices = ctx_.createBufferWithData(
-        {.size = vertices.size() * sizeof(MeshVertex), .usage = vk::kVertex | vk::kStorage, .name = (base + ".vertices").c_str()},
-        vertices.data(), vertices.size() * sizeof(MeshVertex));
-    out.indices = ctx_.createBufferWithData(
-        {.size = mesh.indices.size() * sizeof(uint32_t), .usage = vk::kIndex | vk::kStorage, .name = (base + ".indices").c_str()},
-        mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t));
+    out.vertices = ctx_.createBufferWithData({.size = vertices.size() * sizeof(MeshVertex),
+                                              .usage = vk::kVertex | vk::kStorage,
+                                              .name = (base + ".vertices").c_str()},
+                                             vertices.data(), vertices.size() * sizeof(MeshVertex));
+    out.indices = ctx_.createBufferWithData({.size = mesh.indices.size() * sizeof(uint32_t),
+                                             .usage = vk::kIndex | vk::kStorage,
+                                             .name = (base + ".indices").c_str()},
+                                            mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t));
     out.indexCount = static_cast<uint32_t>(mesh.indices.size());
     return out;
 }
@@ -227,7 +241,7 @@ void MeshPass::setSurface(const glm::vec3& albedo, float roughness)
 void MeshPass::declare(PassIo& io)
 {
     io.use(shadowMaskTrack_, Access::FragmentSampled);
-    target_.declareDraw(io, RenderTarget::DepthUse::TestOnly);  // the depth pass wrote it
+    target_.declareDraw(io, RenderTarget::DepthUse::TestOnly); // the depth pass wrote it
 }
 
 void MeshPass::declareDepth(PassIo& io)
@@ -247,7 +261,10 @@ void MeshPass::draw(VkCommandBuffer cmd, const GpuMesh& mesh, const glm::mat4& m
 {
     if (mesh.indexCount == 0)
         return;
-    gpu::MeshPush push{.model = model, .albedo = albedo, .roughness = roughness, .scalpAlbedo = scalpAlbedo_,
+    gpu::MeshPush push{.model = model,
+                       .albedo = albedo,
+                       .roughness = roughness,
+                       .scalpAlbedo = scalpAlbedo_,
                        .scalpStrength = scalpStrength_};
     vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push), &push);
     VkDeviceSize offset = 0;
@@ -271,7 +288,7 @@ using gpu::kMarkerRoughness;
 using gpu::kSphereAlbedo;
 using gpu::kSphereRoughness;
 
-}  // namespace
+} // namespace
 
 void MeshPass::recordFromLight(VkCommandBuffer cmd, FrameContext& frame)
 {
@@ -307,7 +324,8 @@ void MeshPass::recordShadowMask(VkCommandBuffer cmd, FrameContext& frame)
         vk::imageWrite(gpu::kMeshBindingDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &depth)};
     for (const VkWriteDescriptorSet& w : lightMaps_->descriptorWrites())
         writes.push_back(w);
-    ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, shadowLayout_, 0, uint32_t(writes.size()), writes.data());
+    ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, shadowLayout_, 0, uint32_t(writes.size()),
+                           writes.data());
     VkExtent2D e = target_.extent();
     gpu::MeshShadowPush push{.inverseViewProjection = inverseViewProjection_,
                              .width = e.width,
@@ -335,4 +353,4 @@ void MeshPass::record(VkCommandBuffer cmd, FrameContext& frame)
     target_.endRendering(cmd);
 }
 
-}  // namespace wisp
+} // namespace wisp

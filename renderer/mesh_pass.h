@@ -9,10 +9,10 @@
 #pragma once
 
 #include "assets/mesh.h"
-#include "physics/strands.h"
-#include "gpu/pass.h"
 #include "gpu/handle.h"
+#include "gpu/pass.h"
 #include "gpu/resources.h"
+#include "physics/strands.h"
 
 #include <glm/glm.hpp>
 
@@ -71,7 +71,7 @@ public:
     // The passes that run before this one: the depth, then the shadow mask.
     Pass* depthPass() { return depthPass_.get(); }
     Pass* shadowMaskPass() { return shadowMaskPass_.get(); }
-    TrackedImage& shadowMask() { return shadowMaskTrack_; }  // rewritten every frame
+    TrackedImage& shadowMask() { return shadowMaskTrack_; } // rewritten every frame
     // Recreates the shadow mask at the target's size; the device must be idle.
     void resize();
 
@@ -95,6 +95,7 @@ public:
     void recordDepth(VkCommandBuffer cmd, FrameContext& frame);
     void declareShadowMask(PassIo& io);
     void recordShadowMask(VkCommandBuffer cmd, FrameContext& frame);
+
 private:
     const vk::Context& ctx_;
     RenderTarget& target_;
@@ -102,11 +103,11 @@ private:
     vk::DescriptorSetLayout setLayout_;
     vk::PipelineLayout layout_;
     vk::Pipeline pipeline_;
-    vk::Pipeline lightPipeline_;  // depth only, from the light
-    vk::Pipeline depthPipeline_;  // depth only, from the camera
+    vk::Pipeline lightPipeline_; // depth only, from the light
+    vk::Pipeline depthPipeline_; // depth only, from the camera
     vk::DescriptorSetLayout shadowSetLayout_;
     vk::PipelineLayout shadowLayout_;
-    vk::Pipeline shadowPipeline_;  // mesh_shadow.comp
+    vk::Pipeline shadowPipeline_; // mesh_shadow.comp
     vk::Sampler nearest_;
     vk::Image shadowMask_;
     TrackedImage shadowMaskTrack_;
@@ -120,7 +121,7 @@ private:
     };
     GpuMesh upload(const Mesh& mesh, const char* name, const std::vector<float>& scalp) const;
     GpuMesh head_;
-    GpuMesh sphereMesh_;  // a unit sphere, scaled and placed for the sphere and the marker
+    GpuMesh sphereMesh_; // a unit sphere, scaled and placed for the sphere and the marker
     glm::mat4 headTransform_{1.0f};
     glm::vec4 sphere_{0.0f};
     glm::vec4 marker_{0.0f};
@@ -129,7 +130,8 @@ private:
     glm::vec3 scalpAlbedo_{0.0f};
     float scalpStrength_ = 0.0f;
     glm::vec3 clearColor_{0.0f};
-    void draw(VkCommandBuffer cmd, const GpuMesh& mesh, const glm::mat4& model, const glm::vec3& albedo, float roughness);
+    void draw(VkCommandBuffer cmd, const GpuMesh& mesh, const glm::mat4& model, const glm::vec3& albedo,
+              float roughness);
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -28,17 +28,23 @@ constexpr uint32_t kMaxGroupsPerDimension = 65535;
 const char* stageName(MeshRaster::Stage stage)
 {
     switch (stage) {
-    case MeshRaster::Stage::Clear: return "meshes.clear";
-    case MeshRaster::Stage::Raster: return "meshes.raster";
-    case MeshRaster::Stage::Ids: return "meshes.ids";
-    case MeshRaster::Stage::Shade: return "meshes.shade";
-    case MeshRaster::Stage::Compose: return "hair.composite";
-    case MeshRaster::Stage::Copy: return "frame.copy";
+    case MeshRaster::Stage::Clear:
+        return "meshes.clear";
+    case MeshRaster::Stage::Raster:
+        return "meshes.raster";
+    case MeshRaster::Stage::Ids:
+        return "meshes.ids";
+    case MeshRaster::Stage::Shade:
+        return "meshes.shade";
+    case MeshRaster::Stage::Compose:
+        return "hair.composite";
+    case MeshRaster::Stage::Copy:
+        return "frame.copy";
     }
     return "meshes";
 }
 
-}  // namespace
+} // namespace
 
 MeshRaster::MeshRaster(const vk::Context& ctx, RenderTarget& target, FrameUniforms& uniforms, LightMaps& maps,
                        MeshPass& meshes)
@@ -66,7 +72,8 @@ MeshRaster::MeshRaster(const vk::Context& ctx, RenderTarget& target, FrameUnifor
               .name = "meshes.compute.layout"});
     setLayout_ = std::move(layout.setLayout);
     layout_ = std::move(layout.layout);
-    depthPipeline_ = vk::createComputePipeline(ctx, layout_, "mesh_raster.comp", "meshes.raster.pipeline", {/*kPhase=*/0});
+    depthPipeline_ =
+        vk::createComputePipeline(ctx, layout_, "mesh_raster.comp", "meshes.raster.pipeline", {/*kPhase=*/0});
     idPipeline_ = vk::createComputePipeline(ctx, layout_, "mesh_raster.comp", "meshes.ids.pipeline", {/*kPhase=*/1});
     shadePipeline_ = vk::createComputePipeline(ctx, layout_, "mesh_shade.comp", "meshes.shade.pipeline");
     composePipeline_ = vk::createComputePipeline(ctx, layout_, "hair_compose.comp", "hair.composite.pipeline");
@@ -81,9 +88,11 @@ void MeshRaster::resize()
 {
     VkExtent2D e = target_.extent();
     uint64_t samples = uint64_t(e.width) * e.height * uint32_t(target_.samples());
-    depth_ = ctx_.createBuffer({.size = samples * 4, .usage = vk::kStorage | vk::kTransferDst | vk::kTransferSrc,
+    depth_ = ctx_.createBuffer({.size = samples * 4,
+                                .usage = vk::kStorage | vk::kTransferDst | vk::kTransferSrc,
                                 .name = "meshes.depth_samples"});
-    ids_ = ctx_.createBuffer({.size = samples * 4, .usage = vk::kStorage | vk::kTransferDst | vk::kTransferSrc,
+    ids_ = ctx_.createBuffer({.size = samples * 4,
+                              .usage = vk::kStorage | vk::kTransferDst | vk::kTransferSrc,
                               .name = "meshes.id_samples"});
     depthTrack_ = {.buffer = depth_};
     idTrack_ = {.buffer = ids_};
@@ -131,7 +140,7 @@ void MeshRaster::declare(Stage stage, PassIo& io)
         break;
     case Stage::Raster:
         io.use(depthTrack_, Access::ComputeWrite);
-        io.use(idTrack_, Access::ComputeRead);  // (bound, not touched: one shader with meshes.ids)
+        io.use(idTrack_, Access::ComputeRead); // (bound, not touched: one shader with meshes.ids)
         break;
     case Stage::Ids:
         io.use(depthTrack_, Access::ComputeRead);
@@ -230,7 +239,7 @@ void MeshRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
     case Stage::Compose: {
         VkDescriptorImageInfo color{VK_NULL_HANDLE, color_.view(), VK_IMAGE_LAYOUT_GENERAL};
         VkDescriptorImageInfo hair{VK_NULL_HANDLE, hairImage_ ? hairImage_->view() : color_.view(),
-                                   VK_IMAGE_LAYOUT_GENERAL};  // (no hair: bound, not read)
+                                   VK_IMAGE_LAYOUT_GENERAL}; // (no hair: bound, not read)
         VkDescriptorImageInfo out{VK_NULL_HANDLE, frame_.view(), VK_IMAGE_LAYOUT_GENERAL};
         std::vector<VkWriteDescriptorSet> writes = {vk::imageWrite(gpu::kMeshRasterBindingColor, kImage, &color),
                                                     vk::imageWrite(gpu::kMeshRasterBindingHair, kImage, &hair),
@@ -251,4 +260,4 @@ void MeshRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
     }
 }
 
-}  // namespace wisp
+} // namespace wisp

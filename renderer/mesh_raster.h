@@ -48,7 +48,8 @@ public:
 
     // Draws what `meshes` holds (its buffers, surfaces, sphere and marker) as the target's
     // samples; the light's maps are read for the shadows.
-    MeshRaster(const vk::Context& ctx, RenderTarget& target, FrameUniforms& uniforms, LightMaps& maps, MeshPass& meshes);
+    MeshRaster(const vk::Context& ctx, RenderTarget& target, FrameUniforms& uniforms, LightMaps& maps,
+               MeshPass& meshes);
     ~MeshRaster();
     // Recreates what depends on the target's size; the device must be idle.
     void resize();
@@ -63,9 +64,9 @@ public:
     // The samples' depth (float bits, pixel * samples + s), which the compute strands test against.
     TrackedBuffer& depthSamples() { return depthTrack_; }
     const vk::Buffer& depthBuffer() const { return depth_; }
-    TrackedBuffer& idSamples() { return idTrack_; }  // (pixel * samples + s): packMeshId, kNoMesh where none
+    TrackedBuffer& idSamples() { return idTrack_; } // (pixel * samples + s): packMeshId, kNoMesh where none
     const vk::Buffer& idBuffer() const { return ids_; }
-    TrackedImage& color() { return colorTrack_; }  // the meshes, resolved (RGBA16F, tone-mapped linear)
+    TrackedImage& color() { return colorTrack_; } // the meshes, resolved (RGBA16F, tone-mapped linear)
     const vk::Image& colorImage() const { return color_; }
     std::vector<TrackedImage*> transientImages() { return {&colorTrack_, &frameTrack_}; }
     // The bytes of the buffers and images it holds (what deviceBytes estimates).
@@ -94,4 +95,4 @@ private:
     std::vector<std::unique_ptr<Pass>> passes_;
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -26,7 +26,7 @@ MeshTriangle setup(const MeshObject& o, uint32_t triangle, const glm::mat4& mode
     return gpu::setupMeshTriangle(c[0], c[1], c[2], size);
 }
 
-}  // namespace
+} // namespace
 
 MeshSamples rasterMeshes(const gpu::MeshRasterPush& push, const gpu::FrameParams& frame,
                          const std::vector<MeshObject>& objects)
@@ -50,7 +50,8 @@ MeshSamples rasterMeshes(const gpu::MeshRasterPush& push, const gpu::FrameParams
                     for (int x = x0; x <= x1; ++x) {
                         size_t first = (size_t(y) * push.width + size_t(x)) * push.samples;
                         for (uint32_t s = 0; s < push.samples; ++s) {
-                            float d = gpu::meshSampleDepth(t, glm::vec2(x, y) + gpu::meshSamplePosition(s, push.samples), size);
+                            float d = gpu::meshSampleDepth(
+                                t, glm::vec2(x, y) + gpu::meshSamplePosition(s, push.samples), size);
                             if (d > 1.0f)
                                 continue;
                             uint32_t bits = std::bit_cast<uint32_t>(d);
@@ -71,7 +72,7 @@ std::vector<glm::vec3> shadeMeshes(const gpu::MeshRasterPush& push, const gpu::F
 {
     glm::vec2 size(float(push.width), float(push.height));
     std::vector<glm::vec3> out(size_t(push.width) * push.height);
-    glm::vec3 lightRadiance = frame.lightColor * frame.lightIntensity;  // visibility 1
+    glm::vec3 lightRadiance = frame.lightColor * frame.lightIntensity; // visibility 1
     for (uint32_t y = 0; y < push.height; ++y)
         for (uint32_t x = 0; x < push.width; ++x) {
             size_t first = (size_t(y) * push.width + x) * push.samples;
@@ -124,4 +125,4 @@ std::vector<glm::vec3> shadeMeshes(const gpu::MeshRasterPush& push, const gpu::F
     return out;
 }
 
-}  // namespace wisp::reference
+} // namespace wisp::reference

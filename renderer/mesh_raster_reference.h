@@ -17,7 +17,7 @@ namespace wisp::reference {
 // One object as the kernels read it: kMeshVertexFloats floats per vertex (position, normal,
 // scalp weight) and three indices per triangle.
 struct MeshObject {
-    uint32_t object = gpu::kMeshObjectHead;  // kMeshObject*: its pose and surface
+    uint32_t object = gpu::kMeshObjectHead; // kMeshObject*: its pose and surface
     std::vector<float> vertices;
     std::vector<uint32_t> indices;
 };
@@ -39,4 +39,4 @@ MeshSamples rasterMeshes(const gpu::MeshRasterPush& push, const gpu::FrameParams
 std::vector<glm::vec3> shadeMeshes(const gpu::MeshRasterPush& push, const gpu::FrameParams& frame,
                                    const MeshObject& head, const MeshObject& sphere, const MeshSamples& samples);
 
-}  // namespace wisp::reference
+} // namespace wisp::reference

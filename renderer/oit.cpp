@@ -3,11 +3,11 @@
 #include "renderer/oit.h"
 
 #include "core/error.h"
-#include "gpu/frame.h"
-#include "renderer/render_target.h"
 #include "gpu/check.h"
 #include "gpu/context.h"
+#include "gpu/frame.h"
 #include "gpu/pipeline.h"
+#include "renderer/render_target.h"
 
 #include <algorithm>
 #include <array>
@@ -32,19 +32,20 @@ std::string mib(uint64_t bytes)
     return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB";
 }
 
-}  // namespace
+} // namespace
 
 std::string oitOverflowAdvice(const OitStats& s, uint32_t width, uint32_t height)
 {
     uint64_t pixels = std::max<uint64_t>(uint64_t(width) * height, 1);
     std::string what = "the OIT pool was full: " + std::to_string(s.overflow) + " of " + std::to_string(s.fragments) +
                        " hair fragments were dropped; ";
-    uint64_t needed = s.fragments + s.fragments / 8;  // the fragments with some to spare
+    uint64_t needed = s.fragments + s.fragments / 8; // the fragments with some to spare
     if (!s.automatic && needed <= s.limit)
         return what + "raise oit_nodes_per_pixel to " + std::to_string((needed + pixels - 1) / pixels) +
                " (--set oit_nodes_per_pixel=N, or 0: automatic, grown as frames need)";
     return what + "the device allows a pool of at most " + std::to_string(s.limit) + " nodes (" +
-           std::to_string(s.limit / pixels) + " per pixel here), fewer than this frame needs; use --set transparency=msaa "
+           std::to_string(s.limit / pixels) +
+           " per pixel here), fewer than this frame needs; use --set transparency=msaa "
            "(no pool) or a smaller picture";
 }
 
@@ -90,10 +91,10 @@ void Oit::resize(VkExtent2D extent, uint32_t requestedNodesPerPixel)
     }
     uint64_t bytes = nodes * sizeof(gpu::OitNode);
     if (nodes >= gpu::kOitNil || bytes > limitBytes)
-        throw UserError("the OIT fragment pool (" + std::to_string(extent.width) + " x " + std::to_string(extent.height) +
-                        " pixels x " + std::to_string(std::max(nodesPerPixel, 1u)) + " nodes of " +
-                        std::to_string(sizeof(gpu::OitNode)) + " bytes = " + mib(bytes) + ") is larger than '" +
-                        device.name + "' allows (" + mib(limitBytes) +
+        throw UserError("the OIT fragment pool (" + std::to_string(extent.width) + " x " +
+                        std::to_string(extent.height) + " pixels x " + std::to_string(std::max(nodesPerPixel, 1u)) +
+                        " nodes of " + std::to_string(sizeof(gpu::OitNode)) + " bytes = " + mib(bytes) +
+                        ") is larger than '" + device.name + "' allows (" + mib(limitBytes) +
                         ": one storage buffer, at most half the device memory); lower oit_nodes_per_pixel or the "
                         "resolution, or use transparency=msaa");
     allocate(extent, nodes, nodesPerPixel);
@@ -119,9 +120,8 @@ void Oit::allocate(VkExtent2D extent, uint64_t nodes, uint32_t)
     uint64_t bytes = nodes * sizeof(gpu::OitNode);
     extent_ = extent;
     capacity_ = uint32_t(nodes);
-    heads_ = ctx_.createBuffer({.size = pixels * sizeof(uint32_t),
-                                .usage = vk::kStorage | vk::kTransferDst,
-                                .name = "oit.heads"});
+    heads_ = ctx_.createBuffer(
+        {.size = pixels * sizeof(uint32_t), .usage = vk::kStorage | vk::kTransferDst, .name = "oit.heads"});
     nodes_ = ctx_.createBuffer({.size = bytes, .usage = vk::kStorage, .name = "oit.nodes"});
     counters_ = ctx_.createBuffer({.size = sizeof(gpu::OitCounters),
                                    .usage = vk::kStorage | vk::kTransferDst | vk::kTransferSrc,
@@ -140,7 +140,11 @@ OitStats Oit::stats(uint32_t slot) const
 {
     gpu::OitCounters c{};
     std::memcpy(&c, readback_.at(slot).mapped(), sizeof(c));
-    return {.fragments = c.allocated, .overflow = c.overflow, .capacity = capacity_, .limit = limitNodes(), .automatic = automatic_};
+    return {.fragments = c.allocated,
+            .overflow = c.overflow,
+            .capacity = capacity_,
+            .limit = limitNodes(),
+            .automatic = automatic_};
 }
 
 void Oit::recordClear(VkCommandBuffer cmd) const
@@ -175,14 +179,14 @@ void OitStatsPass::record(VkCommandBuffer cmd, FrameContext& frame)
 
 OitResolvePass::OitResolvePass(const vk::Context& ctx, Oit& oit) : ctx_(ctx), oit_(oit)
 {
-    vk::PipelineLayoutBundle layout = vk::createPipelineLayout(
-        ctx, {.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-                           {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-                           {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-                           {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}},
-              .pushConstantBytes = sizeof(ResolvePush),
-              .pushConstantStages = VK_SHADER_STAGE_COMPUTE_BIT,
-              .name = "oit.resolve.layout"});
+    vk::PipelineLayoutBundle layout =
+        vk::createPipelineLayout(ctx, {.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+                                                    {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+                                                    {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+                                                    {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}},
+                                       .pushConstantBytes = sizeof(ResolvePush),
+                                       .pushConstantStages = VK_SHADER_STAGE_COMPUTE_BIT,
+                                       .name = "oit.resolve.layout"});
     setLayout_ = std::move(layout.setLayout);
     layout_ = std::move(layout.layout);
     pipeline_ = vk::createComputePipeline(ctx, layout_, "oit_resolve.comp", "oit.resolve.pipeline", {k_});
@@ -256,7 +260,7 @@ CompositePass::CompositePass(const vk::Context& ctx, RenderTarget& target, const
 void CompositePass::declare(PassIo& io)
 {
     io.use(*track_, Access::FragmentSampled);
-    target_.declareDraw(io, RenderTarget::DepthUse::None);  // laid over everything: no depth
+    target_.declareDraw(io, RenderTarget::DepthUse::None); // laid over everything: no depth
 }
 
 void CompositePass::record(VkCommandBuffer cmd, FrameContext&)
@@ -274,4 +278,4 @@ void CompositePass::record(VkCommandBuffer cmd, FrameContext&)
     target_.endRendering(cmd);
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -6,13 +6,13 @@
 //                  (compute runs on every unit of the GPU; an H100 runs graphics on few of them)
 //   oit.composite  a full-screen pass lays that colour over the target (CompositePass)
 //   oit.stats      copies the counters to the host: fragments stored and those the full pool dropped
-// The pool holds nodesPerPixel x the target's pixels (automatic: 24 per pixel, at least 8M nodes); it is sized up front and checked against
-// the device's limits, so a too-large request is a clear error, and an overflowing frame loses
+// The pool holds nodesPerPixel x the target's pixels (automatic: 24 per pixel, at least 8M nodes); it is sized up front
+// and checked against the device's limits, so a too-large request is a clear error, and an overflowing frame loses
 // fragments (counted) but never writes out of bounds or loops.
 #pragma once
 
-#include "gpu/pass.h"
 #include "gpu/handle.h"
+#include "gpu/pass.h"
 #include "gpu/resources.h"
 #include "shaders/shared/shadows.h"
 
@@ -27,11 +27,11 @@ class Context;
 class RenderTarget;
 
 struct OitStats {
-    uint64_t fragments = 0;  // fragments the hair produced last frame (stored + dropped)
-    uint64_t overflow = 0;   // of those, dropped because the pool was full
-    uint64_t capacity = 0;   // nodes in the pool
-    uint64_t limit = 0;      // the most nodes the device allows the pool (one buffer, half its memory)
-    bool automatic = true;   // sized by Wisp (oit_nodes_per_pixel=0), so it grows when a frame overflows
+    uint64_t fragments = 0; // fragments the hair produced last frame (stored + dropped)
+    uint64_t overflow = 0;  // of those, dropped because the pool was full
+    uint64_t capacity = 0;  // nodes in the pool
+    uint64_t limit = 0;     // the most nodes the device allows the pool (one buffer, half its memory)
+    bool automatic = true;  // sized by Wisp (oit_nodes_per_pixel=0), so it grows when a frame overflows
 };
 
 // What to tell a person whose frame dropped fragments: a pool of their own (oit_nodes_per_pixel)
@@ -45,7 +45,7 @@ public:
     // Nodes per pixel when the setting is 0 (automatic) and the device has room.
     static constexpr uint32_t kAutoNodesPerPixel = 24;
     static constexpr uint64_t kAutoMinNodes = 8u << 20;
-    static constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // the resolved lists
+    static constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT; // the resolved lists
     // The device memory per pixel of `extent`: a list head, the resolved colour, and the node pool
     // (`nodesPerPixel`; an automatic pool, 0, counts one node a pixel, the least it takes).
     static constexpr uint64_t deviceBytes(VkExtent2D extent, uint32_t nodesPerPixel)
@@ -57,7 +57,8 @@ public:
 
     // nodesPerPixel 0: automatic (kAutoNodesPerPixel, at least kAutoMinNodes, as the device allows;
     // `autoNodes` > 0 starts it at that many nodes instead, for tests).
-    Oit(const vk::Context& ctx, VkExtent2D extent, uint32_t nodesPerPixel, uint32_t framesInFlight, uint64_t autoNodes = 0);
+    Oit(const vk::Context& ctx, VkExtent2D extent, uint32_t nodesPerPixel, uint32_t framesInFlight,
+        uint64_t autoNodes = 0);
     // Re-sizes the lists and the pool; the device must be idle. Throws UserError when the pool
     // would pass the device's storage-buffer range or half its memory.
     void resize(VkExtent2D extent, uint32_t nodesPerPixel);
@@ -72,7 +73,7 @@ public:
     TrackedBuffer& heads() { return headsTrack_; }
     TrackedBuffer& nodes() { return nodesTrack_; }
     TrackedBuffer& counters() { return countersTrack_; }
-    TrackedImage& color() { return colorTrack_; }  // the resolved hair, premultiplied RGBA16F
+    TrackedImage& color() { return colorTrack_; } // the resolved hair, premultiplied RGBA16F
     const vk::Image& colorImage() const { return color_; }
     VkBuffer headsBuffer() const { return heads_; }
     VkBuffer nodesBuffer() const { return nodes_; }
@@ -90,13 +91,13 @@ private:
     VkExtent2D extent_{};
     uint32_t capacity_ = 0;
     bool automatic_ = true;
-    uint64_t autoNodes_ = 0;   // the automatic pool's start (0: kAutoNodesPerPixel, at least kAutoMinNodes)
-    uint64_t grownNodes_ = 0;  // what an overflowing frame grew the automatic pool to
+    uint64_t autoNodes_ = 0;  // the automatic pool's start (0: kAutoNodesPerPixel, at least kAutoMinNodes)
+    uint64_t grownNodes_ = 0; // what an overflowing frame grew the automatic pool to
     void allocate(VkExtent2D extent, uint64_t nodes, uint32_t nodesPerPixel);
     vk::Buffer heads_, nodes_, counters_;
     vk::Image color_;
     TrackedImage colorTrack_;
-    std::vector<vk::Buffer> readback_;  // one per frame in flight
+    std::vector<vk::Buffer> readback_; // one per frame in flight
     TrackedBuffer headsTrack_, nodesTrack_, countersTrack_;
 };
 
@@ -167,4 +168,4 @@ private:
     Oit& oit_;
 };
 
-}  // namespace wisp
+} // namespace wisp

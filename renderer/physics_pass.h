@@ -3,8 +3,8 @@
 // barrier between it and any pass that draws them.
 #pragma once
 
-#include "physics/gpu_solver.h"
 #include "gpu/pass.h"
+#include "physics/gpu_solver.h"
 
 #include <vector>
 
@@ -33,4 +33,4 @@ private:
     std::vector<gpu::SimStep> steps_;
 };
 
-}  // namespace wisp
+} // namespace wisp

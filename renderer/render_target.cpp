@@ -18,7 +18,7 @@ VkSampleCountFlagBits chooseSamples(VkSampleCountFlags supported, uint32_t reque
     return VK_SAMPLE_COUNT_1_BIT;
 }
 
-}  // namespace
+} // namespace
 
 RenderTarget::RenderTarget(const vk::Context& ctx, VkExtent2D extent, uint32_t requestedSamples)
     : ctx_(ctx), samples_(chooseSamples(ctx.report().colorDepthSampleCounts, requestedSamples))
@@ -31,11 +31,12 @@ void RenderTarget::resize(VkExtent2D extent)
     const vk::Context& ctx = ctx_;
     extent_ = extent;
     if (multisampled())
-        color_ = ctx.createImage({.format = kColorFormat,
-                                  .extent = extent,
-                                  .usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT,
-                                  .samples = samples_,
-                                  .name = "target.color.msaa"});
+        color_ =
+            ctx.createImage({.format = kColorFormat,
+                             .extent = extent,
+                             .usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT,
+                             .samples = samples_,
+                             .name = "target.color.msaa"});
     depth_ = ctx.createImage({.format = kDepthFormat,
                               .extent = extent,
                               .usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
@@ -45,7 +46,7 @@ void RenderTarget::resize(VkExtent2D extent)
     resolved_ = ctx.createImage({.format = kColorFormat,
                                  .extent = extent,
                                  .usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
-                                          VK_IMAGE_USAGE_TRANSFER_DST_BIT,  // (the compute meshes' frame is copied in)
+                                          VK_IMAGE_USAGE_TRANSFER_DST_BIT, // (the compute meshes' frame is copied in)
                                  .name = "target.color"});
     colorTrack_ = {.image = color_.get()};
     depthTrack_ = {.image = depth_.get(), .aspect = VK_IMAGE_ASPECT_DEPTH_BIT};
@@ -89,14 +90,14 @@ void RenderTarget::beginRendering(VkCommandBuffer cmd, const glm::vec3& clearCol
         color.resolveImageView = resolved_.view();
         color.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     }
-    VkRenderingAttachmentInfo depth{.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
-                                    .imageView = depth_.view(),
-                                    .imageLayout = depthUse == DepthUse::TestOnly ? VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL
-                                                                                  : VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                                    .loadOp = depthLoad,
-                                    .storeOp = depthUse == DepthUse::TestOnly ? VK_ATTACHMENT_STORE_OP_NONE
-                                                                              : VK_ATTACHMENT_STORE_OP_STORE,
-                                    .clearValue = {.depthStencil = {1.0f, 0}}};
+    VkRenderingAttachmentInfo depth{
+        .sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
+        .imageView = depth_.view(),
+        .imageLayout = depthUse == DepthUse::TestOnly ? VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL
+                                                      : VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+        .loadOp = depthLoad,
+        .storeOp = depthUse == DepthUse::TestOnly ? VK_ATTACHMENT_STORE_OP_NONE : VK_ATTACHMENT_STORE_OP_STORE,
+        .clearValue = {.depthStencil = {1.0f, 0}}};
     VkRenderingInfo info{.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
                          .renderArea = {{0, 0}, extent_},
                          .layerCount = 1,
@@ -161,7 +162,7 @@ void ReadbackPass::record(VkCommandBuffer cmd, FrameContext&)
                              .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
                              .imageExtent = {e.width, e.height, 1}};
     vkCmdCopyImageToBuffer(cmd, target_.resultImage().get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer_, 1, &region);
-    vk::transferToHostBarrier(cmd);  // the host reads it once the fence signals
+    vk::transferToHostBarrier(cmd); // the host reads it once the fence signals
 }
 
 std::vector<uint8_t> ReadbackPass::pixels() const
@@ -175,4 +176,4 @@ std::vector<uint8_t> ReadbackPass::pixels() const
     return out;
 }
 
-}  // namespace wisp
+} // namespace wisp

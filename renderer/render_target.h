@@ -56,7 +56,7 @@ public:
         depthCleared_ = false;
     }
 
-    TrackedImage& result() { return resolvedTrack_; }  // single-sample, sRGB
+    TrackedImage& result() { return resolvedTrack_; } // single-sample, sRGB
     // The meshes' depth (multisampled like the colour), which the compute hair path reads.
     TrackedImage& depth() { return depthTrack_; }
     const vk::Image& depthImage() const { return depth_; }
@@ -67,7 +67,7 @@ private:
     const vk::Context& ctx_;
     VkExtent2D extent_{};
     VkSampleCountFlagBits samples_;
-    vk::Image color_;  // multisampled; empty when samples_ == 1
+    vk::Image color_; // multisampled; empty when samples_ == 1
     vk::Image depth_;
     vk::Image resolved_;
     TrackedImage colorTrack_, depthTrack_, resolvedTrack_;
@@ -90,4 +90,4 @@ private:
     vk::Buffer buffer_;
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -1,10 +1,10 @@
 // renderer/renderer.cpp: settings packing and the pass list.
 #include "renderer/renderer.h"
 
+#include "gpu/context.h"
 #include "gpu/frame.h"
 #include "shading/hair_look.h"
 #include "shading/hair_models.h"
-#include "gpu/context.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -51,7 +51,7 @@ gpu::FrameParams pack(const RenderSettings& s, const OrbitCamera& camera, VkExte
     p.viewportWidth = static_cast<float>(extent.width);
     p.backgroundColor = s.background;
     p.viewportHeight = static_cast<float>(extent.height);
-    p.headTransform = glm::mat4(1.0f);  // the Renderer sets the head's pose (setHeadTransform) after packing
+    p.headTransform = glm::mat4(1.0f); // the Renderer sets the head's pose (setHeadTransform) after packing
 
     // The light's view: orthographic along its direction, around the sphere holding the scene.
     glm::vec3 centre = light.scene.center();
@@ -255,7 +255,7 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
     };
     gpu::StrandRasterPush lightRaster = rasterPush(light);
     if (!settings_.shadows.enabled)
-        lightRaster.drawnPerGuide = 0;  // the maps are only cleared
+        lightRaster.drawnPerGuide = 0; // the maps are only cleared
     strandRaster_->prepare(frame, rasterPush(push), lightRaster, &hairPass_->lutInfo());
     if (computeMeshes()) {
         meshRaster_->setHair(&strandRaster_->color(), &strandRaster_->colorImage());
@@ -289,7 +289,7 @@ bool Renderer::computeMeshes() const
 RasterStats Renderer::rasterStats(uint32_t slot) const
 {
     return strandRaster_ && hairPass_ && hairRaster() == HairRaster::Compute ? strandRaster_->stats(slot)
-                                                                              : RasterStats{};
+                                                                             : RasterStats{};
 }
 
 void Renderer::attachHair(GpuSolver& solver, const StrandSet& strands, float unitsPerMetre)
@@ -328,7 +328,7 @@ void Renderer::attachHair(GpuSolver& solver, const StrandSet& strands, float uni
     solver_ = &solver;
     guideTriangles_ = guideTriangles(strands);
     if (hairRaster() == HairRaster::Compute)
-        makeStrandRaster();  // (else made the first time a frame draws with it)
+        makeStrandRaster(); // (else made the first time a frame draws with it)
     unitsPerMetre_ = unitsPerMetre;
 }
 
@@ -407,4 +407,4 @@ std::vector<Pass*> Renderer::passes()
     return list;
 }
 
-}  // namespace wisp
+} // namespace wisp

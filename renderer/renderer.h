@@ -116,25 +116,25 @@ private:
     std::unique_ptr<OitStatsPass> oitStats_;
     // The compute path (made the first time a frame draws with it) and what it adds to the frame.
     std::unique_ptr<StrandRaster> strandRaster_;
-    std::unique_ptr<ShadowPass> headShadowPass_;  // the head's depth alone: the hair's maps come from compute
+    std::unique_ptr<ShadowPass> headShadowPass_; // the head's depth alone: the hair's maps come from compute
     std::unique_ptr<CompositePass> strandComposite_;
-    std::unique_ptr<MeshRaster> meshRaster_;  // made the first time a frame draws its meshes in compute
+    std::unique_ptr<MeshRaster> meshRaster_; // made the first time a frame draws its meshes in compute
     GpuSolver* solver_ = nullptr;
     std::vector<glm::uvec4> guideTriangles_;
     void makeStrandRaster();
     uint32_t guideCount_ = 0;
     uint32_t verticesPerStrand_ = 0;
     float unitsPerMetre_ = 1.0f;
-    float lodReferenceDistance_ = 1.0f;  // the default framing's distance: full detail at or nearer
+    float lodReferenceDistance_ = 1.0f; // the default framing's distance: full detail at or nearer
     Bounds bounds_;
-    Mesh headMesh_;  // kept to paint its scalp once the hair is known
+    Mesh headMesh_; // kept to paint its scalp once the hair is known
     LightFit lightFit_;
     glm::mat4 headTransform_{1.0f};
     bool showLightMarker_ = false;
-    shading::HairParams lutParams_;  // what the hair pass's lookup tables were built for
-    std::optional<shading::HairParams> materialParams_;  // what `material_` was packed from
+    shading::HairParams lutParams_;                     // what the hair pass's lookup tables were built for
+    std::optional<shading::HairParams> materialParams_; // what `material_` was packed from
     gpu::HairMaterial material_{};
     gpu::FrameParams frameParams_{};
 };
 
-}  // namespace wisp
+} // namespace wisp

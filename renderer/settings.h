@@ -15,31 +15,31 @@
 
 namespace wisp {
 
-inline constexpr Range kImageSizeRange{16, 8192};        // pixels per side of the image (--width, --height)
+inline constexpr Range kImageSizeRange{16, 8192}; // pixels per side of the image (--width, --height)
 
 struct LightSettings {
-    float azimuthDeg = 40.0f;    // around the up axis, 0 = in front of the face, + toward the head's left (+x)
-    float elevationDeg = 35.0f;  // above the horizontal plane
+    float azimuthDeg = 40.0f;   // around the up axis, 0 = in front of the face, + toward the head's left (+x)
+    float elevationDeg = 35.0f; // above the horizontal plane
     float intensity = 3.2f;
-    glm::vec3 color{1.0f, 0.96f, 0.9f};  // warm key light, linear RGB
+    glm::vec3 color{1.0f, 0.96f, 0.9f}; // warm key light, linear RGB
 
-    glm::vec3 direction() const;  // unit vector toward the light (world space, y up, face +z)
+    glm::vec3 direction() const; // unit vector toward the light (world space, y up, face +z)
 };
 
 enum class Interpolation { Single, Multi, Mixed };
 
 // How the simulated guides become drawn strands (renderer/hair_pass.cpp, shaders/hair.*).
 struct StrandSettings {
-    uint32_t strandsPerGuide = 32;                 // strands drawn per guide (the guide is one of them)
-    uint32_t divisions = 24;                       // segments per drawn strand
+    uint32_t strandsPerGuide = 32; // strands drawn per guide (the guide is one of them)
+    uint32_t divisions = 24;       // segments per drawn strand
     Interpolation interpolation = Interpolation::Mixed;
-    float clumpRadiusMetres = 0.01f;               // single-strand disc radius
-    float deviationMetres = 0.012f;                // strength of random deviations
-    float widthMetres = 0.0005f;                   // ribbon width at the root
-    bool lod = true;                               // fewer, wider strands with distance
-    float lodMinFraction = 0.2f;                   // LOD never draws fewer than this share of strands
-    float minPixelWidth = 1.0f;                    // narrower ribbons are widened, alpha = coverage
-    bool showGuides = false;                       // also draw the guides as lines
+    float clumpRadiusMetres = 0.01f; // single-strand disc radius
+    float deviationMetres = 0.012f;  // strength of random deviations
+    float widthMetres = 0.0005f;     // ribbon width at the root
+    bool lod = true;                 // fewer, wider strands with distance
+    float lodMinFraction = 0.2f;     // LOD never draws fewer than this share of strands
+    float minPixelWidth = 1.0f;      // narrower ribbons are widened, alpha = coverage
+    bool showGuides = false;         // also draw the guides as lines
     // Test knobs, not settings: draw the strands last to first (OIT order tests), and how many
     // vertices one patch may emit (shaders/shared/strands.h; lavapipe needs <= ~128).
     bool reverseOrder = false;
@@ -49,13 +49,13 @@ struct StrandSettings {
 // The key light's shadows (renderer/light_maps.cpp, shaders/light_visibility.glsl).
 struct ShadowSettings {
     bool enabled = true;
-    uint32_t mapSize = 2048;          // shadow and deep opacity maps, texels per side
-    uint32_t pcfSamples = 16;         // PCF taps
-    float pcfRadiusTexels = 2.0f;     // PCF disk radius
-    uint32_t domLayers = 4;           // deep opacity layers; 0: hair self-shadows by PCF instead
-    float domSpacingMetres = 0.006f;  // depth of one deep opacity layer
-    float domKappa = 0.9f;            // transmittance = exp(-kappa * opacity)
-    float strandFraction = 0.25f;     // share of the strands drawn into the light's maps (wider, same coverage)
+    uint32_t mapSize = 2048;         // shadow and deep opacity maps, texels per side
+    uint32_t pcfSamples = 16;        // PCF taps
+    float pcfRadiusTexels = 2.0f;    // PCF disk radius
+    uint32_t domLayers = 4;          // deep opacity layers; 0: hair self-shadows by PCF instead
+    float domSpacingMetres = 0.006f; // depth of one deep opacity layer
+    float domKappa = 0.9f;           // transmittance = exp(-kappa * opacity)
+    float strandFraction = 0.25f;    // share of the strands drawn into the light's maps (wider, same coverage)
 };
 
 enum class Transparency { Oit, Msaa };
@@ -63,11 +63,11 @@ enum class Transparency { Oit, Msaa };
 // How hair fragments become pixels (renderer/oit.cpp, shaders/oit_resolve.comp).
 struct TransparencySettings {
     Transparency mode = Transparency::Oit;
-    uint32_t oitK = 8;                // nearest fragments sorted per pixel; the rest blended unsorted
-    uint32_t oitNodesPerPixel = 0;    // fragment pool size per pixel of the target; 0: automatic (24 per pixel, at least
-                                      // 8M nodes, grown when a frame overflows, within the device's limits)
-    uint64_t oitAutoNodes = 0;        // where the automatic pool starts, in nodes (0: the rule above; tests start it small)
-    float hairOpacity = 0.85f;        // opacity of a strand that covers its pixel (oit, deep opacity)
+    uint32_t oitK = 8;             // nearest fragments sorted per pixel; the rest blended unsorted
+    uint32_t oitNodesPerPixel = 0; // fragment pool size per pixel of the target; 0: automatic (24 per pixel, at least
+                                   // 8M nodes, grown when a frame overflows, within the device's limits)
+    uint64_t oitAutoNodes = 0; // where the automatic pool starts, in nodes (0: the rule above; tests start it small)
+    float hairOpacity = 0.85f; // opacity of a strand that covers its pixel (oit, deep opacity)
 };
 
 // How the hair is drawn: the tessellation and geometry stages (hair_pass.cpp), or entirely in
@@ -87,14 +87,14 @@ constexpr HairRaster resolveHairRaster(HairRaster setting, VkPhysicalDeviceType 
 struct RenderSettings {
     uint32_t width = 1280;
     uint32_t height = 720;
-    uint32_t samples = 4;  // MSAA for meshes: 1, 2, 4 or 8 (clamped to what the device has)
+    uint32_t samples = 4; // MSAA for meshes: 1, 2, 4 or 8 (clamped to what the device has)
     LightSettings light;
-    float ambient = 0.35f;                           // hemisphere ambient scale
-    glm::vec3 skyColor{0.55f, 0.62f, 0.75f};         // cool fill from above
-    glm::vec3 groundColor{0.22f, 0.2f, 0.18f};       // warm bounce from below
-    glm::vec3 background{0.035f, 0.04f, 0.05f};      // linear RGB, a dark neutral studio grey
+    float ambient = 0.35f;                      // hemisphere ambient scale
+    glm::vec3 skyColor{0.55f, 0.62f, 0.75f};    // cool fill from above
+    glm::vec3 groundColor{0.22f, 0.2f, 0.18f};  // warm bounce from below
+    glm::vec3 background{0.035f, 0.04f, 0.05f}; // linear RGB, a dark neutral studio grey
     float exposure = 1.0f;
-    glm::vec3 headAlbedo{0.62f, 0.6f, 0.57f};        // mannequin grey-beige
+    glm::vec3 headAlbedo{0.62f, 0.6f, 0.57f}; // mannequin grey-beige
     float headRoughness = 0.55f;
     // The scalp under the hair painted a darkened hair colour, this strongly (0: bare skin, 1: fully):
     // production grooms do, so that skin does not show between strands and along partings.
@@ -106,4 +106,4 @@ struct RenderSettings {
     HairLook hair;
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -21,41 +21,57 @@ static_assert(sizeof(gpu::RasterCounters) == 32);
 
 namespace {
 
-constexpr uint32_t kMaxGroupsPerDimension = 65535;  // maxComputeWorkGroupCount's guaranteed minimum
+constexpr uint32_t kMaxGroupsPerDimension = 65535; // maxComputeWorkGroupCount's guaranteed minimum
 
 const char* stageName(StrandRaster::Stage stage)
 {
     switch (stage) {
-    case StrandRaster::Stage::Clear: return "strands.clear";
-    case StrandRaster::Stage::Curves: return "strands.curves";
-    case StrandRaster::Stage::LightGenerate: return "strands.light";
-    case StrandRaster::Stage::LightDepth: return "light.depth";
-    case StrandRaster::Stage::LightOpacity: return "light.opacity";
-    case StrandRaster::Stage::LightResolve: return "light.resolve";
-    case StrandRaster::Stage::LightCopy: return "light.copy";
-    case StrandRaster::Stage::Generate: return "strands.generate";
-    case StrandRaster::Stage::Depth: return "strands.depth";
-    case StrandRaster::Stage::Count: return "strands.count";
-    case StrandRaster::Stage::ScanBlocks: return "strands.scan.blocks";
-    case StrandRaster::Stage::ScanTotals: return "strands.scan.totals";
-    case StrandRaster::Stage::ScanOffsets: return "strands.scan.offsets";
-    case StrandRaster::Stage::Write: return "strands.write";
-    case StrandRaster::Stage::Resolve: return "strands.resolve";
-    case StrandRaster::Stage::Stats: return "strands.stats";
+    case StrandRaster::Stage::Clear:
+        return "strands.clear";
+    case StrandRaster::Stage::Curves:
+        return "strands.curves";
+    case StrandRaster::Stage::LightGenerate:
+        return "strands.light";
+    case StrandRaster::Stage::LightDepth:
+        return "light.depth";
+    case StrandRaster::Stage::LightOpacity:
+        return "light.opacity";
+    case StrandRaster::Stage::LightResolve:
+        return "light.resolve";
+    case StrandRaster::Stage::LightCopy:
+        return "light.copy";
+    case StrandRaster::Stage::Generate:
+        return "strands.generate";
+    case StrandRaster::Stage::Depth:
+        return "strands.depth";
+    case StrandRaster::Stage::Count:
+        return "strands.count";
+    case StrandRaster::Stage::ScanBlocks:
+        return "strands.scan.blocks";
+    case StrandRaster::Stage::ScanTotals:
+        return "strands.scan.totals";
+    case StrandRaster::Stage::ScanOffsets:
+        return "strands.scan.offsets";
+    case StrandRaster::Stage::Write:
+        return "strands.write";
+    case StrandRaster::Stage::Resolve:
+        return "strands.resolve";
+    case StrandRaster::Stage::Stats:
+        return "strands.stats";
     }
     return "strands";
 }
 
-constexpr uint32_t kScanBlockThreads = 256;  // strands_scan.comp's blocks: 4 counts a thread
+constexpr uint32_t kScanBlockThreads = 256; // strands_scan.comp's blocks: 4 counts a thread
 
-}  // namespace
+} // namespace
 
 std::string describeRasterStats(const RasterStats& s)
 {
     std::string text = "compute raster: " + std::to_string(s.segments) + " segments on screen (" +
-                       std::to_string(s.hidden) + " behind the meshes), " +
-                       std::to_string(s.fragments) + " hair fragments (at most " + std::to_string(s.maxPixel) +
-                       " in a pixel), buffer of " + std::to_string(s.capacity);
+                       std::to_string(s.hidden) + " behind the meshes), " + std::to_string(s.fragments) +
+                       " hair fragments (at most " + std::to_string(s.maxPixel) + " in a pixel), buffer of " +
+                       std::to_string(s.capacity);
     if (s.overflow > 0)
         text += ", dropped " + std::to_string(s.overflow);
     return text;
@@ -103,27 +119,34 @@ StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUn
     layout_ = std::move(layout.layout);
     curvesPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_curves.comp", "strands.curves.pipeline");
     generatePipeline_ = vk::createComputePipeline(ctx, layout_, "strands_generate.comp", "strands.generate.pipeline");
-    generateLightPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_generate_light.comp", "strands.light.pipeline");
+    generateLightPipeline_ =
+        vk::createComputePipeline(ctx, layout_, "strands_generate_light.comp", "strands.light.pipeline");
     const char* single = target.multisampled() ? "" : "_single";
     depthPipeline_ = vk::createComputePipeline(ctx, layout_, std::string("strands_depth") + single + ".comp",
                                                "strands.depth.pipeline");
-    depthBufferPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_depth_buffer.comp", "strands.depth.pipeline");
-    countPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_fragments.comp", "strands.count.pipeline", {/*kWrite=*/0});
-    writePipeline_ = vk::createComputePipeline(ctx, layout_, "strands_fragments.comp", "strands.write.pipeline", {/*kWrite=*/1});
+    depthBufferPipeline_ =
+        vk::createComputePipeline(ctx, layout_, "strands_depth_buffer.comp", "strands.depth.pipeline");
+    countPipeline_ =
+        vk::createComputePipeline(ctx, layout_, "strands_fragments.comp", "strands.count.pipeline", {/*kWrite=*/0});
+    writePipeline_ =
+        vk::createComputePipeline(ctx, layout_, "strands_fragments.comp", "strands.write.pipeline", {/*kWrite=*/1});
     scanBlocksPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_scan.comp", "strands.scan.blocks.pipeline",
                                                     {/*kPhase=*/0, kScanBlockThreads});
     scanTotalsPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_scan.comp", "strands.scan.totals.pipeline",
                                                     {/*kPhase=*/1, gpu::kRasterScanGroupSize});
     scanOffsetsPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_scan.comp", "strands.scan.offsets.pipeline",
                                                      {/*kPhase=*/2, kScanBlockThreads});
-    lightDepthPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_light.comp", "light.depth.pipeline", {/*kOpacity=*/0});
-    lightOpacityPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_light.comp", "light.opacity.pipeline", {/*kOpacity=*/1});
-    lightResolvePipeline_ = vk::createComputePipeline(ctx, layout_, "strands_light_resolve.comp", "light.resolve.pipeline");
+    lightDepthPipeline_ =
+        vk::createComputePipeline(ctx, layout_, "strands_light.comp", "light.depth.pipeline", {/*kOpacity=*/0});
+    lightOpacityPipeline_ =
+        vk::createComputePipeline(ctx, layout_, "strands_light.comp", "light.opacity.pipeline", {/*kOpacity=*/1});
+    lightResolvePipeline_ =
+        vk::createComputePipeline(ctx, layout_, "strands_light_resolve.comp", "light.resolve.pipeline");
     depthSampler_ = vk::createSampler(ctx, VK_FILTER_NEAREST, false, "strands.depth.sampler");
 
-    triangles_ = ctx.createBufferWithData({.size = triangles.size() * sizeof(glm::uvec4), .usage = vk::kStorage,
-                                           .name = "strands.triangles"},
-                                          triangles.data(), triangles.size() * sizeof(glm::uvec4));
+    triangles_ = ctx.createBufferWithData(
+        {.size = triangles.size() * sizeof(glm::uvec4), .usage = vk::kStorage, .name = "strands.triangles"},
+        triangles.data(), triangles.size() * sizeof(glm::uvec4));
     allocate(counters_, sizeof(gpu::RasterCounters), vk::kStorage | vk::kTransferDst | vk::kTransferSrc,
              "strands.counters", nullptr);
     for (uint32_t i = 0; i < framesInFlight; ++i) {
@@ -163,11 +186,11 @@ void StrandRaster::resize()
              "strands.mesh_samples", nullptr);
     // The count past the last pixel is always 0 (its offset is the total): zeroed once.
     ctx_.submitAndWait([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, counts_.buffer, 0, VK_WHOLE_SIZE, 0); });
-    color_ = ctx_.createImage({.format = kColorFormat,
-                               .extent = e,
-                               .usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                                        VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                               .name = "strands.color"});
+    color_ = ctx_.createImage(
+        {.format = kColorFormat,
+         .extent = e,
+         .usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+         .name = "strands.color"});
     colorTrack_ = {.image = color_.get()};
 }
 
@@ -176,33 +199,44 @@ void StrandRaster::setFragmentCapacity(uint64_t fragments)
     forcedCapacity_ = fragments;
     fragmentCapacity_ = 0;
     fragments_.buffer.reset();
-    for (vk::Buffer& b : readback_)  // what earlier frames needed is forgotten
+    for (vk::Buffer& b : readback_) // what earlier frames needed is forgotten
         std::memset(b.mapped(), 0, sizeof(gpu::RasterCounters));
 }
 
 StrandRaster::Storage& StrandRaster::storage(Buffer which)
 {
     switch (which) {
-    case Buffer::Curves: return curves_;
-    case Buffer::Vertices: return vertices_;
-    case Buffer::Colors: return colors_;
-    case Buffer::LightVertices: return lightVertices_;
-    case Buffer::LightColors: return lightColors_;
-    case Buffer::Offsets: return offsets_;
-    case Buffer::Fragments: return fragments_;
-    case Buffer::Counters: return counters_;
-    case Buffer::LightDepth: return lightDepth_;
-    case Buffer::LightOpacity: return lightOpacity_;
+    case Buffer::Curves:
+        return curves_;
+    case Buffer::Vertices:
+        return vertices_;
+    case Buffer::Colors:
+        return colors_;
+    case Buffer::LightVertices:
+        return lightVertices_;
+    case Buffer::LightColors:
+        return lightColors_;
+    case Buffer::Offsets:
+        return offsets_;
+    case Buffer::Fragments:
+        return fragments_;
+    case Buffer::Counters:
+        return counters_;
+    case Buffer::LightDepth:
+        return lightDepth_;
+    case Buffer::LightOpacity:
+        return lightOpacity_;
     }
     return counters_;
 }
 
 uint64_t StrandRaster::allocatedBytes() const
 {
-    uint64_t bytes = triangles_.size() + uint64_t(color_.extent().width) * color_.extent().height * vk::formatBytes(color_.format());
-    for (const Storage* s : {&curves_, &vertices_, &colors_, &lightVertices_, &lightColors_, &counts_, &offsets_,
-                             &fragments_, &counters_, &depthRange_, &tileDepth_, &blockSums_, &lightDepth_, &lightOpacity_,
-                             &meshSamples_})
+    uint64_t bytes =
+        triangles_.size() + uint64_t(color_.extent().width) * color_.extent().height * vk::formatBytes(color_.format());
+    for (const Storage* s :
+         {&curves_, &vertices_, &colors_, &lightVertices_, &lightColors_, &counts_, &offsets_, &fragments_, &counters_,
+          &depthRange_, &tileDepth_, &blockSums_, &lightDepth_, &lightOpacity_, &meshSamples_})
         bytes += s->buffer ? s->buffer.size() : 0;
     return bytes;
 }
@@ -216,8 +250,12 @@ RasterStats StrandRaster::stats(uint32_t slot) const
 {
     gpu::RasterCounters c{};
     std::memcpy(&c, readback_.at(slot).mapped(), sizeof(c));
-    return {.segments = c.segments, .hidden = c.hidden, .fragments = c.fragments, .capacity = c.capacity,
-            .overflow = c.overflow, .maxPixel = c.maxPixel};
+    return {.segments = c.segments,
+            .hidden = c.hidden,
+            .fragments = c.fragments,
+            .capacity = c.capacity,
+            .overflow = c.overflow,
+            .maxPixel = c.maxPixel};
 }
 
 void StrandRaster::prepare(FrameContext& frame, gpu::StrandRasterPush camera, gpu::StrandRasterPush light,
@@ -227,7 +265,7 @@ void StrandRaster::prepare(FrameContext& frame, gpu::StrandRasterPush camera, gp
     VkExtent2D e = target_.extent();
     uint64_t cameraVertices = uint64_t(camera.guideCount) * camera.drawnPerGuide * (camera.divisions + 1);
     uint64_t lightVertices = uint64_t(light.guideCount) * light.drawnPerGuide * (light.divisions + 1);
-    uint64_t curvePoints = uint64_t(camera.guideCount) * (camera.divisions + 1);  // (the light's D is the same)
+    uint64_t curvePoints = uint64_t(camera.guideCount) * (camera.divisions + 1); // (the light's D is the same)
     if (!curves_.buffer || curves_.buffer.size() < curvePoints * kCurvePointBytes)
         allocate(curves_, curvePoints * kCurvePointBytes, vk::kStorage | vk::kTransferSrc, "strands.curves", &frame);
     if (!vertices_.buffer || vertices_.buffer.size() < cameraVertices * kVertexBytes) {
@@ -235,8 +273,10 @@ void StrandRaster::prepare(FrameContext& frame, gpu::StrandRasterPush camera, gp
         allocate(colors_, cameraVertices * kColorBytes, vk::kStorage | vk::kTransferSrc, "strands.colors", &frame);
     }
     if (!lightVertices_.buffer || lightVertices_.buffer.size() < lightVertices * kVertexBytes) {
-        allocate(lightVertices_, lightVertices * kVertexBytes, vk::kStorage | vk::kTransferSrc, "strands.light_vertices", &frame);
-        allocate(lightColors_, lightVertices * kColorBytes, vk::kStorage | vk::kTransferSrc, "strands.light_colors", &frame);
+        allocate(lightVertices_, lightVertices * kVertexBytes, vk::kStorage | vk::kTransferSrc,
+                 "strands.light_vertices", &frame);
+        allocate(lightColors_, lightVertices * kColorBytes, vk::kStorage | vk::kTransferSrc, "strands.light_colors",
+                 &frame);
     }
     if (lightSize_ != maps_.size()) {
         lightSize_ = maps_.size();
@@ -250,21 +290,24 @@ void StrandRaster::prepare(FrameContext& frame, gpu::StrandRasterPush camera, gp
     // spare; at first a few per segment. Never past what one buffer may hold.
     uint64_t segments = uint64_t(camera.guideCount) * camera.drawnPerGuide * camera.divisions;
     uint64_t limit = fragmentLimit(ctx_.report().maxStorageBufferRange);
-    uint64_t wanted = forcedCapacity_ > 0 ? forcedCapacity_ : initialFragments(segments, ctx_.report().maxStorageBufferRange);
+    uint64_t wanted =
+        forcedCapacity_ > 0 ? forcedCapacity_ : initialFragments(segments, ctx_.report().maxStorageBufferRange);
     RasterStats last = stats(frame.slot);
     if (last.fragments > fragmentCapacity_)
         wanted = std::max(wanted, last.fragments + last.fragments / 4);
     wanted = std::min(wanted, limit);
     if (wanted > fragmentCapacity_ || !fragments_.buffer) {
         fragmentCapacity_ = std::max(wanted, fragmentCapacity_);
-        allocate(fragments_, fragmentCapacity_ * kFragmentBytes, vk::kStorage | vk::kTransferSrc, "strands.fragments", &frame);
+        allocate(fragments_, fragmentCapacity_ * kFragmentBytes, vk::kStorage | vk::kTransferSrc, "strands.fragments",
+                 &frame);
     }
     // oit_k is the resolve's specialization constant.
     uint32_t k = std::clamp(camera.oitK, 1u, gpu::kMaxOitK);
     if (k != pipelineK_) {
         if (resolvePipeline_)
             frame.retire(std::move(resolvePipeline_));
-        resolvePipeline_ = vk::createComputePipeline(ctx_, layout_, "strands_resolve.comp", "strands.resolve.pipeline", {k});
+        resolvePipeline_ =
+            vk::createComputePipeline(ctx_, layout_, "strands_resolve.comp", "strands.resolve.pipeline", {k});
         pipelineK_ = k;
     }
 
@@ -302,7 +345,7 @@ void StrandRaster::declare(Stage stage, PassIo& io)
         io.use(lightVertices_.track, Access::ComputeWrite);
         io.use(lightColors_.track, Access::ComputeWrite);
         break;
-    case Stage::LightDepth:  // (one shader with light.opacity: it binds, never touches, the opacity)
+    case Stage::LightDepth: // (one shader with light.opacity: it binds, never touches, the opacity)
         io.use(lightVertices_.track, Access::ComputeRead);
         io.use(lightColors_.track, Access::ComputeRead);
         io.use(lightDepth_.track, Access::ComputeWrite);
@@ -341,14 +384,14 @@ void StrandRaster::declare(Stage stage, PassIo& io)
         io.use(tileDepth_.track, Access::ComputeWrite);
         io.use(counts_.track, Access::ComputeWrite);
         break;
-    case Stage::Count:  // (one shader with strands.write: it binds, never touches, the fragments)
+    case Stage::Count: // (one shader with strands.write: it binds, never touches, the fragments)
     case Stage::Write:
         io.use(vertices_.track, Access::ComputeRead);
         io.use(colors_.track, Access::ComputeRead);
         io.use(depthRange_.track, Access::ComputeRead);
         io.use(tileDepth_.track, Access::ComputeRead);
         io.use(externalSamples_ ? *externalSamples_ : meshSamples_.track, Access::ComputeRead);
-        io.use(counts_.track, Access::ComputeWrite);  // counts, then (strands.write) cursors
+        io.use(counts_.track, Access::ComputeWrite); // counts, then (strands.write) cursors
         io.use(fragments_.track, Access::ComputeWrite);
         io.use(counters_.track, Access::ComputeWrite);
         break;
@@ -408,7 +451,8 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
     VkDescriptorBufferInfo counters = whole(counters_), depthRange = whole(depthRange_), blockSums = whole(blockSums_);
     VkDescriptorBufferInfo tileDepth = whole(tileDepth_);
     VkDescriptorBufferInfo lightDepth = whole(lightDepth_), lightOpacity = whole(lightOpacity_);
-    VkDescriptorImageInfo meshDepth{depthSampler_, target_.depthImage().view(), VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL};
+    VkDescriptorImageInfo meshDepth{depthSampler_, target_.depthImage().view(),
+                                    VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL};
     VkDescriptorBufferInfo meshSamples{externalSamples_ ? externalSamplesBuffer_ : meshSamples_.buffer.get(), 0,
                                        VK_WHOLE_SIZE};
     auto frameWrite = vk::bufferWrite(gpu::kRasterBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frameInfo);
@@ -417,7 +461,7 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
 
     switch (stage) {
     case Stage::Clear: {
-        vkCmdFillBuffer(cmd, lightDepth_.buffer, 0, VK_WHOLE_SIZE, 0x3f800000u);  // 1.0f: nothing in front
+        vkCmdFillBuffer(cmd, lightDepth_.buffer, 0, VK_WHOLE_SIZE, 0x3f800000u); // 1.0f: nothing in front
         vkCmdFillBuffer(cmd, lightOpacity_.buffer, 0, VK_WHOLE_SIZE, 0);
         vkCmdFillBuffer(cmd, counters_.buffer, 0, VK_WHOLE_SIZE, 0);
         break;
@@ -433,7 +477,8 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
     case Stage::Generate: {
         bool fromLight = stage == Stage::LightGenerate;
         std::vector<VkWriteDescriptorSet> writes = {
-            frameWrite, vk::bufferWrite(gpu::kRasterBindingSim, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &simInfo),
+            frameWrite,
+            vk::bufferWrite(gpu::kRasterBindingSim, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &simInfo),
             vk::bufferWrite(gpu::kRasterBindingCurves, kStorage, &curves),
             vk::bufferWrite(gpu::kRasterBindingTriangles, kStorage, &triangles),
             vk::bufferWrite(gpu::kRasterBindingVertices, kStorage, fromLight ? &lightVertices : &vertices),
@@ -443,8 +488,9 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
                 writes.push_back(w);
             writes.push_back(vk::imageWrite(gpu::kRasterBindingLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, lut_));
         }
-        dispatchLinear(cmd, fromLight ? generateLightPipeline_.get() : generatePipeline_.get(), fromLight ? light_ : camera_, writes,
-                       fromLight ? lightVertexCount : cameraVertices, gpu::kRasterGroupSize);
+        dispatchLinear(cmd, fromLight ? generateLightPipeline_.get() : generatePipeline_.get(),
+                       fromLight ? light_ : camera_, writes, fromLight ? lightVertexCount : cameraVertices,
+                       gpu::kRasterGroupSize);
         break;
     }
     case Stage::LightDepth:
@@ -454,8 +500,8 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
             vk::bufferWrite(gpu::kRasterBindingColors, kStorage, &lightColors),
             vk::bufferWrite(gpu::kRasterBindingLightDepth, kStorage, &lightDepth),
             vk::bufferWrite(gpu::kRasterBindingLightOpacity, kStorage, &lightOpacity)};
-        dispatchLinear(cmd, stage == Stage::LightDepth ? lightDepthPipeline_.get() : lightOpacityPipeline_.get(), light_, writes,
-                       light_.segmentCount, gpu::kRasterGroupSize);
+        dispatchLinear(cmd, stage == Stage::LightDepth ? lightDepthPipeline_.get() : lightOpacityPipeline_.get(),
+                       light_, writes, light_.segmentCount, gpu::kRasterGroupSize);
         break;
     }
     case Stage::LightResolve: {
@@ -466,7 +512,8 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
             vk::bufferWrite(gpu::kRasterBindingLightDepth, kStorage, &lightDepth),
             vk::imageWrite(gpu::kRasterBindingOpacityImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &opacityImage),
             vk::imageWrite(gpu::kRasterBindingLightDepthImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &depthImage)};
-        dispatch(cmd, lightResolvePipeline_, light_, writes, vk::groupCount(lightSize_, 8), vk::groupCount(lightSize_, 8));
+        dispatch(cmd, lightResolvePipeline_, light_, writes, vk::groupCount(lightSize_, 8),
+                 vk::groupCount(lightSize_, 8));
         break;
     }
     case Stage::LightCopy: {
@@ -483,9 +530,10 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
             vk::bufferWrite(gpu::kRasterBindingTileDepth, kStorage, &tileDepth),
             vk::bufferWrite(gpu::kRasterBindingCounts, kStorage, &counts)};
         if (!externalSamples_)
-            writes.push_back(vk::imageWrite(gpu::kRasterBindingMeshDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &meshDepth));
-        dispatch(cmd, externalSamples_ ? depthBufferPipeline_.get() : depthPipeline_.get(), camera_, writes, vk::groupCount(camera_.targetWidth, 8),
-                 vk::groupCount(camera_.targetHeight, 8));
+            writes.push_back(
+                vk::imageWrite(gpu::kRasterBindingMeshDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &meshDepth));
+        dispatch(cmd, externalSamples_ ? depthBufferPipeline_.get() : depthPipeline_.get(), camera_, writes,
+                 vk::groupCount(camera_.targetWidth, 8), vk::groupCount(camera_.targetHeight, 8));
         break;
     }
     case Stage::Count:
@@ -537,4 +585,4 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
     }
 }
 
-}  // namespace wisp
+} // namespace wisp

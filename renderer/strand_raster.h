@@ -68,12 +68,12 @@ inline uint32_t drawnStrandsPerGuide(uint32_t strandsPerGuide, float lodStrands)
 
 // One frame's counts (zeros until a frame has completed).
 struct RasterStats {
-    uint64_t segments = 0;   // segments on screen
-    uint64_t hidden = 0;     // of those, the ones behind the meshes' coarse depth (not walked)
-    uint64_t fragments = 0;  // fragments the pixels held (what the buffer needed)
-    uint64_t capacity = 0;   // fragments the buffer held
-    uint64_t overflow = 0;   // fragments that did not fit: dropped that frame, the buffer grows for the next
-    uint64_t maxPixel = 0;   // the most fragments one pixel held
+    uint64_t segments = 0;  // segments on screen
+    uint64_t hidden = 0;    // of those, the ones behind the meshes' coarse depth (not walked)
+    uint64_t fragments = 0; // fragments the pixels held (what the buffer needed)
+    uint64_t capacity = 0;  // fragments the buffer held
+    uint64_t overflow = 0;  // fragments that did not fit: dropped that frame, the buffer grows for the next
+    uint64_t maxPixel = 0;  // the most fragments one pixel held
 };
 // "compute raster: S segments on screen (H behind the meshes), F hair fragments (at most P in a pixel), buffer of C"
 // and ", dropped K" when some did not fit: the line `wisp render` prints and the window's panel shows.
@@ -82,13 +82,26 @@ std::string describeRasterStats(const RasterStats& stats);
 class StrandRaster {
 public:
     enum class Stage {
-        Clear, Curves, LightGenerate, LightDepth, LightOpacity, LightResolve, LightCopy,
-        Generate, Depth, Count, ScanBlocks, ScanTotals, ScanOffsets, Write, Resolve, Stats
+        Clear,
+        Curves,
+        LightGenerate,
+        LightDepth,
+        LightOpacity,
+        LightResolve,
+        LightCopy,
+        Generate,
+        Depth,
+        Count,
+        ScanBlocks,
+        ScanTotals,
+        ScanOffsets,
+        Write,
+        Resolve,
+        Stats
     };
     // (Curves, the guides' points both generates read, runs with the light's stages: before them.)
-    static constexpr std::array<Stage, 7> kLightStages = {Stage::Clear,        Stage::Curves,
-                                                          Stage::LightGenerate, Stage::LightDepth,
-                                                          Stage::LightOpacity,  Stage::LightResolve,
+    static constexpr std::array<Stage, 7> kLightStages = {Stage::Clear,      Stage::Curves,       Stage::LightGenerate,
+                                                          Stage::LightDepth, Stage::LightOpacity, Stage::LightResolve,
                                                           Stage::LightCopy};
     static constexpr std::array<Stage, 8> kCameraStages = {Stage::Generate,   Stage::Depth,      Stage::Count,
                                                            Stage::ScanBlocks, Stage::ScanTotals, Stage::ScanOffsets,
@@ -98,13 +111,13 @@ public:
     static constexpr uint64_t kMinFragments = 1u << 18;
     static constexpr uint64_t kInitialFragmentsPerSegment = 8;
     // What each buffer holds per item (shaders/shared/strand_raster.h's bindings).
-    static constexpr uint64_t kCurvePointBytes = 2 * sizeof(glm::vec4);   // a guide's curve point: position, tangent
-    static constexpr uint64_t kVertexBytes = sizeof(glm::vec4);           // a strand vertex, projected
-    static constexpr uint64_t kColorBytes = sizeof(uint32_t);             // its packed colour and opacity
-    static constexpr uint64_t kFragmentBytes = 2 * sizeof(uint32_t);      // depth bits, packed colour and opacity
-    static constexpr uint64_t kLightDepthBytes = sizeof(float);           // a light texel's first hair depth
-    static constexpr uint64_t kLightOpacityBytes = 4 * sizeof(uint32_t);  // its opacity layers, fixed point
-    static constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // the hair image, premultiplied
+    static constexpr uint64_t kCurvePointBytes = 2 * sizeof(glm::vec4);     // a guide's curve point: position, tangent
+    static constexpr uint64_t kVertexBytes = sizeof(glm::vec4);             // a strand vertex, projected
+    static constexpr uint64_t kColorBytes = sizeof(uint32_t);               // its packed colour and opacity
+    static constexpr uint64_t kFragmentBytes = 2 * sizeof(uint32_t);        // depth bits, packed colour and opacity
+    static constexpr uint64_t kLightDepthBytes = sizeof(float);             // a light texel's first hair depth
+    static constexpr uint64_t kLightOpacityBytes = 4 * sizeof(uint32_t);    // its opacity layers, fixed point
+    static constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT; // the hair image, premultiplied
 
     // A buffer's size as allocated: never empty.
     static constexpr uint64_t bufferBytes(uint64_t bytes) { return bytes > 16 ? bytes : 16; }
@@ -122,8 +135,9 @@ public:
     // The fragment buffer a first frame of `segments` segments gets.
     static constexpr uint64_t initialFragments(uint64_t segments, uint64_t maxStorageBufferRange)
     {
-        uint64_t wanted = segments * kInitialFragmentsPerSegment > kMinFragments ? segments * kInitialFragmentsPerSegment
-                                                                                 : kMinFragments;
+        uint64_t wanted = segments * kInitialFragmentsPerSegment > kMinFragments
+                              ? segments * kInitialFragmentsPerSegment
+                              : kMinFragments;
         uint64_t limit = fragmentLimit(maxStorageBufferRange);
         return wanted < limit ? wanted : limit;
     }
@@ -133,11 +147,11 @@ public:
     struct DeviceSizes {
         VkExtent2D extent{};
         uint64_t guides = 0;
-        uint32_t strandsPerGuide = 0;       // drawn for the camera (all of them at full detail)
-        uint32_t lightStrandsPerGuide = 0;  // drawn into the light's maps (0: shadows off)
+        uint32_t strandsPerGuide = 0;      // drawn for the camera (all of them at full detail)
+        uint32_t lightStrandsPerGuide = 0; // drawn into the light's maps (0: shadows off)
         uint32_t divisions = 0;
-        uint32_t lightMapSize = 0;          // shadow_size: texels per side
-        uint32_t samples = 1;               // the target's MSAA samples (the meshes' depth samples)
+        uint32_t lightMapSize = 0; // shadow_size: texels per side
+        uint32_t samples = 1;      // the target's MSAA samples (the meshes' depth samples)
         uint64_t maxStorageBufferRange = 0xffffffffull;
     };
     static constexpr uint64_t deviceBytes(const DeviceSizes& s)
@@ -148,16 +162,15 @@ public:
         uint64_t cameraVertices = s.guides * s.strandsPerGuide * (s.divisions + 1);
         uint64_t lightVertices = s.guides * s.lightStrandsPerGuide * (s.divisions + 1);
         uint64_t segments = s.guides * s.strandsPerGuide * s.divisions;
-        return s.guides * sizeof(glm::uvec4) +  // each guide's triangle of guides
-               bufferBytes(s.guides * (s.divisions + 1) * kCurvePointBytes) +
-               bufferBytes(sizeof(gpu::RasterCounters)) +
+        return s.guides * sizeof(glm::uvec4) + // each guide's triangle of guides
+               bufferBytes(s.guides * (s.divisions + 1) * kCurvePointBytes) + bufferBytes(sizeof(gpu::RasterCounters)) +
                bufferBytes(cameraVertices * kVertexBytes) + bufferBytes(cameraVertices * kColorBytes) +
                bufferBytes(lightVertices * kVertexBytes) + bufferBytes(lightVertices * kColorBytes) +
                2 * bufferBytes((pixels + 1) * sizeof(uint32_t)) +  // counts, offsets (and the total past the last)
                bufferBytes(pixels * 2 * sizeof(float)) +           // each pixel's mesh depth range
-               bufferBytes(depthTiles(s.extent) * sizeof(float)) +   // each tile's farthest mesh sample
+               bufferBytes(depthTiles(s.extent) * sizeof(float)) + // each tile's farthest mesh sample
                bufferBytes(blocks * sizeof(uint32_t)) +            // the scan's block sums
-               bufferBytes(pixels * (s.samples > 1 ? s.samples : 1) * sizeof(uint32_t)) +  // the meshes' depth samples
+               bufferBytes(pixels * (s.samples > 1 ? s.samples : 1) * sizeof(uint32_t)) + // the meshes' depth samples
                bufferBytes(texels * kLightDepthBytes) + bufferBytes(texels * kLightOpacityBytes) +
                bufferBytes(initialFragments(segments, s.maxStorageBufferRange) * kFragmentBytes) +
                pixels * vk::formatBytes(kColorFormat);
@@ -187,7 +200,7 @@ public:
     }
 
     Pass* pass(Stage stage);
-    TrackedImage& color() { return colorTrack_; }  // the hair, premultiplied RGBA16F
+    TrackedImage& color() { return colorTrack_; } // the hair, premultiplied RGBA16F
     const vk::Image& colorImage() const { return color_; }
     RasterStats stats(uint32_t slot) const;
     uint64_t fragmentCapacity() const { return fragmentCapacity_; }
@@ -197,7 +210,16 @@ public:
 
     // The buffers, for tests that read them back (tests/test_strand_raster.cpp).
     enum class Buffer {
-        Curves, Vertices, Colors, LightVertices, LightColors, Offsets, Fragments, Counters, LightDepth, LightOpacity
+        Curves,
+        Vertices,
+        Colors,
+        LightVertices,
+        LightColors,
+        Offsets,
+        Fragments,
+        Counters,
+        LightDepth,
+        LightOpacity
     };
     TrackedBuffer& track(Buffer which) { return storage(which).track; }
     const vk::Buffer& buffer(Buffer which) { return storage(which).buffer; }
@@ -234,18 +256,18 @@ private:
         writePipeline_;
     vk::Pipeline scanBlocksPipeline_, scanTotalsPipeline_, scanOffsetsPipeline_, resolvePipeline_;
     vk::Pipeline lightDepthPipeline_, lightOpacityPipeline_, lightResolvePipeline_, curvesPipeline_;
-    uint32_t pipelineK_ = 0;  // the oit_k the resolve pipeline was built for
-    vk::Sampler depthSampler_;  // the meshes' depth, fetched by texel
+    uint32_t pipelineK_ = 0;   // the oit_k the resolve pipeline was built for
+    vk::Sampler depthSampler_; // the meshes' depth, fetched by texel
     vk::Buffer triangles_;
-    Storage curves_;                       // the guides' curve points (strands.curves)
-    Storage vertices_, colors_;            // the camera's strand vertices
-    Storage lightVertices_, lightColors_;  // the light's
+    Storage curves_;                      // the guides' curve points (strands.curves)
+    Storage vertices_, colors_;           // the camera's strand vertices
+    Storage lightVertices_, lightColors_; // the light's
     Storage counts_, offsets_, fragments_, counters_, depthRange_, tileDepth_, blockSums_;
-    Storage meshSamples_;  // the depth image's samples, when the meshes are drawn by graphics
+    Storage meshSamples_; // the depth image's samples, when the meshes are drawn by graphics
     TrackedBuffer* externalSamples_ = nullptr;
     VkBuffer externalSamplesBuffer_ = VK_NULL_HANDLE;
     Storage lightDepth_, lightOpacity_;
-    std::vector<vk::Buffer> readback_;  // counters, one per frame in flight
+    std::vector<vk::Buffer> readback_; // counters, one per frame in flight
     vk::Image color_;
     TrackedImage colorTrack_;
     uint64_t fragmentCapacity_ = 0;
@@ -254,7 +276,7 @@ private:
     gpu::StrandRasterPush camera_{};
     gpu::StrandRasterPush light_{};
     const VkDescriptorImageInfo* lut_ = nullptr;
-    std::vector<std::unique_ptr<Pass>> passes_;  // one per Stage
+    std::vector<std::unique_ptr<Pass>> passes_; // one per Stage
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -27,7 +27,7 @@ uint32_t firstVertex(const gpu::StrandRasterPush& push, uint32_t segment)
     return segment / push.divisions * (push.divisions + 1) + segment % push.divisions;
 }
 
-}  // namespace
+} // namespace
 
 std::vector<gpu::CurvePoint> guideCurves(const gpu::StrandRasterPush& push, const std::vector<glm::vec3>& guides)
 {
@@ -46,7 +46,7 @@ StrandVertices generateStrands(const gpu::StrandRasterPush& push, const gpu::Fra
 {
     uint32_t perStrand = push.divisions + 1;
     size_t count = size_t(push.guideCount) * push.drawnPerGuide * perStrand;
-    std::vector<gpu::CurvePoint> curves = guideCurves(push, guides);  // strands.curves, as the kernel reads it
+    std::vector<gpu::CurvePoint> curves = guideCurves(push, guides); // strands.curves, as the kernel reads it
     StrandVertices out;
     out.positions.resize(count);
     out.colors.resize(count);
@@ -124,7 +124,7 @@ std::vector<std::vector<Fragment>> pixelFragments(const gpu::StrandRasterPush& p
         glm::vec4 colorA = gpu::unpackFragmentColor(strands.colors[v]);
         glm::vec4 colorB = gpu::unpackFragmentColor(strands.colors[v + 1]);
         glm::ivec4 bounds = gpu::ribbonPixelBounds(s, glm::vec2(a), glm::vec2(b), push.targetWidth, push.targetHeight);
-        bool skipped = hidden(bounds, std::min(a.z, b.z));  // walked all the same: any fragment is a loss
+        bool skipped = hidden(bounds, std::min(a.z, b.z)); // walked all the same: any fragment is a loss
         found.hidden += skipped ? 1 : 0;
         bool gave = false;
         for (int y = bounds.y; y <= bounds.w; ++y) {
@@ -154,7 +154,8 @@ std::vector<std::vector<Fragment>> pixelFragments(const gpu::StrandRasterPush& p
     return out;
 }
 
-std::vector<glm::vec4> resolvePixels(const gpu::StrandRasterPush& push, const std::vector<std::vector<Fragment>>& pixels)
+std::vector<glm::vec4> resolvePixels(const gpu::StrandRasterPush& push,
+                                     const std::vector<std::vector<Fragment>>& pixels)
 {
     uint32_t k = std::clamp(push.oitK, 1u, gpu::kMaxOitK);
     std::vector<glm::vec4> out(pixels.size());
@@ -180,7 +181,8 @@ LightMaps rasterLight(const gpu::StrandRasterPush& push, const gpu::FrameParams&
             glm::vec4 a = strands.positions[v], b = strands.positions[v + 1];
             if (a.w < 0.0f || b.w < 0.0f)
                 continue;
-            float alpha = 0.5f * (glm::unpackUnorm4x8(strands.colors[v]).w + glm::unpackUnorm4x8(strands.colors[v + 1]).w);
+            float alpha =
+                0.5f * (glm::unpackUnorm4x8(strands.colors[v]).w + glm::unpackUnorm4x8(strands.colors[v + 1]).w);
             gpu::RasterSegment s = gpu::makeRasterSegment(glm::vec2(a), glm::vec2(b), a.w, b.w);
             gpu::RasterSegment reach =
                 gpu::makeRasterSegment(glm::vec2(a), glm::vec2(b), std::max(a.w, 0.5f), std::max(b.w, 0.5f));
@@ -207,8 +209,8 @@ LightMaps rasterLight(const gpu::StrandRasterPush& push, const gpu::FrameParams&
                     }
                     float z0 = std::bit_cast<float>(out.depth[index]);
                     uint32_t layers = std::clamp(push.domLayers, 1u, gpu::kMaxDomLayers);
-                    uint32_t layer = std::min(uint32_t(std::max(depth - z0, 0.0f) / std::max(frame.domSpacing, 1e-12f)),
-                                              layers - 1);
+                    uint32_t layer =
+                        std::min(uint32_t(std::max(depth - z0, 0.0f) / std::max(frame.domSpacing, 1e-12f)), layers - 1);
                     out.opacity[index][int(layer)] += uint32_t(alpha * hit.z * gpu::kOpacityFixedScale + 0.5f);
                 }
             }
@@ -217,4 +219,4 @@ LightMaps rasterLight(const gpu::StrandRasterPush& push, const gpu::FrameParams&
     return out;
 }
 
-}  // namespace wisp::reference
+} // namespace wisp::reference

@@ -17,8 +17,8 @@
 namespace wisp::reference {
 
 struct StrandVertices {
-    std::vector<glm::vec4> positions;  // StrandVertex: x, y pixels, depth, half width (< 0: not drawn)
-    std::vector<uint32_t> colors;      // packFragmentColor(rgb, opacity)
+    std::vector<glm::vec4> positions; // StrandVertex: x, y pixels, depth, half width (< 0: not drawn)
+    std::vector<uint32_t> colors;     // packFragmentColor(rgb, opacity)
 };
 
 // strands_curves.comp: each guide's curve at the strands' points t = i / D (guide * (D + 1) + i).
@@ -57,14 +57,15 @@ std::vector<std::vector<Fragment>> pixelFragments(const gpu::StrandRasterPush& p
                                                   const std::vector<float>& meshDepth, SegmentCounts* counts = nullptr);
 
 // strands_resolve.comp: the premultiplied hair of every pixel.
-std::vector<glm::vec4> resolvePixels(const gpu::StrandRasterPush& push, const std::vector<std::vector<Fragment>>& pixels);
+std::vector<glm::vec4> resolvePixels(const gpu::StrandRasterPush& push,
+                                     const std::vector<std::vector<Fragment>>& pixels);
 
 struct LightMaps {
-    std::vector<uint32_t> depth;          // float bits per texel: the hair's first depth (1 where none)
-    std::vector<glm::uvec4> opacity;      // fixed-point opacity per texel and layer
+    std::vector<uint32_t> depth;     // float bits per texel: the hair's first depth (1 where none)
+    std::vector<glm::uvec4> opacity; // fixed-point opacity per texel and layer
 };
 
 // strands_light.comp, both variants (the light's strands from generateStrands with fromLight).
 LightMaps rasterLight(const gpu::StrandRasterPush& push, const gpu::FrameParams& frame, const StrandVertices& strands);
 
-}  // namespace wisp::reference
+} // namespace wisp::reference

@@ -59,7 +59,7 @@ float colorPolynomial(float bn)
 // Compared as floats: 0.01f is a little below the double 0.01, and must pass as the range's end.
 void checkRange(const char* name, float value, Range r)
 {
-    if (!(value >= float(r.min) && value <= float(r.max))) {  // also rejects NaN
+    if (!(value >= float(r.min) && value <= float(r.max))) { // also rejects NaN
         char buf[160];
         std::snprintf(buf, sizeof buf, "hair parameter %s = %g is outside [%g, %g]", name, double(value), double(r.min),
                       double(r.max));
@@ -71,7 +71,7 @@ float logistic(float x, float s)
 {
     x = std::abs(x);
     if (x > 80.0f * s)
-        return 0.0f;  // below 1e-34 / s: skip the denormals exp would produce (they are slow)
+        return 0.0f; // below 1e-34 / s: skip the denormals exp would produce (they are slow)
     float e = std::exp(-x / s);
     return e / (s * sqr(1.0f + e));
 }
@@ -117,7 +117,7 @@ Refraction refract(float sinThetaO, float cosThetaO, float eta, float h, glm::ve
     return {safeAsin(sinGammaT), expv(-sigmaA * (2.0f * cosGammaT / cosThetaT))};
 }
 
-}  // namespace
+} // namespace
 
 glm::vec3 sigmaAFromMelanin(float eumelanin, float pheomelanin)
 {
@@ -200,14 +200,14 @@ float fresnelDielectric(float cosThetaI, float eta)
 {
     cosThetaI = std::clamp(cosThetaI, -1.0f, 1.0f);
     float etaI = 1.0f, etaT = eta;
-    if (cosThetaI < 0.0f) {  // leaving the fibre
+    if (cosThetaI < 0.0f) { // leaving the fibre
         std::swap(etaI, etaT);
         cosThetaI = -cosThetaI;
     }
     float sinThetaI = safeSqrt(1.0f - cosThetaI * cosThetaI);
     float sinThetaT = etaI / etaT * sinThetaI;
     if (sinThetaT >= 1.0f)
-        return 1.0f;  // total internal reflection
+        return 1.0f; // total internal reflection
     float cosThetaT = safeSqrt(1.0f - sinThetaT * sinThetaT);
     float parallel = (etaT * cosThetaI - etaI * cosThetaT) / (etaT * cosThetaI + etaI * cosThetaT);
     float perpendicular = (etaI * cosThetaI - etaT * cosThetaT) / (etaI * cosThetaI + etaT * cosThetaT);
@@ -273,7 +273,7 @@ void HairLobes::tiltedThetaO(int p, float sinThetaO, float cosThetaO, float& sin
         sinThetaOp = sinThetaO;
         cosThetaOp = cosThetaO;
     }
-    cosThetaOp = std::abs(cosThetaOp);  // the tilt may carry theta_o past the pole
+    cosThetaOp = std::abs(cosThetaOp); // the tilt may carry theta_o past the pole
 }
 
 std::array<float, kPMax + 1> HairLobes::longitudinal(float sinThetaI, float sinThetaO) const
@@ -412,7 +412,7 @@ std::array<glm::vec3, kPMax> FiberAverage::azimuthalAll(float phi) const
     std::array<glm::vec3, kPMax> n{};
     for (const Sample& s : samples_) {
         for (int p = 0; p < kPMax; ++p) {
-            float dphi = std::remainder(phi - phiExit(p, s.gammaO, s.gammaT), 2.0f * kPi);  // in [-pi, pi]
+            float dphi = std::remainder(phi - phiExit(p, s.gammaO, s.gammaT), 2.0f * kPi); // in [-pi, pi]
             n[size_t(p)] += (s.weight * logistic(dphi, s_)) * s.ap[size_t(p)];
         }
     }
@@ -461,4 +461,4 @@ float luminance(glm::vec3 c)
     return 0.212671f * c.x + 0.715160f * c.y + 0.072169f * c.z;
 }
 
-}  // namespace wisp::shading
+} // namespace wisp::shading

@@ -18,7 +18,7 @@
 
 namespace wisp::shading {
 
-inline constexpr int kPMax = 3;  // lobes R, TT, TRT, then one residual lobe for p >= 3
+inline constexpr int kPMax = 3; // lobes R, TT, TRT, then one residual lobe for p >= 3
 using Attenuations = std::array<glm::vec3, kPMax + 1>;
 
 // What the parameters may be (anything else throws UserError naming the parameter and range).
@@ -29,9 +29,9 @@ inline constexpr Range kHRange{-1.0, 1.0};
 inline constexpr Range kEtaRange{1.0, 4.0};
 inline constexpr Range kBetaRange{0.01, 1.0};
 inline constexpr Range kAlphaDegRange{-10.0, 10.0};
-inline constexpr Range kSigmaARange{0.0, 1000.0};  // per component, per unit fibre radius
-inline constexpr Range kMelaninRange{0.0, 50.0};   // concentrations (pbrt: 1.3 brown, 8 black)
-inline constexpr Range kColorRange{1e-4, 1.0};     // per component, for sigmaAFromColor
+inline constexpr Range kSigmaARange{0.0, 1000.0}; // per component, per unit fibre radius
+inline constexpr Range kMelaninRange{0.0, 50.0};  // concentrations (pbrt: 1.3 brown, 8 black)
+inline constexpr Range kColorRange{1e-4, 1.0};    // per component, for sigmaAFromColor
 
 // Chiang 2016 (after d'Eon et al. 2011): absorption per unit concentration of the two melanins.
 inline constexpr glm::vec3 kEumelaninSigmaA{0.419f, 0.697f, 1.37f};
@@ -47,12 +47,12 @@ glm::vec3 sigmaAFromColor(glm::vec3 color, float betaN);
 glm::vec3 colorFromSigmaA(glm::vec3 sigmaA, float betaN);
 
 struct HairParams {
-    float h = 0.0f;                              // offset across the fibre, [-1, 1]
-    float eta = 1.55f;                           // index of refraction of the fibre
-    glm::vec3 sigmaA = sigmaAFromMelanin(1.3f);  // absorption per unit radius (brown by default)
-    float betaM = 0.3f;                          // longitudinal roughness, [0.01, 1]
-    float betaN = 0.3f;                          // azimuthal roughness, [0.01, 1]
-    float alphaDeg = 2.0f;                       // cuticle scale tilt, degrees
+    float h = 0.0f;                             // offset across the fibre, [-1, 1]
+    float eta = 1.55f;                          // index of refraction of the fibre
+    glm::vec3 sigmaA = sigmaAFromMelanin(1.3f); // absorption per unit radius (brown by default)
+    float betaM = 0.3f;                         // longitudinal roughness, [0.01, 1]
+    float betaN = 0.3f;                         // azimuthal roughness, [0.01, 1]
+    float alphaDeg = 2.0f;                      // cuticle scale tilt, degrees
 };
 
 // Throws wisp::UserError naming the first parameter outside its range.
@@ -89,12 +89,12 @@ struct HairLobes {
     std::array<float, kPMax + 1> longitudinal(float sinThetaI, float sinThetaO) const;
 };
 
-float longitudinalVariance(float betaM);  // v_R
-float logisticScale(float betaN);         // s
+float longitudinalVariance(float betaM); // v_R
+float logisticScale(float betaN);        // s
 
 class HairBsdf {
 public:
-    explicit HairBsdf(const HairParams& p);  // validates
+    explicit HairBsdf(const HairParams& p); // validates
 
     // pbrt-v3's HairBSDF::f: the lobe sum divided by |wi.z|.
     glm::vec3 f(glm::vec3 wo, glm::vec3 wi) const;
@@ -158,4 +158,4 @@ glm::vec3 fiberAveragedFsum(const HairLobes& lobes, const FiberAverage& average,
 // Luminance as pbrt's RGBSpectrum::y() (Rec. 709 weights).
 float luminance(glm::vec3 c);
 
-}  // namespace wisp::shading
+} // namespace wisp::shading

@@ -28,4 +28,4 @@ bool applyHairPreset(HairLook& look, const std::string& name)
     return false;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -19,16 +19,16 @@ enum class ShadingModel { Karis, Kajiya, Lut };
 // the hair should look (sigmaAFromColor); strands vary around it, with streaks along them.
 struct HairLook {
     ShadingModel model = ShadingModel::Karis;
-    float eumelanin = 1.3f;          // brown
+    float eumelanin = 1.3f; // brown
     float pheomelanin = 0.2f;
-    bool useColor = false;           // colour below instead of melanin
+    bool useColor = false; // colour below instead of melanin
     glm::vec3 color{0.3f, 0.2f, 0.12f};
-    float betaM = 0.3f;              // longitudinal roughness
-    float betaN = 0.3f;              // azimuthal roughness
+    float betaM = 0.3f; // longitudinal roughness
+    float betaN = 0.3f; // azimuthal roughness
     float cuticleTiltDeg = 2.0f;
     float eta = 1.55f;
-    float variation = 0.3f;          // per-strand spread of absorption (0: every strand alike)
-    float streaks = 0.35f;           // strength of lighter and darker streaks along strands
+    float variation = 0.3f; // per-strand spread of absorption (0: every strand alike)
+    float streaks = 0.35f;  // strength of lighter and darker streaks along strands
 };
 
 // Named looks: melanin pairs in the range Chiang et al. 2016 show for these colours (their figure
@@ -38,14 +38,12 @@ struct HairPreset {
     float eumelanin;
     float pheomelanin;
 };
-inline constexpr std::array<HairPreset, 4> kHairPresets = {{{"black", 8.0f, 0.0f},
-                                                            {"brown", 1.3f, 0.2f},
-                                                            {"auburn", 0.35f, 2.2f},
-                                                            {"blonde", 0.15f, 0.12f}}};
+inline constexpr std::array<HairPreset, 4> kHairPresets = {
+    {{"black", 8.0f, 0.0f}, {"brown", 1.3f, 0.2f}, {"auburn", 0.35f, 2.2f}, {"blonde", 0.15f, 0.12f}}};
 // Sets the look's melanin to the preset `name` (and drops a colour); false for an unknown name.
 bool applyHairPreset(HairLook& look, const std::string& name);
 
 // The reference BSDF's parameters for a look (h = 0; the models average across the fibre).
 shading::HairParams hairParams(const HairLook& look);
 
-}  // namespace wisp
+} // namespace wisp

@@ -30,7 +30,7 @@ float centre(uint32_t i, uint32_t size)
     return (float(i) + 0.5f) / float(size);
 }
 
-}  // namespace
+} // namespace
 
 glm::vec4 HairLut::texel(uint32_t layer, uint32_t x, uint32_t y) const
 {
@@ -95,4 +95,4 @@ glm::vec3 evaluateHairLut(const HairLut& lut, glm::vec3 t, glm::vec3 wi, glm::ve
         sampleHairLut(lut, gpu::kHairLutLayerNResidual, uvN));
 }
 
-}  // namespace wisp::shading
+} // namespace wisp::shading

@@ -39,4 +39,4 @@ glm::vec4 sampleHairLut(const HairLut& lut, uint32_t layer, glm::vec2 uv);
 // shared header around sampleHairLut, as hairShadeLut does in GLSL.
 glm::vec3 evaluateHairLut(const HairLut& lut, glm::vec3 t, glm::vec3 wi, glm::vec3 wo);
 
-}  // namespace wisp::shading
+} // namespace wisp::shading

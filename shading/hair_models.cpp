@@ -81,7 +81,7 @@ std::vector<glm::vec3> fibonacciSphere(int n)
         double z = 1.0 - (2.0 * i + 1.0) / n;
         double r = std::sqrt(std::max(0.0, 1.0 - z * z));
         double a = golden * i;
-        dirs.emplace_back(float(z), float(r * std::cos(a)), float(r * std::sin(a)));  // x (fibre) varies slowest
+        dirs.emplace_back(float(z), float(r * std::cos(a)), float(r * std::sin(a))); // x (fibre) varies slowest
     }
     return dirs;
 }
@@ -122,4 +122,4 @@ std::vector<ModelError> compareModels(const HairParams& p, const CompareOptions&
     return errors;
 }
 
-}  // namespace wisp::shading
+} // namespace wisp::shading

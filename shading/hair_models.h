@@ -14,7 +14,7 @@ namespace wisp::shading {
 
 enum class HairModel { Karis, KajiyaKay, Lut };
 inline constexpr HairModel kHairModels[] = {HairModel::Karis, HairModel::KajiyaKay, HairModel::Lut};
-const char* modelName(HairModel m);  // "karis", "kajiya", "lut"
+const char* modelName(HairModel m); // "karis", "kajiya", "lut"
 
 // The GPU block for these parameters: sigma_a and eta, beta_m, beta_n, alpha in radians, the base
 // colour (colorFromSigmaA), Kajiya-Kay lobes placed and sized like the reference's R and TRT
@@ -31,9 +31,9 @@ glm::vec3 evaluateModel(HairModel model, const gpu::HairMaterial& m, const HairL
 std::vector<glm::vec3> fibonacciSphere(int n);
 
 struct CompareOptions {
-    int outgoing = 32;                  // directions wo (Fibonacci sphere)
-    int incoming = 1024;                // directions wi for each wo (Fibonacci sphere)
-    int hSamples = kReferenceHSamples;  // the reference's average across the fibre
+    int outgoing = 32;                 // directions wo (Fibonacci sphere)
+    int incoming = 1024;               // directions wi for each wo (Fibonacci sphere)
+    int hSamples = kReferenceHSamples; // the reference's average across the fibre
 };
 
 struct ModelError {
@@ -42,7 +42,7 @@ struct ModelError {
     double relativeRms;
     // sum lum(S_model) / sum lum(S_ref): how bright the model is on average, relative to the reference.
     double brightness;
-    bool finiteNonNegative;  // every value of the model finite and >= 0
+    bool finiteNonNegative; // every value of the model finite and >= 0
 };
 
 // Each model against the reference averaged over h (fiberAveragedFsum). Validates.
@@ -52,4 +52,4 @@ std::vector<ModelError> compareModels(const HairParams& p, const CompareOptions&
 // beta_n 0.3, alpha 2 degrees, eta 1.55.
 HairParams typicalHair();
 
-}  // namespace wisp::shading
+} // namespace wisp::shading

@@ -17,8 +17,8 @@
 #include <vector>
 
 // Skips a window test, saying why, where Xvfb is not installed.
-#define WISP_REQUIRE_XVFB()                                                      \
-    if (std::system("command -v Xvfb >/dev/null 2>&1") != 0)                     \
+#define WISP_REQUIRE_XVFB()                                                                                            \
+    if (std::system("command -v Xvfb >/dev/null 2>&1") != 0)                                                           \
     GTEST_SKIP() << "Xvfb is not installed (Debian package xvfb): cannot test the window here"
 
 // The prefix that runs a command under an Xvfb of its own (tests/with_xvfb.sh: the server picks a
@@ -72,4 +72,4 @@ inline std::vector<std::string> partialFiles(const std::filesystem::path& dir)
     return out;
 }
 
-}  // namespace wisp::test
+} // namespace wisp::test

@@ -25,7 +25,10 @@ inline void appendU32(std::string& s, uint32_t v)
     for (int k = 0; k < 4; ++k)
         s.push_back(char((v >> (8 * k)) & 0xffu));
 }
-inline void appendF32(std::string& s, float v) { appendU32(s, std::bit_cast<uint32_t>(v)); }
+inline void appendF32(std::string& s, float v)
+{
+    appendU32(s, std::bit_cast<uint32_t>(v));
+}
 
 inline void writeBytes(const std::filesystem::path& path, const std::string& bytes)
 {
@@ -93,7 +96,7 @@ inline void writeCyHair(const std::filesystem::path& path, const Strands& strand
         b.push_back(char(segments >> 8));
     }
     for (const auto& s : strands)
-        for (const glm::vec3& p : s) {  // (x, y, z) y-up is (x, -z, y) z-up
+        for (const glm::vec3& p : s) { // (x, y, z) y-up is (x, -z, y) z-up
             appendF32(b, p.x);
             appendF32(b, -p.z);
             appendF32(b, p.y);
@@ -102,8 +105,7 @@ inline void writeCyHair(const std::filesystem::path& path, const Strands& strand
 }
 
 // `guides` strands grown on the default head, as points in head units (metres), `transform` applied.
-template <class Transform>
-Strands grownStrands(uint32_t guides, uint32_t vertices, Transform transform)
+template <class Transform> Strands grownStrands(uint32_t guides, uint32_t vertices, Transform transform)
 {
     GrowthSettings g;
     g.guides = guides;
@@ -126,25 +128,26 @@ inline void writeScanHead(const std::filesystem::path& path)
         glm::vec3 d(std::sin(theta) * std::sin(phi), std::cos(theta), std::sin(theta) * std::cos(phi));
         glm::vec3 r(8.0f, 11.0f, 10.0f);
         // Boxy above the jaw (a superellipsoid of exponent 4: flat top and sides, full corners).
-        float box = std::pow(std::pow(std::abs(d.x), 4.0f) + std::pow(std::abs(d.y), 4.0f) + std::pow(std::abs(d.z), 4.0f), -0.25f);
-        float scale = (d.y > -0.3f ? box : 1.0f) - 0.18f * std::pow(std::max(0.0f, -d.z), 3.0f)   // flat back
-                      + 0.08f * std::pow(std::max(0.0f, d.y), 4.0f)          // raised crown
-                      - 0.2f * std::pow(std::max(0.0f, -d.y), 2.0f)          // narrow jaw
-                      + 0.06f * std::pow(std::abs(d.x), 3.0f) * std::max(0.0f, d.y + 0.3f);  // temples
+        float box = std::pow(
+            std::pow(std::abs(d.x), 4.0f) + std::pow(std::abs(d.y), 4.0f) + std::pow(std::abs(d.z), 4.0f), -0.25f);
+        float scale = (d.y > -0.3f ? box : 1.0f) - 0.18f * std::pow(std::max(0.0f, -d.z), 3.0f) // flat back
+                      + 0.08f * std::pow(std::max(0.0f, d.y), 4.0f)                             // raised crown
+                      - 0.2f * std::pow(std::max(0.0f, -d.y), 2.0f)                             // narrow jaw
+                      + 0.06f * std::pow(std::abs(d.x), 3.0f) * std::max(0.0f, d.y + 0.3f);     // temples
         return glm::vec3(0.0f, 150.0f, 0.0f) + scale * r * d;
     };
     std::string text = "# a scan-like head, quads\r\n";
     auto vertex = [&](glm::vec3 p) {
         text += "v " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\r\n";
     };
-    vertex(surface(0.0f, 0.0f));  // 1: the top pole
+    vertex(surface(0.0f, 0.0f)); // 1: the top pole
     for (int i = 1; i < kRings; ++i)
         for (int j = 0; j < kSegments; ++j)
             vertex(surface(3.14159265f * float(i) / kRings, 6.2831853f * float(j) / kSegments));
-    vertex(surface(3.14159265f, 0.0f));  // the bottom pole
+    vertex(surface(3.14159265f, 0.0f)); // the bottom pole
     auto at = [&](int ring, int seg) { return 2 + (ring - 1) * kSegments + (seg % kSegments); };
     int bottom = 2 + (kRings - 1) * kSegments;
-    for (int j = 0; j < kSegments; ++j)  // counter-clockwise seen from outside
+    for (int j = 0; j < kSegments; ++j) // counter-clockwise seen from outside
         text += "f 1 " + std::to_string(at(1, j)) + " " + std::to_string(at(1, j + 1)) + "\r\n";
     for (int i = 1; i < kRings - 1; ++i)
         for (int j = 0; j < kSegments; ++j)
@@ -177,4 +180,4 @@ inline void writeDeformedBustPly(const std::filesystem::path& path)
     writeBytes(path, text);
 }
 
-}  // namespace wisp::test
+} // namespace wisp::test

@@ -3,10 +3,10 @@
 #pragma once
 
 #include "app/headless.h"
+#include "assets/head.h"
 #include "physics/gpu_solver.h"
 #include "physics/hair_scene.h"
 #include "renderer/renderer.h"
-#include "assets/head.h"
 #include "renderer/settings.h"
 
 namespace wisp::test {
@@ -41,8 +41,8 @@ inline Picture renderHair(const vk::Context& ctx, const HairScene& scene, const 
 struct HairRenderer {
     HairRenderer(const vk::Context& ctx, const HairScene& scene, const RenderSettings& s)
         : renderer(ctx, s, 1),
-          solver(ctx, scene.strands, makeSimSetup(SimSettings{}, scene.strands, scene.gpuColliders, scene.unitsPerMetre),
-                 glm::mat4(1.0f))
+          solver(ctx, scene.strands,
+                 makeSimSetup(SimSettings{}, scene.strands, scene.gpuColliders, scene.unitsPerMetre), glm::mat4(1.0f))
     {
         renderer.setHead(scene.head);
         renderer.attachHair(solver, scene.strands, scene.unitsPerMetre);
@@ -51,4 +51,4 @@ struct HairRenderer {
     GpuSolver solver;
 };
 
-}  // namespace wisp::test
+} // namespace wisp::test

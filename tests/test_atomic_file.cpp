@@ -23,7 +23,7 @@ size_t filesIn(const std::filesystem::path& dir)
     return n;
 }
 
-}  // namespace
+} // namespace
 
 TEST(AtomicFile, WritesTheBytesAndReplacesAnOldFile)
 {
@@ -42,12 +42,12 @@ TEST(AtomicFile, AFailedWriteLeavesTheTargetAsItWasAndNoTemporaryFile)
     EXPECT_THROW(writeAtomically(dir / "a.txt",
                                  [&](const std::filesystem::path& temp) {
                                      seen = temp;
-                                     writeFileAtomically(temp, "half");  // as a writer that fails midway
+                                     writeFileAtomically(temp, "half"); // as a writer that fails midway
                                      return false;
                                  }),
                  UserError);
-    EXPECT_EQ(seen.parent_path(), dir.path());  // beside the target: the rename stays on one file system
-    EXPECT_EQ(seen.extension(), ".txt");         // writers that read the format from the name still can
+    EXPECT_EQ(seen.parent_path(), dir.path()); // beside the target: the rename stays on one file system
+    EXPECT_EQ(seen.extension(), ".txt");       // writers that read the format from the name still can
     EXPECT_EQ(readFile(dir / "a.txt"), "kept");
     EXPECT_EQ(filesIn(dir.path()), 1u);
     EXPECT_THROW(writeAtomically(dir / "b.txt",

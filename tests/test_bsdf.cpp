@@ -47,7 +47,7 @@ double integrateSphere(int n, std::mt19937& rng, const std::function<double(glm:
 const glm::vec3 kOutgoing[] = {glm::normalize(glm::vec3(0.3f, 0.5f, 0.8f)), glm::vec3(0.0f, 1.0f, 0.0f),
                                glm::normalize(glm::vec3(-0.8f, 0.1f, -0.5f))};
 
-}  // namespace
+} // namespace
 
 // Without absorption every bit of light leaves again: the integral of f |cos| = fsum over the
 // sphere of wi is 1 for any wo (pbrt-v3's WhiteFurnace test, here stratified).
@@ -98,7 +98,7 @@ TEST(Bsdf, WhiteFurnaceSampled)
 // With absorption the sampled estimate of the albedo matches the uniform one.
 TEST(Bsdf, SampledAndUniformAlbedoAgreeWithAbsorption)
 {
-    HairParams p;  // brown: melanin 1.3
+    HairParams p; // brown: melanin 1.3
     p.h = 0.3f;
     HairBsdf bsdf(p);
     std::mt19937 rng(3);
@@ -114,7 +114,7 @@ TEST(Bsdf, SampledAndUniformAlbedoAgreeWithAbsorption)
         sampled += double(f.y * std::abs(wi.z) / pdf);
     }
     sampled /= n;
-    EXPECT_LT(uniform, 0.5);  // brown hair absorbs most of it
+    EXPECT_LT(uniform, 0.5); // brown hair absorbs most of it
     EXPECT_NEAR(sampled, uniform, 0.02 * uniform);
 }
 
@@ -193,7 +193,7 @@ TEST(Bsdf, SymmetriesThatHold)
             for (int c = 0; c < 3; ++c)
                 EXPECT_NEAR(x[c], y[c], 1e-4f * x[c] + 1e-8f);
         }
-    HairParams tilted;  // alpha 2 degrees, h averaged
+    HairParams tilted; // alpha 2 degrees, h averaged
     glm::vec3 wo = kOutgoing[0];
     for (float phi : {0.4f, 1.7f, 3.0f}) {
         float phiO = std::atan2(wo.z, wo.y), c = std::sqrt(1.0f - 0.09f);
@@ -261,7 +261,7 @@ TEST(Bsdf, MelaninMapsToChiangsAbsorption)
     EXPECT_EQ(red, glm::vec3(0.187f, 0.4f, 1.05f));
     glm::vec3 mix = sigmaAFromMelanin(2.0f, 0.5f);
     EXPECT_NEAR(mix.z, 2.0f * 1.37f + 0.5f * 1.05f, 1e-5f);
-    EXPECT_EQ(HairParams{}.sigmaA, brown);  // the default is pbrt's brown
+    EXPECT_EQ(HairParams{}.sigmaA, brown); // the default is pbrt's brown
 }
 
 TEST(Bsdf, ColorMapsToAbsorptionAndBack)

@@ -41,7 +41,7 @@ void expectNear(glm::vec3 a, glm::vec3 b)
     }
 }
 
-}  // namespace
+} // namespace
 
 TEST(BsdfCli, PrintsTheReferenceF)
 {

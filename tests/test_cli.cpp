@@ -107,8 +107,8 @@ TEST(Cli, SettingsListsEveryNameWithRangeAndDefault)
 {
     auto r = runWisp("settings");
     ASSERT_EQ(r.status, 0) << r.err;
-    for (const char* name : {"guides", "vertices_per_strand", "strands_per_guide", "divisions", "interpolation", "deviation",
-                             "lod", "width"})
+    for (const char* name : {"guides", "vertices_per_strand", "strands_per_guide", "divisions", "interpolation",
+                             "deviation", "lod", "width"})
         EXPECT_NE(r.out.find(std::string("\n") + name + " "), std::string::npos) << name;
     EXPECT_NE(r.out.find("single | multi | mixed"), std::string::npos);
 }
@@ -138,7 +138,7 @@ TEST(BadInput, DeviceLackingAFeatureIsNamedWithTheFeature)
     auto two = runWisp("simulate --steps 1", "WISP_HIDE_FEATURE=tessellationShader,VK_KHR_push_descriptor");
     expectUserError(two, "lacks what Wisp needs: tessellationShader, VK_KHR_push_descriptor");
     EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
-    EXPECT_FALSE(std::filesystem::exists(dir / "f"));  // refused before the folder is made
+    EXPECT_FALSE(std::filesystem::exists(dir / "f")); // refused before the folder is made
     auto listed = runWisp("info --json", hide);
     ASSERT_EQ(listed.status, 0) << listed.err;
     nlohmann::json d = nlohmann::json::parse(listed.out)[0];

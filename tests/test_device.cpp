@@ -3,9 +3,9 @@
 // Frame's declared accesses produce the barriers that synchronization validation demands, and a
 // lost device (injected) is its own error that frames and the context survive.
 #include "core/error.h"
-#include "gpu/frame.h"
 #include "gpu/check.h"
 #include "gpu/context.h"
+#include "gpu/frame.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -42,7 +42,7 @@ std::string selectError(const std::vector<vk::DeviceReport>& devices, const std:
     return "";
 }
 
-}  // namespace
+} // namespace
 
 TEST(DeviceChoice, PrefersDiscreteThenIntegratedThenCpu)
 {
@@ -110,9 +110,10 @@ TEST(VulkanCore, BufferRoundTripThroughTheGpu)
     for (uint32_t i = 0; i < data.size(); ++i)
         data[i] = i * 2654435761u;
     size_t bytes = data.size() * sizeof(uint32_t);
-    vk::Buffer device = ctx.createBufferWithData({.size = bytes, .usage = vk::kStorage | vk::kTransferSrc, .name = "test.device"},
-                                                 data.data(), bytes);
-    vk::Buffer host = ctx.createBuffer({.size = bytes, .usage = vk::kTransferDst, .memory = vk::Memory::Readback, .name = "test.host"});
+    vk::Buffer device = ctx.createBufferWithData(
+        {.size = bytes, .usage = vk::kStorage | vk::kTransferSrc, .name = "test.device"}, data.data(), bytes);
+    vk::Buffer host = ctx.createBuffer(
+        {.size = bytes, .usage = vk::kTransferDst, .memory = vk::Memory::Readback, .name = "test.host"});
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
         VkBufferCopy region{.size = bytes};
         vkCmdCopyBuffer(cmd, device, host, 1, &region);
@@ -132,7 +133,10 @@ public:
     FillPass(TrackedBuffer& b, uint32_t value) : buffer_(b), value_(value) {}
     const char* name() const override { return "fill"; }
     void declare(PassIo& io) override { io.use(buffer_, Access::TransferDst); }
-    void record(VkCommandBuffer cmd, FrameContext&) override { vkCmdFillBuffer(cmd, buffer_.buffer, 0, VK_WHOLE_SIZE, value_); }
+    void record(VkCommandBuffer cmd, FrameContext&) override
+    {
+        vkCmdFillBuffer(cmd, buffer_.buffer, 0, VK_WHOLE_SIZE, value_);
+    }
 
 private:
     TrackedBuffer& buffer_;
@@ -143,7 +147,9 @@ private:
 class CopyPass : public Pass {
 public:
     CopyPass(TrackedBuffer& src, TrackedBuffer& dst, VkDeviceSize bytes, bool declareAccesses)
-        : src_(src), dst_(dst), bytes_(bytes), declare_(declareAccesses) {}
+        : src_(src), dst_(dst), bytes_(bytes), declare_(declareAccesses)
+    {
+    }
     const char* name() const override { return "copy"; }
     void declare(PassIo& io) override
     {
@@ -174,7 +180,8 @@ uint32_t runFillThenCopy(bool declareAccesses, uint32_t& firstWord, std::vector<
     vk::Context ctx(options);
     constexpr VkDeviceSize kBytes = 1 << 16;
     vk::Buffer a = ctx.createBuffer({.size = kBytes, .usage = vk::kTransferSrc | vk::kTransferDst, .name = "test.a"});
-    vk::Buffer b = ctx.createBuffer({.size = kBytes, .usage = vk::kTransferDst, .memory = vk::Memory::Readback, .name = "test.b"});
+    vk::Buffer b =
+        ctx.createBuffer({.size = kBytes, .usage = vk::kTransferDst, .memory = vk::Memory::Readback, .name = "test.b"});
     TrackedBuffer ta{.buffer = a}, tb{.buffer = b};
     FillPass fill(ta, 0xC0FFEEu);
     CopyPass copy(ta, tb, kBytes, declareAccesses);
@@ -191,7 +198,7 @@ uint32_t runFillThenCopy(bool declareAccesses, uint32_t& firstWord, std::vector<
     return ctx.validationMessages();
 }
 
-}  // namespace
+} // namespace
 
 TEST(FrameBarriers, DeclaredAccessesAreSynchronized)
 {
@@ -257,7 +264,7 @@ uint32_t fillThrowawayBuffers(int frames)
     return ctx.validationMessages();
 }
 
-}  // namespace
+} // namespace
 
 TEST(FrameDeletion, RetiredObjectsLiveUntilTheirFrameIsDone)
 {
@@ -301,13 +308,13 @@ TEST(DeviceLoss, InjectedLossReachesEverySubmissionAndTearsDownCleanly)
         Frame frame(*ctx, 1);
         FrameContext& first = frame.begin({});
         frame.run(first, passes);
-        frame.submit(first);  // submission 1 reaches the driver
+        frame.submit(first); // submission 1 reaches the driver
         frame.waitIdle();
         FrameContext& second = frame.begin({});
         frame.run(second, passes);
         EXPECT_THROW(frame.submit(second), vk::DeviceLost);
-    }  // the frame's and the buffer's teardown after the loss returns
-    EXPECT_THROW(ctx->submitAndWait([](VkCommandBuffer) {}), vk::DeviceLost);  // a lost device stays lost
+    } // the frame's and the buffer's teardown after the loss returns
+    EXPECT_THROW(ctx->submitAndWait([](VkCommandBuffer) {}), vk::DeviceLost); // a lost device stays lost
     EXPECT_EQ(ctx->validationMessages(), 0u);
-    ctx.reset();  // and so does the context's
+    ctx.reset(); // and so does the context's
 }

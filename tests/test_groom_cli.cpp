@@ -52,7 +52,7 @@ Strands loops(size_t count)
     return out;
 }
 
-}  // namespace
+} // namespace
 
 TEST(GroomCli, InspectReportsUnitsUpAxisPinnedTipsAndShortStrands)
 {
@@ -99,8 +99,8 @@ TEST(GroomCli, InspectAndRenderSayHowAGroomInOtherUnitsAndAxesIsPlaced)
     EXPECT_NEAR(j["placement"]["scale"].get<double>(), 0.4, 0.04);
     EXPECT_GE(j["placement"]["roots"]["on_surface"].get<double>(), 0.9);
 
-    r = runWisp("render --hair " + quoted(dir / "big.hair") + " --guides 1 --set strands_per_guide=2 --width 96 --height 64 --out " +
-                quoted(dir / "big.png"));
+    r = runWisp("render --hair " + quoted(dir / "big.hair") +
+                " --guides 1 --set strands_per_guide=2 --width 96 --height 64 --out " + quoted(dir / "big.png"));
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.out.find("hair placement: fitted to the scalp: scale 0.4"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("z-up turned y-up; roots: median"), std::string::npos) << r.out;
@@ -115,7 +115,8 @@ TEST(GroomCli, RootsOffTheHeadAreRefusedOrPlacedByHandWithAWarning)
     for (int k = 0; k < 100; ++k) {
         float a = 0.3f * float(k), radius = 3.0f * std::sqrt(float(k) / 100.0f);
         glm::vec3 root(radius * std::cos(a), 5.0f, radius * std::sin(a));
-        plate.push_back({root, root - glm::vec3(0, 0.1f, 0), root - glm::vec3(0, 0.2f, 0), root - glm::vec3(0, 0.3f, 0)});
+        plate.push_back(
+            {root, root - glm::vec3(0, 0.1f, 0), root - glm::vec3(0, 0.2f, 0), root - glm::vec3(0, 0.3f, 0)});
     }
     test::writeTfx4(dir / "plate.tfx", plate);
     std::string out = " --width 64 --height 48 --out " + quoted(dir / "p.png");
@@ -147,7 +148,8 @@ TEST(GroomCli, SimulateKeepsAGroomPinnedAtBothEndsFromStretching)
     nlohmann::json j = nlohmann::json::parse(r.out);
     EXPECT_LT(j["worst"]["max_stretch"].get<double>(), 1e-4);
     EXPECT_EQ(j["nonfinite_resets"], 0);
-    EXPECT_LT(j["worst"]["kinetic_energy"].get<double>(), 10.0) << "45 loops of 16 unit-mass vertices in the wind (it was 1e7)";
+    EXPECT_LT(j["worst"]["kinetic_energy"].get<double>(), 10.0)
+        << "45 loops of 16 unit-mass vertices in the wind (it was 1e7)";
     EXPECT_EQ(j["loaded_hair"]["pinned_tips"], 45);
     EXPECT_EQ(j["loaded_hair"]["short_strands"]["kept_rigid"], 15);
     EXPECT_EQ(j["loaded_hair"]["placement"]["method"], "file");

@@ -1,9 +1,9 @@
 // tests/test_hair_asset.cpp: hair loaders against the real TressFX files in ../shared/data and
 // small TressFX 3 / cyHair / tfx2 files built here per FORMATS.md; every broken-file path with
 // its byte offset or line; strand resampling, automatic placement and the inspect JSON.
-#include "core/error.h"
 #include "assets/hair_asset.h"
 #include "assets/mesh.h"
+#include "core/error.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -185,7 +185,7 @@ float arcPosition(const std::vector<glm::vec3>& line, glm::vec3 p)
     return at;
 }
 
-}  // namespace
+} // namespace
 
 // ---- real files ---------------------------------------------------------------------------------
 
@@ -202,13 +202,13 @@ TEST(HairAsset, LoadsSintelTfx4)
     EXPECT_FALSE(hair.zUp);
     EXPECT_FALSE(hair.mirroredZ);
     for (const HairStrand& s : hair.strands) {
-        ASSERT_EQ(s.pinnedRoot, 1u);  // this groom pins only vertex 0
+        ASSERT_EQ(s.pinnedRoot, 1u); // this groom pins only vertex 0
         ASSERT_FALSE(s.pinnedTip);
     }
     Bounds b = hair.bounds();
-    EXPECT_LT(b.diagonal(), 2.0f);  // metres
+    EXPECT_LT(b.diagonal(), 2.0f); // metres
     EXPECT_GT(b.diagonal(), 0.1f);
-    EXPECT_GT(b.min.y, 1.0f);  // a standing figure's head, y up
+    EXPECT_GT(b.min.y, 1.0f); // a standing figure's head, y up
 }
 
 TEST(HairAsset, SintelRootsLieOnTheBust)
@@ -225,7 +225,7 @@ TEST(HairAsset, SintelRootsLieOnTheBust)
             best = std::min(best, glm::length(p - s.points.front()));
         distances.push_back(best);
     }
-    EXPECT_LT(median(distances), 0.01f);  // 1 cm: same units, same frame, no placement needed
+    EXPECT_LT(median(distances), 0.01f); // 1 cm: same units, same frame, no placement needed
     HairPlacement placement = autoPlacement(hair, mesh.bounds());
     EXPECT_EQ(placement.scale, 1.0f);
     EXPECT_FALSE(placement.zUpToYUp);
@@ -245,7 +245,7 @@ TEST(HairAsset, LoadsSintelLiteTfx4InBlenderUnits)
     for (const HairStrand& s : hair.strands)
         ASSERT_EQ(s.pinnedRoot, 1u);
     float diagonal = hair.bounds().diagonal();
-    EXPECT_GT(diagonal, 10.0f);  // Blender units: a head about 40 wide
+    EXPECT_GT(diagonal, 10.0f); // Blender units: a head about 40 wide
     EXPECT_LT(diagonal, 200.0f);
     EXPECT_EQ(autoPlacement(hair, loadMesh(meshPath).bounds()).scale, 1.0f);
 }
@@ -265,10 +265,10 @@ TEST(HairAsset, LoadsTressFx2TextInCentimetres)
     EXPECT_EQ(t.maxVertices(), 16u);
     // The first point of the front file, as written.
     EXPECT_EQ(f.strands[0].points[0], glm::vec3(-2.28788f, 107.007f, 23.5948f));
-    EXPECT_FALSE(f.strands[0].pinnedTip);  // bothEndsImmovable 0
+    EXPECT_FALSE(f.strands[0].pinnedTip); // bothEndsImmovable 0
     for (const HairAsset* h : {&f, &t}) {
         float diagonal = h->bounds().diagonal();
-        EXPECT_GT(diagonal, 10.0f);  // centimetres
+        EXPECT_GT(diagonal, 10.0f); // centimetres
         EXPECT_LT(diagonal, 500.0f);
     }
 }
@@ -279,8 +279,8 @@ TEST(HairAsset, TressFx2OnTheirHeadAndOnSintel)
     WISP_REQUIRE_DATA(head, "tressfx-text/head_max4.obj");
     WISP_REQUIRE_DATA(sintel, "sintel/sintel.obj");
     HairAsset hair = loadHairAsset(tail);
-    EXPECT_EQ(autoPlacement(hair, loadMesh(head).bounds()).scale, 1.0f);       // both centimetres
-    EXPECT_FLOAT_EQ(autoPlacement(hair, loadMesh(sintel).bounds()).scale, 0.01f);  // centimetres on metres
+    EXPECT_EQ(autoPlacement(hair, loadMesh(head).bounds()).scale, 1.0f);          // both centimetres
+    EXPECT_FLOAT_EQ(autoPlacement(hair, loadMesh(sintel).bounds()).scale, 0.01f); // centimetres on metres
 }
 
 // ---- files built here ---------------------------------------------------------------------------
@@ -296,7 +296,7 @@ TEST(HairAsset, LoadsTfx3Exactly)
     expectExactPoints(hair, {4, 4, 4});
     for (const HairStrand& s : hair.strands) {
         EXPECT_EQ(s.pinnedRoot, 1u);
-        EXPECT_TRUE(s.pinnedTip);  // bothEndsImmovable 1
+        EXPECT_TRUE(s.pinnedTip); // bothEndsImmovable 1
     }
     HairPlacement p = autoPlacement(hair, hair.bounds());
     EXPECT_TRUE(p.mirrorZ);
@@ -311,8 +311,8 @@ TEST(HairAsset, LoadsTfx4PinnedCounts)
     EXPECT_EQ(hair.format, HairFormat::Tfx4);
     expectExactPoints(hair, {5, 5, 5});
     EXPECT_EQ(hair.strands[0].pinnedRoot, 1u);
-    EXPECT_EQ(hair.strands[1].pinnedRoot, 2u);  // vertices 0 and 1 have w = 0
-    EXPECT_EQ(hair.strands[2].pinnedRoot, 1u);  // no w = 0 at all: the root is still pinned
+    EXPECT_EQ(hair.strands[1].pinnedRoot, 2u); // vertices 0 and 1 have w = 0
+    EXPECT_EQ(hair.strands[2].pinnedRoot, 1u); // no w = 0 at all: the root is still pinned
 }
 
 TEST(HairAsset, LoadsCyHairWithSegmentsArray)
@@ -434,7 +434,8 @@ TEST(HairErrors, Tfx3Broken)
     writeFile(dir / "short-header.tfx", good.data.substr(0, 100));
     expectBinaryError(dir / "short-header.tfx", "0", "header needs 296");
     writeFile(dir / "truncated.tfx", good.data.substr(0, good.data.size() - 5));
-    expectBinaryError(dir / "truncated.tfx", "296", "2*4*12 = 96 bytes from byte 296 to byte 392, but the file ends at byte 387");
+    expectBinaryError(dir / "truncated.tfx", "296",
+                      "2*4*12 = 96 bytes from byte 296 to byte 392, but the file ends at byte 387");
 
     Bytes magic = good;
     magic.data.replace(0, 4, Bytes().f32(3.5f).data);
@@ -465,7 +466,8 @@ TEST(HairErrors, Tfx4Broken)
     writeFile(dir / "short-header.tfx", good.data.substr(0, 20));
     expectBinaryError(dir / "short-header.tfx", "0", "header needs 160");
     writeFile(dir / "truncated.tfx", good.data.substr(0, good.data.size() - 1));
-    expectBinaryError(dir / "truncated.tfx", "160", "2*4*16 = 128 bytes from byte 160 to byte 288, but the file ends at byte 287");
+    expectBinaryError(dir / "truncated.tfx", "160",
+                      "2*4*16 = 128 bytes from byte 160 to byte 288, but the file ends at byte 287");
 
     Bytes magic = good;
     magic.data.replace(0, 4, Bytes().f32(2.0f).data);
@@ -498,7 +500,7 @@ TEST(HairErrors, Tfx4HeaderClaimingMoreStrandsThanItsPositionsHold)
     TempDir dir;
     Bytes file = tfx4File(2, 4);
     uint32_t uvAt = uint32_t(file.data.size());
-    for (int k = 0; k < 2 * 2 * 3 * 4; ++k)  // 2 strands' UVs, then padding: 4 x 16 bytes more
+    for (int k = 0; k < 2 * 2 * 3 * 4; ++k) // 2 strands' UVs, then padding: 4 x 16 bytes more
         file.f32(0.25f);
     file.data.replace(4, 4, Bytes().u32(3).data);
     file.data.replace(16, 4, Bytes().u32(uvAt).data);
@@ -527,7 +529,7 @@ TEST(HairErrors, Tfx3HeaderClaimingMoreStrandsThanItsPositionsHold)
 TEST(HairErrors, CyHairBroken)
 {
     TempDir dir;
-    Bytes good = cyHairFile({3, 2}, true, true);  // 7 points: 128 + 4 + 84 + 28 + 84 bytes
+    Bytes good = cyHairFile({3, 2}, true, true); // 7 points: 128 + 4 + 84 + 28 + 84 bytes
     writeFile(dir / "short-header.hair", good.data.substr(0, 64));
     expectBinaryError(dir / "short-header.hair", "0", "header needs 128");
     writeFile(dir / "truncated.hair", good.data.substr(0, good.data.size() - 2));
@@ -544,11 +546,11 @@ TEST(HairErrors, CyHairBroken)
     writeFile(dir / "magic2.hair", binaryMagic.data);
     expectBinaryError(dir / "magic2.hair", "0", "unrecognised");
 
-    Bytes past = good;  // segments say 4 + 3 points, point_count says 9
+    Bytes past = good; // segments say 4 + 3 points, point_count says 9
     past.data.replace(8, 4, Bytes().u32(9).data);
     writeFile(dir / "past-end.hair", past.data);
     expectBinaryError(dir / "past-end.hair", "128", "point_count");
-    Bytes many = cyHairFile({3, 2}, false);  // 2 strands of d_segments 3 = 8 points, only 7 written
+    Bytes many = cyHairFile({3, 2}, false); // 2 strands of d_segments 3 = 8 points, only 7 written
     many.data.replace(8, 4, Bytes().u32(8).data);
     writeFile(dir / "many.hair", many.data);
     expectBinaryError(dir / "many.hair", "128", "but the file ends at byte");
@@ -582,12 +584,12 @@ TEST(HairErrors, CyHairBroken)
 TEST(HairErrors, Tfx2Broken)
 {
     TempDir dir;
-    std::string header = "version 2.0\nscale 1.0\nnumStrands 2\n";  // strands start on line 4
-    std::string good = tfx2Text(header, 2, 3);                      // 4 lines per strand
+    std::string header = "version 2.0\nscale 1.0\nnumStrands 2\n"; // strands start on line 4
+    std::string good = tfx2Text(header, 2, 3);                     // 4 lines per strand
 
     writeFile(dir / "truncated.tfx", good.substr(0, good.rfind("strand 1")) + "strand 1 numVerts 3\n1 2 3\n");
     expectTextError(dir / "truncated.tfx", 8, "numVerts 3 but only 1 lines follow");
-    writeFile(dir / "cut.tfx", good.substr(0, good.size() - 11));  // the last line cut short
+    writeFile(dir / "cut.tfx", good.substr(0, good.size() - 11)); // the last line cut short
     expectTextError(dir / "cut.tfx", 11, "expected 'x y z'");
 
     writeFile(dir / "magic.tfx", "versoin 2.0\nnumStrands 1\n");
@@ -603,7 +605,7 @@ TEST(HairErrors, Tfx2Broken)
     expectTextError(dir / "more.tfx", 6, "more strands than numStrands 1");
 
     std::string nan = good;
-    nan.replace(nan.find("\n", nan.find("strand 1")) + 1, 8, "nan");  // "0.500000" -> "nan"
+    nan.replace(nan.find("\n", nan.find("strand 1")) + 1, 8, "nan"); // "0.500000" -> "nan"
     writeFile(dir / "nan.tfx", nan);
     expectTextError(dir / "nan.tfx", 9, "not a finite number");
     writeFile(dir / "word.tfx", "numStrands 1\nstrand 0 numVerts 2\n0 0 banana\n1 1 1\n");
@@ -672,15 +674,15 @@ TEST(HairResample, StraightLineStaysStraight)
 TEST(HairPlacement, CentimetreAssetOnMetreHeadScalesByAHundredth)
 {
     HairAsset hair;
-    hair.strands.push_back({{{-15, 150, -10}, {12, 175, 14}}});  // about 40 cm across
-    Bounds head{{-0.1f, 1.4f, -0.12f}, {0.1f, 1.75f, 0.12f}};    // about 0.45 m
+    hair.strands.push_back({{{-15, 150, -10}, {12, 175, 14}}}); // about 40 cm across
+    Bounds head{{-0.1f, 1.4f, -0.12f}, {0.1f, 1.75f, 0.12f}};   // about 0.45 m
     HairPlacement p = autoPlacement(hair, head);
     EXPECT_FLOAT_EQ(p.scale, 0.01f);
     EXPECT_EQ(p.offset, glm::vec3(0.0f));
     EXPECT_FALSE(p.zUpToYUp);
     EXPECT_FALSE(p.mirrorZ);
 
-    HairAsset metres;  // same units (ratio within [0.2, 5]) keeps scale 1
+    HairAsset metres; // same units (ratio within [0.2, 5]) keeps scale 1
     metres.strands.push_back({{{-0.1f, 1.5f, -0.1f}, {0.05f, 1.6f, 0.02f}}});
     EXPECT_EQ(autoPlacement(metres, head).scale, 1.0f);
     // Millimetres on metres, and metres on centimetres.
@@ -726,7 +728,7 @@ TEST(HairErrors, CyHairHeaderCountsCostNoMemoryTheFileDoesNotBack)
     // the reader allocated 200 MB of per-strand counts before finding the arrays missing, which
     // made the fuzzer crawl. Now every array is checked against the file before any allocation.
     TempDir dir;
-    for (uint32_t arrays : {2u, 3u}) {  // points only (d_segments 1), and with a segments array
+    for (uint32_t arrays : {2u, 3u}) { // points only (d_segments 1), and with a segments array
         Bytes b;
         b.text("HAIR").u32(50'000'000).u32(100'000'000).u32(arrays).u32(1).zeros(128 - 20);
         writeFile(dir / "big.hair", b.data);

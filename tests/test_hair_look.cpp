@@ -3,12 +3,12 @@
 // (light transmitted through the fibres, TT), bad look settings are refused.
 #include "app/headless.h"
 #include "app/settings_table.h"
-#include "gpu/frame.h"
-#include "renderer/renderer.h"
 #include "core/error.h"
+#include "gpu/frame.h"
 #include "physics/hair_scene.h"
-#include "shading/hair_look.h"
 #include "renderer/mesh_pass.h"
+#include "renderer/renderer.h"
+#include "shading/hair_look.h"
 #include "small_scene.h"
 #include "test_support.h"
 
@@ -52,7 +52,7 @@ double hairBrightness(const Picture& hair, const Picture& bald, size_t* count = 
     return n ? sum / double(n) : 0.0;
 }
 
-}  // namespace
+} // namespace
 
 TEST(HairLook, PresetsGoFromDarkToLightAndAuburnIsRed)
 {

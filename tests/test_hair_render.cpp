@@ -3,9 +3,9 @@
 // settings imply, across the 64 limits; rendered images: coverage of the scalp region, a
 // horizontal strand visible, determinism, more strands covering more pixels.
 #include "app/headless.h"
+#include "gpu/frame.h"
 #include "physics/colliders.h"
 #include "physics/hair_scene.h"
-#include "gpu/frame.h"
 #include "renderer/renderer.h"
 #include "shaders/shared/strands.h"
 #include "small_scene.h"
@@ -30,8 +30,8 @@ TEST(StrandMath, BezierSegmentsJoinWithC1Continuity)
     };
     for (int i = 0; i + 2 < int(p.size()); ++i) {
         gpu::Bezier a = segment(i), b = segment(i + 1);
-        EXPECT_LT(glm::length(gpu::bezierPoint(a, 1.0f) - gpu::bezierPoint(b, 0.0f)), 1e-6f);      // C0
-        EXPECT_LT(glm::length(gpu::bezierTangent(a, 1.0f) - gpu::bezierTangent(b, 0.0f)), 1e-5f);  // C1
+        EXPECT_LT(glm::length(gpu::bezierPoint(a, 1.0f) - gpu::bezierPoint(b, 0.0f)), 1e-6f);     // C0
+        EXPECT_LT(glm::length(gpu::bezierTangent(a, 1.0f) - gpu::bezierTangent(b, 0.0f)), 1e-5f); // C1
         EXPECT_LT(glm::length(gpu::bezierPoint(a, 0.0f) - p[size_t(i)]), 1e-6f);                  // interpolates
     }
     // Parameter mapping: t = 0 and 1 are the strand's ends, segments in order.
@@ -52,8 +52,8 @@ TEST(StrandMath, InterpolationWeightsSumToOneAndDiscIsFilled)
         EXPECT_LE(glm::length(d), 1.0f + 1e-6f);
         maxR = std::max(maxR, glm::length(d));
     }
-    EXPECT_GT(maxR, 0.95f);                                  // reaches the rim
-    EXPECT_EQ(gpu::discOffset(5, 0), glm::vec2(0.0f));       // strand 0 is the guide
+    EXPECT_GT(maxR, 0.95f);                            // reaches the rim
+    EXPECT_EQ(gpu::discOffset(5, 0), glm::vec2(0.0f)); // strand 0 is the guide
     EXPECT_FALSE(gpu::strandIsMulti(gpu::kInterpolationMulti, 0));
     EXPECT_TRUE(gpu::strandIsMulti(gpu::kInterpolationMixed, 3));
     EXPECT_FALSE(gpu::strandIsMulti(gpu::kInterpolationMixed, 4));
@@ -64,7 +64,7 @@ TEST(StrandMath, DeviationsAreDeterministicAndAboutHalfTheStrands)
     uint32_t deviating = 0;
     for (uint32_t s = 0; s < 4000; ++s) {
         float a = gpu::deviationProfile(s / 40, s % 40, 0.75f);
-        EXPECT_EQ(a, gpu::deviationProfile(s / 40, s % 40, 0.75f));  // same guide and strand, same value
+        EXPECT_EQ(a, gpu::deviationProfile(s / 40, s % 40, 0.75f)); // same guide and strand, same value
         bool any = false;
         for (float t = 0.0f; t <= 1.0f; t += 0.05f)
             any = any || gpu::deviationProfile(s / 40, s % 40, t) > 1e-3f;
@@ -86,15 +86,15 @@ TEST(StrandMath, DrawCountsSplitPastTheTessellationLimits)
     s.strandsPerGuide = 150;
     s.divisions = 130;
     HairDrawCounts c = hairDrawCounts(10, s);
-    EXPECT_EQ(c.lengthChunks, 3u);     // 44 + 43 + 43 divisions
-    EXPECT_EQ(c.strandsPerPatch, 2u);  // 2 lines x 45 vertices <= 128
-    EXPECT_EQ(c.strandChunks, 75u);    // 150 strands in instances of 2
-    EXPECT_EQ(c.strands(), 1500u);     // nothing capped
+    EXPECT_EQ(c.lengthChunks, 3u);    // 44 + 43 + 43 divisions
+    EXPECT_EQ(c.strandsPerPatch, 2u); // 2 lines x 45 vertices <= 128
+    EXPECT_EQ(c.strandChunks, 75u);   // 150 strands in instances of 2
+    EXPECT_EQ(c.strands(), 1500u);    // nothing capped
     EXPECT_EQ(c.segments(), 1500u * 130u);
     s.strandsPerGuide = 100;
     s.divisions = 1;
     c = hairDrawCounts(10, s);
-    EXPECT_EQ(c.strandsPerPatch, 64u);  // the tessellation level bounds it first
+    EXPECT_EQ(c.strandsPerPatch, 64u); // the tessellation level bounds it first
     EXPECT_EQ(c.strandChunks, 2u);
 }
 
@@ -114,7 +114,7 @@ TEST(StrandMath, GuideNeighboursOfFewGuidesOnALine)
     ASSERT_EQ(tri.size(), 2u);
     EXPECT_EQ(tri[0], glm::uvec4(0, 1, 0, 0));
     EXPECT_EQ(tri[1], glm::uvec4(1, 0, 1, 0));
-    for (uint32_t s = 2; s < 7; ++s)  // and a few more on the line: the two nearest
+    for (uint32_t s = 2; s < 7; ++s) // and a few more on the line: the two nearest
         set.add({glm::vec3(0.2f * float(s), 1.5f, -1.0f), glm::vec3(0.2f * float(s), 1.0f, -1.0f),
                  glm::vec3(0.2f * float(s), 0.5f, -1.0f), glm::vec3(0.2f * float(s), 0.0f, -1.0f)},
                 0, 1, false);
@@ -145,8 +145,8 @@ TEST(StrandMath, DrawsStayWithinTheTessellatedVerticesADrawMayHold)
             }
     StrandSettings s;
     s.strandsPerGuide = 5;
-    HairDrawCounts c = hairDrawCounts(3000, s);  // 3000 patches of 5 x 25 vertices
-    EXPECT_EQ(c.patchesPerDraw, 524u);           // 524 x 125 = 65,500
+    HairDrawCounts c = hairDrawCounts(3000, s); // 3000 patches of 5 x 25 vertices
+    EXPECT_EQ(c.patchesPerDraw, 524u);          // 524 x 125 = 65,500
     EXPECT_EQ(c.draws(), 6u);
 }
 
@@ -156,9 +156,12 @@ namespace {
 
 struct HairFrame {
     Picture picture;
-    HairPass::Statistics stats;  // the tessellation path's pipeline statistics
+    HairPass::Statistics stats; // the tessellation path's pipeline statistics
     // The segments drawn: the geometry shader's invocations, or the compute path's count.
-    uint64_t segments() const { return picture.raster.capacity > 0 ? picture.raster.segments : stats.geometryInvocations; }
+    uint64_t segments() const
+    {
+        return picture.raster.capacity > 0 ? picture.raster.segments : stats.geometryInvocations;
+    }
 };
 
 HairFrame renderHairFrame(const vk::Context& ctx, const HairScene& scene, const RenderSettings& settings,
@@ -169,7 +172,7 @@ HairFrame renderHairFrame(const vk::Context& ctx, const HairScene& scene, const 
     Frame frame(ctx, 1);
     OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(settings.width) / float(settings.height));
     camera.distance *= cameraDistanceScale;
-    camera.fitPlanes();  // the hair stays between the planes (as the window's zoom keeps it)
+    camera.fitPlanes(); // the hair stays between the planes (as the window's zoom keeps it)
     Picture picture = renderFrame(ctx, renderer, frame, camera);
     bool graphics = renderer.hairRaster() == HairRaster::Graphics;
     return {picture, graphics ? renderer.hair()->statistics() : HairPass::Statistics{}};
@@ -182,7 +185,7 @@ HairScene smallScene(uint32_t guides)
     return buildGrownScene(defaultHeadPath(), g);
 }
 
-}  // namespace
+} // namespace
 
 TEST(HairRender, PipelineStatisticsCountWhatTheSettingsAsk)
 {
@@ -195,7 +198,7 @@ TEST(HairRender, PipelineStatisticsCountWhatTheSettingsAsk)
     };
     for (Case c : {Case{3, 5}, Case{1, 1}, Case{70, 9}, Case{5, 100}}) {
         RenderSettings s;
-        s.hairRaster = HairRaster::Graphics;  // what the tessellation stages count
+        s.hairRaster = HairRaster::Graphics; // what the tessellation stages count
         s.width = 96;
         s.height = 64;
         s.strands.strandsPerGuide = c.strands;
@@ -205,10 +208,10 @@ TEST(HairRender, PipelineStatisticsCountWhatTheSettingsAsk)
         uint64_t lines = 7ull * c.strands * c.divisions;
         std::fprintf(stderr, "S=%u D=%u: GS invocations %s primitives %s TES %s (expected lines %s)\n", c.strands,
                      c.divisions, std::to_string(f.stats.geometryInvocations).c_str(),
-                     std::to_string(f.stats.geometryPrimitives).c_str(), std::to_string(f.stats.tessEvaluations).c_str(),
-                     std::to_string(lines).c_str());
+                     std::to_string(f.stats.geometryPrimitives).c_str(),
+                     std::to_string(f.stats.tessEvaluations).c_str(), std::to_string(lines).c_str());
         EXPECT_EQ(f.stats.geometryInvocations, lines) << "S=" << c.strands << " D=" << c.divisions;
-        EXPECT_EQ(f.stats.geometryPrimitives, 2 * lines);  // a two-triangle ribbon per line (all in front of the camera)
+        EXPECT_EQ(f.stats.geometryPrimitives, 2 * lines); // a two-triangle ribbon per line (all in front of the camera)
         EXPECT_GE(f.stats.tessEvaluations, 7ull * c.strands * (c.divisions + 1) / 2);
     }
     EXPECT_EQ(ctx.validationMessages(), 0u);
@@ -222,7 +225,8 @@ double ink(const Picture& a, const Picture& b)
 {
     double sum = 0.0;
     for (size_t i = 0; i < a.rgba.size(); i += 4)
-        sum += std::abs(a.rgba[i] - b.rgba[i]) + std::abs(a.rgba[i + 1] - b.rgba[i + 1]) + std::abs(a.rgba[i + 2] - b.rgba[i + 2]);
+        sum += std::abs(a.rgba[i] - b.rgba[i]) + std::abs(a.rgba[i + 1] - b.rgba[i + 1]) +
+               std::abs(a.rgba[i + 2] - b.rgba[i + 2]);
     return sum;
 }
 
@@ -231,7 +235,9 @@ size_t changedPixels(const Picture& a, const Picture& b)
 {
     size_t n = 0;
     for (size_t i = 0; i < a.rgba.size(); i += 4)
-        if (std::abs(a.rgba[i] - b.rgba[i]) + std::abs(a.rgba[i + 1] - b.rgba[i + 1]) + std::abs(a.rgba[i + 2] - b.rgba[i + 2]) > 12)
+        if (std::abs(a.rgba[i] - b.rgba[i]) + std::abs(a.rgba[i + 1] - b.rgba[i + 1]) +
+                std::abs(a.rgba[i + 2] - b.rgba[i + 2]) >
+            12)
             ++n;
     return n;
 }
@@ -251,7 +257,7 @@ RenderSettings imageSettings()
     return s;
 }
 
-}  // namespace
+} // namespace
 
 TEST_P(HairRenderBoth, HairCoversTheScalpAndMoreStrandsCoverMore)
 {
@@ -259,7 +265,7 @@ TEST_P(HairRenderBoth, HairCoversTheScalpAndMoreStrandsCoverMore)
     HairScene scene = smallScene(300);
     RenderSettings s = imageSettings();
     s.hairRaster = GetParam();
-    s.scalpPaint = 0.0f;  // the strands' own coverage against the bare head (the paint is under every count)
+    s.scalpPaint = 0.0f; // the strands' own coverage against the bare head (the paint is under every count)
     Picture bald = renderPicture(ctx, scene.head, s);
     s.strands.strandsPerGuide = 8;
     HairFrame fewer = renderHairFrame(ctx, scene, s);
@@ -270,10 +276,10 @@ TEST_P(HairRenderBoth, HairCoversTheScalpAndMoreStrandsCoverMore)
     double ink8 = ink(fewer.picture, bald), ink16 = ink(more.picture, bald);
     std::fprintf(stderr, "changed pixels: 8 strands %zu, 16 strands %zu of %u; ink %g, %g\n", covered8, covered16,
                  s.width * s.height, ink8, ink16);
-    EXPECT_GT(covered8, size_t(s.width * s.height) / 50);  // the hair is on screen
-    EXPECT_GE(covered16, covered8);                        // doubling the strands covers more pixels
-    EXPECT_GT(ink16, 1.15 * ink8);                         // and covers them more
-    EXPECT_TRUE(more.picture.rgba == again.picture.rgba);  // and the same settings give the same image
+    EXPECT_GT(covered8, size_t(s.width * s.height) / 50); // the hair is on screen
+    EXPECT_GE(covered16, covered8);                       // doubling the strands covers more pixels
+    EXPECT_GT(ink16, 1.15 * ink8);                        // and covers them more
+    EXPECT_TRUE(more.picture.rgba == again.picture.rgba); // and the same settings give the same image
     // The hair sits on the upper half of the picture, where the scalp is.
     size_t upper = 0, lower = 0;
     for (uint32_t y = 0; y < s.height; ++y)
@@ -294,7 +300,7 @@ TEST_P(HairRenderBoth, AHorizontalStrandKeepsItsWidth)
     HairScene scene = smallScene(1);
     std::vector<glm::vec3> points(scene.strands.verticesPerStrand);
     for (uint32_t i = 0; i < points.size(); ++i)
-        points[i] = glm::vec3(-0.15f + 0.3f * float(i) / float(points.size() - 1), 0.3f, 0.2f);  // above the head
+        points[i] = glm::vec3(-0.15f + 0.3f * float(i) / float(points.size() - 1), 0.3f, 0.2f); // above the head
     scene.strands.rest.assign(points.begin(), points.end());
     scene.strands.strands.resize(1);
     scene.strands.strands[0].pinnedRoot = 1;
@@ -302,7 +308,7 @@ TEST_P(HairRenderBoth, AHorizontalStrandKeepsItsWidth)
     RenderSettings s = imageSettings();
     s.hairRaster = GetParam();
     s.strands.strandsPerGuide = 1;
-    s.strands.widthMetres = 0.004f;  // a few pixels wide at this distance
+    s.strands.widthMetres = 0.004f; // a few pixels wide at this distance
     s.strands.lod = false;
     Picture bald = renderPicture(ctx, scene.head, s);
     HairFrame f = renderHairFrame(ctx, scene, s);
@@ -312,13 +318,15 @@ TEST_P(HairRenderBoth, AHorizontalStrandKeepsItsWidth)
         uint32_t rows = 0;
         for (uint32_t y = 0; y < s.height; ++y) {
             size_t i = 4 * (size_t(y) * s.width + x);
-            rows += std::abs(f.picture.rgba[i] - bald.rgba[i]) + std::abs(f.picture.rgba[i + 1] - bald.rgba[i + 1]) > 12 ? 1 : 0;
+            rows += std::abs(f.picture.rgba[i] - bald.rgba[i]) + std::abs(f.picture.rgba[i + 1] - bald.rgba[i + 1]) > 12
+                        ? 1
+                        : 0;
         }
         columns += rows > 0 ? 1 : 0;
         maxRows = std::max(maxRows, rows);
     }
-    EXPECT_GT(columns, s.width / 4);  // it spans the view horizontally
-    EXPECT_GE(maxRows, 2u);           // and has width
+    EXPECT_GT(columns, s.width / 4); // it spans the view horizontally
+    EXPECT_GE(maxRows, 2u);          // and has width
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 
@@ -335,16 +343,16 @@ TEST_P(HairRenderBoth, LodDrawsFewerStrandsFarAwayAndAllNearby)
     s.strands.strandsPerGuide = 40;
     s.strands.divisions = 4;
     uint64_t all = 20ull * 40 * 4;
-    EXPECT_EQ(renderHairFrame(ctx, scene, s, 1.0f).segments(), all);    // at the framing distance
-    EXPECT_EQ(renderHairFrame(ctx, scene, s, 0.5f).segments(), all);    // nearer: never more
-    uint64_t twice = renderHairFrame(ctx, scene, s, 2.0f).segments();  // (1/2)² = 25% of the strands
+    EXPECT_EQ(renderHairFrame(ctx, scene, s, 1.0f).segments(), all);  // at the framing distance
+    EXPECT_EQ(renderHairFrame(ctx, scene, s, 0.5f).segments(), all);  // nearer: never more
+    uint64_t twice = renderHairFrame(ctx, scene, s, 2.0f).segments(); // (1/2)² = 25% of the strands
     EXPECT_EQ(twice, 20ull * 10 * 4);
-    uint64_t far = renderHairFrame(ctx, scene, s, 10.0f).segments();   // floor: lodMinFraction (20%)
+    uint64_t far = renderHairFrame(ctx, scene, s, 10.0f).segments(); // floor: lodMinFraction (20%)
     EXPECT_EQ(far, 20ull * 8 * 4);
     s.strands.lodMinFraction = 0.5f;
-    EXPECT_EQ(renderHairFrame(ctx, scene, s, 10.0f).segments(), 20ull * 20 * 4);  // a higher floor
+    EXPECT_EQ(renderHairFrame(ctx, scene, s, 10.0f).segments(), 20ull * 20 * 4); // a higher floor
     s.strands.lod = false;
-    EXPECT_EQ(renderHairFrame(ctx, scene, s, 10.0f).segments(), all);   // off: always all
+    EXPECT_EQ(renderHairFrame(ctx, scene, s, 10.0f).segments(), all); // off: always all
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 
@@ -361,13 +369,14 @@ TEST(StrandMath, MultiStrandPointsNeverInsideACollider)
     auto curve = [&](uint32_t guide, float t) {
         uint32_t seg = gpu::curveSegment(t, V);
         auto p = [&](uint32_t i) { return scene.strands.rest[size_t(guide) * V + i]; };
-        gpu::Bezier b = gpu::catmullRomBezier(p(seg == 0 ? 0 : seg - 1), p(seg), p(seg + 1), p(std::min(seg + 2, V - 1)));
+        gpu::Bezier b =
+            gpu::catmullRomBezier(p(seg == 0 ? 0 : seg - 1), p(seg), p(seg + 1), p(std::min(seg + 2, V - 1)));
         return gpu::bezierPoint(b, gpu::curveLocal(t, V, seg));
     };
     float diagonal = scene.head.mesh.bounds().diagonal();
     float deepest = 0.0f, deepestBefore = 0.0f;
     for (uint32_t guide = 0; guide < g.guides; ++guide) {
-        EXPECT_NE(tri[guide].y, guide);  // every guide has neighbours
+        EXPECT_NE(tri[guide].y, guide); // every guide has neighbours
         for (uint32_t s = 1; s < 16; ++s)
             for (float t = 0.05f; t <= 1.0f; t += 0.1f) {
                 glm::vec3 w = gpu::triangleWeights(guide, s);
@@ -378,7 +387,8 @@ TEST(StrandMath, MultiStrandPointsNeverInsideACollider)
                 deepest = std::max(deepest, penetrationDepth(scene.gpuColliders, p));
             }
     }
-    std::fprintf(stderr, "deepest before %g, after %g (diagonal %g)\n", double(deepestBefore), double(deepest), double(diagonal));
-    EXPECT_GT(deepestBefore, 0.0f);            // blending does cut into the head: the correction matters
-    EXPECT_LT(deepest, 1e-4f * diagonal);      // and afterwards no point is inside any collider
+    std::fprintf(stderr, "deepest before %g, after %g (diagonal %g)\n", double(deepestBefore), double(deepest),
+                 double(diagonal));
+    EXPECT_GT(deepestBefore, 0.0f);       // blending does cut into the head: the correction matters
+    EXPECT_LT(deepest, 1e-4f * diagonal); // and afterwards no point is inside any collider
 }

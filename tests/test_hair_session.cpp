@@ -18,7 +18,7 @@ HairScene smallScene(uint32_t guides)
     return buildGrownScene(defaultHeadPath(), g);
 }
 
-}  // namespace
+} // namespace
 
 TEST(HairSession, StepsArePosedByTheTimelineAtTheirEnd)
 {
@@ -32,7 +32,7 @@ TEST(HairSession, StepsArePosedByTheTimelineAtTheirEnd)
     b.wind = glm::vec3(10.0f, 0.0f, 0.0f);
     SceneTimeline timeline({a, b}, SceneInterpolation::Linear, SceneState{});
     HairSession session(ctx, smallScene(8), SimSettings{}, timeline);
-    std::vector<gpu::SimStep> steps = session.nextSteps(120);  // one second at 120 Hz
+    std::vector<gpu::SimStep> steps = session.nextSteps(120); // one second at 120 Hz
     ASSERT_EQ(steps.size(), 120u);
     EXPECT_EQ(session.clock().stepsDone(), 120u);
     EXPECT_FLOAT_EQ(steps[0].time, 0.0f);
@@ -43,7 +43,7 @@ TEST(HairSession, StepsArePosedByTheTimelineAtTheirEnd)
         for (int r = 0; r < 4; ++r)
             EXPECT_NEAR(steps[119].headTransform[c][r], expected[c][r], 1e-6f);
     EXPECT_NEAR(steps[119].wind.x, 10.0f * session.scene().unitsPerMetre, 1e-4f);
-    EXPECT_NEAR(steps[0].wind.x, 10.0f / 120.0f * session.scene().unitsPerMetre, 1e-4f);  // the first ends at 1/120 s
+    EXPECT_NEAR(steps[0].wind.x, 10.0f / 120.0f * session.scene().unitsPerMetre, 1e-4f); // the first ends at 1/120 s
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 
@@ -55,12 +55,12 @@ TEST(HairSession, TheSolverIsRebuiltOnlyWhenWhatItPacksChanges)
     GpuSolver* before = session.solver();
     sim.wind = glm::vec3(2.0f, 0.0f, 0.0f);
     sim.windFrequency = 1.5f;
-    EXPECT_FALSE(session.setSim(sim, glm::mat4(1.0f)));  // the wind rides in the steps
+    EXPECT_FALSE(session.setSim(sim, glm::mat4(1.0f))); // the wind rides in the steps
     EXPECT_EQ(session.solver(), before);
     EXPECT_FLOAT_EQ(session.nextSteps(1).front().windFrequency, 1.5f);
     sim.gridFriction = 0.5f;
     EXPECT_TRUE(session.setSim(sim, glm::mat4(1.0f)));
-    sim.globalStiffness = 0.3f;  // every part's stiffness is packed too
+    sim.globalStiffness = 0.3f; // every part's stiffness is packed too
     EXPECT_TRUE(session.setSim(sim, glm::mat4(1.0f)));
     EXPECT_FLOAT_EQ(session.scene().strands.parts[0].globalStiffness, 0.3f);
     EXPECT_EQ(ctx.validationMessages(), 0u);

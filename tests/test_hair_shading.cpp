@@ -33,7 +33,7 @@ double errorOf(HairModel m)
 
 const glm::vec3 kT(1.0f, 0.0f, 0.0f);
 
-}  // namespace
+} // namespace
 
 // Measured (brown hair: eumelanin 1.3, beta_m = beta_n = 0.3, alpha 2 degrees, eta 1.55; 32 x 1024
 // pairs; `wisp bsdf --compare`): Karis 0.464, Kajiya-Kay 0.877, lookup 0.0220.
@@ -70,7 +70,7 @@ TEST(HairShading, LutErrorIsSmall)
         if (e.model == HairModel::Lut)
             EXPECT_NEAR(e.brightness, 1.0, 0.01);
         else
-            EXPECT_GT(e.brightness, 0.5) << modelName(e.model);  // same brightness range
+            EXPECT_GT(e.brightness, 0.5) << modelName(e.model); // same brightness range
     }
 }
 
@@ -119,7 +119,7 @@ TEST(HairShading, HighlightShiftMatchesTheReference)
     glm::vec3 wo(std::sin(thetaO), std::cos(thetaO), 0.0f);
     float peak[4] = {}, best[4] = {};
     for (float thetaI = -1.2f; thetaI < 0.6f; thetaI += 0.002f) {
-        glm::vec3 wi(std::sin(thetaI), std::cos(thetaI), 0.0f);  // phi = 0
+        glm::vec3 wi(std::sin(thetaI), std::cos(thetaI), 0.0f); // phi = 0
         float v[4] = {fiberAveragedFsum(p, wo, wi).x, evaluateModel(HairModel::Karis, m, lut, wo, wi).x,
                       evaluateModel(HairModel::KajiyaKay, m, lut, wo, wi).x,
                       evaluateModel(HairModel::Lut, m, lut, wo, wi).x};
@@ -149,7 +149,7 @@ TEST(HairShading, KajiyaLobesAreNormalised)
                 sum += gpu::hairKajiyaLobe(h.x, std::cos(thetaO), 0.0f, e);
             }
             sum *= 4.0 * std::numbers::pi / double(wis.size());
-            if (e < 20.0f) {  // broad: 0.81 .. 1.0 measured
+            if (e < 20.0f) { // broad: 0.81 .. 1.0 measured
                 EXPECT_GT(sum, 0.75) << "exponent " << e << " theta_o " << thetaO;
                 EXPECT_LT(sum, 1.05) << "exponent " << e << " theta_o " << thetaO;
             } else {
@@ -240,7 +240,7 @@ TEST(Lut, SamplingFollowsVulkansLinearFilter)
     glm::vec4 corner = lut.texel(layer, 0, 7);
     s = sampleHairLut(lut, layer, {0.0f, 1.0f});
     EXPECT_NEAR(s.x, corner.x, 1e-6f * corner.x);
-    s = sampleHairLut(lut, layer, {0.01f, 0.99f});  // inside the outer half texel: still the edge
+    s = sampleHairLut(lut, layer, {0.01f, 0.99f}); // inside the outer half texel: still the edge
     EXPECT_NEAR(s.x, corner.x, 1e-6f * corner.x);
 }
 

@@ -1,9 +1,9 @@
 // tests/test_head.cpp: the project's own head (models/head.obj + head.json): it loads, looks like
 // a bust in proportions, its scalp rule picks the top and back, its colliders cover the head;
 // the generator rebuilds the committed files byte for byte; bad descriptions are reported.
+#include "assets/head.h"
 #include "core/error.h"
 #include "physics/colliders.h"
-#include "assets/head.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -26,7 +26,7 @@ std::string errorOf(const std::filesystem::path& path)
     return "";
 }
 
-}  // namespace
+} // namespace
 
 TEST(DefaultHead, LoadsAsAMannequinBust)
 {
@@ -62,8 +62,10 @@ TEST(DefaultHead, ScalpIsTheTopAndBackOfTheHead)
     Bounds b = head.mesh.bounds();
     float meanZ = 0.0f;
     for (uint32_t t : scalp) {
-        glm::vec3 c = (head.mesh.positions[head.mesh.indices[3 * t]] + head.mesh.positions[head.mesh.indices[3 * t + 1]] +
-                       head.mesh.positions[head.mesh.indices[3 * t + 2]]) / 3.0f;
+        glm::vec3 c =
+            (head.mesh.positions[head.mesh.indices[3 * t]] + head.mesh.positions[head.mesh.indices[3 * t + 1]] +
+             head.mesh.positions[head.mesh.indices[3 * t + 2]]) /
+            3.0f;
         EXPECT_GT(c.y, b.center().y);
         meanZ += c.z;
     }
@@ -72,7 +74,7 @@ TEST(DefaultHead, ScalpIsTheTopAndBackOfTheHead)
     for (const glm::vec3& p : head.mesh.positions)
         headMeanZ += p.z;
     headMeanZ /= float(head.mesh.positions.size());
-    EXPECT_LT(meanZ, headMeanZ + 0.02f);  // the scalp sits toward the back, not over the face
+    EXPECT_LT(meanZ, headMeanZ + 0.02f); // the scalp sits toward the back, not over the face
 }
 
 TEST(DefaultHead, CollidersCoverTheCraniumFromOutside)
@@ -107,8 +109,10 @@ TEST(DefaultHead, GeneratorRebuildsTheCommittedFiles)
     std::string command = "'" + generator.string() + "' --out-dir '" + dir.path().string() + "' >/dev/null 2>&1";
     ASSERT_EQ(std::system(command.c_str()), 0);
     std::filesystem::path models = std::filesystem::path(WISP_SOURCE_DIR) / "models";
-    EXPECT_TRUE(test::readFile(dir / "head.obj") == test::readFile(models / "head.obj")) << "models/head.obj is stale: run scripts/make_head.sh";
-    EXPECT_TRUE(test::readFile(dir / "head.json") == test::readFile(models / "head.json")) << "models/head.json is stale: run scripts/make_head.sh";
+    EXPECT_TRUE(test::readFile(dir / "head.obj") == test::readFile(models / "head.obj"))
+        << "models/head.obj is stale: run scripts/make_head.sh";
+    EXPECT_TRUE(test::readFile(dir / "head.json") == test::readFile(models / "head.json"))
+        << "models/head.json is stale: run scripts/make_head.sh";
 }
 
 TEST(HeadErrors, MalformedJsonNamesTheByte)

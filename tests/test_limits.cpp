@@ -1,14 +1,14 @@
 // tests/test_limits.cpp: absurd values are range errors, not undefined behaviour: every setting
 // `--set` takes against NaN, infinities and huge numbers, and each range's ends; the sphere,
-// wind, offset and per-part values; loaded hair too large for floats once placed; the workload's 32-bit counts, and its GPU
-// memory estimated and checked against a device before anything is allocated. (The same through
-// the real binary: test_cli.cpp, BadInput.*.)
+// wind, offset and per-part values; loaded hair too large for floats once placed; the workload's 32-bit counts, and its
+// GPU memory estimated and checked against a device before anything is allocated. (The same through the real binary:
+// test_cli.cpp, BadInput.*.)
 #include "app/hair_source.h"
 #include "app/settings_table.h"
 #include "app/workload.h"
 #include "core/error.h"
-#include "physics/hair_scene.h"
 #include "gpu/context.h"
+#include "physics/hair_scene.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -23,8 +23,7 @@ using namespace wisp;
 namespace {
 
 // The UserError `f` throws ("" when it throws none).
-template <typename F>
-std::string errorOf(F&& f)
+template <typename F> std::string errorOf(F&& f)
 {
     try {
         f();
@@ -34,7 +33,7 @@ std::string errorOf(F&& f)
     return "";
 }
 
-}  // namespace
+} // namespace
 
 TEST(Limits, EverySettingRefusesNonFiniteAndAbsurdValues)
 {
@@ -68,8 +67,8 @@ TEST(Limits, NumericSettingsStayInsideTheirRange)
         EXPECT_EQ(set(lo), "") << spec.name;
         EXPECT_EQ(set(hi), "") << spec.name;
         std::string below = set(lo - std::max(1.0, std::abs(lo))), above = set(hi + std::max(1.0, std::abs(hi)));
-        std::string range = spec.allowed().substr(vector ? 9 : 0);  // "lo .. hi unit", without "x,y,z in "
-        range = range.substr(0, range.find(" | "));                    // and without " | part"
+        std::string range = spec.allowed().substr(vector ? 9 : 0); // "lo .. hi unit", without "x,y,z in "
+        range = range.substr(0, range.find(" | "));                // and without " | part"
         EXPECT_NE(below.find("is out of range: allowed " + range), std::string::npos) << spec.name << ": " << below;
         EXPECT_NE(above.find("is out of range"), std::string::npos) << spec.name << ": " << above;
         ++checked;
@@ -84,12 +83,15 @@ TEST(Limits, SphereAndOffsetMustBeFiniteAndInRange)
     };
     EXPECT_NE(error("nan,0,0,1", 4).find("--sphere: the first value (nan) is not a finite number"), std::string::npos);
     EXPECT_NE(error("0,0,0,inf", 4).find("--sphere: the fourth value (inf)"), std::string::npos);
-    EXPECT_NE(error("0,0,1e9,1", 4).find("--sphere: the third value (1000000000) is out of range: allowed -10000 .. 10000 head units"),
+    EXPECT_NE(error("0,0,1e9,1", 4)
+                  .find("--sphere: the third value (1000000000) is out of range: allowed -10000 .. 10000 head units"),
               std::string::npos);
     EXPECT_NE(error("0,0,1", 4).find("is not 4 numbers x,y,z,r"), std::string::npos);
     EXPECT_EQ(error("0,1,0,0.5", 4), "");
     Settings settings;
-    EXPECT_NE(errorOf([&] { applySetting(settings, "wind=nan,0,0"); }).find("--set wind: the first value (nan) is not a finite number"),
+    EXPECT_NE(errorOf([&] {
+                  applySetting(settings, "wind=nan,0,0");
+              }).find("--set wind: the first value (nan) is not a finite number"),
               std::string::npos);
     EXPECT_NE(errorOf([&] { applySetting(settings, "wind=0,0,1e9"); }).find("out of range"), std::string::npos);
     EXPECT_EQ(errorOf([&] { applySetting(settings, "wind=-100,0,100"); }), "");
@@ -98,8 +100,8 @@ TEST(Limits, SphereAndOffsetMustBeFiniteAndInRange)
 
 TEST(Limits, PartValuesRefuseNonFiniteAndOutOfRange)
 {
-    for (const char* spec : {"0:global=nan", "0:local=inf", "0:damping=-0.1", "0:drag=1e40", "0:drag=-inf", "0:global=1e-50x",
-                             "0:global=part"}) {
+    for (const char* spec : {"0:global=nan", "0:local=inf", "0:damping=-0.1", "0:drag=1e40", "0:drag=-inf",
+                             "0:global=1e-50x", "0:global=part"}) {
         std::vector<PartSettings> parts(1);
         std::string what = errorOf([&] { HairSource::applyPartOverride(parts, spec); });
         EXPECT_NE(what.find(std::string("--part ") + spec), std::string::npos) << spec << ": " << what;
@@ -161,13 +163,13 @@ SimSettings byHandSim()
     return sim;
 }
 
-}  // namespace
+} // namespace
 
 TEST(Workload, RenderMemoryByHand)
 {
     RenderSettings r = byHandSettings();
     SimSettings sim = byHandSim();
-    r.hairRaster = HairRaster::Graphics;  // (the compute path's buffers: ComputeRasterMemoryByHand)
+    r.hairRaster = HairRaster::Graphics; // (the compute path's buffers: ComputeRasterMemoryByHand)
     GpuMemory m = estimateGpuMemory({.guides = 10, .verticesPerStrand = 4, .sim = sim, .render = &r});
     EXPECT_EQ(m.simulation, solverDeviceBytes(10, 4, 512, true));
     EXPECT_EQ(m.raster, 0u) << "drawn by the graphics pipeline";
@@ -195,24 +197,24 @@ TEST(Workload, ComputeRasterMemoryByHand)
     RenderSettings r = byHandSettings();
     r.strands.strandsPerGuide = 4;
     r.strands.divisions = 3;
-    r.shadows.strandFraction = 0.25f;  // one strand a guide into the light's maps
+    r.shadows.strandFraction = 0.25f; // one strand a guide into the light's maps
     r.hairRaster = HairRaster::Compute;
     SimSettings sim = byHandSim();
     Workload w{.guides = 10, .verticesPerStrand = 4, .sim = sim, .render = &r};
     GpuMemory m = estimateGpuMemory(w);
-    uint64_t byHand = 10u * 16u                 // a triangle of guides (uvec4) each
-                      + 10u * 4u * 32u          // each guide's curve at its strands' 4 points: position, tangent
-                      + 32u                     // the counters
-                      + 10u * 4u * 4u * (16u + 4u)  // 40 camera strands x 4 vertices: a vec4 and a packed colour
-                      + 10u * 1u * 4u * (16u + 4u)  // 10 light strands x 4 vertices
-                      + 2u * 5001u * 4u         // counts and offsets per pixel, and one past the last
-                      + 5000u * 8u              // each pixel's depth range
-                      + 13u * 7u * 4u           // each 8 x 8 tile's farthest mesh depth (100 x 50 pixels)
-                      + 5u * 4u                 // the scan's block sums: ceil(5001 / 1024)
-                      + 64u * 64u * (4u + 16u)  // the light's depth and opacity layers per texel
-                      + (1u << 18) * 8u         // at least 2^18 fragments of 8 bytes (120 segments x 8 is fewer)
-                      + 5000u * 8u              // the hair image, RGBA16F
-                      + 5000u * 4u * 4u         // the meshes' depth samples the strands test against
+    uint64_t byHand = 10u * 16u                    // a triangle of guides (uvec4) each
+                      + 10u * 4u * 32u             // each guide's curve at its strands' 4 points: position, tangent
+                      + 32u                        // the counters
+                      + 10u * 4u * 4u * (16u + 4u) // 40 camera strands x 4 vertices: a vec4 and a packed colour
+                      + 10u * 1u * 4u * (16u + 4u) // 10 light strands x 4 vertices
+                      + 2u * 5001u * 4u            // counts and offsets per pixel, and one past the last
+                      + 5000u * 8u                 // each pixel's depth range
+                      + 13u * 7u * 4u              // each 8 x 8 tile's farthest mesh depth (100 x 50 pixels)
+                      + 5u * 4u                    // the scan's block sums: ceil(5001 / 1024)
+                      + 64u * 64u * (4u + 16u)     // the light's depth and opacity layers per texel
+                      + (1u << 18) * 8u            // at least 2^18 fragments of 8 bytes (120 segments x 8 is fewer)
+                      + 5000u * 8u                 // the hair image, RGBA16F
+                      + 5000u * 4u * 4u            // the meshes' depth samples the strands test against
                       // the meshes in compute: each sample's depth and triangle, their colour
                       // (RGBA16F) and the frame (RGBA8)
                       + 5000u * (4u * 8u + 8u + 4u);
@@ -220,7 +222,7 @@ TEST(Workload, ComputeRasterMemoryByHand)
     EXPECT_EQ(m.total(), m.simulation + m.hair + m.target + m.lightMaps + m.oit + m.raster);
     // The OIT lists are made with transparency=oit whichever path draws: still counted.
     EXPECT_EQ(m.oit, 5000u * (4u + 8u + 120u));
-    r.hairRaster = HairRaster::Auto;  // compute everywhere measured
+    r.hairRaster = HairRaster::Auto; // compute everywhere measured
     EXPECT_EQ(estimateGpuMemory(w).raster, byHand);
     r.hairRaster = HairRaster::Graphics;
     EXPECT_EQ(estimateGpuMemory(w).raster, 0u);
@@ -231,9 +233,9 @@ TEST(Workload, ComputeRasterMemoryByHand)
     r.shadows.enabled = true;
     // Many segments: 8 fragments each; within the device's storage-buffer range.
     r.strands.strandsPerGuide = 1000;
-    r.strands.divisions = 100;  // 1e6 segments: 8e6 fragments, 64 MB
+    r.strands.divisions = 100; // 1e6 segments: 8e6 fragments, 64 MB
     vk::DeviceReport small;
-    small.maxStorageBufferRange = 1u << 20;  // holds 2^17 fragments
+    small.maxStorageBufferRange = 1u << 20; // holds 2^17 fragments
     EXPECT_EQ(estimateGpuMemory(w).raster - estimateGpuMemory(w, small).raster, 8000000u * 8u - (1u << 20));
     // No hair, or the simulation alone: nothing drawn.
     EXPECT_EQ(estimateGpuMemory({.guides = 0, .verticesPerStrand = 4, .sim = sim, .render = &r}).raster, 0u);
@@ -248,13 +250,13 @@ TEST(Workload, DrawnStrandsAndSegmentsMustFit32Bits)
     Workload w{.guides = kMaxGuides, .verticesPerStrand = 16, .sim = {}, .render = &r};
     std::string what = errorOf([&] { checkCounts(w); });
     EXPECT_NE(what.find("8192000000 drawn strands"), std::string::npos) << what;
-    r.strands.strandsPerGuide = 2000;  // 4e9 strands fit, their segments do not
+    r.strands.strandsPerGuide = 2000; // 4e9 strands fit, their segments do not
     r.strands.divisions = 2;
     what = errorOf([&] { checkCounts(w); });
     EXPECT_NE(what.find("8000000000 segments"), std::string::npos) << what;
     r.strands.divisions = 1;
     EXPECT_EQ(errorOf([&] { checkCounts(w); }), "");
-    w.render = nullptr;  // the simulation alone draws nothing
+    w.render = nullptr; // the simulation alone draws nothing
     r.strands.strandsPerGuide = 4096;
     EXPECT_EQ(errorOf([&] { checkCounts(w); }), "");
 }
@@ -303,10 +305,12 @@ TEST(Workload, AComputeRasterTooLargeForTheDeviceIsNamed)
     EXPECT_GT(m.raster, device.deviceLocalBytes);
     EXPECT_LT(m.total() - m.raster, device.deviceLocalBytes) << "the compute raster alone is too large";
     std::string what = errorOf([&] { checkWorkload(w, device); });
-    EXPECT_NE(what.find("compute raster " + std::to_string((m.raster + (1u << 20) - 1) >> 20) + " MiB (4096000 strands x 1024 divisions)"),
-              std::string::npos) << what;
+    EXPECT_NE(what.find("compute raster " + std::to_string((m.raster + (1u << 20) - 1) >> 20) +
+                        " MiB (4096000 strands x 1024 divisions)"),
+              std::string::npos)
+        << what;
     EXPECT_NE(what.find("'Small GPU' has 8192 MiB"), std::string::npos) << what;
     EXPECT_NE(what.find("strands_per_guide, divisions, the size"), std::string::npos) << what;
-    r.hairRaster = HairRaster::Graphics;  // the tessellation keeps no per-vertex buffers: it fits
+    r.hairRaster = HairRaster::Graphics; // the tessellation keeps no per-vertex buffers: it fits
     EXPECT_EQ(errorOf([&] { checkWorkload(w, device); }), "");
 }

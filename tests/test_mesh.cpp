@@ -1,7 +1,7 @@
 // tests/test_mesh.cpp: mesh loading: real files from ../shared/data, n-gon triangulation, CRLF,
 // generated normals, other formats through assimp, and every malformed-file path with its line.
-#include "core/error.h"
 #include "assets/mesh.h"
+#include "core/error.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -31,14 +31,14 @@ void expectUnitNormals(const Mesh& mesh)
         ASSERT_NEAR(glm::length(n), 1.0f, 1e-4f);
 }
 
-}  // namespace
+} // namespace
 
 TEST(Mesh, LoadsSintelBustWithItsCounts)
 {
     WISP_REQUIRE_DATA(path, "sintel/sintel.obj");
     Mesh mesh = loadMesh(path);
-    EXPECT_EQ(mesh.sourceVertices, 3046u);   // ATTRIBUTION.md: 3,046 vertices
-    EXPECT_EQ(mesh.triangleCount(), 5952u);  // and 5,952 triangles
+    EXPECT_EQ(mesh.sourceVertices, 3046u);  // ATTRIBUTION.md: 3,046 vertices
+    EXPECT_EQ(mesh.triangleCount(), 5952u); // and 5,952 triangles
     expectUnitNormals(mesh);
     Bounds b = mesh.bounds();
     // Metres, y up: a bust some tens of centimetres tall.
@@ -52,14 +52,15 @@ TEST(Mesh, LoadsTressFxHeadInCentimetres)
     Mesh mesh = loadMesh(path);
     EXPECT_GT(mesh.triangleCount(), 1000u);
     expectUnitNormals(mesh);
-    EXPECT_GT(mesh.bounds().diagonal(), 10.0f);  // centimetres, kept as they are
+    EXPECT_GT(mesh.bounds().diagonal(), 10.0f); // centimetres, kept as they are
 }
 
 TEST(Mesh, TriangulatesQuadsAndAcceptsCrlf)
 {
     TempDir dir;
-    writeFile(dir / "quad.obj", "# a unit quad and a pentagon\r\nv 0 0 0\r\nv 1 0 0\r\nv 1 1 0\r\nv 0 1 0\r\n"
-                                "v 2 0 0\r\nv 3 0 0\r\nv 3.5 1 0\r\nv 2.5 2 0\r\nv 1.5 1 0\r\nf 1 2 3 4\r\nf 5 6 7 8 9\r\n");
+    writeFile(dir / "quad.obj",
+              "# a unit quad and a pentagon\r\nv 0 0 0\r\nv 1 0 0\r\nv 1 1 0\r\nv 0 1 0\r\n"
+              "v 2 0 0\r\nv 3 0 0\r\nv 3.5 1 0\r\nv 2.5 2 0\r\nv 1.5 1 0\r\nf 1 2 3 4\r\nf 5 6 7 8 9\r\n");
     Mesh mesh = loadMesh(dir / "quad.obj");
     EXPECT_EQ(mesh.triangleCount(), 2u + 3u);
     EXPECT_EQ(mesh.sourceVertices, 9u);
@@ -76,7 +77,7 @@ TEST(Mesh, KeepsFileNormalsAndNegativeIndices)
     Mesh mesh = loadMesh(dir / "tri.obj");
     ASSERT_EQ(mesh.triangleCount(), 1u);
     for (const glm::vec3& n : mesh.normals)
-        EXPECT_NEAR(n.z, -1.0f, 1e-6f);  // the file's normal, normalized
+        EXPECT_NEAR(n.z, -1.0f, 1e-6f); // the file's normal, normalized
 }
 
 TEST(Mesh, LoadsOtherFormatsThroughAssimp)
@@ -97,7 +98,7 @@ TEST(Mesh, ComputedNormalsAreAreaWeighted)
     std::vector<glm::vec3> p = {{0, 0, 0}, {10, 0, 0}, {0, 10, 0}, {0, 0, -1}, {0, 1, 0}};
     std::vector<uint32_t> idx = {0, 1, 2, 0, 3, 4};
     std::vector<glm::vec3> n = computeVertexNormals(p, idx);
-    EXPECT_GT(n[0].z, 0.99f);  // dominated by the big triangle
+    EXPECT_GT(n[0].z, 0.99f); // dominated by the big triangle
     EXPECT_GT(n[0].x, 0.0f);
     EXPECT_NEAR(n[3].x, 1.0f, 1e-6f);
 }
@@ -160,7 +161,9 @@ TEST(MeshErrors, BinaryDataNamedObjIsNotOBJText)
 {
     // An ELF executable passed as a head: it was "the mesh holds no triangles".
     TempDir dir;
-    std::string elf("\x7f" "ELF\x02\x01\x01\0\0\0\0\0\0\0\0\0\x03\0>\0", 20);
+    std::string elf("\x7f"
+                    "ELF\x02\x01\x01\0\0\0\0\0\0\0\0\0\x03\0>\0",
+                    20);
     writeFile(dir / "head.obj", elf + std::string(200, '\x01'));
     std::string e = errorOf(dir / "head.obj");
     EXPECT_NE(e.find("head.obj:1: byte 7 is a NUL: the file holds binary data, not OBJ text"), std::string::npos) << e;
@@ -175,7 +178,8 @@ TEST(MeshErrors, DegenerateMeshesAreRefused)
     TempDir dir;
     writeFile(dir / "point.obj", "v 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nf 1 2 3\nf 1 3 4\n");
     std::string e = errorOf(dir / "point.obj");
-    EXPECT_NE(e.find("point.obj: the mesh is degenerate: all its 4 vertices lie at one point (1.0"), std::string::npos) << e;
+    EXPECT_NE(e.find("point.obj: the mesh is degenerate: all its 4 vertices lie at one point (1.0"), std::string::npos)
+        << e;
     writeFile(dir / "line.obj", "v 0 0 0\nv 1 1 1\nv 2 2 2\nf 1 2 3\n");
     e = errorOf(dir / "line.obj");
     EXPECT_NE(e.find("none of its 1 triangles has an area"), std::string::npos) << e;
@@ -207,7 +211,8 @@ TEST(MeshErrors, CornerEndingInSlashNamesTheLine)
     // tinyobjloader reads the missing index of "3/3/" from the next corner (normal 2 of 1) and only
     // warns; Wisp then read past the normals (heap overflow). The fuzzer's input, minimized:
     TempDir dir;
-    writeFile(dir / "bad.obj", "v 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/ 2/2/1\n");
+    writeFile(dir / "bad.obj",
+              "v 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/ 2/2/1\n");
     std::string e = errorOf(dir / "bad.obj");
     EXPECT_NE(e.find("bad.obj:8:"), std::string::npos) << e;
     EXPECT_NE(e.find("'3/3/'"), std::string::npos) << e;

@@ -2,11 +2,11 @@
 // awkward sizes, the grid's sums, and resets of non-finite strands. (The shared math, the CPU
 // reference by hand and root sampling are CPU tests: test_sim_cpu.cpp.)
 #include "core/error.h"
+#include "gpu/frame.h"
 #include "physics/colliders.h"
 #include "physics/cpu_solver.h"
 #include "physics/gpu_solver.h"
 #include "physics/hair_scene.h"
-#include "gpu/frame.h"
 #include "renderer/physics_pass.h"
 #include "test_support.h"
 
@@ -14,8 +14,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <cstdio>
+#include <cstring>
 #include <functional>
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
@@ -39,7 +39,8 @@ BallScene ballScene(uint32_t strandCount, uint32_t V, const SimSettings& setting
                     bool hanging = false)
 {
     BallScene b;
-    Ellipsoid ball{.name = "ball", .center = glm::vec3(0), .radii = glm::vec3(colliderRadius), .rotationDeg = glm::vec3(0)};
+    Ellipsoid ball{
+        .name = "ball", .center = glm::vec3(0), .radii = glm::vec3(colliderRadius), .rotationDeg = glm::vec3(0)};
     b.colliders.push_back(toGpu(ball));
     b.strands.verticesPerStrand = V;
     b.strands.parts.push_back(PartSettings{});
@@ -81,7 +82,7 @@ SimState runGpu(const vk::Context& ctx, GpuSolver& solver, const SimSetup& setup
     return solver.readState();
 }
 
-}  // namespace
+} // namespace
 
 // ---- GPU against the CPU reference -------------------------------------------------------------
 
@@ -96,7 +97,7 @@ namespace {
 
 struct Agreement {
     float max = 0.0f;
-    float p90 = 0.0f;  // 90% of vertices agree at least this well
+    float p90 = 0.0f; // 90% of vertices agree at least this well
 };
 
 Agreement agreement(const SimState& a, const SimState& b)
@@ -108,7 +109,7 @@ Agreement agreement(const SimState& a, const SimState& b)
     return {d.back(), d[d.size() * 9 / 10]};
 }
 
-}  // namespace
+} // namespace
 
 // One step with every term (gravity, wind, drag, shape, head motion, the sphere and the head
 // colliders in contact, the grid) agrees to float rounding. Over many steps a chain of 32 or 64
@@ -142,7 +143,8 @@ TEST_P(GpuMatchesCpu, OneStepWithContactsAndFortyStepsWithout)
         SimState gpu = runGpu(ctx, gpuSolver, b.setup, steps, stepAt, 7);
         ASSERT_EQ(gpu.positions.size(), cpu.state().positions.size());
         Agreement a = agreement(gpu, cpu.state());
-        std::fprintf(stderr, "%s: max %g p90 %g\n", contacts ? "contacts, 1 step" : "no contacts, 40 steps", double(a.max), double(a.p90));
+        std::fprintf(stderr, "%s: max %g p90 %g\n", contacts ? "contacts, 1 step" : "no contacts, 40 steps",
+                     double(a.max), double(a.p90));
         EXPECT_LT(a.max, contacts ? 1e-6f : 2e-6f);
         for (size_t i = 0; i < gpu.velocities.size(); ++i)
             ASSERT_LT(glm::length(glm::vec3(gpu.velocities[i]) - glm::vec3(cpu.state().velocities[i])), 1e-3f) << i;
@@ -170,7 +172,8 @@ TEST_P(GpuMatchesCpu, StrandsPinnedAtBothEnds)
     s.gridFriction = 0.1f;
     s.gridResolution = 16;
     BallScene b;
-    b.colliders.push_back(toGpu(Ellipsoid{.name = "ball", .center = glm::vec3(0), .radii = glm::vec3(0.03f), .rotationDeg = {}}));
+    b.colliders.push_back(
+        toGpu(Ellipsoid{.name = "ball", .center = glm::vec3(0), .radii = glm::vec3(0.03f), .rotationDeg = {}}));
     b.strands.verticesPerStrand = c.vertices;
     b.strands.parts.push_back(PartSettings{});
     for (uint32_t k = 0; k < c.strands; ++k) {
@@ -187,10 +190,11 @@ TEST_P(GpuMatchesCpu, StrandsPinnedAtBothEnds)
     b.setup = makeSimSetup(s, b.strands, b.colliders, 1.0f);
     auto stepAt = [&](uint32_t n) {
         float t = float(n) / s.stepHz;
-        return makeStep(b.setup, glm::rotate(glm::mat4(1.0f), 0.3f * std::sin(2.0f * t), glm::vec3(0, 1, 0)), glm::vec4(0.0f), t);
+        return makeStep(b.setup, glm::rotate(glm::mat4(1.0f), 0.3f * std::sin(2.0f * t), glm::vec3(0, 1, 0)),
+                        glm::vec4(0.0f), t);
     };
     vk::Context ctx(test::validatedOptions());
-    {  // one step agrees to rounding
+    { // one step agrees to rounding
         CpuSolver cpu(b.strands, b.setup, glm::mat4(1.0f));
         cpu.step(stepAt(0));
         GpuSolver gpuSolver(ctx, b.strands, b.setup, glm::mat4(1.0f));
@@ -230,7 +234,8 @@ TEST_P(GridAtomicsModes, SplatConservesDensity)
     vk::Context ctx(test::validatedOptions());
     GpuSolver solver(ctx, b.strands, b.setup, glm::mat4(1.0f));
     EXPECT_EQ(solver.fixedPointGrid(), GetParam() == SimSettings::GridAtomics::Fixed);
-    runGpu(ctx, solver, b.setup, 3, [&](uint32_t n) { return makeStep(b.setup, glm::mat4(1.0f), glm::vec4(0.0f), float(n) / 120.0f); });
+    runGpu(ctx, solver, b.setup, 3,
+           [&](uint32_t n) { return makeStep(b.setup, glm::mat4(1.0f), glm::vec4(0.0f), float(n) / 120.0f); });
     double density = 0.0;
     for (const gpu::GridNode& node : solver.readGrid())
         density += node.density;
@@ -276,7 +281,7 @@ TEST(GpuSolver, FixedPointGridIsDeterministic)
 TEST(GpuSolver, NonFiniteValuesResetStrandsAndAreCounted)
 {
     SimSettings s;
-    s.wind = glm::vec3(std::numeric_limits<float>::quiet_NaN(), 0.0f, 0.0f);  // poisons every free vertex
+    s.wind = glm::vec3(std::numeric_limits<float>::quiet_NaN(), 0.0f, 0.0f); // poisons every free vertex
     BallScene b = ballScene(10, 8, s);
     vk::Context ctx(test::validatedOptions());
     GpuSolver solver(ctx, b.strands, b.setup, glm::mat4(1.0f));

@@ -6,8 +6,8 @@
 #include "physics/hair_scene.h"
 #include "test_support.h"
 
-#include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
@@ -45,7 +45,7 @@ Deviation deviation(const SimState& a, const std::vector<glm::vec4>& b)
     return d;
 }
 
-}  // namespace
+} // namespace
 
 TEST(PhysicsScenes, ThousandStepsWithGravityAndWindKeepTheInvariants)
 {
@@ -59,7 +59,7 @@ TEST(PhysicsScenes, ThousandStepsWithGravityAndWindKeepTheInvariants)
                  double(r.last.maxPenetration / diagonal), double(r.last.rootDrift), r.nonfiniteResets);
     EXPECT_LT(r.last.maxStretch, 1e-4f);
     EXPECT_LT(r.last.maxPenetration / diagonal, 0.01f);
-    EXPECT_LT(r.last.rootDrift, 1e-6f * diagonal);  // roots are placed by the head transform exactly
+    EXPECT_LT(r.last.rootDrift, 1e-6f * diagonal); // roots are placed by the head transform exactly
     EXPECT_EQ(r.nonfiniteResets, 0u);
     // The wind moved the hair: it is still in motion at the end.
     EXPECT_GT(r.last.kineticEnergy, 1e-3f);
@@ -96,15 +96,15 @@ TEST(PhysicsScenes, SpherePushedThroughTheHairDisplacesItAndItRecovers)
         return glm::vec4(-0.2f + 0.4f * u, 0.05f, -0.14f, 0.05f);
     };
     SimulationReport still = simulateHeadless(ctx, scene, sim, 900, {}, 900);
-    SimulationReport during = simulateHeadless(ctx, scene, sim, 420, motion, 420);  // t = 3.5 s
-    SimulationReport after = simulateHeadless(ctx, scene, sim, 900, motion, 900);   // t = 7.5 s
+    SimulationReport during = simulateHeadless(ctx, scene, sim, 420, motion, 420); // t = 3.5 s
+    SimulationReport after = simulateHeadless(ctx, scene, sim, 900, motion, 900);  // t = 7.5 s
     SimulationReport stillMid = simulateHeadless(ctx, scene, sim, 420, {}, 420);
     Deviation pushed = deviation(during.state, stillMid.state.positions);
     Deviation recovered = deviation(after.state, still.state.positions);
     std::fprintf(stderr, "pushed mean %g max %g; recovered mean %g max %g\n", double(pushed.mean), double(pushed.max),
                  double(recovered.mean), double(recovered.max));
-    EXPECT_GT(pushed.max, 0.02f);  // some hair moved at least 2 cm out of the sphere's way
-    EXPECT_LT(during.last.maxPenetration, 0.01f);  // and none stayed inside it (or the head)
+    EXPECT_GT(pushed.max, 0.02f);                 // some hair moved at least 2 cm out of the sphere's way
+    EXPECT_LT(during.last.maxPenetration, 0.01f); // and none stayed inside it (or the head)
     EXPECT_LT(recovered.mean, 0.25f * pushed.mean);
     EXPECT_LT(recovered.max, 0.5f * pushed.max);
     EXPECT_EQ(after.nonfiniteResets, 0u);
@@ -124,9 +124,9 @@ TEST(PhysicsScenes, HairFollowsATurningHeadWithInertia)
     };
     Motion motion;
     motion.head = turn;
-    SimulationReport before = simulateHeadless(ctx, scene, sim, 240, {}, 240);      // settled, t = 2 s
-    SimulationReport justAfter = simulateHeadless(ctx, scene, sim, 280, motion, 280);  // t = 2.33 s
-    SimulationReport settled = simulateHeadless(ctx, scene, sim, 900, motion, 900);    // t = 7.5 s
+    SimulationReport before = simulateHeadless(ctx, scene, sim, 240, {}, 240);        // settled, t = 2 s
+    SimulationReport justAfter = simulateHeadless(ctx, scene, sim, 280, motion, 280); // t = 2.33 s
+    SimulationReport settled = simulateHeadless(ctx, scene, sim, 900, motion, 900);   // t = 7.5 s
     // Where the settled hair would be if it turned rigidly with the head.
     glm::mat4 R = turn(10.0f);
     std::vector<glm::vec4> rigid;
@@ -136,10 +136,10 @@ TEST(PhysicsScenes, HairFollowsATurningHeadWithInertia)
     Deviation rest = deviation(settled.state, rigid);
     std::fprintf(stderr, "lag mean %g, settled mean %g, drift %g\n", double(lag.mean), double(rest.mean),
                  double(settled.last.rootDrift));
-    EXPECT_LT(justAfter.last.rootDrift, 1e-5f);  // roots turn with the head exactly
+    EXPECT_LT(justAfter.last.rootDrift, 1e-5f); // roots turn with the head exactly
     EXPECT_LT(settled.last.rootDrift, 1e-5f);
-    EXPECT_GT(lag.mean, 3.0f * rest.mean);       // the hair lags behind the turn ...
-    EXPECT_LT(rest.mean, 0.01f);                 // ... and catches up once the head holds still
+    EXPECT_GT(lag.mean, 3.0f * rest.mean); // the hair lags behind the turn ...
+    EXPECT_LT(rest.mean, 0.01f);           // ... and catches up once the head holds still
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 
@@ -170,7 +170,7 @@ TEST(PhysicsScenes, StyledGroomKeepsItsShapeWithShapeStiffness)
     }
     std::fprintf(stderr, "strand length %g; styled mean %g max %g; limp mean %g max %g\n", double(meanLength),
                  double(kept.mean), double(kept.max), double(fell.mean), double(fell.max));
-    EXPECT_LT(kept.mean, 0.05f * meanLength);  // within 5% of a strand's length on average
-    EXPECT_LT(kept.mean, 0.3f * fell.mean);    // and much closer than the same groom without stiffness
+    EXPECT_LT(kept.mean, 0.05f * meanLength); // within 5% of a strand's length on average
+    EXPECT_LT(kept.mean, 0.3f * fell.mean);   // and much closer than the same groom without stiffness
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }

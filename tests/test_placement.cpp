@@ -56,7 +56,7 @@ std::string errorOf(const std::function<void()>& f)
     return "";
 }
 
-}  // namespace
+} // namespace
 
 TEST(MeshDistance, ClosestPointsMatchBruteForce)
 {
@@ -115,15 +115,17 @@ TEST(Placement, AGroomInOtherUnitsAxesAndPlaceIsFittedToTheScalp)
         const char* name;
         glm::vec3 (*transform)(glm::vec3);
         HairPlacement defaults;
-        float scale;  // what recovers the head's units
+        float scale; // what recovers the head's units
     };
     std::vector<Case> cases = {
         // A cyHair groom 2.5 times too large (not a power of ten) and z-up.
-        {"2.5x, z-up", [](glm::vec3 p) { return 2.5f * glm::vec3(p.x, -p.z, p.y); }, HairPlacement{.zUpToYUp = true}, 0.4f},
+        {"2.5x, z-up", [](glm::vec3 p) { return 2.5f * glm::vec3(p.x, -p.z, p.y); }, HairPlacement{.zUpToYUp = true},
+         0.4f},
         // A mohawk made for a head 0.3 above this one.
         {"floating", [](glm::vec3 p) { return p + glm::vec3(0.0f, 0.3f, 0.0f); }, HairPlacement{}, 1.0f},
         // In centimetres, for a head standing on the origin 1.6 m lower.
-        {"centimetres", [](glm::vec3 p) { return 100.0f * p + glm::vec3(3.0f, 160.0f, -2.0f); }, HairPlacement{}, 0.01f},
+        {"centimetres", [](glm::vec3 p) { return 100.0f * p + glm::vec3(3.0f, 160.0f, -2.0f); }, HairPlacement{},
+         0.01f},
     };
     for (const Case& c : cases) {
         Strands groom = test::grownStrands(400, 8, c.transform);
@@ -150,19 +152,22 @@ TEST(Placement, RootsThatFitNowhereAreRefusedNamingTheOptions)
     for (int k = 0; k < 200; ++k) {
         float a = 0.1f * float(k), r = 3.0f * std::sqrt(float(k) / 200.0f);
         glm::vec3 root(r * std::cos(a), 5.0f, r * std::sin(a));
-        plate.push_back({root, root + glm::vec3(0, -0.1f, 0), root + glm::vec3(0, -0.2f, 0), root + glm::vec3(0, -0.3f, 0)});
+        plate.push_back(
+            {root, root + glm::vec3(0, -0.1f, 0), root + glm::vec3(0, -0.2f, 0), root + glm::vec3(0, -0.3f, 0)});
     }
     test::writeTfx4(dir / "plate.tfx", plate);
     std::string e = errorOf([&] {
-        buildLoadedScene(defaultHeadPath(), {{.file = dir / "plate.tfx", .placement = std::nullopt, .settings = {}}}, 4);
+        buildLoadedScene(defaultHeadPath(), {{.file = dir / "plate.tfx", .placement = std::nullopt, .settings = {}}},
+                         4);
     });
     EXPECT_NE(e.find("plate.tfx: the groom's roots are not on the head"), std::string::npos) << e;
     EXPECT_NE(e.find("--hair-scale"), std::string::npos) << e;
     EXPECT_NE(e.find("--hair-offset"), std::string::npos) << e;
     EXPECT_NE(e.find("--hair-z-up"), std::string::npos) << e;
     // Placed by hand, the same groom loads, with a warning that says where the roots are.
-    HairScene scene = buildLoadedScene(defaultHeadPath(), {{.file = dir / "plate.tfx", .placement = std::nullopt, .settings = {}}},
-                                       4, PlacementRequest{.scale = 1.0f, .offset = glm::vec3(0.0f)});
+    HairScene scene =
+        buildLoadedScene(defaultHeadPath(), {{.file = dir / "plate.tfx", .placement = std::nullopt, .settings = {}}}, 4,
+                         PlacementRequest{.scale = 1.0f, .offset = glm::vec3(0.0f)});
     ASSERT_EQ(scene.warnings.size(), 1u);
     EXPECT_NE(scene.warnings[0].find("not on the head: as given"), std::string::npos) << scene.warnings[0];
     EXPECT_EQ(scene.placement->method, GroomPlacement::Method::Given);
@@ -183,9 +188,10 @@ TEST(ShortStrands, AreKeptRigidAndStrandsOfNoLengthDropped)
         for (size_t i = 0; i < fur[s].size(); ++i)
             fur[s][i] = root + 2e-5f * float(i) * dir3;
     }
-    fur[1].assign(fur[1].size(), fur[1][0]);  // no length
+    fur[1].assign(fur[1].size(), fur[1][0]); // no length
     test::writeTfx4(dir / "fur.tfx", fur);
-    HairScene scene = buildLoadedScene(defaultHeadPath(), {{.file = dir / "fur.tfx", .placement = std::nullopt, .settings = {}}}, 16);
+    HairScene scene =
+        buildLoadedScene(defaultHeadPath(), {{.file = dir / "fur.tfx", .placement = std::nullopt, .settings = {}}}, 16);
     EXPECT_EQ(scene.loaded.dropped, 1u);
     EXPECT_EQ(scene.loaded.rigid, shortOnes);
     EXPECT_EQ(scene.strands.strandCount(), fur.size() - 1);

@@ -18,7 +18,8 @@ using namespace wisp::test;
 TEST(Record, SameCommandGivesTheSameFramesAndAVideo)
 {
     TempDir dir;
-    std::string common = "record --frames 4 --width 96 --height 64 --guides 60 --set strands_per_guide=4 --wind 4,0,0 --out ";
+    std::string common =
+        "record --frames 4 --width 96 --height 64 --guides 60 --set strands_per_guide=4 --wind 4,0,0 --out ";
     bool ffmpeg = std::system("command -v ffmpeg >/dev/null 2>&1") == 0;
     auto first = runWisp("--validation " + common + "'" + (dir / "a").string() + "'" +
                          (ffmpeg ? " --video '" + (dir / "a.mp4").string() + "'" : std::string()));
@@ -29,13 +30,13 @@ TEST(Record, SameCommandGivesTheSameFramesAndAVideo)
         ASSERT_TRUE(std::filesystem::exists(dir / "a" / name)) << name;
         EXPECT_EQ(readFile(dir / "a" / name), readFile(dir / "b" / name)) << name;
     }
-    EXPECT_NE(readFile(dir / "a" / "frame_00000.png"), readFile(dir / "a" / "frame_00003.png"));  // the hair moved
+    EXPECT_NE(readFile(dir / "a" / "frame_00000.png"), readFile(dir / "a" / "frame_00003.png")); // the hair moved
     EXPECT_FALSE(std::filesystem::exists(dir / "a" / "frame_00004.png"));
     if (!ffmpeg)
         GTEST_SKIP() << "ffmpeg is not installed (Debian package ffmpeg): the video was not tested";
     std::string video = readFile(dir / "a.mp4");
     ASSERT_GT(video.size(), 100u);
-    EXPECT_EQ(video.substr(4, 4), "ftyp");  // an MP4 file
+    EXPECT_EQ(video.substr(4, 4), "ftyp"); // an MP4 file
 }
 
 TEST(BadInput, RecordOutputsAreCheckedFirst)
@@ -46,7 +47,7 @@ TEST(BadInput, RecordOutputsAreCheckedFirst)
     expectUserError(runWisp("record --frames 1 --out /nonexistent/deep/frames"), "/nonexistent/deep");
     expectUserError(runWisp("record --frames 1 --out '" + (dir / "f").string() + "' --video /nonexistent/v.mp4"),
                     "/nonexistent");
-    EXPECT_FALSE(std::filesystem::exists(dir / "f"));  // nothing created
+    EXPECT_FALSE(std::filesystem::exists(dir / "f")); // nothing created
     expectUserError(runWisp("record --frames 0 --out '" + (dir / "g").string() + "'"), "--frames");
 }
 
@@ -59,7 +60,8 @@ TEST(Record, DeviceLostKeepsTheFramesWrittenAndMakesNoSheetOrVideo)
     // after a few frames.
     std::string video = ffmpeg ? " --video '" + (dir / "run.mp4").string() + "'" : "";
     auto r = runWisp("--validation record --frames 12 --width 96 --height 64 --guides 60 --set strands_per_guide=4 "
-                     "--out '" + (dir / "frames").string() + "'" + video,
+                     "--out '" +
+                         (dir / "frames").string() + "'" + video,
                      lostAt(22));
     expectDeviceLost(r, "record");
     std::smatch m;

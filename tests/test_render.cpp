@@ -23,14 +23,14 @@ RenderSettings smallSettings()
 }
 
 struct Coverage {
-    double fraction = 0.0;        // of all pixels, differing from the background
-    double leftLuminance = 0.0;   // mean over covered pixels in the left half
-    double rightLuminance = 0.0;  // ... and in the right half
+    double fraction = 0.0;       // of all pixels, differing from the background
+    double leftLuminance = 0.0;  // mean over covered pixels in the left half
+    double rightLuminance = 0.0; // ... and in the right half
 };
 
 Coverage measure(const Picture& p)
 {
-    const uint8_t* bg = &p.rgba[0];  // the top-left corner is background in every framing here
+    const uint8_t* bg = &p.rgba[0]; // the top-left corner is background in every framing here
     Coverage c;
     size_t covered = 0, left = 0, right = 0;
     for (uint32_t y = 0; y < p.height; ++y)
@@ -62,7 +62,7 @@ protected:
 };
 Head* HeadRender::head_ = nullptr;
 
-}  // namespace
+} // namespace
 
 TEST_F(HeadRender, TwoRendersAreByteIdentical)
 {
@@ -89,7 +89,7 @@ TEST_F(HeadRender, WithSimulatedHairTwoRendersAreByteIdentical)
     Picture b = renderPicture(ctx, second, smallSettings(), 12, 30.0f);
     EXPECT_TRUE(a.rgba == b.rgba);
     Picture still = renderPicture(ctx, scene.head, smallSettings());
-    EXPECT_FALSE(a.rgba == still.rgba);  // the hair is in the picture
+    EXPECT_FALSE(a.rgba == still.rgba); // the hair is in the picture
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 
@@ -111,7 +111,7 @@ TEST_F(HeadRender, LitOnTheLightsSide)
 {
     vk::Context ctx(test::validatedOptions());
     RenderSettings s = smallSettings();
-    s.light.azimuthDeg = 80.0f;  // toward +x: the right of the picture from the default camera
+    s.light.azimuthDeg = 80.0f; // toward +x: the right of the picture from the default camera
     Coverage fromRight = measure(renderPicture(ctx, *head_, s));
     s.light.azimuthDeg = -80.0f;
     Coverage fromLeft = measure(renderPicture(ctx, *head_, s));
@@ -151,7 +151,7 @@ TEST_F(HeadRender, AHeadInOtherUnitsRendersTheSamePicture)
             m.positions.push_back(b.center() + 0.995f * (m.positions[v] - b.center()));
             m.normals.push_back(-m.normals[v]);
         }
-        for (size_t i = 0; i < triangles; ++i)  // drawn last: where depths tie, it wins (less or equal)
+        for (size_t i = 0; i < triangles; ++i) // drawn last: where depths tie, it wins (less or equal)
             m.indices.push_back(m.indices[i] + n);
         for (glm::vec3& p : m.positions)
             p *= scale;

@@ -43,8 +43,7 @@ TEST(Cli, EveryPassIsCleanUnderSynchronizationValidation)
                              "--set hair_raster=compute --set shading=lut", "--set hair_raster=compute --set samples=1",
                              "--set hair_raster=compute --set dom_layers=0 --set shading=kajiya --set shadows=off",
                              "--set hair_raster=compute --set dom_layers=0",
-                             "--set hair_raster=compute --set show_guides=on",
-                             "--no-hair --set hair_raster=compute"}) {
+                             "--set hair_raster=compute --set show_guides=on", "--no-hair --set hair_raster=compute"}) {
         auto r = runWisp("--sync-validation render --width 96 --height 72 --guides 60 --set strands_per_guide=4 " +
                          std::string(sets) + " --set shadow_size=256 --out '" + (dir / "s.png").string() + "'");
         EXPECT_EQ(r.status, 0) << sets << "\n" << r.err;
@@ -93,13 +92,15 @@ TEST(Cli, SetChangesWhatIsDrawn)
 {
     TempDir dir;
     auto r = runWisp("render --width 64 --height 64 --guides 10 --set strands_per_guide=100 --set divisions=100 "
-                     "--set hair_raster=graphics --out '" + (dir / "a.png").string() + "'");
+                     "--set hair_raster=graphics --out '" +
+                     (dir / "a.png").string() + "'");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.out.find("10 guides x 100 strands x 100 divisions = 100000 segments"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("50 instances"), std::string::npos) << r.out;  // past the tessellation limits, not capped
+    EXPECT_NE(r.out.find("50 instances"), std::string::npos) << r.out; // past the tessellation limits, not capped
     // In compute: every segment on screen is drawn, each fragment counted.
     r = runWisp("render --width 64 --height 64 --guides 10 --set strands_per_guide=100 --set divisions=100 "
-                "--set hair_raster=compute --out '" + (dir / "b.png").string() + "'");
+                "--set hair_raster=compute --out '" +
+                (dir / "b.png").string() + "'");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.out.find("drawn in compute"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("compute raster: 100000 segments on screen"), std::string::npos) << r.out;
@@ -111,7 +112,8 @@ TEST(Cli, DeviceLostDuringRenderWritesNoPicture)
     // The first submission uploads the head; a later one simulates or draws a frame.
     for (int submission : {1, 16}) {
         auto r = runWisp("--validation render --frames 3 --width 96 --height 64 --guides 60 --set strands_per_guide=4 "
-                         "--out '" + (dir / "a.png").string() + "'",
+                         "--out '" +
+                             (dir / "a.png").string() + "'",
                          lostAt(submission));
         expectDeviceLost(r, "render");
         EXPECT_NE(r.err.find((dir / "a.png").string() + " was not written"), std::string::npos) << r.err;

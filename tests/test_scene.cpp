@@ -106,7 +106,7 @@ SceneKey keyAt(double time)
     return k;
 }
 
-}  // namespace
+} // namespace
 
 TEST(Scene, SaveThenLoadGivesTheSameScene)
 {
@@ -125,7 +125,7 @@ TEST(Scene, SaveThenLoadGivesTheSameScene)
     // Floats are written as the shortest decimal that reads back the same.
     std::string text = sceneJson(grownScene());
     EXPECT_NE(text.find("\"hair_length\": 0.3,"), std::string::npos) << text;
-    EXPECT_NE(text.find("\"strands_per_guide\": 8"), std::string::npos) << text;  // a number again
+    EXPECT_NE(text.find("\"strands_per_guide\": 8"), std::string::npos) << text; // a number again
     EXPECT_NE(text.find("\"lod\": false"), std::string::npos) << text;
 }
 
@@ -163,8 +163,8 @@ TEST(Scene, ACompleteFileLoadsWithItsValues)
     EXPECT_FALSE(s.keys[0].cameraPitchDeg.has_value());
     EXPECT_EQ(*s.keys[1].headYawDeg, -30.0f);
     EXPECT_EQ(s.keys[1].sphere->w, 0.0f);
-    EXPECT_DOUBLE_EQ(s.length(), 2.5);                       // no duration: the last key's time
-    EXPECT_EQ(s.interpolation, SceneInterpolation::Smooth);  // the default
+    EXPECT_DOUBLE_EQ(s.length(), 2.5);                      // no duration: the last key's time
+    EXPECT_EQ(s.interpolation, SceneInterpolation::Smooth); // the default
 }
 
 TEST(Scene, ParsedTextIsTheSameAsTheLoadedFile)
@@ -200,21 +200,21 @@ TEST(SceneTimeline, LinearValuesByHand)
     b.headYawDeg = 50.0f;
     a.wind = glm::vec3(0.0f);
     b.wind = glm::vec3(4.0f, 0.0f, -8.0f);
-    b.cameraYawDeg = 350.0f;  // alone: held at every time
+    b.cameraYawDeg = 350.0f; // alone: held at every time
     SceneTimeline t({a, b}, SceneInterpolation::Linear, base);
-    EXPECT_FLOAT_EQ(t.at(0.0).headYawDeg, 10.0f);  // before the first key: held
+    EXPECT_FLOAT_EQ(t.at(0.0).headYawDeg, 10.0f); // before the first key: held
     EXPECT_FLOAT_EQ(t.at(1.0).headYawDeg, 10.0f);
-    EXPECT_FLOAT_EQ(t.at(1.5).headYawDeg, 20.0f);  // a quarter of the way
+    EXPECT_FLOAT_EQ(t.at(1.5).headYawDeg, 20.0f); // a quarter of the way
     EXPECT_FLOAT_EQ(t.at(2.0).headYawDeg, 30.0f);
     EXPECT_FLOAT_EQ(t.at(3.0).headYawDeg, 50.0f);
-    EXPECT_FLOAT_EQ(t.at(99.0).headYawDeg, 50.0f);  // after the last: held
+    EXPECT_FLOAT_EQ(t.at(99.0).headYawDeg, 50.0f); // after the last: held
     glm::vec3 w = t.at(2.5).wind;
     EXPECT_FLOAT_EQ(w.x, 3.0f);
     EXPECT_FLOAT_EQ(w.z, -6.0f);
     EXPECT_FLOAT_EQ(*t.at(0.0).camera.yawDeg, 350.0f);
-    EXPECT_FALSE(t.at(2.0).camera.pitchDeg.has_value());  // no key: the framing's
+    EXPECT_FALSE(t.at(2.0).camera.pitchDeg.has_value()); // no key: the framing's
     EXPECT_FALSE(t.at(2.0).camera.target.has_value());
-    EXPECT_EQ(t.at(2.0).sphere, base.sphere);  // no key: the base
+    EXPECT_EQ(t.at(2.0).sphere, base.sphere); // no key: the base
     EXPECT_FLOAT_EQ(t.at(2.0).light.azimuthDeg, 7.0f);
     EXPECT_EQ(t.at(2.0).light.color, base.light.color);
 }
@@ -240,15 +240,15 @@ TEST(SceneTimeline, EachChannelMovesBetweenItsOwnKeys)
     SceneKey a = keyAt(0.0), b = keyAt(1.0), c = keyAt(2.0);
     a.sphere = glm::vec4(0.0f, 0.0f, 0.0f, 0.1f);
     c.sphere = glm::vec4(2.0f, 0.0f, 0.0f, 0.3f);
-    b.wind = glm::vec3(5.0f, 0.0f, 0.0f);  // sets the wind only
+    b.wind = glm::vec3(5.0f, 0.0f, 0.0f); // sets the wind only
     a.cameraDistance = 1.0f;
     c.cameraDistance = 2.0f;
     SceneTimeline t({a, b, c}, SceneInterpolation::Linear, SceneState{});
     SceneState s = t.at(1.0);
-    EXPECT_FLOAT_EQ(s.sphere.x, 1.0f);  // halfway from a to c, through b
+    EXPECT_FLOAT_EQ(s.sphere.x, 1.0f); // halfway from a to c, through b
     EXPECT_FLOAT_EQ(s.sphere.w, 0.2f);
     EXPECT_FLOAT_EQ(*s.camera.distance, 1.5f);
-    EXPECT_EQ(t.at(0.0).wind, glm::vec3(5.0f, 0.0f, 0.0f));  // its only key, held both ways
+    EXPECT_EQ(t.at(0.0).wind, glm::vec3(5.0f, 0.0f, 0.0f)); // its only key, held both ways
     EXPECT_EQ(t.at(2.0).wind, glm::vec3(5.0f, 0.0f, 0.0f));
 }
 
@@ -309,7 +309,7 @@ TEST(Scene, TheCamerasPlanesScaleWithTheScene)
     for (const OrbitCamera& cam : {m, c}) {
         float radius = cam.sceneRadius;
         glm::mat4 p = cam.projection(1.5f);
-        auto depth = [&](float z) {  // z: distance in front of the camera
+        auto depth = [&](float z) { // z: distance in front of the camera
             glm::vec4 clip = p * glm::vec4(0.0f, 0.0f, -z, 1.0f);
             return clip.z / clip.w;
         };
@@ -366,16 +366,17 @@ TEST(SceneTimeline, ALoopingScenePlaysItsKeysAgain)
     a.headYawDeg = 0.0f;
     b.headYawDeg = 40.0f;
     SceneTimeline once({a, b}, SceneInterpolation::Linear, SceneState{});
-    SceneTimeline looped({a, b}, SceneInterpolation::Linear, SceneState{}, 4.0);  // 2 s of keys, 2 s held
+    SceneTimeline looped({a, b}, SceneInterpolation::Linear, SceneState{}, 4.0); // 2 s of keys, 2 s held
     for (double t : {0.0, 0.5, 1.5, 3.0})
         EXPECT_FLOAT_EQ(looped.at(t).headYawDeg, once.at(t).headYawDeg) << t;
-    EXPECT_FLOAT_EQ(looped.at(4.5).headYawDeg, 10.0f);  // the second time round
+    EXPECT_FLOAT_EQ(looped.at(4.5).headYawDeg, 10.0f); // the second time round
     EXPECT_FLOAT_EQ(looped.at(4000.5).headYawDeg, 10.0f);
-    EXPECT_FLOAT_EQ(once.at(4.5).headYawDeg, 40.0f);  // without the loop: held
+    EXPECT_FLOAT_EQ(once.at(4.5).headYawDeg, 40.0f); // without the loop: held
 
     // "loop" reads, saves and reads back; it needs a length to repeat.
     TempDir dir;
-    writeFile(dir / "loop.json", R"({"duration": 4, "loop": true, "keys": [{"time": 0, "head_yaw": 0}, {"time": 2, "head_yaw": 40}]})");
+    writeFile(dir / "loop.json",
+              R"({"duration": 4, "loop": true, "keys": [{"time": 0, "head_yaw": 0}, {"time": 2, "head_yaw": 40}]})");
     Scene s = loadScene(dir / "loop.json");
     EXPECT_TRUE(s.loop);
     saveScene(dir / "again.json", s);
@@ -401,7 +402,7 @@ TEST(Scene, ShippedScenesLoad)
     }
     Scene sweep = loadScene(folder / "sphere-sweep.json");
     SceneTimeline t(sweep.keys, sweep.interpolation, SceneState{});
-    EXPECT_GT(glm::distance(glm::vec3(t.at(0.0).sphere), glm::vec3(t.at(2.2).sphere)), 0.3f);  // it sweeps
+    EXPECT_GT(glm::distance(glm::vec3(t.at(0.0).sphere), glm::vec3(t.at(2.2).sphere)), 0.3f); // it sweeps
     Scene sintel = loadScene(folder / "sintel.json");
     ASSERT_EQ(sintel.hair.files.size(), 1u);
     EXPECT_EQ(sintel.hair.files[0].path.rfind("shared:", 0), 0u);

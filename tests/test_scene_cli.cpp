@@ -27,13 +27,14 @@ const char* kTinyScene = R"({
   ]
 })";
 
-}  // namespace
+} // namespace
 
 TEST(SceneCli, RecordWithASceneGivesIdenticalFrames)
 {
     TempDir dir;
     writeFile(dir / "tiny.json", kTinyScene);
-    std::string common = "record --scene '" + (dir / "tiny.json").string() + "' --frames 3 --fps 30 --width 96 --height 72 --out ";
+    std::string common =
+        "record --scene '" + (dir / "tiny.json").string() + "' --frames 3 --fps 30 --width 96 --height 72 --out ";
     auto first = runWisp("--validation " + common + "'" + (dir / "a").string() + "'");
     ASSERT_EQ(first.status, 0) << first.err;
     auto second = runWisp(common + "'" + (dir / "b").string() + "'");
@@ -51,10 +52,10 @@ TEST(SceneCli, RecordCoversTheScenesDurationByDefault)
 {
     TempDir dir;
     writeFile(dir / "short.json", R"({"duration": 0.1, "keys": [{"time": 0, "light": {"azimuth": 10}}]})");
-    auto r = runWisp("record --scene '" + (dir / "short.json").string() + "' --no-hair --fps 30 --width 64 --height 48 --out '" +
-                     (dir / "f").string() + "'");
+    auto r = runWisp("record --scene '" + (dir / "short.json").string() +
+                     "' --no-hair --fps 30 --width 64 --height 48 --out '" + (dir / "f").string() + "'");
     ASSERT_EQ(r.status, 0) << r.err;
-    EXPECT_TRUE(std::filesystem::exists(dir / "f" / "frame_00002.png"));  // 0.1 s at 30 frames a second
+    EXPECT_TRUE(std::filesystem::exists(dir / "f" / "frame_00002.png")); // 0.1 s at 30 frames a second
     EXPECT_FALSE(std::filesystem::exists(dir / "f" / "frame_00003.png"));
 }
 
@@ -63,8 +64,10 @@ TEST(SceneCli, ShippedScenesRenderAtATinySize)
     TempDir dir;
     for (const char* name : {"sphere-sweep", "wind-gusts", "head-turn", "soak"}) {
         std::string scene = std::string(WISP_SOURCE_DIR) + "/scenes/" + name + ".json";
-        auto r = runWisp("--validation render --scene '" + scene + "' --frames 2 --width 96 --height 72 --guides 60 "
-                         "--set strands_per_guide=4 --set shadow_size=256 --out '" + (dir / name).string() + ".png'");
+        auto r = runWisp("--validation render --scene '" + scene +
+                         "' --frames 2 --width 96 --height 72 --guides 60 "
+                         "--set strands_per_guide=4 --set shadow_size=256 --out '" +
+                         (dir / name).string() + ".png'");
         EXPECT_EQ(r.status, 0) << name << "\n" << r.err;
         EXPECT_TRUE(r.err.empty()) << name << "\n" << r.err;
         EXPECT_NE(r.out.find("hair: 60 guides x 4 strands"), std::string::npos) << name << "\n" << r.out;
@@ -78,8 +81,9 @@ TEST(SceneCli, SintelSceneRendersWithTheSharedData)
     WISP_REQUIRE_DATA(bust, "sintel/sintel.obj");
     TempDir dir;
     auto r = runWisp("render --scene '" + std::string(WISP_SOURCE_DIR) +
-                     "/scenes/sintel.json' --frames 1 --width 96 --height 72 --set strands_per_guide=1 "
-                     "--set shadow_size=256 --out '" + (dir / "sintel.png").string() + "'",
+                         "/scenes/sintel.json' --frames 1 --width 96 --height 72 --set strands_per_guide=1 "
+                         "--set shadow_size=256 --out '" +
+                         (dir / "sintel.png").string() + "'",
                      "WISP_SHARED_DATA='" + groom.parent_path().parent_path().string() + "'");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.out.find("hair: 11400 guides x 1 strands"), std::string::npos) << r.out;
@@ -106,25 +110,31 @@ TEST(SceneCli, CommandLineOptionsOverrideTheScene)
     ASSERT_EQ(own.status, 0) << own.err;
     EXPECT_NE(own.out.find("hair: 40 guides x 3 strands"), std::string::npos) << own.out;
     // ...and what the command line names wins: options, --set, and keyed channels (the light).
-    auto over = runWisp("render" + scene + "'" + (dir / "over.png").string() + "' --guides 20 --set strands_per_guide=2");
+    auto over =
+        runWisp("render" + scene + "'" + (dir / "over.png").string() + "' --guides 20 --set strands_per_guide=2");
     ASSERT_EQ(over.status, 0) << over.err;
     EXPECT_NE(over.out.find("hair: 20 guides x 2 strands"), std::string::npos) << over.out;
 
     // A keyed light replaced by --light-azimuth gives the picture of a scene without light keys.
-    writeFile(dir / "keyed.json", R"({"keys": [{"time": 0, "light": {"azimuth": 150, "elevation": 5}, "head_yaw": 25}]})");
+    writeFile(dir / "keyed.json",
+              R"({"keys": [{"time": 0, "light": {"azimuth": 150, "elevation": 5}, "head_yaw": 25}]})");
     writeFile(dir / "plain.json", R"({"keys": [{"time": 0, "head_yaw": 25}]})");
     std::string bald = " --no-hair --width 80 --height 60 --out ";
-    auto keyed = runWisp("render --scene '" + (dir / "keyed.json").string() + "'" + bald + "'" + (dir / "keyed.png").string() + "'");
-    auto keyedOver = runWisp("render --scene '" + (dir / "keyed.json").string() + "' --light-azimuth -30 --light-elevation 35" +
-                             bald + "'" + (dir / "keyed-over.png").string() + "'");
-    auto plainOver = runWisp("render --scene '" + (dir / "plain.json").string() + "' --light-azimuth -30 --light-elevation 35" +
-                             bald + "'" + (dir / "plain-over.png").string() + "'");
-    auto straight = runWisp("render --light-azimuth -30 --light-elevation 35" + bald + "'" + (dir / "straight.png").string() + "'");
+    auto keyed = runWisp("render --scene '" + (dir / "keyed.json").string() + "'" + bald + "'" +
+                         (dir / "keyed.png").string() + "'");
+    auto keyedOver =
+        runWisp("render --scene '" + (dir / "keyed.json").string() + "' --light-azimuth -30 --light-elevation 35" +
+                bald + "'" + (dir / "keyed-over.png").string() + "'");
+    auto plainOver =
+        runWisp("render --scene '" + (dir / "plain.json").string() + "' --light-azimuth -30 --light-elevation 35" +
+                bald + "'" + (dir / "plain-over.png").string() + "'");
+    auto straight =
+        runWisp("render --light-azimuth -30 --light-elevation 35" + bald + "'" + (dir / "straight.png").string() + "'");
     for (const auto* r : {&keyed, &keyedOver, &plainOver, &straight})
         ASSERT_EQ(r->status, 0) << r->err;
     EXPECT_EQ(readFile(dir / "keyed-over.png"), readFile(dir / "plain-over.png"));
-    EXPECT_NE(readFile(dir / "keyed.png"), readFile(dir / "keyed-over.png"));   // the keys did light it
-    EXPECT_NE(readFile(dir / "plain-over.png"), readFile(dir / "straight.png"));  // the head is turned
+    EXPECT_NE(readFile(dir / "keyed.png"), readFile(dir / "keyed-over.png"));    // the keys did light it
+    EXPECT_NE(readFile(dir / "plain-over.png"), readFile(dir / "straight.png")); // the head is turned
 }
 
 // The soak (issue 7) shortened: the looping soak scene (wind gusts, a sphere sweeping through
@@ -133,7 +143,8 @@ TEST(SceneCli, CommandLineOptionsOverrideTheScene)
 TEST(Soak, SimulateKeepsThePhysicsBoundsAndItsMemory)
 {
     std::string scene = std::string(WISP_SOURCE_DIR) + "/scenes/soak.json";
-    auto r = runWisp("--validation simulate --scene '" + scene + "' --guides 120 --vertices 10 --steps 2400 "
+    auto r = runWisp("--validation simulate --scene '" + scene +
+                     "' --guides 120 --vertices 10 --steps 2400 "
                      "--sample-every 40 --json");
     ASSERT_EQ(r.status, 0) << r.err;
     nlohmann::json j = nlohmann::json::parse(r.out);
@@ -164,8 +175,10 @@ TEST(Soak, ARecordingKeepsItsDeviceMemoryFlat)
 {
     TempDir dir;
     std::string scene = std::string(WISP_SOURCE_DIR) + "/scenes/soak.json";
-    auto r = runWisp("record --scene '" + scene + "' --frames 40 --fps 30 --guides 60 --vertices 8 --set strands_per_guide=2 "
-                     "--set shadow_size=128 --width 64 --height 48 --out '" + (dir / "f").string() + "'");
+    auto r = runWisp("record --scene '" + scene +
+                     "' --frames 40 --fps 30 --guides 60 --vertices 8 --set strands_per_guide=2 "
+                     "--set shadow_size=128 --width 64 --height 48 --out '" +
+                     (dir / "f").string() + "'");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_TRUE(std::filesystem::exists(dir / "f" / "frame_00039.png"));
     // "record: memory after frame 1 and frame 40: host RSS a -> b MiB, device n -> m allocations (x -> y MiB)"
@@ -191,11 +204,13 @@ TEST(SceneCli, BadScenesAreOneLineAndWriteNothing)
     auto r = runWisp("render --scene '" + (dir / "bad.json").string() + "' --out '" + (dir / "a.png").string() + "'");
     expectUserError(r, "bad.json: /keys/0/sphere/3: -1 is out of range");
     EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
-    auto rec = runWisp("record --scene '" + (dir / "bad.json").string() + "' --out '" + (dir / "frames").string() + "'");
+    auto rec =
+        runWisp("record --scene '" + (dir / "bad.json").string() + "' --out '" + (dir / "frames").string() + "'");
     expectUserError(rec, "/keys/0/sphere/3");
     EXPECT_FALSE(std::filesystem::exists(dir / "frames"));
     writeFile(dir / "setting.json", R"({"settings": {"shadow_size": 10}})");
-    auto s = runWisp("render --scene '" + (dir / "setting.json").string() + "' --out '" + (dir / "a.png").string() + "'");
+    auto s =
+        runWisp("render --scene '" + (dir / "setting.json").string() + "' --out '" + (dir / "a.png").string() + "'");
     expectUserError(s, "setting.json: /settings/shadow_size: 10 is out of range: allowed 64 .. 8192 texels");
     writeFile(dir / "head.json", R"({"head": "missing-head.obj"})");
     auto h = runWisp("render --scene '" + (dir / "head.json").string() + "' --out '" + (dir / "a.png").string() + "'");

@@ -17,8 +17,7 @@ using namespace wisp;
 
 namespace {
 
-template <typename F>
-std::string errorOf(F&& f)
+template <typename F> std::string errorOf(F&& f)
 {
     try {
         f();
@@ -91,7 +90,7 @@ SessionOptions commandLine(const std::string& line, SessionCommandLine::Uses use
     return options.resolve();
 }
 
-}  // namespace
+} // namespace
 
 TEST(SettingsTable, NamesAreUniqueAndEveryEntryIsComplete)
 {
@@ -116,13 +115,14 @@ TEST(SettingsTable, NamesAreUniqueAndEveryEntryIsComplete)
     EXPECT_EQ(findSetting("reverse_order"), nullptr);
     EXPECT_EQ(findSetting("max_patch_vertices"), nullptr);
     // What no front end could set before the table.
-    for (const char* name : {"gravity", "wind_frequency", "penalty_stiffness", "collision_margin", "repulsion", "grid_atomics"})
+    for (const char* name :
+         {"gravity", "wind_frequency", "penalty_stiffness", "collision_margin", "repulsion", "grid_atomics"})
         EXPECT_NE(findSetting(name), nullptr) << name;
 }
 
 TEST(SettingsTable, EverySettingRoundTripsThroughSetASceneAndThePanel)
 {
-    Settings all;  // every setting changed at once, in the table's order
+    Settings all; // every setting changed at once, in the table's order
     for (const SettingSpec& spec : settingSpecs()) {
         SettingValue v = otherValue(spec);
         std::string text = settingText(spec, v);
@@ -164,7 +164,7 @@ TEST(SettingsTable, OutOfRangeValuesAreRefusedEverywhereWithTheSameWords)
 {
     struct Case {
         const char* name;
-        const char* option;  // "" when it has none
+        const char* option; // "" when it has none
         const char* value;
         const char* why;
     };
@@ -175,7 +175,8 @@ TEST(SettingsTable, OutOfRangeValuesAreRefusedEverywhereWithTheSameWords)
                           Case{"grid_atomics", "--grid-atomics", "double", "'double' is not allowed: fixed | float"},
                           Case{"shadow_size", "", "10", "10 is out of range: allowed 64 .. 8192 texels"},
                           Case{"interpolation", "", "cubic", "'cubic' is not allowed: single | multi | mixed"},
-                          Case{"wind", "--wind", "0,0,1e9", "the third value (1000000000) is out of range: allowed -100 .. 100 m/s^2"}}) {
+                          Case{"wind", "--wind", "0,0,1e9",
+                               "the third value (1000000000) is out of range: allowed -100 .. 100 m/s^2"}}) {
         SCOPED_TRACE(c.name);
         std::string why = c.why;
         Settings settings;
@@ -184,22 +185,25 @@ TEST(SettingsTable, OutOfRangeValuesAreRefusedEverywhereWithTheSameWords)
         EXPECT_EQ(errorOf([&] { commandLine(std::string("--set ") + c.name + "=" + c.value); }),
                   "--set " + std::string(c.name) + ": " + why);
         if (*c.option) {
-            EXPECT_EQ(errorOf([&] { commandLine(std::string(c.option) + " " + c.value); }), std::string(c.option) + ": " + why);
+            EXPECT_EQ(errorOf([&] { commandLine(std::string(c.option) + " " + c.value); }),
+                      std::string(c.option) + ": " + why);
         }
         const SettingSpec& spec = settingSpec(c.name);
-        std::string json = spec.type == SettingType::Vector ? "[" + std::string(c.value) + "]"
+        std::string json = spec.type == SettingType::Vector   ? "[" + std::string(c.value) + "]"
                            : spec.type == SettingType::Choice ? "\"" + std::string(c.value) + "\""
                                                               : std::string(c.value);
-        if (std::string(c.value) != "nan") {  // JSON has no NaN
-            std::string scene = errorOf([&] { parseScene(std::string(R"({"settings": {")") + c.name + "\": " + json + "}}", "s.json"); });
+        if (std::string(c.value) != "nan") { // JSON has no NaN
+            std::string scene = errorOf(
+                [&] { parseScene(std::string(R"({"settings": {")") + c.name + "\": " + json + "}}", "s.json"); });
             std::string pointer = "s.json: /settings/" + std::string(c.name);
-            if (spec.type == SettingType::Vector) {  // JSON names the element
+            if (spec.type == SettingType::Vector) { // JSON names the element
                 EXPECT_EQ(scene, pointer + "/2: 1000000000 is out of range: allowed -100 .. 100 m/s^2");
             } else {
                 EXPECT_EQ(scene, pointer + ": " + why);
             }
         }
-        if (spec.change != SettingChange::Restart && spec.type != SettingType::Choice && std::string(c.value) != "nan") {
+        if (spec.change != SettingChange::Restart && spec.type != SettingType::Choice &&
+            std::string(c.value) != "nan") {
             SettingValue v = spec.type == SettingType::Vector ? SettingValue{.vector = {0.0, 0.0, 1e9}}
                                                               : SettingValue{.number = std::stod(c.value)};
             EXPECT_EQ(editSetting(settings, spec, v).error, std::string(c.name) + ": " + why);
@@ -232,12 +236,14 @@ TEST(SettingsTable, EveryOptionOfTheTableIsOnTheCommandsThatUseIt)
     // --set over the options, the options over a scene.
     test::TempDir dir;
     test::writeFile(dir / "s.json", R"({"settings": {"friction": 0.5, "divisions": 7}, "hair": {"guides": 40}})");
-    SessionOptions o = commandLine("--scene '" + (dir / "s.json").string() + "' --friction 0.25 --set friction=0.75 --guides 41");
+    SessionOptions o =
+        commandLine("--scene '" + (dir / "s.json").string() + "' --friction 0.25 --set friction=0.75 --guides 41");
     EXPECT_FLOAT_EQ(o.settings.sim.gridFriction, 0.75f);
     EXPECT_EQ(o.settings.growth.guides, 41u);
     EXPECT_EQ(o.settings.render.strands.divisions, 7u);
-    EXPECT_NE(errorOf([] { commandLine("--set width=0.001", {.scene = true, .noHair = false, .draws = false}); })
-                  .find("--set width: this command does not use it"),
+    EXPECT_NE(errorOf([] {
+                  commandLine("--set width=0.001", {.scene = true, .noHair = false, .draws = false});
+              }).find("--set width: this command does not use it"),
               std::string::npos);
 }
 
@@ -250,9 +256,9 @@ TEST(SettingsTable, ThePanelShowsEachTypeAsItsControl)
     EXPECT_EQ(panelControl(settingSpec("shading")).kind, Kind::Combo);
     EXPECT_EQ(panelControl(settingSpec("hair_color")).kind, Kind::Color);
     EXPECT_EQ(panelControl(settingSpec("wind")).kind, Kind::Vector);
-    EXPECT_TRUE(panelControl(settingSpec("width")).logarithmic);  // 1e-5 .. 0.01 m
+    EXPECT_TRUE(panelControl(settingSpec("width")).logarithmic); // 1e-5 .. 0.01 m
     EXPECT_FALSE(panelControl(settingSpec("friction")).logarithmic);
-    EXPECT_FALSE(panelControl(settingSpec("guides")).enabled);  // grown at start
+    EXPECT_FALSE(panelControl(settingSpec("guides")).enabled); // grown at start
 }
 
 TEST(SettingsTable, SettingsListsEveryNameWithWhatAChangeNeeds)

@@ -3,11 +3,11 @@
 // away from the light is darker, the deep opacity layers hold the hair and their transmittance
 // falls with depth, the OIT result does not depend on draw order, and a full pool is counted.
 #include "app/headless.h"
-#include "physics/hair_scene.h"
-#include "gpu/frame.h"
-#include "renderer/renderer.h"
 #include "gpu/context.h"
+#include "gpu/frame.h"
 #include "gpu/pipeline.h"
+#include "physics/hair_scene.h"
+#include "renderer/renderer.h"
 #include "shaders/shared/shadows.h"
 #include "small_scene.h"
 #include "test_support.h"
@@ -34,8 +34,8 @@ TEST(ShadowMath, VogelTapsFillTheUnitDiskEvenly)
             inner += glm::length(t) < std::sqrt(0.5f) ? 1u : 0u;
         }
         if (n >= 16) {
-            EXPECT_LT(glm::length(mean), 0.1f);  // centred
-            EXPECT_NEAR(float(inner) / float(n), 0.5f, 0.07f);  // equal area: half the taps inside r^2 = 1/2
+            EXPECT_LT(glm::length(mean), 0.1f);                // centred
+            EXPECT_NEAR(float(inner) / float(n), 0.5f, 0.07f); // equal area: half the taps inside r^2 = 1/2
         }
     }
 }
@@ -55,7 +55,7 @@ TEST(ShadowMath, DeepOpacityGrowsWithDepthAndSumsTheLayers)
             previous = o;
             EXPECT_GE(gpu::domTransmittance(o, 0.9f), 0.0f);
         }
-        EXPECT_EQ(gpu::domOpacity(layers, z0, z0, spacing, count), 0.0f);  // nothing in front of the first hair
+        EXPECT_EQ(gpu::domOpacity(layers, z0, z0, spacing, count), 0.0f); // nothing in front of the first hair
         float all = 0.0f;
         for (uint32_t k = 0; k < count; ++k)
             all += layers[int(k)];
@@ -86,10 +86,10 @@ public:
     LightMapsReadback(const vk::Context& ctx, LightMaps& maps) : maps_(maps)
     {
         size_t texels = size_t(maps.size()) * maps.size();
-        depth_ = ctx.createBuffer({.size = texels * 4, .usage = vk::kTransferDst, .memory = vk::Memory::Readback,
-                                   .name = "test.hair_depth"});
-        opacity_ = ctx.createBuffer({.size = texels * 8, .usage = vk::kTransferDst, .memory = vk::Memory::Readback,
-                                     .name = "test.opacity"});
+        depth_ = ctx.createBuffer(
+            {.size = texels * 4, .usage = vk::kTransferDst, .memory = vk::Memory::Readback, .name = "test.hair_depth"});
+        opacity_ = ctx.createBuffer(
+            {.size = texels * 8, .usage = vk::kTransferDst, .memory = vk::Memory::Readback, .name = "test.opacity"});
     }
     const char* name() const override { return "test.readback"; }
     // The hair's depth as the opacity lookups sample it: the depth image, or the compute path's
@@ -103,12 +103,14 @@ public:
     {
         uint32_t n = maps_.size();
         bool values = maps_.hairDepthValuesUsed();
-        VkBufferImageCopy depth{.imageSubresource = {values ? VK_IMAGE_ASPECT_COLOR_BIT : VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1},
-                                .imageExtent = {n, n, 1}};
+        VkBufferImageCopy depth{
+            .imageSubresource = {values ? VK_IMAGE_ASPECT_COLOR_BIT : VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1},
+            .imageExtent = {n, n, 1}};
         vkCmdCopyImageToBuffer(cmd, values ? maps_.hairDepthValuesImage().get() : maps_.hairDepthImage().get(),
                                VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, depth_, 1, &depth);
         VkBufferImageCopy color{.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageExtent = {n, n, 1}};
-        vkCmdCopyImageToBuffer(cmd, maps_.opacityImage().get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, opacity_, 1, &color);
+        vkCmdCopyImageToBuffer(cmd, maps_.opacityImage().get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, opacity_, 1,
+                               &color);
         vk::transferToHostBarrier(cmd);
     }
     float depth(size_t texel) const
@@ -138,7 +140,7 @@ private:
     vk::Buffer depth_, opacity_;
 };
 
-}  // namespace
+} // namespace
 
 // The light's maps and their use hold for both ways of drawing the strands (the compute path
 // draws the hair's maps in compute too).
@@ -155,7 +157,11 @@ TEST_P(ShadowsBoth, DarkenTheHeadAndNeverBrightenAnything)
     RenderSettings s = smallRenderSettings();
     s.hairRaster = GetParam();
     s.transparency.mode = Transparency::Msaa;
-    Picture lit = [&] { RenderSettings o = s; o.shadows.enabled = false; return renderHair(ctx, scene, o); }();
+    Picture lit = [&] {
+        RenderSettings o = s;
+        o.shadows.enabled = false;
+        return renderHair(ctx, scene, o);
+    }();
     Picture shadowed = renderHair(ctx, scene, s);
     size_t darker = 0, brighter = 0;
     for (size_t i = 0; i < size_t(s.width) * s.height; ++i) {
@@ -179,7 +185,7 @@ TEST_P(ShadowsBoth, TheSideAwayFromTheLightIsDarker)
     s.light.elevationDeg = 10.0f;
     double side[2] = {0.0, 0.0};
     for (int k = 0; k < 2; ++k) {
-        s.light.azimuthDeg = k == 0 ? 90.0f : -90.0f;  // from the image's right (+x), then its left
+        s.light.azimuthDeg = k == 0 ? 90.0f : -90.0f; // from the image's right (+x), then its left
         Picture p = renderHair(ctx, scene, s);
         double right = 0.0, left = 0.0;
         for (uint32_t y = 0; y < s.height; ++y)
@@ -199,7 +205,7 @@ TEST_P(ShadowsBoth, DeepOpacityLayersHoldTheHairAndTransmittanceFallsWithDepth)
     RenderSettings s = smallRenderSettings();
     s.hairRaster = GetParam();
     s.shadows.mapSize = 256;
-    s.light.elevationDeg = 80.0f;  // from above: light crosses the whole thickness of the hair
+    s.light.elevationDeg = 80.0f; // from above: light crosses the whole thickness of the hair
     test::HairRenderer hair(ctx, scene, s);
     Renderer& renderer = hair.renderer;
     Frame frame(ctx, 1);
@@ -214,8 +220,8 @@ TEST_P(ShadowsBoth, DeepOpacityLayersHoldTheHairAndTransmittanceFallsWithDepth)
     frame.waitIdle();
 
     // The same spacing pack() gives the shaders, in light depth units.
-    gpu::FrameParams params = pack(s, camera, {s.width, s.height}, 0.0f,
-                                   LightFit{renderer.sceneBounds(), scene.unitsPerMetre});
+    gpu::FrameParams params =
+        pack(s, camera, {s.width, s.height}, 0.0f, LightFit{renderer.sceneBounds(), scene.unitsPerMetre});
     size_t hairTexels = 0, dense = 0;
     size_t texels = size_t(s.shadows.mapSize) * s.shadows.mapSize;
     for (size_t t = 0; t < texels; ++t) {
@@ -249,7 +255,7 @@ TEST(Oit, TheResultDoesNotDependOnDrawOrder)
     vk::Context ctx(test::validatedOptions());
     HairScene scene = smallHairScene(120);
     RenderSettings s = smallRenderSettings();
-    s.hairRaster = HairRaster::Graphics;  // the linked lists (the compute path's order: TwoRendersAreIdentical)
+    s.hairRaster = HairRaster::Graphics; // the linked lists (the compute path's order: TwoRendersAreIdentical)
     s.transparency.mode = Transparency::Oit;
     s.transparency.oitNodesPerPixel = 64;
     Picture forward = renderHair(ctx, scene, s);
@@ -275,7 +281,7 @@ TEST(Oit, AGroomPastOneDrawsTessellationLimitDrawsEveryStrandInEitherOrder)
     vk::Context ctx(test::validatedOptions());
     HairScene scene = smallHairScene(600);
     RenderSettings s = smallRenderSettings();
-    s.hairRaster = HairRaster::Graphics;  // the tessellation path's draws and its lists
+    s.hairRaster = HairRaster::Graphics; // the tessellation path's draws and its lists
     s.transparency.oitNodesPerPixel = 64;
     s.strands.strandsPerGuide = 5;
     s.strands.divisions = 24;
@@ -284,7 +290,7 @@ TEST(Oit, AGroomPastOneDrawsTessellationLimitDrawsEveryStrandInEitherOrder)
     s.strands.reverseOrder = true;
     Picture reverse = renderHair(ctx, scene, s);
     s.strands.reverseOrder = false;
-    s.strands.maxPatchVertices = 25;  // one strand per patch, five instances
+    s.strands.maxPatchVertices = 25; // one strand per patch, five instances
     Picture single = renderHair(ctx, scene, s);
     EXPECT_GT(forward.oit.fragments, 10000u);
     EXPECT_EQ(forward.oit.overflow, 0u);
@@ -306,7 +312,7 @@ TEST(Oit, AnAutomaticPoolThatOverflowsGrowsAndTheFrameIsDrawnAgain)
     vk::Context ctx(test::validatedOptions());
     HairScene scene = smallHairScene(150);
     RenderSettings s = smallRenderSettings();
-    s.hairRaster = HairRaster::Graphics;  // the linked lists' pool
+    s.hairRaster = HairRaster::Graphics; // the linked lists' pool
     s.transparency.oitNodesPerPixel = 64;
     Picture roomy = renderHair(ctx, scene, s);
     s.transparency.oitNodesPerPixel = 0;
@@ -344,7 +350,8 @@ TEST(Oit, AFullPoolIsCountedAndTheFrameStillCompletes)
     vk::Context ctx(test::validatedOptions());
     HairScene scene = smallHairScene(150);
     RenderSettings s = smallRenderSettings();
-    s.hairRaster = HairRaster::Graphics;  // the linked lists (the compute path's buffer: StrandRaster.AFullFragmentBuffer...)
+    s.hairRaster =
+        HairRaster::Graphics; // the linked lists (the compute path's buffer: StrandRaster.AFullFragmentBuffer...)
     s.transparency.oitNodesPerPixel = 1;
     Picture p = renderHair(ctx, scene, s);
     EXPECT_EQ(p.oit.capacity, uint64_t(s.width) * s.height);

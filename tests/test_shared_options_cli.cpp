@@ -78,7 +78,7 @@ TEST(BadInput, MalformedMeshNamesFileAndLine)
 TEST(BadInput, BrokenHairFileNamesFileAndOffset)
 {
     TempDir dir;
-    writeFile(dir / "broken.tfx", std::string("\x00\x00\x80\x40", 4) + std::string(40, '\x01'));  // 4.0, then garbage
+    writeFile(dir / "broken.tfx", std::string("\x00\x00\x80\x40", 4) + std::string(40, '\x01')); // 4.0, then garbage
     auto r = runWisp("simulate --hair '" + (dir / "broken.tfx").string() + "' --steps 1");
     expectUserError(r, "broken.tfx");
     EXPECT_NE(r.err.find("byte"), std::string::npos) << r.err;
@@ -107,11 +107,15 @@ TEST(BadInput, OutOfRangePhysicsValues)
 
 TEST(BadInput, SphereWindAndOffsetMustBeFinite)
 {
-    expectUserError(runWisp("simulate --steps 1 --sphere nan,0,0,1"), "--sphere: the first value (nan) is not a finite number");
-    expectUserError(runWisp("simulate --steps 1 --sphere 0,0,0,inf"), "--sphere: the fourth value (inf) is not a finite number");
-    expectUserError(runWisp("simulate --steps 1 --wind nan,0,0"), "--wind: the first value (nan) is not a finite number");
+    expectUserError(runWisp("simulate --steps 1 --sphere nan,0,0,1"),
+                    "--sphere: the first value (nan) is not a finite number");
+    expectUserError(runWisp("simulate --steps 1 --sphere 0,0,0,inf"),
+                    "--sphere: the fourth value (inf) is not a finite number");
+    expectUserError(runWisp("simulate --steps 1 --wind nan,0,0"),
+                    "--wind: the first value (nan) is not a finite number");
     expectUserError(runWisp("simulate --steps 1 --wind 1e9,0,0"), "--wind");
-    expectUserError(runWisp("simulate --steps 1 --hair-offset 0,nan,0"), "--hair-offset: the second value (nan) is not a finite number");
+    expectUserError(runWisp("simulate --steps 1 --hair-offset 0,nan,0"),
+                    "--hair-offset: the second value (nan) is not a finite number");
 }
 
 TEST(BadInput, DrawnStrandsPast32BitsAreRefusedBeforeGrowing)
@@ -138,10 +142,12 @@ TEST(BadInput, WorkloadLargerThanTheGpuIsRefusedUpFront)
     auto r = runWisp("simulate --guides 2000000 --vertices 64 --grid 256 --steps 1");
     expectUserError(r, "MiB of GPU memory");
     EXPECT_NE(r.err.find("needs"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("' has " + std::to_string((most + (1u << 20) - 1) >> 20) + " MiB"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("' has " + std::to_string((most + (1u << 20) - 1) >> 20) + " MiB"), std::string::npos)
+        << r.err;
     // A picture of 8192 x 8192 x 8 samples with 8192^2 light maps: about 6 GB of images.
     TempDir dir;
-    r = runWisp("render --width 8192 --height 8192 --samples 8 --set shadow_size=8192 --out '" + (dir / "a.png").string() + "'");
+    r = runWisp("render --width 8192 --height 8192 --samples 8 --set shadow_size=8192 --out '" +
+                (dir / "a.png").string() + "'");
     expectUserError(r, "MiB of GPU memory");
     EXPECT_NE(r.err.find("8192 x 8192 x 8 samples"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
@@ -165,9 +171,10 @@ TEST(BadInput, ComputeRasterLargerThanTheGpuIsRefusedUpFront)
         GTEST_SKIP() << "the device has " << (most >> 20) << " MiB: this workload fits";
     TempDir dir;
     for (const char* path : {"compute", "auto"}) {
-        auto r = runWisp("render --width 64 --height 64 --guides 1000 --set strands_per_guide=4096 --set divisions=1024 "
-                         "--set shadow_size=64 --set hair_raster=" + std::string(path) + " --out '" +
-                         (dir / "a.png").string() + "'");
+        auto r =
+            runWisp("render --width 64 --height 64 --guides 1000 --set strands_per_guide=4096 --set divisions=1024 "
+                    "--set shadow_size=64 --set hair_raster=" +
+                    std::string(path) + " --out '" + (dir / "a.png").string() + "'");
         expectUserError(r, "MiB of GPU memory");
         EXPECT_NE(r.err.find(", compute raster "), std::string::npos) << r.err;
         EXPECT_NE(r.err.find("(4096000 strands x 1024 divisions)"), std::string::npos) << r.err;
@@ -190,8 +197,9 @@ TEST(Cli, EachPartTakesItsOwnParameters)
     WISP_REQUIRE_DATA(front, "tressfx-text/hair_front_16_guide.tfx");
     WISP_REQUIRE_DATA(tail, "tressfx-text/hair_tail_16_guide.tfx");
     WISP_REQUIRE_DATA(head, "tressfx-text/head_max4.obj");
-    auto r = runWisp("simulate --json --steps 2 --head '" + head.string() + "' --hair '" + front.string() + "' --hair '" +
-                     tail.string() + "' --part 1:global=0.5,drag=3 --part hair_front_16_guide:local=0.05");
+    auto r =
+        runWisp("simulate --json --steps 2 --head '" + head.string() + "' --hair '" + front.string() + "' --hair '" +
+                tail.string() + "' --part 1:global=0.5,drag=3 --part hair_front_16_guide:local=0.05");
     ASSERT_EQ(r.status, 0) << r.err;
     nlohmann::json j = nlohmann::json::parse(r.out);
     EXPECT_FLOAT_EQ(j["parts"][1]["global_stiffness"].get<float>(), 0.5f);
@@ -205,8 +213,8 @@ TEST(Cli, RenderLoadedHairInParts)
     WISP_REQUIRE_DATA(front, "tressfx-text/hair_front_16_guide.tfx");
     WISP_REQUIRE_DATA(tail, "tressfx-text/hair_tail_16_guide.tfx");
     WISP_REQUIRE_DATA(head, "tressfx-text/head_max4.obj");
-    auto r = runWisp("--validation simulate --json --steps 20 --head '" + head.string() + "' --hair '" + front.string() +
-                     "' --hair '" + tail.string() + "'");
+    auto r = runWisp("--validation simulate --json --steps 20 --head '" + head.string() + "' --hair '" +
+                     front.string() + "' --hair '" + tail.string() + "'");
     ASSERT_EQ(r.status, 0) << r.err;
     nlohmann::json j = nlohmann::json::parse(r.out);
     EXPECT_EQ(j["strands"], 93 + 474);
@@ -221,9 +229,10 @@ TEST(BadInput, ADegenerateHeadIsRefusedByEveryCommand)
     TempDir dir;
     writeFile(dir / "point.obj", "v 1 2 3\nv 1 2 3\nv 1 2 3\nf 1 2 3\n");
     std::string head = " --head '" + (dir / "point.obj").string() + "'";
-    std::vector<std::string> commands = {"simulate --steps 2 --guides 5",
-                                         "render --guides 5 --width 64 --height 48 --out '" + (dir / "a.png").string() + "'",
-                                         "render --no-hair --width 64 --height 48 --out '" + (dir / "b.png").string() + "'"};
+    std::vector<std::string> commands = {
+        "simulate --steps 2 --guides 5",
+        "render --guides 5 --width 64 --height 48 --out '" + (dir / "a.png").string() + "'",
+        "render --no-hair --width 64 --height 48 --out '" + (dir / "b.png").string() + "'"};
     for (const std::string& command : commands)
         expectUserError(runWisp(command + head), "the mesh is degenerate: all its 3 vertices lie at one point");
     EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));

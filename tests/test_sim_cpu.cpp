@@ -5,9 +5,9 @@
 #include "core/error.h"
 #include "physics/colliders.h"
 #include "physics/cpu_solver.h"
-#include "physics/step_clock.h"
 #include "physics/growth.h"
 #include "physics/hair_scene.h"
+#include "physics/step_clock.h"
 
 #include <gtest/gtest.h>
 
@@ -24,7 +24,7 @@ TEST(SimMath, FtlProjectKeepsTheRestLengthAlongTheLine)
 {
     glm::vec3 p = gpu::ftlProject(glm::vec3(1, 2, 3), glm::vec3(4, 6, 3), 2.5f);
     EXPECT_NEAR(glm::length(p - glm::vec3(1, 2, 3)), 2.5f, 1e-6f);
-    EXPECT_NEAR(p.x, 1.0f + 2.5f * 0.6f, 1e-6f);  // along (3, 4, 0) / 5
+    EXPECT_NEAR(p.x, 1.0f + 2.5f * 0.6f, 1e-6f); // along (3, 4, 0) / 5
     EXPECT_NEAR(p.y, 2.0f + 2.5f * 0.8f, 1e-6f);
 }
 
@@ -54,13 +54,13 @@ TEST(SimMath, TrilinearWeightsSumToOneAndInterpolate)
         x += gpu::cornerWeight(f, k) * float(gpu::cornerOffset(k).x);
     }
     EXPECT_NEAR(sum, 1.0f, 1e-6f);
-    EXPECT_NEAR(x, 0.2f, 1e-6f);  // interpolating the corner coordinate gives the point back
+    EXPECT_NEAR(x, 0.2f, 1e-6f); // interpolating the corner coordinate gives the point back
     gpu::GridCell c = gpu::gridCell(glm::vec3(1.3f, -0.5f, 2.0f), glm::vec3(0.0f), 0.5f);
     EXPECT_EQ(c.base, glm::ivec3(2, -1, 4));
     EXPECT_NEAR(c.frac.x, 0.6f, 1e-5f);
     EXPECT_FALSE(gpu::cellInside(c.base, 8));
     EXPECT_TRUE(gpu::cellInside(glm::ivec3(6, 0, 6), 8));
-    EXPECT_FALSE(gpu::cellInside(glm::ivec3(7, 0, 0), 8));  // corner 8 would be outside
+    EXPECT_FALSE(gpu::cellInside(glm::ivec3(7, 0, 0), 8)); // corner 8 would be outside
 }
 
 TEST(SimMath, SphereAndEllipsoidContacts)
@@ -101,7 +101,7 @@ TEST(SimMath, WindActsAcrossTheStrandOnly)
     }
     EXPECT_GE(lo, 0.15f);
     EXPECT_LE(hi, 1.25f);
-    EXPECT_GT(hi - lo, 0.3f);  // it does vary
+    EXPECT_GT(hi - lo, 0.3f); // it does vary
     // The noise is smooth: small steps in time change it little.
     EXPECT_NEAR(gpu::valueNoise(3.50f, 9), gpu::valueNoise(3.51f, 9), 0.03f);
 }
@@ -129,7 +129,7 @@ TEST(SimMath, FixedPointScaleCannotOverflow)
         for (float speed : {0.5f, 20.0f, 2000.0f}) {
             double worst = double(vertices) * std::max(1.0, double(speed)) * double(gridFixedScale(vertices, speed));
             EXPECT_LE(worst, std::ldexp(1.0, 62) * 1.0001);
-            EXPECT_GT(worst, std::ldexp(1.0, 61));  // and uses most of the range
+            EXPECT_GT(worst, std::ldexp(1.0, 61)); // and uses most of the range
         }
 }
 
@@ -166,7 +166,7 @@ OneStep oneStepOfAStraightStrand(float ftlDamping)
     return o;
 }
 
-}  // namespace
+} // namespace
 
 TEST(CpuReference, OneStepOfOneSegmentByHand)
 {
@@ -211,7 +211,8 @@ TEST(CpuReference, AStrandPinnedAtBothEndsKeepsEverySegment)
         for (int i = 0; i < 12; ++i) {
             float u = float(i) / 11.0f;
             // From (0, 0.1, 0) to (0.08, 0.1, 0), sagging 0.05 (arc 1.1 to 1.6 times the gap).
-            points.push_back(glm::vec3(0.08f * u, 0.1f - (0.03f + 0.01f * float(s)) * 4.0f * u * (1.0f - u), 0.01f * float(s)));
+            points.push_back(
+                glm::vec3(0.08f * u, 0.1f - (0.03f + 0.01f * float(s)) * 4.0f * u * (1.0f - u), 0.01f * float(s)));
         }
         strands.add(points, 0, s == 2 ? 2u : 1u, true);
     }
@@ -241,7 +242,8 @@ TEST(CpuReference, AStrandPinnedAtBothEndsKeepsEverySegment)
     EXPECT_EQ(cpu.state().nonfiniteResets, 0u);
     // The tip stays where the head puts it.
     for (size_t s = 0; s < 3; ++s)
-        EXPECT_NEAR(glm::length(glm::vec3(cpu.state().positions[s * 12 + 11]) - strands.rest[s * 12 + 11]), 0.0f, 1e-6f);
+        EXPECT_NEAR(glm::length(glm::vec3(cpu.state().positions[s * 12 + 11]) - strands.rest[s * 12 + 11]), 0.0f,
+                    1e-6f);
 }
 
 TEST(CpuReference, GrownGroomKeepsItsInvariantsUnderEveryTerm)
@@ -292,7 +294,7 @@ Mesh twoTriangles()
     return m;
 }
 
-}  // namespace
+} // namespace
 
 TEST(RootSampling, AreaWeightedAndDeterministic)
 {
@@ -301,7 +303,7 @@ TEST(RootSampling, AreaWeightedAndDeterministic)
     std::vector<RootSample> b = sampleRoots(m, {0, 1}, 20000, false, 7);
     size_t onSmall = 0;
     for (size_t i = 0; i < a.size(); ++i) {
-        ASSERT_EQ(a[i].position, b[i].position);  // same seed, same roots
+        ASSERT_EQ(a[i].position, b[i].position); // same seed, same roots
         onSmall += a[i].triangle == 0 ? 1 : 0;
         EXPECT_NEAR(a[i].normal.z, 1.0f, 1e-6f);
     }
@@ -318,7 +320,7 @@ TEST(RootSampling, AreaWeightedAndDeterministic)
     mean /= float(n);
     EXPECT_NEAR(mean.x, 11.0f, 0.03f);
     EXPECT_NEAR(mean.y, 1.0f, 0.03f);
-    EXPECT_NE(sampleRoots(m, {0, 1}, 10, false, 8)[0].position, a[0].position);  // another seed differs
+    EXPECT_NE(sampleRoots(m, {0, 1}, 10, false, 8)[0].position, a[0].position); // another seed differs
 }
 
 TEST(RootSampling, PoissonDiskKeepsRootsApart)
@@ -351,8 +353,8 @@ TEST(StepClock, FramesTakeRoundedStepsAndRealTimeIsSpentInWholeSteps)
     StepClock clock(120.0f);
     EXPECT_EQ(clock.stepsPerFrame(30.0f), 4u);
     EXPECT_EQ(clock.stepsPerFrame(60.0f), 2u);
-    EXPECT_EQ(clock.stepsPerFrame(1000.0f), 1u);  // at least one
-    EXPECT_EQ(clock.stepsPerFrame(50.0f), 2u);    // round(2.4)
+    EXPECT_EQ(clock.stepsPerFrame(1000.0f), 1u); // at least one
+    EXPECT_EQ(clock.stepsPerFrame(50.0f), 2u);   // round(2.4)
     // 26 ms of real time: three steps of 8.33 ms, the rest carried to the next frame.
     EXPECT_EQ(clock.stepsDue(0.026, 8), 3u);
     EXPECT_EQ(clock.stepsDue(0.005, 8), 0u);
@@ -364,7 +366,7 @@ TEST(StepClock, FramesTakeRoundedStepsAndRealTimeIsSpentInWholeSteps)
     EXPECT_DOUBLE_EQ(clock.seconds(), 2.0);
     EXPECT_FLOAT_EQ(clock.stepStart(240), 2.0f);
     EXPECT_DOUBLE_EQ(clock.stepEnd(239), 2.0);
-    clock.setStepHz(60.0f);  // time runs on at the new rate
+    clock.setStepHz(60.0f); // time runs on at the new rate
     EXPECT_DOUBLE_EQ(clock.seconds(), 2.0);
     EXPECT_EQ(clock.stepsDone(), 120u);
 }

@@ -45,7 +45,7 @@ TEST(Cli, DeviceLostDuringSimulateExitsWithItsOwnStatus)
     for (int submission : {1, 20}) {
         auto r = runWisp("--validation simulate --guides 60 --steps 200 --sample-every 10 --json", lostAt(submission));
         expectDeviceLost(r, "simulate");
-        EXPECT_TRUE(r.out.empty()) << r.out;  // no metrics of an unfinished run
+        EXPECT_TRUE(r.out.empty()) << r.out; // no metrics of an unfinished run
     }
 }
 

@@ -4,17 +4,17 @@
 // against the tessellation path on the same scenes (how much the hair changes each 8 x 8 block
 // correlates, and adds up to about the same), determinism, and a fragment buffer that overflows,
 // is counted and grows.
+#include "app/hair_source.h"
 #include "app/headless.h"
 #include "app/workload.h"
 #include "gpu/frame.h"
 #include "gpu/pipeline.h"
 #include "physics/gpu_solver.h"
 #include "physics/hair_scene.h"
+#include "renderer/mesh_raster_reference.h"
 #include "renderer/renderer.h"
 #include "renderer/strand_raster.h"
-#include "renderer/mesh_raster_reference.h"
 #include "renderer/strand_raster_reference.h"
-#include "app/hair_source.h"
 #include "small_scene.h"
 #include "test_support.h"
 
@@ -33,14 +33,13 @@ using namespace wisp;
 namespace {
 
 using Buffer = StrandRaster::Buffer;
-struct uvec2Fragment {  // as strands.write stores a fragment
-    uint32_t depth;     // float bits
+struct uvec2Fragment { // as strands.write stores a fragment
+    uint32_t depth;    // float bits
     uint32_t color;
 };
-constexpr Buffer kReadBuffers[] = {Buffer::Curves,        Buffer::Vertices,  Buffer::Colors,
-                                   Buffer::LightVertices, Buffer::LightColors, Buffer::Offsets,
-                                   Buffer::Fragments,     Buffer::Counters,  Buffer::LightDepth,
-                                   Buffer::LightOpacity};
+constexpr Buffer kReadBuffers[] = {Buffer::Curves,      Buffer::Vertices,    Buffer::Colors,    Buffer::LightVertices,
+                                   Buffer::LightColors, Buffer::Offsets,     Buffer::Fragments, Buffer::Counters,
+                                   Buffer::LightDepth,  Buffer::LightOpacity};
 
 // Copies the compute path's buffers, its hair image, the compute meshes' samples (depth and
 // triangle, one sample a pixel) and their colour to the host at the end of the frame that made them.
@@ -50,17 +49,27 @@ public:
         : raster_(raster), meshes_(meshes), extent_(target.extent())
     {
         for (Buffer b : kReadBuffers)
-            copies_[b] = ctx.createBuffer({.size = raster.buffer(b).size(), .usage = vk::kTransferDst,
-                                           .memory = vk::Memory::Readback, .name = "test.raster.readback"});
+            copies_[b] = ctx.createBuffer({.size = raster.buffer(b).size(),
+                                           .usage = vk::kTransferDst,
+                                           .memory = vk::Memory::Readback,
+                                           .name = "test.raster.readback"});
         VkExtent2D e = target.extent();
-        color_ = ctx.createBuffer({.size = uint64_t(e.width) * e.height * 8, .usage = vk::kTransferDst,
-                                   .memory = vk::Memory::Readback, .name = "test.raster.color"});
-        depth_ = ctx.createBuffer({.size = uint64_t(e.width) * e.height * 4, .usage = vk::kTransferDst,
-                                   .memory = vk::Memory::Readback, .name = "test.raster.depth"});
-        ids_ = ctx.createBuffer({.size = uint64_t(e.width) * e.height * 4, .usage = vk::kTransferDst,
-                                 .memory = vk::Memory::Readback, .name = "test.raster.ids"});
-        meshColor_ = ctx.createBuffer({.size = uint64_t(e.width) * e.height * 8, .usage = vk::kTransferDst,
-                                       .memory = vk::Memory::Readback, .name = "test.raster.mesh_color"});
+        color_ = ctx.createBuffer({.size = uint64_t(e.width) * e.height * 8,
+                                   .usage = vk::kTransferDst,
+                                   .memory = vk::Memory::Readback,
+                                   .name = "test.raster.color"});
+        depth_ = ctx.createBuffer({.size = uint64_t(e.width) * e.height * 4,
+                                   .usage = vk::kTransferDst,
+                                   .memory = vk::Memory::Readback,
+                                   .name = "test.raster.depth"});
+        ids_ = ctx.createBuffer({.size = uint64_t(e.width) * e.height * 4,
+                                 .usage = vk::kTransferDst,
+                                 .memory = vk::Memory::Readback,
+                                 .name = "test.raster.ids"});
+        meshColor_ = ctx.createBuffer({.size = uint64_t(e.width) * e.height * 8,
+                                       .usage = vk::kTransferDst,
+                                       .memory = vk::Memory::Readback,
+                                       .name = "test.raster.mesh_color"});
     }
     const char* name() const override { return "test.readback"; }
     void declare(PassIo& io) override
@@ -79,16 +88,18 @@ public:
             vkCmdCopyBuffer(cmd, raster_.buffer(b), copies_[b], 1, &region);
         }
         VkExtent2D e = extent_;
-        VkBufferImageCopy color{.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageExtent = {e.width, e.height, 1}};
-        vkCmdCopyImageToBuffer(cmd, raster_.colorImage().get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, color_, 1, &color);
-        vkCmdCopyImageToBuffer(cmd, meshes_.colorImage().get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, meshColor_, 1, &color);
+        VkBufferImageCopy color{.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                                .imageExtent = {e.width, e.height, 1}};
+        vkCmdCopyImageToBuffer(cmd, raster_.colorImage().get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, color_, 1,
+                               &color);
+        vkCmdCopyImageToBuffer(cmd, meshes_.colorImage().get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, meshColor_, 1,
+                               &color);
         VkBufferCopy samples{0, 0, uint64_t(e.width) * e.height * 4};
         vkCmdCopyBuffer(cmd, meshes_.depthBuffer(), depth_, 1, &samples);
         vkCmdCopyBuffer(cmd, meshes_.idBuffer(), ids_, 1, &samples);
         vk::transferToHostBarrier(cmd);
     }
-    template <typename T>
-    std::vector<T> read(Buffer b, size_t count) const
+    template <typename T> std::vector<T> read(Buffer b, size_t count) const
     {
         std::vector<T> out(count);
         std::memcpy(out.data(), copies_.at(b).mapped(), count * sizeof(T));
@@ -137,7 +148,7 @@ struct RasterFrame {
     std::vector<glm::vec3> guides;
     std::vector<glm::uvec4> triangles;
     gpu::MeshRasterPush meshes{};
-    reference::MeshObject head, sphere;  // as the renderer uploaded them
+    reference::MeshObject head, sphere; // as the renderer uploaded them
 
     reference::StrandVertices strands(bool fromLight) const
     {
@@ -151,7 +162,7 @@ struct RasterFrame {
 RasterFrame renderRasterFrame(const vk::Context& ctx, const HairScene& scene, RenderSettings s)
 {
     s.hairRaster = HairRaster::Compute;
-    s.samples = 1;  // the meshes' depth read back as one sample per pixel
+    s.samples = 1; // the meshes' depth read back as one sample per pixel
     test::HairRenderer hair(ctx, scene, s);
     Renderer& renderer = hair.renderer;
     GpuSolver& solver = hair.solver;
@@ -160,7 +171,8 @@ RasterFrame renderRasterFrame(const vk::Context& ctx, const HairScene& scene, Re
     FrameContext& fc = frame.begin(renderer.transientImages());
     renderer.prepare(fc, camera, 0.0f);
     RasterFrame out;
-    out.readback = std::make_unique<RasterReadback>(ctx, *renderer.strandRaster(), *renderer.meshRaster(), renderer.target());
+    out.readback =
+        std::make_unique<RasterReadback>(ctx, *renderer.strandRaster(), *renderer.meshRaster(), renderer.target());
     std::vector<Pass*> passes = renderer.passes();
     passes.push_back(out.readback.get());
     frame.run(fc, passes);
@@ -211,7 +223,7 @@ void expectSameStrands(const reference::StrandVertices& gpu, const reference::St
     EXPECT_LE(worstColor, 1) << "packed colours and opacities differ by at most their last bit";
 }
 
-}  // namespace
+} // namespace
 
 TEST(StrandRaster, CameraKernelsMatchTheirCpuTwin)
 {
@@ -222,7 +234,7 @@ TEST(StrandRaster, CameraKernelsMatchTheirCpuTwin)
             SCOPED_TRACE(interpolation == Interpolation::Single ? "single" : "multi");
             SCOPED_TRACE(model == ShadingModel::Karis ? "karis" : "kajiya");
             RenderSettings s = test::smallRenderSettings();
-            s.shadows.enabled = false;  // the twin shades with the light unoccluded
+            s.shadows.enabled = false; // the twin shades with the light unoccluded
             s.strands.interpolation = interpolation;
             s.hair.model = model;
             RasterFrame f = renderRasterFrame(ctx, scene, s);
@@ -240,7 +252,8 @@ TEST(StrandRaster, CameraKernelsMatchTheirCpuTwin)
 
             // strands.generate
             reference::StrandVertices gpuStrands = f.strands(false);
-            expectSameStrands(gpuStrands, reference::generateStrands(f.camera, f.frame, f.sim, f.guides, f.triangles), true);
+            expectSameStrands(gpuStrands, reference::generateStrands(f.camera, f.frame, f.sim, f.guides, f.triangles),
+                              true);
 
             // strands.depth, strands.count, the scan and strands.write, from the GPU's own vertices
             reference::SegmentCounts segments;
@@ -272,7 +285,7 @@ TEST(StrandRaster, CameraKernelsMatchTheirCpuTwin)
                     continue;
                 }
                 std::vector<reference::Fragment> a = gpuPixels[p], b = cpu[p];
-                std::sort(a.begin(), a.end());  // written in any order by the atomics
+                std::sort(a.begin(), a.end()); // written in any order by the atomics
                 std::sort(b.begin(), b.end());
                 for (size_t i = 0; i < a.size(); ++i) {
                     worstDepth = std::max(worstDepth, double(std::abs(a[i].depth - b[i].depth)));
@@ -349,7 +362,8 @@ TEST(MeshRaster, KernelsMatchTheirCpuTwin)
             worst = std::max(worst, d);
             sum += d;
             if (ids[p] == gpu::kNoMesh)
-                worstBackground = std::max(worstBackground, std::abs(double(color[p][ch]) - double(f.meshes.background[ch])));
+                worstBackground =
+                    std::max(worstBackground, std::abs(double(color[p][ch]) - double(f.meshes.background[ch])));
         }
     EXPECT_LT(worst, 4e-3);
     EXPECT_LT(sum / double(pixels * 3), 2e-4);
@@ -443,7 +457,7 @@ std::vector<double> hairBlocks(const Picture& hair, const Picture& bare)
 
 struct Agreement {
     double correlation = 0.0;
-    double totalRatio = 0.0;  // compute's total change over graphics'
+    double totalRatio = 0.0; // compute's total change over graphics'
 };
 
 Agreement agreement(const Picture& graphics, const Picture& compute, const Picture& bare)
@@ -478,7 +492,7 @@ Picture renderWith(const vk::Context& ctx, const HairScene& scene, RenderSetting
     return test::renderHair(ctx, scene, s);
 }
 
-}  // namespace
+} // namespace
 
 class RasterEquivalence : public ::testing::TestWithParam<EquivalenceCase> {};
 
@@ -503,7 +517,7 @@ TEST_P(RasterEquivalence, TheComputePathDrawsWhatTheTessellationPathDraws)
     c.adjust(s);
     Picture graphics = renderWith(ctx, scene, s, HairRaster::Graphics);
     Picture compute = renderWith(ctx, scene, s, HairRaster::Compute);
-    Picture bare = renderPicture(ctx, scene.head, s);  // the same frame without hair
+    Picture bare = renderPicture(ctx, scene.head, s); // the same frame without hair
     Agreement a = agreement(graphics, compute, bare);
     std::printf("[ %s ] block correlation %.4f, total ratio %.4f\n", c.name, a.correlation, a.totalRatio);
     EXPECT_GE(a.correlation, 0.95);
@@ -513,18 +527,19 @@ TEST_P(RasterEquivalence, TheComputePathDrawsWhatTheTessellationPathDraws)
 
 INSTANTIATE_TEST_SUITE_P(
     Scenes, RasterEquivalence,
-    ::testing::Values(EquivalenceCase{"grown", [](RenderSettings&) {}},
-                      EquivalenceCase{"single", [](RenderSettings& s) { s.strands.interpolation = Interpolation::Single; }},
-                      EquivalenceCase{"multi", [](RenderSettings& s) { s.strands.interpolation = Interpolation::Multi; }},
-                      EquivalenceCase{"kajiya", [](RenderSettings& s) { s.hair.model = ShadingModel::Kajiya; }},
-                      EquivalenceCase{"lut", [](RenderSettings& s) { s.hair.model = ShadingModel::Lut; }},
-                      EquivalenceCase{"backlit",
-                                      [](RenderSettings& s) {
-                                          s.light.azimuthDeg = 160.0f;
-                                          s.light.elevationDeg = 20.0f;
-                                          applyHairPreset(s.hair, "blonde");
-                                      }},
-                      EquivalenceCase{"loaded", [](RenderSettings&) {}, true}),
+    ::testing::Values(
+        EquivalenceCase{"grown", [](RenderSettings&) {}},
+        EquivalenceCase{"single", [](RenderSettings& s) { s.strands.interpolation = Interpolation::Single; }},
+        EquivalenceCase{"multi", [](RenderSettings& s) { s.strands.interpolation = Interpolation::Multi; }},
+        EquivalenceCase{"kajiya", [](RenderSettings& s) { s.hair.model = ShadingModel::Kajiya; }},
+        EquivalenceCase{"lut", [](RenderSettings& s) { s.hair.model = ShadingModel::Lut; }},
+        EquivalenceCase{"backlit",
+                        [](RenderSettings& s) {
+                            s.light.azimuthDeg = 160.0f;
+                            s.light.elevationDeg = 20.0f;
+                            applyHairPreset(s.hair, "blonde");
+                        }},
+        EquivalenceCase{"loaded", [](RenderSettings&) {}, true}),
     [](const ::testing::TestParamInfo<EquivalenceCase>& param) { return std::string(param.param.name); });
 
 TEST(StrandRaster, TwoRendersAreIdentical)
@@ -568,7 +583,6 @@ TEST(StrandRaster, AFullFragmentBufferIsCountedAndGrowsForTheNextFrame)
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 
-
 TEST(StrandRaster, DeviceBytesIsWhatItAllocates)
 {
     // The up-front estimate (StrandRaster::deviceBytes, which the workload's memory check sums)
@@ -607,8 +621,10 @@ TEST(StrandRaster, DeviceBytesIsWhatItAllocates)
         EXPECT_EQ(meshes, MeshRaster::deviceBytes({s.width, s.height}, uint32_t(renderer.target().samples())));
         EXPECT_EQ(raster.fragmentCapacity(), picture.raster.capacity);
         // The workload's check counts the same from the settings alone.
-        Workload w{.guides = scene.strands.strandCount(), .verticesPerStrand = scene.strands.verticesPerStrand,
-                   .sim = SimSettings{}, .render = &s};
+        Workload w{.guides = scene.strands.strandCount(),
+                   .verticesPerStrand = scene.strands.verticesPerStrand,
+                   .sim = SimSettings{},
+                   .render = &s};
         EXPECT_EQ(estimateGpuMemory(w, ctx.report()).raster, raster.allocatedBytes() + meshes) << "shadows " << shadows;
     }
     EXPECT_EQ(ctx.validationMessages(), 0u);

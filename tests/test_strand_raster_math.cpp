@@ -1,8 +1,8 @@
 // tests/test_strand_raster_math.cpp: the compute strand renderer's shared math on the CPU
 // (shaders/shared/strand_raster.h): analytic coverage against exact polygon areas, seamless joints,
-// the row spans holding everything covered, and the per-pixel fragment lists (the nearest k sorted, the rest blended) against a plain sort, in any arrival order.
-// Also the compute meshes' triangles (shaders/shared/mesh_raster.h): coverage and depth against
-// ray casts, and fans without gaps.
+// the row spans holding everything covered, and the per-pixel fragment lists (the nearest k sorted, the rest blended)
+// against a plain sort, in any arrival order. Also the compute meshes' triangles (shaders/shared/mesh_raster.h):
+// coverage and depth against ray casts, and fans without gaps.
 #include "shaders/shared/mesh_raster.h"
 #include "shaders/shared/strand_raster.h"
 
@@ -14,8 +14,6 @@
 #include <numeric>
 #include <random>
 #include <vector>
-
-
 
 namespace {
 
@@ -66,7 +64,7 @@ float coverage(glm::vec2 a, glm::vec2 b, float h, int x, int y)
     return gpu::segmentCoverage(gpu::makeRasterSegment(a, b, h, h), glm::vec2(float(x), float(y)) + 0.5f).x;
 }
 
-}  // namespace
+} // namespace
 
 TEST(RasterCoverage, AxisAlignedRibbonsAreExact)
 {
@@ -91,8 +89,8 @@ TEST(RasterCoverage, EveryAngleIsExactAcrossTheRibbonAndSumsToItsArea)
     for (int trial = 0; trial < 60; ++trial) {
         float angle = 6.2831853f * unit(rng);
         float len = 4.0f + 20.0f * unit(rng);
-        float h = trial % 3 == 0 ? 0.04f + 0.2f * unit(rng) : 0.3f + 2.0f * unit(rng);  // thin and wide strands
-        glm::vec2 a(32.0f + unit(rng), 32.0f + unit(rng));  // the whole ribbon inside the 64² pixels summed
+        float h = trial % 3 == 0 ? 0.04f + 0.2f * unit(rng) : 0.3f + 2.0f * unit(rng); // thin and wide strands
+        glm::vec2 a(32.0f + unit(rng), 32.0f + unit(rng)); // the whole ribbon inside the 64² pixels summed
         glm::vec2 b = a + len * glm::vec2(std::cos(angle), std::sin(angle));
         std::vector<glm::dvec2> rect = ribbon(a, b, h);
         double sum = 0.0, worstInside = 0.0;
@@ -133,16 +131,17 @@ TEST(RasterReach, RowSpansHoldEveryCoveredPixelAndLittleElse)
     for (int trial = 0; trial < 400; ++trial) {
         glm::vec2 a(pos(rng), pos(rng)), b(pos(rng), pos(rng));
         if (trial % 5 == 0)
-            b.y = a.y;  // horizontal
+            b.y = a.y; // horizontal
         if (trial % 6 == 0)
-            b.x = a.x;  // vertical
+            b.x = a.x; // vertical
         if (trial % 7 == 0)
-            b = a + glm::vec2(0.3f, 0.2f);  // shorter than a pixel
+            b = a + glm::vec2(0.3f, 0.2f); // shorter than a pixel
         gpu::RasterSegment s = gpu::makeRasterSegment(a, b, width(rng), width(rng));
         float reach = gpu::ribbonReach(s);
         for (int y = -8; y < 28; ++y) {
             glm::vec2 span = gpu::ribbonRowSpan(s, float(y) + 0.5f);
-            bool rowReached = float(y) + 0.5f >= std::min(a.y, b.y) - reach && float(y) + 0.5f <= std::max(a.y, b.y) + reach;
+            bool rowReached =
+                float(y) + 0.5f >= std::min(a.y, b.y) - reach && float(y) + 0.5f <= std::max(a.y, b.y) + reach;
             for (int x = -8; x < 28; ++x) {
                 glm::vec2 centre(float(x) + 0.5f, float(y) + 0.5f);
                 bool inSpan = span.x <= centre.x && centre.x <= span.y;
@@ -150,8 +149,10 @@ TEST(RasterReach, RowSpansHoldEveryCoveredPixelAndLittleElse)
                 if (gpu::segmentCoverage(s, centre).x <= 0.0f)
                     continue;
                 ++covered;
-                EXPECT_TRUE(inSpan) << "trial " << trial << ": covered pixel " << x << ", " << y << " outside its row's span";
-                EXPECT_TRUE(rowReached) << "trial " << trial << ": covered pixel " << x << ", " << y << " beyond the reach";
+                EXPECT_TRUE(inSpan) << "trial " << trial << ": covered pixel " << x << ", " << y
+                                    << " outside its row's span";
+                EXPECT_TRUE(rowReached) << "trial " << trial << ": covered pixel " << x << ", " << y
+                                        << " beyond the reach";
             }
         }
     }
@@ -172,7 +173,7 @@ TEST(RasterWalk, ClumpOrderTakesEverySegmentOnce)
                 uint32_t segment = gpu::clumpOrderedSegment(t, divisions, strandsPerGuide);
                 ASSERT_LT(segment, count) << "thread " << t;
                 ++taken[segment];
-                if (t + 1 < count && (t + 1) % strandsPerGuide != 0) {  // the next strand, the same segment
+                if (t + 1 < count && (t + 1) % strandsPerGuide != 0) { // the next strand, the same segment
                     EXPECT_EQ(gpu::clumpOrderedSegment(t + 1, divisions, strandsPerGuide), segment + divisions);
                 }
             }
@@ -194,7 +195,7 @@ TEST(RasterWalk, PixelBoundsHoldEveryCoveredPixelAndNoFragmentIsNearerThanItsSeg
     size_t covered = 0;
     for (int trial = 0; trial < 400; ++trial) {
         glm::vec2 a(unit(rng) * 80.0f - 8.0f, unit(rng) * 64.0f - 8.0f);
-        float length = trial % 4 == 0 ? unit(rng) * 0.5f : unit(rng) * 20.0f;  // some shorter than a pixel
+        float length = trial % 4 == 0 ? unit(rng) * 0.5f : unit(rng) * 20.0f; // some shorter than a pixel
         float angle = unit(rng) * 6.2831853f;
         glm::vec2 b = a + length * glm::vec2(std::cos(angle), std::sin(angle));
         float ha = trial % 3 == 0 ? unit(rng) * 3.0f : unit(rng) * 0.3f, hb = unit(rng) * 0.3f;
@@ -228,7 +229,7 @@ TEST(RasterWalk, TheLightsWalkReachesEveryTexelItsRibbonHolds)
         for (int trial = 0; trial < 300; ++trial) {
             glm::vec2 a = glm::vec2(origin) + glm::vec2(unit(rng) * 40.0f + 4.0f, unit(rng) * 40.0f + 4.0f);
             float length = trial % 4 == 0 ? unit(rng) * 0.5f : unit(rng) * 20.0f;
-            float angle = trial % 5 == 0 ? float(trial % 8) * 0.7853982f : unit(rng) * 6.2831853f;  // some on the axes
+            float angle = trial % 5 == 0 ? float(trial % 8) * 0.7853982f : unit(rng) * 6.2831853f; // some on the axes
             glm::vec2 b = a + length * glm::vec2(std::cos(angle), std::sin(angle));
             float ha = trial % 3 == 0 ? unit(rng) * 3.0f : unit(rng) * 0.6f, hb = unit(rng) * 0.6f;
             gpu::RasterSegment s = gpu::makeRasterSegment(a, b, ha, hb);
@@ -282,8 +283,9 @@ TEST(RasterFragments, TheNearestKAreSortedAndTheRestBlendedWhateverTheOrder)
 
             // The definition, in double precision: sort, composite the nearest k front to back,
             // then the rest as one layer (alpha-weighted mean colour, 1 - prod(1 - alpha)).
-            std::sort(fragments.begin(), fragments.end(),
-                      [](const Fragment& a, const Fragment& b) { return gpu::fragmentFarther(b.depth, b.color, a.depth, a.color); });
+            std::sort(fragments.begin(), fragments.end(), [](const Fragment& a, const Fragment& b) {
+                return gpu::fragmentFarther(b.depth, b.color, a.depth, a.color);
+            });
             glm::dvec3 color(0.0);
             double transmittance = 1.0, tailWeight = 0.0, tailClear = 1.0;
             glm::dvec3 tailColor(0.0);
@@ -341,8 +343,8 @@ TEST(RasterFragments, TheUnguardedTailEqualsTheGuardedOneBelowItsBound)
     // Past it the guard holds the sums at the saturation point.
     gpu::PixelFragments f = gpu::emptyPixelFragments();
     f.tailClear = gpu::kTailSaturate - 10u;
-    gpu::insertFragmentSummed(f, 1, 0.5f, gpu::packFragmentColor(glm::vec3(1.0f), 1.0f), true);  // kept
-    gpu::insertFragmentSummed(f, 1, 0.6f, gpu::packFragmentColor(glm::vec3(1.0f), 1.0f), true);  // to the tail
+    gpu::insertFragmentSummed(f, 1, 0.5f, gpu::packFragmentColor(glm::vec3(1.0f), 1.0f), true); // kept
+    gpu::insertFragmentSummed(f, 1, 0.6f, gpu::packFragmentColor(glm::vec3(1.0f), 1.0f), true); // to the tail
     EXPECT_EQ(f.tailClear, gpu::kTailSaturate);
 }
 
@@ -363,7 +365,7 @@ glm::mat4 testProjection(float aspect)
     return p;
 }
 
-}  // namespace
+} // namespace
 
 TEST(MeshRasterMath, CoverageAndDepthFollowTheTriangle)
 {
@@ -382,8 +384,9 @@ TEST(MeshRasterMath, CoverageAndDepthFollowTheTriangle)
         glm::vec3 v[3];
         for (glm::vec3& p : v)
             p = {xy(rng), xy(rng), z(rng)};
-        gpu::MeshTriangle t = gpu::setupMeshTriangle(projection * glm::vec4(v[0], 1.0f), projection * glm::vec4(v[1], 1.0f),
-                                                     projection * glm::vec4(v[2], 1.0f), size);
+        gpu::MeshTriangle t =
+            gpu::setupMeshTriangle(projection * glm::vec4(v[0], 1.0f), projection * glm::vec4(v[1], 1.0f),
+                                   projection * glm::vec4(v[2], 1.0f), size);
         if (t.det == 0.0f)
             continue;
         for (int y = 0; y < int(size.y); ++y)
@@ -441,7 +444,9 @@ TEST(MeshRasterMath, SharedEdgesLeaveNoGapAndNoOverlap)
     std::vector<glm::vec4> rim;
     for (int i = 0; i < n; ++i) {
         float a = 6.2831853f * float(i) / float(n);
-        rim.push_back(projection * glm::vec4(centre + glm::vec3(1.7f * std::cos(a), 1.2f * std::sin(a), 0.3f * std::sin(3.0f * a)), 1.0f));
+        rim.push_back(
+            projection *
+            glm::vec4(centre + glm::vec3(1.7f * std::cos(a), 1.2f * std::sin(a), 0.3f * std::sin(3.0f * a)), 1.0f));
     }
     glm::vec4 c = projection * glm::vec4(centre, 1.0f);
     auto screen = [&](glm::vec4 q) { return (glm::vec2(q) / q.w * 0.5f + 0.5f) * size; };
@@ -450,7 +455,7 @@ TEST(MeshRasterMath, SharedEdgesLeaveNoGapAndNoOverlap)
     auto wellInside = [&](glm::vec2 p) {
         for (int i = 0; i < n; ++i) {
             glm::vec2 a = screen(c), b = screen(rim[size_t(i)]), d = screen(rim[size_t((i + 1) % n)]);
-            auto side = [&](glm::vec2 u, glm::vec2 v) {  // signed distance of p from the edge u -> v
+            auto side = [&](glm::vec2 u, glm::vec2 v) { // signed distance of p from the edge u -> v
                 glm::vec2 e = v - u;
                 return (e.x * (p.y - u.y) - e.y * (p.x - u.x)) / glm::length(e);
             };

@@ -14,7 +14,7 @@ namespace {
 
 std::atomic<size_t> largest{0};
 
-}  // namespace
+} // namespace
 
 // The replaceable global allocation functions, recording the largest request (the aligned and
 // array forms forward to these).
@@ -103,4 +103,4 @@ std::filesystem::path sharedData(const std::string& relative)
     return std::filesystem::exists(p, ec) ? p : std::filesystem::path();
 }
 
-}  // namespace wisp::test
+} // namespace wisp::test

@@ -45,11 +45,12 @@ std::filesystem::path sharedData(const std::string& relative);
 void resetLargestAllocation();
 size_t largestAllocation();
 
-}  // namespace wisp::test
+} // namespace wisp::test
 
 // Skips the test, saying which file is missing, when shared data is absent.
-#define WISP_REQUIRE_DATA(var, relative)                                                      \
-    std::filesystem::path var = ::wisp::test::sharedData(relative);                           \
-    if (var.empty())                                                                          \
-    GTEST_SKIP() << "../shared/data/" << (relative) << " is absent: this test needs the shared " \
-                                                       "third-party assets beside the checkout"
+#define WISP_REQUIRE_DATA(var, relative)                                                                               \
+    std::filesystem::path var = ::wisp::test::sharedData(relative);                                                    \
+    if (var.empty())                                                                                                   \
+    GTEST_SKIP() << "../shared/data/" << (relative)                                                                    \
+                 << " is absent: this test needs the shared "                                                          \
+                    "third-party assets beside the checkout"

@@ -18,8 +18,9 @@ using namespace wisp::test;
 TEST(Sweep, TinyGridWritesAWellFormedCsvAndCharts)
 {
     TempDir dir;
-    auto r = runWisp("--validation sweep --out '" + (dir / "s").string() +
-                     "' --vary strands_per_guide=1,3 --vary divisions=2,5 --warmup 1 --frames 2 --width 64 --height 48 --guides 20");
+    auto r = runWisp(
+        "--validation sweep --out '" + (dir / "s").string() +
+        "' --vary strands_per_guide=1,3 --vary divisions=2,5 --warmup 1 --frames 2 --width 64 --height 48 --guides 20");
     ASSERT_EQ(r.status, 0) << r.err;
     std::ifstream in(dir / "s" / "results.csv");
     std::string header;
@@ -29,8 +30,8 @@ TEST(Sweep, TinyGridWritesAWellFormedCsvAndCharts)
     std::vector<std::string> rows;
     for (std::string line; std::getline(in, line);)
         rows.push_back(line);
-    ASSERT_EQ(rows.size(), 4u);  // the 2 x 2 grid
-    auto fields = [](const std::string& row) {  // commas inside quotes ("llvmpipe (LLVM 15, 256 bits)") do not count
+    ASSERT_EQ(rows.size(), 4u);                // the 2 x 2 grid
+    auto fields = [](const std::string& row) { // commas inside quotes ("llvmpipe (LLVM 15, 256 bits)") do not count
         size_t n = 1;
         bool quoted = false;
         for (char c : row) {
@@ -43,7 +44,7 @@ TEST(Sweep, TinyGridWritesAWellFormedCsvAndCharts)
         EXPECT_EQ(fields(row), columns) << row;
     EXPECT_EQ(rows[0].rfind("1,2,", 0), 0u);
     EXPECT_EQ(rows[3].rfind("3,5,", 0), 0u);
-    EXPECT_NE(rows[3].find(",60,"), std::string::npos) << rows[3];  // 20 guides x 3 strands
+    EXPECT_NE(rows[3].find(",60,"), std::string::npos) << rows[3]; // 20 guides x 3 strands
     for (const char* chart : {"fps.png", "frame.png", "passes.png"})
         EXPECT_GT(std::filesystem::file_size(dir / "s" / chart), 1000u) << chart;
 }
@@ -66,16 +67,17 @@ std::vector<std::string> csvFields(const std::string& line)
     return out;
 }
 
-}  // namespace
+} // namespace
 
 TEST(Sweep, ColumnsAreThePassesEveryPointRanAndThePathThatDrew)
 {
     // The graphics path and the compute path run different passes: the columns are all of them,
     // each point's missing ones 0, the frame last; the compute path's counts beside the OIT's.
     TempDir dir;
-    auto r = runWisp("--validation sweep --out '" + (dir / "s").string() +
-                     "' --vary hair_raster=graphics,compute,auto --warmup 1 --frames 2 --width 64 --height 48 --guides 20 "
-                     "--set strands_per_guide=2 --set divisions=4 --set shadow_size=128");
+    auto r =
+        runWisp("--validation sweep --out '" + (dir / "s").string() +
+                "' --vary hair_raster=graphics,compute,auto --warmup 1 --frames 2 --width 64 --height 48 --guides 20 "
+                "--set strands_per_guide=2 --set divisions=4 --set shadow_size=128");
     ASSERT_EQ(r.status, 0) << r.err;
     std::ifstream in(dir / "s" / "results.csv");
     std::string line;
@@ -91,11 +93,13 @@ TEST(Sweep, ColumnsAreThePassesEveryPointRanAndThePathThatDrew)
         rows.push_back(row);
     }
     ASSERT_EQ(rows.size(), 3u);
-    auto column = [&](const std::string& name) { return std::find(header.begin(), header.end(), name) - header.begin(); };
-    for (const char* name : {"hair_ms_median", "oit.resolve_ms_median", "strands.count_ms_median", "strands.write_ms_median",
-                             "strands.resolve_ms_median", "hair.composite_ms_median", "meshes.depth_ms_median",
-                             "light.depth_ms_median", "raster_segments", "raster_fragments", "raster_overflow",
-                             "hair_raster_drawn"})
+    auto column = [&](const std::string& name) {
+        return std::find(header.begin(), header.end(), name) - header.begin();
+    };
+    for (const char* name :
+         {"hair_ms_median", "oit.resolve_ms_median", "strands.count_ms_median", "strands.write_ms_median",
+          "strands.resolve_ms_median", "hair.composite_ms_median", "meshes.depth_ms_median", "light.depth_ms_median",
+          "raster_segments", "raster_fragments", "raster_overflow", "hair_raster_drawn"})
         EXPECT_LT(size_t(column(name)), header.size()) << name << " in " << line;
     // The frame's columns close the passes', and come after every pass.
     EXPECT_EQ(column("frame_ms_p95") + 1, column("fps"));
@@ -134,7 +138,7 @@ TEST(BadInput, SweepVaryValuesAreChecked)
     EXPECT_NE(r.err.find("1 .. 1024"), std::string::npos) << r.err;
     expectUserError(runWisp("sweep --vary divisions" + out), "NAME=V1,V2");
     expectUserError(runWisp("sweep --vary divisions=4,,8" + out), "empty value");
-    EXPECT_FALSE(std::filesystem::exists(dir / "s"));  // checked before anything is written
+    EXPECT_FALSE(std::filesystem::exists(dir / "s")); // checked before anything is written
 }
 
 TEST(BadInput, ASweepFailingAtItsSecondPointLeavesNoFolder)
@@ -144,11 +148,12 @@ TEST(BadInput, ASweepFailingAtItsSecondPointLeavesNoFolder)
     // Nothing half-written: no folder, and a folder that was already there keeps what it held.
     TempDir dir;
     wisp::test::writeTfx4(dir / "groom.tfx", wisp::test::grownStrands(5, 4, [](glm::vec3 p) { return p; }));
-    std::string args = " --hair '" + (dir / "groom.tfx").string() +
-                       "' --vary oit_nodes_per_pixel=1,256 --width 1024 --height 1024 --warmup 0 --frames 1 --set shadow_size=64";
+    std::string args =
+        " --hair '" + (dir / "groom.tfx").string() +
+        "' --vary oit_nodes_per_pixel=1,256 --width 1024 --height 1024 --warmup 0 --frames 1 --set shadow_size=64";
     auto r = runWisp("sweep --out '" + (dir / "s").string() + "'" + args);
     EXPECT_EQ(r.status, 2) << r.err;
-    EXPECT_NE(r.err.find("point 2/2"), std::string::npos) << r.err;  // the progress lines, then one error line
+    EXPECT_NE(r.err.find("point 2/2"), std::string::npos) << r.err; // the progress lines, then one error line
     EXPECT_NE(r.err.find("\nwisp: the OIT fragment pool"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "s"));
     std::filesystem::create_directories(dir / "mine");

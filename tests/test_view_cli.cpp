@@ -30,22 +30,23 @@ ViewerStatus parseStatus(const std::string& out)
     if (at == std::string::npos)
         return s;
     char on[8] = {};
-    int n = std::sscanf(out.c_str() + at, "sphere %3s at (%f, %f, %f) r %f, light azimuth %f elevation %f, head yaw %f", on,
-                        &s.x, &s.y, &s.z, &s.r, &s.azimuth, &s.elevation, &s.yaw);
+    int n = std::sscanf(out.c_str() + at, "sphere %3s at (%f, %f, %f) r %f, light azimuth %f elevation %f, head yaw %f",
+                        on, &s.x, &s.y, &s.z, &s.r, &s.azimuth, &s.elevation, &s.yaw);
     EXPECT_EQ(n, 8) << out;
     s.sphereOn = std::string(on) == "on";
     return s;
 }
 
-}  // namespace
+} // namespace
 
 TEST(Window, OpensUnderXvfbDrawsAndClosesCleanly)
 {
     WISP_REQUIRE_XVFB();
     TempDir dir;
-    auto r = runWisp("--validation view --width 320 --height 240 --frames 4 --guides 200 --set shadow_size=512 --screenshot '" +
-                         (dir / "shot.png").string() + "'",
-                     WISP_XVFB);
+    auto r = runWisp(
+        "--validation view --width 320 --height 240 --frames 4 --guides 200 --set shadow_size=512 --screenshot '" +
+            (dir / "shot.png").string() + "'",
+        WISP_XVFB);
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.out.find("closed after 4 frames"), std::string::npos) << r.out;
     EXPECT_TRUE(std::filesystem::exists(dir / "shot.png"));
@@ -58,13 +59,16 @@ TEST(Window, ScriptedRunsWithHairAreReproducible)
     // in fixed point: two runs give the same screenshot, and it differs from the bald head.
     WISP_REQUIRE_XVFB();
     TempDir dir;
-    std::string common =
-        "view --width 200 --height 150 --frames 12 --guides 200 --set strands_per_guide=8 --set shadow_size=256 --wind 3,0,0 --screenshot ";
+    std::string common = "view --width 200 --height 150 --frames 12 --guides 200 --set strands_per_guide=8 --set "
+                         "shadow_size=256 --wind 3,0,0 --screenshot ";
     auto xvfb = WISP_XVFB;
     ASSERT_EQ(runWisp(common + "'" + (dir / "a.png").string() + "'", xvfb).status, 0);
     ASSERT_EQ(runWisp(common + "'" + (dir / "b.png").string() + "'", xvfb).status, 0);
-    ASSERT_EQ(runWisp("view --width 200 --height 150 --frames 12 --no-hair --screenshot '" + (dir / "bald.png").string() + "'",
-                      xvfb).status, 0);
+    ASSERT_EQ(runWisp("view --width 200 --height 150 --frames 12 --no-hair --screenshot '" +
+                          (dir / "bald.png").string() + "'",
+                      xvfb)
+                  .status,
+              0);
     EXPECT_EQ(readFile(dir / "a.png"), readFile(dir / "b.png"));
     EXPECT_NE(readFile(dir / "a.png"), readFile(dir / "bald.png"));
 }
@@ -78,8 +82,8 @@ TEST(Window, AScriptMovesTheSphereAndTheLightAndTurnsTheHead)
               "2 press right\n20 release right\n22 drag-sphere 0 -40\n10 press l\n30 release l\n12 tap a\n");
     writeFile(dir / "still.txt", "# nothing happens\n");
     auto xvfb = WISP_XVFB;
-    std::string common =
-        "--validation view --width 160 --height 120 --frames 32 --guides 60 --set strands_per_guide=4 --set shadow_size=256 ";
+    std::string common = "--validation view --width 160 --height 120 --frames 32 --guides 60 --set strands_per_guide=4 "
+                         "--set shadow_size=256 ";
     auto moved = runWisp(common + "--script '" + (dir / "moves.txt").string() + "' --screenshot '" +
                              (dir / "moved.png").string() + "'",
                          xvfb);
@@ -89,14 +93,14 @@ TEST(Window, AScriptMovesTheSphereAndTheLightAndTurnsTheHead)
                          xvfb);
     ASSERT_EQ(still.status, 0) << still.err;
     ViewerStatus a = parseStatus(moved.out), b = parseStatus(still.out);
-    EXPECT_TRUE(a.sphereOn);   // moving it switched it on
-    EXPECT_FALSE(b.sphereOn);  // parked and off until used
+    EXPECT_TRUE(a.sphereOn);  // moving it switched it on
+    EXPECT_FALSE(b.sphereOn); // parked and off until used
     // 18 frames of 1/60 s at 0.35 scene sizes a second to the camera's right, then 40 pixels up.
     EXPECT_GT(std::abs(a.x - b.x) + std::abs(a.z - b.z), 0.01f);
     EXPECT_GT(a.y, b.y);
-    EXPECT_NEAR(a.azimuth - b.azimuth, 20.0f, 0.5f);  // 20 frames at 60 degrees a second
+    EXPECT_NEAR(a.azimuth - b.azimuth, 20.0f, 0.5f); // 20 frames at 60 degrees a second
     EXPECT_EQ(a.elevation, b.elevation);
-    EXPECT_LT(a.yaw, -5.0f);  // turning toward -30 degrees
+    EXPECT_LT(a.yaw, -5.0f); // turning toward -30 degrees
     EXPECT_EQ(b.yaw, 0.0f);
     EXPECT_NE(readFile(dir / "moved.png"), readFile(dir / "still.png")) << "the screenshot shows the moves";
 }
@@ -108,14 +112,17 @@ TEST(Window, ThePanelAppliesSettingsLiveAndDrawsOverTheScene)
     // scene only when asked into the screenshot.
     WISP_REQUIRE_XVFB();
     TempDir dir;
-    writeFile(dir / "sets.txt", "2 set shading=kajiya\n3 set shadow_size=128\n4 set step_hz=120\n5 set hair_preset=blonde\n");
+    writeFile(dir / "sets.txt",
+              "2 set shading=kajiya\n3 set shadow_size=128\n4 set step_hz=120\n5 set hair_preset=blonde\n");
     writeFile(dir / "none.txt", "");
     auto xvfb = WISP_XVFB;
     std::string common = "--validation view --width 200 --height 150 --frames 8 --guides 60 --set strands_per_guide=4 "
                          "--set shadow_size=256 --script '";
-    auto changed = runWisp(common + (dir / "sets.txt").string() + "' --screenshot '" + (dir / "changed.png").string() + "'", xvfb);
+    auto changed =
+        runWisp(common + (dir / "sets.txt").string() + "' --screenshot '" + (dir / "changed.png").string() + "'", xvfb);
     ASSERT_EQ(changed.status, 0) << changed.err;
-    auto plain = runWisp(common + (dir / "none.txt").string() + "' --screenshot '" + (dir / "plain.png").string() + "'", xvfb);
+    auto plain =
+        runWisp(common + (dir / "none.txt").string() + "' --screenshot '" + (dir / "plain.png").string() + "'", xvfb);
     ASSERT_EQ(plain.status, 0) << plain.err;
     auto panel = runWisp(common + (dir / "none.txt").string() + "' --screenshot-panel --screenshot '" +
                              (dir / "panel.png").string() + "'",
@@ -174,8 +181,10 @@ TEST(Window, AScenePlaysItsKeysAndTStopsIt)
     auto stopped = runWisp(common + (dir / "stop.txt").string() + "'", xvfb);
     ASSERT_EQ(stopped.status, 0) << stopped.err;
     float playedYaw = 0.0f, stoppedYaw = 0.0f;
-    ASSERT_EQ(std::sscanf(played.out.c_str() + played.out.find("head yaw"), "head yaw %f", &playedYaw), 1) << played.out;
-    ASSERT_EQ(std::sscanf(stopped.out.c_str() + stopped.out.find("head yaw"), "head yaw %f", &stoppedYaw), 1) << stopped.out;
+    ASSERT_EQ(std::sscanf(played.out.c_str() + played.out.find("head yaw"), "head yaw %f", &playedYaw), 1)
+        << played.out;
+    ASSERT_EQ(std::sscanf(stopped.out.c_str() + stopped.out.find("head yaw"), "head yaw %f", &stoppedYaw), 1)
+        << stopped.out;
     EXPECT_LT(playedYaw, -20.0f);
     EXPECT_GT(playedYaw, -60.0f);
     EXPECT_EQ(stoppedYaw, 0.0f);
@@ -185,7 +194,9 @@ TEST(Window, SceneSetsTheInitialSphereAndLight)
 {
     WISP_REQUIRE_XVFB();
     TempDir dir;
-    writeFile(dir / "s.json", R"({"keys": [{"time": 0, "sphere": [0.1, 0.2, 0.05, 0.04], "light": {"azimuth": 77, "elevation": 12}}]})");
+    writeFile(
+        dir / "s.json",
+        R"({"keys": [{"time": 0, "sphere": [0.1, 0.2, 0.05, 0.04], "light": {"azimuth": 77, "elevation": 12}}]})");
     auto r = runWisp("view --scene '" + (dir / "s.json").string() + "' --no-hair --width 160 --height 120 --frames 2",
                      WISP_XVFB);
     ASSERT_EQ(r.status, 0) << r.err;
@@ -240,7 +251,8 @@ TEST(Window, F5ReloadsEveryShaderTheSolversIncluded)
     TempDir dir;
     writeFile(dir / "f5.txt", "2 tap f5\n");
     auto r = runWisp("--validation view --width 160 --height 120 --frames 5 --guides 40 --set strands_per_guide=2 "
-                     "--set shadow_size=128 --script '" + (dir / "f5.txt").string() + "'",
+                     "--set shadow_size=128 --script '" +
+                         (dir / "f5.txt").string() + "'",
                      WISP_XVFB);
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.err.find("wisp: shaders reloaded"), std::string::npos) << r.err;

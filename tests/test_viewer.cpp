@@ -18,12 +18,12 @@ Viewer makeViewer()
     return Viewer(OrbitCamera::framing(scene, 1.5f), scene, glm::vec4(0.0f), LightSettings{}, glm::vec3(0.0f));
 }
 
-}  // namespace
+} // namespace
 
 TEST(Viewer, ArrowsMoveTheSphereAlongTheCameraAxes)
 {
     Viewer v = makeViewer();
-    EXPECT_EQ(v.sphere().w, 0.0f);  // parked, off
+    EXPECT_EQ(v.sphere().w, 0.0f); // parked, off
     glm::mat4 view = v.camera().view();
     glm::vec3 right(view[0][0], view[1][0], view[2][0]);
     glm::vec3 before = glm::vec3(v.sphere());
@@ -31,11 +31,11 @@ TEST(Viewer, ArrowsMoveTheSphereAlongTheCameraAxes)
     for (int i = 0; i < 30; ++i)
         v.update(1.0f / 60.0f);
     v.release(ViewerKey::SphereRight);
-    v.update(1.0f);  // released: no more motion
+    v.update(1.0f); // released: no more motion
     glm::vec3 moved = glm::vec3(v.sphere()) - before;
-    EXPECT_GT(v.sphere().w, 0.0f);  // moving it switched it on
+    EXPECT_GT(v.sphere().w, 0.0f); // moving it switched it on
     EXPECT_GT(glm::dot(moved, right), 0.9f * glm::length(moved));
-    EXPECT_NEAR(glm::length(moved), 0.35f * 0.5f * glm::length(glm::vec3(0.2f)), 1e-4f);  // half a second
+    EXPECT_NEAR(glm::length(moved), 0.35f * 0.5f * glm::length(glm::vec3(0.2f)), 1e-4f); // half a second
     v.press(ViewerKey::SphereToggle);
     EXPECT_EQ(v.sphere().w, 0.0f);
 }
@@ -51,7 +51,7 @@ TEST(Viewer, TheHeadTurnSettlesOnItsTargetAndTheLightStaysInRange)
         peak = std::max(peak, v.headYawDeg());
     }
     EXPECT_NEAR(v.headYawDeg(), 30.0f, 0.1f);
-    EXPECT_LT(peak, 30.5f);  // critically damped: no overshoot to speak of
+    EXPECT_LT(peak, 30.5f); // critically damped: no overshoot to speak of
     v.press(ViewerKey::LightUp);
     for (int i = 0; i < 600; ++i)
         v.update(1.0f / 60.0f);
@@ -83,14 +83,14 @@ TEST(Viewer, ScriptsParseAndPlayByFrame)
     test::writeFile(dir / "s.txt", "# comment\n5 tap w\n1 press j   # held\n3 release j\n4 drag-light 10 0\n");
     std::vector<ScriptEvent> events = loadScript(dir / "s.txt");
     ASSERT_EQ(events.size(), 4u);
-    EXPECT_EQ(events.front().frame, 1u);  // sorted by frame
+    EXPECT_EQ(events.front().frame, 1u); // sorted by frame
     Viewer v = makeViewer();
     float azimuth = v.light().azimuthDeg;
     for (uint32_t f = 0; f < 6; ++f) {
         playScript(events, f, v, 100.0f);
         v.update(1.0f / 60.0f);
     }
-    EXPECT_NEAR(v.light().azimuthDeg, azimuth - 2.0f + 4.0f, 1e-3f);  // 2 frames held J, then a 10 px drag
+    EXPECT_NEAR(v.light().azimuthDeg, azimuth - 2.0f + 4.0f, 1e-3f); // 2 frames held J, then a 10 px drag
     EXPECT_GT(glm::length(v.wind()), 0.0f);
     EXPECT_THROW(loadScript(dir / "missing.txt"), UserError);
 }

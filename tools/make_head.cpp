@@ -45,8 +45,8 @@
 #include <vector>
 
 namespace fs = std::filesystem;
-using wisp::writeFileAtomically;
 using glm::dvec3;
+using wisp::writeFileAtomically;
 
 namespace {
 

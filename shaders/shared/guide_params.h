@@ -6,12 +6,12 @@
 
 GPU_NAMESPACE_BEGIN
 
-GPU_CONST uint kGuideLocationPosition = 0;  // vec4: the solver's positions buffer (w: inverse mass)
+GPU_CONST uint kGuideLocationPosition = 0; // vec4: the solver's positions buffer (w: inverse mass)
 
 struct GuidePush {
-    vec3 rootColor;           // linear RGB at the root
-    uint verticesPerStrand;   // to find a vertex's place along its strand
-    vec3 tipColor;            // linear RGB at the tip
+    vec3 rootColor;         // linear RGB at the root
+    uint verticesPerStrand; // to find a vertex's place along its strand
+    vec3 tipColor;          // linear RGB at the tip
     float pad;
 };
 

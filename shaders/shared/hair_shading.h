@@ -26,22 +26,22 @@ GPU_CONST float kHairPi = 3.14159265f;
 // The hair material, as a uniform/push block (vec4 members only, std140 = std430 = C++ layout).
 // shading/hair_models.cpp's packHairMaterial() fills it from the reference's parameters.
 struct HairMaterial {
-    vec4 sigmaA;         // xyz absorption per unit fibre radius (Chiang 2016), w index of refraction eta
-    vec4 roughness;      // x beta_m (longitudinal), y beta_n (azimuthal), z cuticle tilt alpha (radians), w unused
-    vec4 baseColor;      // xyz the colour sigmaA renders as (Chiang 2016 eq. 9 inverted, for beta_n), w unused
-    vec4 kajiya;         // Kajiya-Kay lobes: x shift1, y shift2 (radians: where each lobe peaks in
-                         // theta_h = (theta_i + theta_o) / 2), z exponent1, w exponent2
-    vec4 kajiyaWeights;  // Kajiya-Kay albedos: x diffuse, y primary specular (white), z secondary
-                         // specular (both x and z multiply baseColor), w unused
+    vec4 sigmaA;        // xyz absorption per unit fibre radius (Chiang 2016), w index of refraction eta
+    vec4 roughness;     // x beta_m (longitudinal), y beta_n (azimuthal), z cuticle tilt alpha (radians), w unused
+    vec4 baseColor;     // xyz the colour sigmaA renders as (Chiang 2016 eq. 9 inverted, for beta_n), w unused
+    vec4 kajiya;        // Kajiya-Kay lobes: x shift1, y shift2 (radians: where each lobe peaks in
+                        // theta_h = (theta_i + theta_o) / 2), z exponent1, w exponent2
+    vec4 kajiyaWeights; // Kajiya-Kay albedos: x diffuse, y primary specular (white), z secondary
+                        // specular (both x and z multiply baseColor), w unused
 };
 
 // ---- Angles ------------------------------------------------------------------------------------
 
 struct HairAngles {
-    float sinThetaI;  // dot(t, wi)
-    float sinThetaO;  // dot(t, wo)
-    float cosPhi;     // cos(phi_i - phi_o); 1 where either direction runs along the fibre
-    float cosThetaD;  // cos((theta_o - theta_i) / 2), theta_d of Marschner et al. 2003
+    float sinThetaI; // dot(t, wi)
+    float sinThetaO; // dot(t, wo)
+    float cosPhi;    // cos(phi_i - phi_o); 1 where either direction runs along the fibre
+    float cosThetaD; // cos((theta_o - theta_i) / 2), theta_d of Marschner et al. 2003
 };
 
 GPU_FN HairAngles hairAngles(vec3 t, vec3 wi, vec3 wo)
@@ -139,7 +139,7 @@ GPU_FN vec3 hairKarisMultiple(vec3 t, vec3 wi, vec3 wo, HairMaterial m, float sh
 {
     vec3 c = vec3(m.baseColor);
     float kajiyaDiffuse = 1.0f - abs(dot(t, wi));
-    vec3 n = wo - t * dot(t, wo);  // the normal facing the viewer
+    vec3 n = wo - t * dot(t, wo); // the normal facing the viewer
     float len2 = dot(n, n);
     float wrapped = len2 > 1e-12f ? clamp((dot(n, wi) / sqrt(len2) + 1.0f) * 0.25f, 0.0f, 1.0f) : 0.25f;
     float diffuseScatter = mix(wrapped, kajiyaDiffuse, 0.33f) / kHairPi;
@@ -172,7 +172,7 @@ GPU_FN vec3 hairKarisLit(vec3 t, vec3 wi, vec3 wo, HairMaterial m, float shadow)
 GPU_FN float hairKajiyaLobe(float tDotH, float cosThetaO, float shift, float exponent)
 {
     float sinTH = sqrt(max(1.0f - tDotH * tDotH, 0.0f));
-    float x = tDotH * cos(shift) - sinTH * sin(shift);  // cos of the angle between t' and h
+    float x = tDotH * cos(shift) - sinTH * sin(shift); // cos of the angle between t' and h
     return pow(max(1.0f - x * x, 0.0f), 0.5f * exponent) * sqrt(exponent) * 0.0498677850f / max(cosThetaO, 0.05f);
 }
 
@@ -239,11 +239,10 @@ vec3 hairShadeLut(sampler2DArray lut, vec3 t, vec3 wi, vec3 wo)
     HairAngles a = hairAngles(t, wi, wo);
     vec2 uvM = hairLutUvM(a);
     vec2 uvN = hairLutUvN(a);
-    return hairLutCombine(texture(lut, vec3(uvM, float(kHairLutLayerM))),
-                          texture(lut, vec3(uvN, float(kHairLutLayerNR))),
-                          texture(lut, vec3(uvN, float(kHairLutLayerNTT))),
-                          texture(lut, vec3(uvN, float(kHairLutLayerNTRT))),
-                          texture(lut, vec3(uvN, float(kHairLutLayerNResidual))));
+    return hairLutCombine(
+        texture(lut, vec3(uvM, float(kHairLutLayerM))), texture(lut, vec3(uvN, float(kHairLutLayerNR))),
+        texture(lut, vec3(uvN, float(kHairLutLayerNTT))), texture(lut, vec3(uvN, float(kHairLutLayerNTRT))),
+        texture(lut, vec3(uvN, float(kHairLutLayerNResidual))));
 }
 #endif
 

@@ -18,52 +18,52 @@
 // the same inside test, and depth is clipped to [0, 1] per sample as Vulkan's depth clip does.
 #ifndef WISP_SHARED_MESH_RASTER_H
 #define WISP_SHARED_MESH_RASTER_H
-#include "prelude.h"
 #include "lighting.h"
+#include "prelude.h"
 
 GPU_NAMESPACE_BEGIN
 
-GPU_CONST uint kMeshRasterGroupSize = 64u;  // threads per triangle (raster), per 8 x 8 pixels (shade)
+GPU_CONST uint kMeshRasterGroupSize = 64u; // threads per triangle (raster), per 8 x 8 pixels (shade)
 
 // Bindings (the light's maps 4..7 are shared/shadows.h's).
-GPU_CONST uint kMeshRasterBindingFrame = 0;        // uniform FrameParams
-GPU_CONST uint kMeshRasterBindingVertices = 1;     // the object's vertices: 7 floats (position, normal, scalp)
-GPU_CONST uint kMeshRasterBindingIndices = 2;      // the object's triangles: 3 uints each
-GPU_CONST uint kMeshRasterBindingSphereVertices = 3;  // (mesh_shade.comp) the unit sphere's vertices
-GPU_CONST uint kMeshRasterBindingSphereIndices = 10;  // (mesh_shade.comp) and triangles
-GPU_CONST uint kMeshRasterBindingDepth = 11;       // uint per sample (pixel * samples + s): depth bits
-GPU_CONST uint kMeshRasterBindingIds = 12;         // uint per sample: packMeshId, kNoMesh where none
-GPU_CONST uint kMeshRasterBindingColor = 13;       // image2D rgba16f: the meshes, resolved, tone-mapped linear
-GPU_CONST uint kMeshRasterBindingHair = 14;        // image2D rgba16f: the hair, premultiplied
-GPU_CONST uint kMeshRasterBindingOut = 15;         // image2D rgba8: the frame, sRGB-encoded
+GPU_CONST uint kMeshRasterBindingFrame = 0;          // uniform FrameParams
+GPU_CONST uint kMeshRasterBindingVertices = 1;       // the object's vertices: 7 floats (position, normal, scalp)
+GPU_CONST uint kMeshRasterBindingIndices = 2;        // the object's triangles: 3 uints each
+GPU_CONST uint kMeshRasterBindingSphereVertices = 3; // (mesh_shade.comp) the unit sphere's vertices
+GPU_CONST uint kMeshRasterBindingSphereIndices = 10; // (mesh_shade.comp) and triangles
+GPU_CONST uint kMeshRasterBindingDepth = 11;         // uint per sample (pixel * samples + s): depth bits
+GPU_CONST uint kMeshRasterBindingIds = 12;           // uint per sample: packMeshId, kNoMesh where none
+GPU_CONST uint kMeshRasterBindingColor = 13;         // image2D rgba16f: the meshes, resolved, tone-mapped linear
+GPU_CONST uint kMeshRasterBindingHair = 14;          // image2D rgba16f: the hair, premultiplied
+GPU_CONST uint kMeshRasterBindingOut = 15;           // image2D rgba8: the frame, sRGB-encoded
 
 GPU_CONST uint kMeshObjectHead = 0u;
-GPU_CONST uint kMeshObjectSphere = 1u;  // the collision sphere (push.sphere)
-GPU_CONST uint kMeshObjectMarker = 2u;  // the light's marker (push.marker)
+GPU_CONST uint kMeshObjectSphere = 1u; // the collision sphere (push.sphere)
+GPU_CONST uint kMeshObjectMarker = 2u; // the light's marker (push.marker)
 GPU_CONST uint kNoMesh = 0xffffffffu;
 GPU_CONST uint kMeshVertexFloats = 7u;
-GPU_CONST uint kMeshDepthClear = 0x3f800000u;  // 1.0: nothing drawn
+GPU_CONST uint kMeshDepthClear = 0x3f800000u; // 1.0: nothing drawn
 
 // The collision sphere and the light's marker (mesh_pass.cpp draws them with the same).
-GPU_CONST vec3 kSphereAlbedo = vec3(0.35f, 0.45f, 0.6f);  // a blue-grey ball, apart from skin and hair
+GPU_CONST vec3 kSphereAlbedo = vec3(0.35f, 0.45f, 0.6f); // a blue-grey ball, apart from skin and hair
 GPU_CONST float kSphereRoughness = 0.4f;
 GPU_CONST vec3 kMarkerAlbedo = vec3(1.0f, 0.85f, 0.3f);
 GPU_CONST float kMarkerRoughness = 0.2f;
 
 // Push constants of the three kernels (96 bytes). The head's pose is FrameParams::headTransform.
 struct MeshRasterPush {
-    vec4  sphere;         // centre, radius (0: none)
-    vec4  marker;         // centre, radius (0: none)
-    vec3  headAlbedo;
+    vec4 sphere; // centre, radius (0: none)
+    vec4 marker; // centre, radius (0: none)
+    vec3 headAlbedo;
     float headRoughness;
-    vec3  scalpAlbedo;
+    vec3 scalpAlbedo;
     float scalpStrength;
-    vec3  background;     // linear RGB where no mesh is
-    uint  samples;        // 1, 2, 4 or 8 per pixel
-    uint  width;          // pixels
-    uint  height;
-    uint  object;         // raster: kMeshObject*; compose: 1 when there is hair to lay over
-    uint  triangles;      // raster: the object's triangle count
+    vec3 background; // linear RGB where no mesh is
+    uint samples;    // 1, 2, 4 or 8 per pixel
+    uint width;      // pixels
+    uint height;
+    uint object;    // raster: kMeshObject*; compose: 1 when there is hair to lay over
+    uint triangles; // raster: the object's triangle count
 };
 
 GPU_FN uint packMeshId(uint object, uint triangle)
@@ -77,19 +77,29 @@ GPU_FN vec2 meshSamplePosition(uint s, uint samples)
     if (samples == 2u)
         return s == 0u ? vec2(0.75f, 0.75f) : vec2(0.25f, 0.25f);
     if (samples == 4u) {
-        if (s == 0u) return vec2(0.375f, 0.125f);
-        if (s == 1u) return vec2(0.875f, 0.375f);
-        if (s == 2u) return vec2(0.125f, 0.625f);
+        if (s == 0u)
+            return vec2(0.375f, 0.125f);
+        if (s == 1u)
+            return vec2(0.875f, 0.375f);
+        if (s == 2u)
+            return vec2(0.125f, 0.625f);
         return vec2(0.625f, 0.875f);
     }
     if (samples == 8u) {
-        if (s == 0u) return vec2(0.5625f, 0.3125f);
-        if (s == 1u) return vec2(0.4375f, 0.6875f);
-        if (s == 2u) return vec2(0.8125f, 0.5625f);
-        if (s == 3u) return vec2(0.3125f, 0.1875f);
-        if (s == 4u) return vec2(0.1875f, 0.8125f);
-        if (s == 5u) return vec2(0.0625f, 0.4375f);
-        if (s == 6u) return vec2(0.6875f, 0.9375f);
+        if (s == 0u)
+            return vec2(0.5625f, 0.3125f);
+        if (s == 1u)
+            return vec2(0.4375f, 0.6875f);
+        if (s == 2u)
+            return vec2(0.8125f, 0.5625f);
+        if (s == 3u)
+            return vec2(0.3125f, 0.1875f);
+        if (s == 4u)
+            return vec2(0.1875f, 0.8125f);
+        if (s == 5u)
+            return vec2(0.0625f, 0.4375f);
+        if (s == 6u)
+            return vec2(0.6875f, 0.9375f);
         return vec2(0.9375f, 0.0625f);
     }
     return vec2(0.5f, 0.5f);
@@ -113,14 +123,14 @@ GPU_FN mat4 meshObjectModel(uint object, mat4 headTransform, vec4 sphere, vec4 m
 // the plane through their projections (pixels relative to the first vertex: small numbers, as a
 // hardware rasterizer has them; a far head's depths differ in their fifth digit); else dot(u, z).
 struct MeshTriangle {
-    vec3  row0;
-    vec3  row1;
-    vec3  row2;
-    vec3  z;          // the vertices' clip z
-    vec4  bounds;     // pixels: min x, min y, max x, max y (the whole target when a vertex is behind the eye)
-    vec4  plane;      // pixels: the first vertex's projection (xy), its depth (z), the plane's use (w: 1)
-    vec4  slopes;     // the plane: the depth's change per pixel in x and y (xy)
-    float det;        // 0: edge-on or degenerate, nothing drawn
+    vec3 row0;
+    vec3 row1;
+    vec3 row2;
+    vec3 z;      // the vertices' clip z
+    vec4 bounds; // pixels: min x, min y, max x, max y (the whole target when a vertex is behind the eye)
+    vec4 plane;  // pixels: the first vertex's projection (xy), its depth (z), the plane's use (w: 1)
+    vec4 slopes; // the plane: the depth's change per pixel in x and y (xy)
+    float det;   // 0: edge-on or degenerate, nothing drawn
 };
 
 GPU_FN MeshTriangle setupMeshTriangle(vec4 c0, vec4 c1, vec4 c2, vec2 size)
@@ -186,7 +196,7 @@ GPU_FN vec3 meshSurfaceColor(vec3 n, vec3 v, vec3 lightDirection, vec3 lightRadi
                              vec3 scalpAlbedo, float scalp, float ambient, vec3 sky, vec3 ground, float exposure)
 {
     if (dot(n, v) < 0.0f)
-        n = -n;  // back faces seen through open meshes shade like their front
+        n = -n; // back faces seen through open meshes shade like their front
     vec3 a = mix(albedo, scalpAlbedo, scalp);
     vec3 radiance = surfaceRadiance(n, lightDirection, v, a, mix(roughness, 1.0f, scalp), lightRadiance);
     radiance += a * ambient * hemisphereAmbient(n, sky, ground);

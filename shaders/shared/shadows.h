@@ -17,15 +17,15 @@
 GPU_NAMESPACE_BEGIN
 
 // Bindings of the light's maps, the same in every pipeline that reads them (mesh and hair).
-GPU_CONST uint kBindingShadowHead = 4;   // sampler2DShadow: the head's depth from the light
-GPU_CONST uint kBindingShadowHair = 5;   // sampler2DShadow: the hair's first depth from the light
-GPU_CONST uint kBindingHairDepth = 6;    // sampler2D: the same hair depth, read as a value (z0)
-GPU_CONST uint kBindingOpacity = 7;      // sampler2D: deep opacity layers (RGBA)
+GPU_CONST uint kBindingShadowHead = 4; // sampler2DShadow: the head's depth from the light
+GPU_CONST uint kBindingShadowHair = 5; // sampler2DShadow: the hair's first depth from the light
+GPU_CONST uint kBindingHairDepth = 6;  // sampler2D: the same hair depth, read as a value (z0)
+GPU_CONST uint kBindingOpacity = 7;    // sampler2D: deep opacity layers (RGBA)
 
 GPU_CONST uint kMaxDomLayers = 4u;
 GPU_CONST uint kMaxPcfSamples = 64u;
-GPU_CONST uint kMaxOitK = 16u;      // nearest fragments the OIT resolve sorts (oit_k <= this)
-GPU_CONST uint kOitNil = 0xffffffffu;  // end of a per-pixel list
+GPU_CONST uint kMaxOitK = 16u;        // nearest fragments the OIT resolve sorts (oit_k <= this)
+GPU_CONST uint kOitNil = 0xffffffffu; // end of a per-pixel list
 
 // Tap i of n on a Vogel disk of unit radius, rotated by `angle` (radians): radii sqrt((i+0.5)/n)
 // cover the disk with equal area per tap, angles step by the golden angle.
@@ -77,8 +77,8 @@ GPU_FN float domTransmittance(float opacity, float kappa)
 // the colour square-rooted (a gamma of 2 keeps dark hair from banding in 8 bits), its window
 // depth, and the index of the next node (kOitNil ends the list).
 struct OitNode {
-    uint color;     // packUnorm4x8(vec4(sqrt(rgb), alpha))
-    float depth;    // 0 near .. 1 far
+    uint color;  // packUnorm4x8(vec4(sqrt(rgb), alpha))
+    float depth; // 0 near .. 1 far
     uint next;
 };
 

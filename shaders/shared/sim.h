@@ -12,84 +12,84 @@ GPU_NAMESPACE_BEGIN
 // LocalSizeId, which needs maintenance4).
 #define SIM_GROUP_SIZE 64
 GPU_CONST uint kSimGroupSize = SIM_GROUP_SIZE;
-GPU_CONST uint kSimMaxColliders = 16;   // ellipsoids in SimParams (the user's sphere is separate)
-GPU_CONST uint kSimMaxParts = 8;        // hair parts with their own parameters (a groom in pieces)
+GPU_CONST uint kSimMaxColliders = 16;    // ellipsoids in SimParams (the user's sphere is separate)
+GPU_CONST uint kSimMaxParts = 8;         // hair parts with their own parameters (a groom in pieces)
 GPU_CONST float kGridMinDensity = 1e-4f; // grid nodes lighter than this carry no velocity
 
 // Bindings of the simulation kernels (one push-descriptor set).
-GPU_CONST uint kSimBindingParams = 0;        // uniform SimParams (SimStep is a push constant)
-GPU_CONST uint kSimBindingPositions = 1;     // vec4[]: xyz position, w inverse mass (0 = pinned)
-GPU_CONST uint kSimBindingVelocities = 2;    // vec4[]: xyz velocity, w unused
-GPU_CONST uint kSimBindingRest = 3;          // RestVertex[]
-GPU_CONST uint kSimBindingStrands = 4;       // StrandInfo[]
-GPU_CONST uint kSimBindingTangents = 5;      // vec4[]: xyz unit tangent toward the tip, w unused
-GPU_CONST uint kSimBindingGrid = 6;          // GridNode[] (splat accumulators)
-GPU_CONST uint kSimBindingGridVelocity = 7;  // vec4[]: xyz grid velocity, w density
-GPU_CONST uint kSimBindingCounters = 8;      // SimCounters
+GPU_CONST uint kSimBindingParams = 0;       // uniform SimParams (SimStep is a push constant)
+GPU_CONST uint kSimBindingPositions = 1;    // vec4[]: xyz position, w inverse mass (0 = pinned)
+GPU_CONST uint kSimBindingVelocities = 2;   // vec4[]: xyz velocity, w unused
+GPU_CONST uint kSimBindingRest = 3;         // RestVertex[]
+GPU_CONST uint kSimBindingStrands = 4;      // StrandInfo[]
+GPU_CONST uint kSimBindingTangents = 5;     // vec4[]: xyz unit tangent toward the tip, w unused
+GPU_CONST uint kSimBindingGrid = 6;         // GridNode[] (splat accumulators)
+GPU_CONST uint kSimBindingGridVelocity = 7; // vec4[]: xyz grid velocity, w density
+GPU_CONST uint kSimBindingCounters = 8;     // SimCounters
 
 // An ellipsoid collider: a point p is inside when |R^T (p - center) / radii| < 1.
 struct Ellipsoid {
-    mat4  rotation;    // columns 0..2: the ellipsoid's axes in world space (orthonormal)
-    vec3  center;      // world space
+    mat4 rotation; // columns 0..2: the ellipsoid's axes in world space (orthonormal)
+    vec3 center;   // world space
     float pad0;
-    vec3  radii;       // along the axes, > 0
+    vec3 radii; // along the axes, > 0
     float pad1;
 };
 
 // Per hair part (one loaded file, or the grown guides): the parameters a user tunes per asset.
 struct SimPart {
-    float globalStiffness;  // pull toward the rest pose in the head frame per step, [0, 1], at the root
-    float localStiffness;   // pull of each segment toward its rest direction in its parent's frame, [0, 1]
-    float ftlDamping;       // s_damp of Muller et al. 2012, [0, 1]
-    float drag;             // velocity damping, 1/s
+    float globalStiffness; // pull toward the rest pose in the head frame per step, [0, 1], at the root
+    float localStiffness;  // pull of each segment toward its rest direction in its parent's frame, [0, 1]
+    float ftlDamping;      // s_damp of Muller et al. 2012, [0, 1]
+    float drag;            // velocity damping, 1/s
 };
 
 // Fixed for a run (a uniform block, written once when the solver is made): forces, the grid's size,
 // the parts and colliders. What changes while it runs is SimStep's.
 struct SimParams {
-    vec3  gravity;            // world acceleration, asset units / s²
-    float dt;                 // one substep, seconds (fixed)
-    uint  strandCount;        // real strands; threads past them return
-    uint  verticesPerStrand;  // V, 4..64
-    uint  colliderCount;      // ellipsoids in use, <= kSimMaxColliders
-    uint  gridResolution;     // nodes per axis (the grid is a cube)
-    float penaltyStiffness;   // k of the penalty force k * depth * n, 1/s²
-    float collisionMargin;    // colliders act this far outside their surface, asset units
-    float gridFriction;       // Petrovic et al. 2005 blend toward the grid velocity, [0, 1]
-    float gridRepulsion;      // push along -grad(density) per unit density gradient, asset units² / s
-    float gridCellSize;       // asset units
-    uint  partCount;
-    uint  gridNodeCount;      // gridResolution³
-    float gridFixedScale;     // fixed-point grid: integer units per unit of density or momentum; 0 = float atomics
-    float gridMaxSplatSpeed;  // velocities splatted into the grid are clamped to this, asset units / s
+    vec3 gravity;           // world acceleration, asset units / s²
+    float dt;               // one substep, seconds (fixed)
+    uint strandCount;       // real strands; threads past them return
+    uint verticesPerStrand; // V, 4..64
+    uint colliderCount;     // ellipsoids in use, <= kSimMaxColliders
+    uint gridResolution;    // nodes per axis (the grid is a cube)
+    float penaltyStiffness; // k of the penalty force k * depth * n, 1/s²
+    float collisionMargin;  // colliders act this far outside their surface, asset units
+    float gridFriction;     // Petrovic et al. 2005 blend toward the grid velocity, [0, 1]
+    float gridRepulsion;    // push along -grad(density) per unit density gradient, asset units² / s
+    float gridCellSize;     // asset units
+    uint partCount;
+    uint gridNodeCount;      // gridResolution³
+    float gridFixedScale;    // fixed-point grid: integer units per unit of density or momentum; 0 = float atomics
+    float gridMaxSplatSpeed; // velocities splatted into the grid are clamped to this, asset units / s
     float pad0;
     float pad1;
     float pad2;
     SimPart parts[kSimMaxParts];
-    Ellipsoid colliders[kSimMaxColliders];  // in head space: they move with the head
+    Ellipsoid colliders[kSimMaxColliders]; // in head space: they move with the head
 };
 
 // What changes from step to step (push constants): the head's pose, the user's sphere, time, wind.
 struct SimStep {
-    mat4  headTransform;  // head space -> world (rigid): roots, rest pose and colliders follow it
-    vec3  sphereCenter;   // the user's collision sphere, world space
-    float sphereRadius;   // 0 disables it
-    vec3  gridOrigin;     // world position of grid node (0, 0, 0)
-    float time;           // simulated seconds at the start of this substep
-    vec3  wind;           // direction * strength, asset units / s² (before the gusts, strandWind)
-    float windFrequency;  // Hz of the gust modulation
+    mat4 headTransform;  // head space -> world (rigid): roots, rest pose and colliders follow it
+    vec3 sphereCenter;   // the user's collision sphere, world space
+    float sphereRadius;  // 0 disables it
+    vec3 gridOrigin;     // world position of grid node (0, 0, 0)
+    float time;          // simulated seconds at the start of this substep
+    vec3 wind;           // direction * strength, asset units / s² (before the gusts, strandWind)
+    float windFrequency; // Hz of the gust modulation
 };
 
 struct RestVertex {
-    vec3  position;       // rest position in head space
-    float segmentLength;  // rest length of the segment to the parent vertex (0 at the root)
+    vec3 position;       // rest position in head space
+    float segmentLength; // rest length of the segment to the parent vertex (0 at the root)
 };
 
 struct StrandInfo {
-    uint part;        // index into SimParams.parts
-    uint pinnedRoot;  // leading vertices that follow the head rigidly (>= 1; V: the whole strand, too short to simulate)
-    uint pinnedTip;   // 1 when the tip is pinned too (TressFX bothEndsImmovable)
-    uint seed;        // per-strand random seed (wind variation)
+    uint part;       // index into SimParams.parts
+    uint pinnedRoot; // leading vertices that follow the head rigidly (>= 1; V: the whole strand, too short to simulate)
+    uint pinnedTip;  // 1 when the tip is pinned too (TressFX bothEndsImmovable)
+    uint seed;       // per-strand random seed (wind variation)
 };
 
 // Splat accumulators: float atomics add into these. The fixed-point grid (the GRID_FIXED shader
@@ -107,12 +107,12 @@ GPU_FN uint gridFixedWord(uint node, uint w, uint nodeCount)
 GPU_CONST float kGridMaxSplatSpeed = 20.0f;
 
 struct GridNode {
-    vec3  momentum;  // sum of weight * velocity
-    float density;   // sum of trilinear weights
+    vec3 momentum; // sum of weight * velocity
+    float density; // sum of trilinear weights
 };
 
 struct SimCounters {
-    uint nonfiniteResets;  // strands reset to rest after a NaN or infinity (cumulative)
+    uint nonfiniteResets; // strands reset to rest after a NaN or infinity (cumulative)
     uint pad0;
     uint pad1;
     uint pad2;
@@ -168,7 +168,7 @@ GPU_FN float valueNoise(float x, uint seed)
 {
     float cell = floor(x);
     float f = x - cell;
-    uint i = uint(int(cell) + 1048576);  // keep the hash input positive for negative x
+    uint i = uint(int(cell) + 1048576); // keep the hash input positive for negative x
     float a = hashToUnit(i * 1664525u + seed);
     float b = hashToUnit((i + 1u) * 1664525u + seed);
     return mix(a, b, f * f * (3.0f - 2.0f * f));
@@ -194,8 +194,8 @@ GPU_FN vec3 windAcceleration(vec3 t, vec3 w)
 }
 
 struct Contact {
-    vec3  normal;  // outward unit normal at the closest surface point (approximate for ellipsoids)
-    float depth;   // how far inside (including the margin); <= 0 when outside
+    vec3 normal; // outward unit normal at the closest surface point (approximate for ellipsoids)
+    float depth; // how far inside (including the margin); <= 0 when outside
 };
 
 // Sphere contact, exact.
@@ -230,7 +230,7 @@ GPU_FN Contact ellipsoidContact(Ellipsoid e, vec3 p, float margin)
     vec3 surface = radii * (q / len);
     c.depth = (1.0f - len) * length(surface);
     c.normal = vec3(0.0f);
-    if (c.depth > 0.0f)  // outside (most hair, most of the time) the normal is not used
+    if (c.depth > 0.0f) // outside (most hair, most of the time) the normal is not used
         c.normal = normalize(R * (surface / (radii * radii)));
     return c;
 }
@@ -272,9 +272,8 @@ GPU_FN mat3 minimalRotation(vec3 a, vec3 b)
     if (c < -0.9999f)
         return mat3(1.0f);
     float k = 1.0f / (1.0f + c);
-    return mat3(v.x * v.x * k + c, v.y * v.x * k + v.z, v.z * v.x * k - v.y,
-                v.x * v.y * k - v.z, v.y * v.y * k + c, v.z * v.y * k + v.x,
-                v.x * v.z * k + v.y, v.y * v.z * k - v.x, v.z * v.z * k + c);
+    return mat3(v.x * v.x * k + c, v.y * v.x * k + v.z, v.z * v.x * k - v.y, v.x * v.y * k - v.z, v.y * v.y * k + c,
+                v.z * v.y * k + v.x, v.x * v.z * k + v.y, v.y * v.z * k - v.x, v.z * v.z * k + c);
 }
 
 // The velocity a vertex splats into the grid, no faster than maxSpeed (it bounds what a grid node
@@ -344,13 +343,13 @@ GPU_FN vec3 twoLinkJoint(vec3 a, vec3 b, float la, float lb, vec3 p)
     vec3 axis = ab / d;
     if (d >= la + lb)
         return a + axis * (d * la / (la + lb));
-    float along = (d * d + la * la - lb * lb) / (2.0f * d);  // from a, toward b
+    float along = (d * d + la * la - lb * lb) / (2.0f * d); // from a, toward b
     float radius = sqrt(max(la * la - along * along, 0.0f));
     vec3 centre = a + along * axis;
     vec3 w = p - centre;
     w -= dot(w, axis) * axis;
     float wl = length(w);
-    if (wl < 1e-12f) {  // p on the axis: any point of the circle; the one toward the largest other axis
+    if (wl < 1e-12f) { // p on the axis: any point of the circle; the one toward the largest other axis
         vec3 helper = abs(axis.x) < 0.9f ? vec3(1.0f, 0.0f, 0.0f) : vec3(0.0f, 1.0f, 0.0f);
         w = normalize(cross(axis, helper));
     } else {
@@ -368,7 +367,7 @@ GPU_FN mat3 rotationBetween(vec3 a, vec3 b)
         return minimalRotation(a, b);
     vec3 helper = abs(a.x) < 0.9f ? vec3(1.0f, 0.0f, 0.0f) : vec3(0.0f, 1.0f, 0.0f);
     vec3 u = normalize(cross(a, helper));
-    mat3 halfTurn = 2.0f * outerProduct(u, u) - mat3(1.0f);  // takes a to -a
+    mat3 halfTurn = 2.0f * outerProduct(u, u) - mat3(1.0f); // takes a to -a
     return minimalRotation(-a, b) * halfTurn;
 }
 
@@ -410,8 +409,8 @@ GPU_FN vec3 constrainedVelocity(vec3 v, vec3 move, float dt)
 // ---- The hair-hair grid (Petrovic et al. 2005) ---------------------------------------------
 
 struct GridCell {
-    ivec3 base;  // the lower corner node
-    vec3  frac;  // position inside the cell, [0, 1)³
+    ivec3 base; // the lower corner node
+    vec3 frac;  // position inside the cell, [0, 1)³
 };
 
 GPU_FN GridCell gridCell(vec3 p, vec3 origin, float cellSize)
@@ -452,9 +451,9 @@ GPU_FN uint gridIndex(ivec3 node, uint n)
 
 // The gather's running sums over the 8 corners.
 struct GridSample {
-    vec3  velocity;      // sum of w * v over corners with density
-    float weight;        // sum of w over those corners
-    vec3  densityGrad;   // d(density)/d(cell coordinates), trilinear derivative
+    vec3 velocity;    // sum of w * v over corners with density
+    float weight;     // sum of w over those corners
+    vec3 densityGrad; // d(density)/d(cell coordinates), trilinear derivative
     float pad;
 };
 

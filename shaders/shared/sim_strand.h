@@ -79,17 +79,17 @@ GPU_FN vec3 collidersPushOut(SIM_CONTEXT vec3 p)
 
 // What the walk from root to tip carries from one vertex to the next.
 struct StrandWalk {
-    SimPart part;      // the strand's part's parameters
-    uint pinnedRoot;   // leading vertices that follow the head
-    uint pinnedTip;    // 1: the tip follows the head too
-    vec3 wind;         // the strand's wind this substep (strandWind)
-    vec3 prevX;        // the parent's position at the substep's start
-    vec3 prevP;        // the parent's new position
-    vec3 prevShift;    // the parent's local-shape displacement (kept out of its velocity)
+    SimPart part;    // the strand's part's parameters
+    uint pinnedRoot; // leading vertices that follow the head
+    uint pinnedTip;  // 1: the tip follows the head too
+    vec3 wind;       // the strand's wind this substep (strandWind)
+    vec3 prevX;      // the parent's position at the substep's start
+    vec3 prevP;      // the parent's new position
+    vec3 prevShift;  // the parent's local-shape displacement (kept out of its velocity)
     bool prevPinned;
-    mat3 frame;        // the parent's frame for local shape: the head's axes transported along the strand
-    vec3 lastTangent;  // the last segment's direction (the tip's tangent)
-    bool finite;       // no non-finite position so far
+    mat3 frame;       // the parent's frame for local shape: the head's axes transported along the strand
+    vec3 lastTangent; // the last segment's direction (the tip's tangent)
+    bool finite;      // no non-finite position so far
 };
 
 // A vertex the walk has finished: its new position and velocity, and its tangent toward the tip.
@@ -157,7 +157,7 @@ GPU_FN WalkedVertex strandWalkStep(SIM_CONTEXT GPU_INOUT(StrandWalk) w, uint i, 
     parent.velocity = (w.prevP - w.prevX - w.prevShift) / dt;
     if (!w.prevPinned)
         parent.velocity -= w.part.ftlDamping * d / dt;
-    parent.tangent = normalize(p - w.prevP);  // |p - prevP| = L_i > 0 after FTL
+    parent.tangent = normalize(p - w.prevP); // |p - prevP| = L_i > 0 after FTL
     w.lastTangent = parent.tangent;
 
     w.frame = transportFrame(w.frame, targetDir, parent.tangent);
@@ -203,18 +203,19 @@ GPU_FN float bendChord(StrandRef s, vec3 a, vec3 tipP, vec3 end, float d, uint i
 // vertex keeps no velocity against its move. `finite` turns false on a non-finite move.
 GPU_FN void strandBend(SIM_CONTEXT StrandRef s, StrandInfo info, uint V, GPU_INOUT(bool) finite)
 {
-    uint anchor = info.pinnedRoot - 1u;  // the last pinned root vertex
+    uint anchor = info.pinnedRoot - 1u; // the last pinned root vertex
     uint span = V - 1u - anchor;
     vec3 a = strandPosition(s, anchor);
     vec3 tipP = strandPosition(s, V - 1u);
     float d = length(tipP - a);
-    if (span == 2u) {  // one free vertex: where the spheres around a and the tip meet
-        bendMove(SIM_ARGS s, V - 2u,
-                 twoLinkJoint(a, tipP, strandRestLength(s, V - 2u), strandRestLength(s, V - 1u), strandPosition(s, V - 2u)),
-                 finite);
+    if (span == 2u) { // one free vertex: where the spheres around a and the tip meet
+        bendMove(
+            SIM_ARGS s, V - 2u,
+            twoLinkJoint(a, tipP, strandRestLength(s, V - 2u), strandRestLength(s, V - 1u), strandPosition(s, V - 2u)),
+            finite);
         return;
     }
-    vec3 end = ftlProject(strandPosition(s, V - 2u), tipP, strandRestLength(s, V - 1u));  // where FTL put the tip
+    vec3 end = ftlProject(strandPosition(s, V - 2u), tipP, strandRestLength(s, V - 1u)); // where FTL put the tip
     // The bends: a third and two thirds along, unless their parts cannot reach the tip or one
     // part's chord is tiny (a curled loop's middle: its direction would be rounding); then the pair
     // whose parts reach it with the longest shortest chord.

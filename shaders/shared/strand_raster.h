@@ -45,33 +45,33 @@ GPU_NAMESPACE_BEGIN
 #define GPU_INOUT(T) inout T
 #endif
 
-GPU_CONST uint kRasterGroupSize = 64u;      // threads of the per-vertex and per-segment kernels
-GPU_CONST uint kRasterScanBlock = 1024u;    // counts one scan workgroup sums (256 threads, 4 each)
-GPU_CONST uint kRasterScanGroupSize = 1024u;  // threads of the scan of the blocks' totals
+GPU_CONST uint kRasterGroupSize = 64u;       // threads of the per-vertex and per-segment kernels
+GPU_CONST uint kRasterScanBlock = 1024u;     // counts one scan workgroup sums (256 threads, 4 each)
+GPU_CONST uint kRasterScanGroupSize = 1024u; // threads of the scan of the blocks' totals
 
 // Bindings (each kernel pushes the ones it reads; 4..7 are the light's maps of shared/shadows.h).
-GPU_CONST uint kRasterBindingFrame = 0;        // uniform FrameParams
-GPU_CONST uint kRasterBindingSim = 1;          // uniform SimParams (colliders)
-GPU_CONST uint kRasterBindingPositions = 2;    // the solver's positions (interleaved slots, sim.h)
-GPU_CONST uint kRasterBindingTriangles = 3;    // uvec4 per guide: the guide and its two neighbours
-GPU_CONST uint kRasterBindingLut = 8;          // sampler2DArray: the lookup mode's tables
-GPU_CONST uint kRasterBindingVertices = 9;     // vec4 per strand vertex: StrandVertex
-GPU_CONST uint kRasterBindingColors = 10;      // uint per strand vertex: packed colour and opacity
-GPU_CONST uint kRasterBindingCounts = 11;      // uint per pixel: fragments (count), then write cursors (from its offset)
-GPU_CONST uint kRasterBindingOffsets = 12;     // uint per pixel + 1: its first fragment slot, the total last
-GPU_CONST uint kRasterBindingFragments = 13;   // uvec2 per fragment: depth bits, packed colour and opacity
-GPU_CONST uint kRasterBindingCounters = 14;    // RasterCounters
-GPU_CONST uint kRasterBindingMeshDepth = 15;   // sampler2DMS (sampler2D with one sample): the meshes' depth
-GPU_CONST uint kRasterBindingHairColor = 16;   // image2D rgba16f: the hair, premultiplied
-GPU_CONST uint kRasterBindingLightDepth = 17;  // uint per light texel: the hair's first depth (float bits)
-GPU_CONST uint kRasterBindingLightOpacity = 18;// uint x 4 per light texel: opacity layers, fixed point
-GPU_CONST uint kRasterBindingOpacityImage = 19;// image2D rgba16f: the deep opacity layers, as shaders read them
-GPU_CONST uint kRasterBindingDepthRange = 20;  // vec2 per pixel: the nearest and farthest mesh depth sample
-GPU_CONST uint kRasterBindingBlockSums = 21;   // uint per scan block: its counts' total, then its offset
-GPU_CONST uint kRasterBindingMeshSamples = 22; // uint per mesh depth sample (pixel * samples + s): float bits
+GPU_CONST uint kRasterBindingFrame = 0;       // uniform FrameParams
+GPU_CONST uint kRasterBindingSim = 1;         // uniform SimParams (colliders)
+GPU_CONST uint kRasterBindingPositions = 2;   // the solver's positions (interleaved slots, sim.h)
+GPU_CONST uint kRasterBindingTriangles = 3;   // uvec4 per guide: the guide and its two neighbours
+GPU_CONST uint kRasterBindingLut = 8;         // sampler2DArray: the lookup mode's tables
+GPU_CONST uint kRasterBindingVertices = 9;    // vec4 per strand vertex: StrandVertex
+GPU_CONST uint kRasterBindingColors = 10;     // uint per strand vertex: packed colour and opacity
+GPU_CONST uint kRasterBindingCounts = 11;     // uint per pixel: fragments (count), then write cursors (from its offset)
+GPU_CONST uint kRasterBindingOffsets = 12;    // uint per pixel + 1: its first fragment slot, the total last
+GPU_CONST uint kRasterBindingFragments = 13;  // uvec2 per fragment: depth bits, packed colour and opacity
+GPU_CONST uint kRasterBindingCounters = 14;   // RasterCounters
+GPU_CONST uint kRasterBindingMeshDepth = 15;  // sampler2DMS (sampler2D with one sample): the meshes' depth
+GPU_CONST uint kRasterBindingHairColor = 16;  // image2D rgba16f: the hair, premultiplied
+GPU_CONST uint kRasterBindingLightDepth = 17; // uint per light texel: the hair's first depth (float bits)
+GPU_CONST uint kRasterBindingLightOpacity = 18;    // uint x 4 per light texel: opacity layers, fixed point
+GPU_CONST uint kRasterBindingOpacityImage = 19;    // image2D rgba16f: the deep opacity layers, as shaders read them
+GPU_CONST uint kRasterBindingDepthRange = 20;      // vec2 per pixel: the nearest and farthest mesh depth sample
+GPU_CONST uint kRasterBindingBlockSums = 21;       // uint per scan block: its counts' total, then its offset
+GPU_CONST uint kRasterBindingMeshSamples = 22;     // uint per mesh depth sample (pixel * samples + s): float bits
 GPU_CONST uint kRasterBindingLightDepthImage = 23; // image2D r32f: the hair's first depth from the light, as values
-GPU_CONST uint kRasterBindingTileDepth = 24;   // float per kRasterDepthTile^2 pixels: their farthest mesh depth sample
-GPU_CONST uint kRasterBindingCurves = 25;      // vec4 x 2 per guide point (guide * (D + 1) + i): position, tangent
+GPU_CONST uint kRasterBindingTileDepth = 24; // float per kRasterDepthTile^2 pixels: their farthest mesh depth sample
+GPU_CONST uint kRasterBindingCurves = 25;    // vec4 x 2 per guide point (guide * (D + 1) + i): position, tangent
 
 // The coarse depth's tiles: kRasterDepthTile x kRasterDepthTile pixels (strands_depth.comp's workgroup).
 GPU_CONST uint kRasterDepthTile = 8u;
@@ -85,40 +85,40 @@ GPU_CONST float kOpacityFixedScale = 1024.0f;
 // fragment's bytes (addToTail).
 GPU_CONST float kTailFixedScale = 4096.0f;
 GPU_CONST uint kTailSaturate = 0x7fffffffu;
-GPU_CONST float kRasterFarDepth = 2.0f;  // an empty slot of the nearest list: behind everything
+GPU_CONST float kRasterFarDepth = 2.0f; // an empty slot of the nearest list: behind everything
 
 // Push constants of every compute-raster kernel.
 struct StrandRasterPush {
-    uint  guideCount;
-    uint  verticesPerStrand;  // V of the guides
-    uint  strandsPerGuide;    // S as set (the strand's identity: guide * S + s, as hair.tese has it)
-    uint  drawnPerGuide;      // strands generated per guide this frame: ceil(LOD strands) <= S
-    uint  divisions;          // D segments per strand (D + 1 vertices)
-    uint  interpolation;      // kInterpolation* (strands.h)
-    float clumpRadius;        // asset units
-    float deviation;          // asset units
-    float width;              // strand width at the root, asset units, LOD's scale included
-    float lodStrands;         // strands per guide after LOD (continuous)
-    uint  fromLight;          // 1: generate for the light's maps (orthographic, no shading)
-    uint  segmentCount;       // guideCount * drawnPerGuide * D
-    uint  targetWidth;        // pixels of the picture (or texels of the light's map) per row
-    uint  targetHeight;
-    uint  samples;            // MSAA samples of the meshes' depth
-    uint  fragmentCapacity;   // fragments the fragment buffer holds
-    uint  domLayers;          // deep opacity layers (light opacity kernel)
-    uint  scanBlocks;         // ceil((pixels + 1) / kRasterScanBlock)
-    uint  oitK;               // nearest fragments kept sorted (the resolve's specialization constant)
-    uint  pad0;
+    uint guideCount;
+    uint verticesPerStrand; // V of the guides
+    uint strandsPerGuide;   // S as set (the strand's identity: guide * S + s, as hair.tese has it)
+    uint drawnPerGuide;     // strands generated per guide this frame: ceil(LOD strands) <= S
+    uint divisions;         // D segments per strand (D + 1 vertices)
+    uint interpolation;     // kInterpolation* (strands.h)
+    float clumpRadius;      // asset units
+    float deviation;        // asset units
+    float width;            // strand width at the root, asset units, LOD's scale included
+    float lodStrands;       // strands per guide after LOD (continuous)
+    uint fromLight;         // 1: generate for the light's maps (orthographic, no shading)
+    uint segmentCount;      // guideCount * drawnPerGuide * D
+    uint targetWidth;       // pixels of the picture (or texels of the light's map) per row
+    uint targetHeight;
+    uint samples;          // MSAA samples of the meshes' depth
+    uint fragmentCapacity; // fragments the fragment buffer holds
+    uint domLayers;        // deep opacity layers (light opacity kernel)
+    uint scanBlocks;       // ceil((pixels + 1) / kRasterScanBlock)
+    uint oitK;             // nearest fragments kept sorted (the resolve's specialization constant)
+    uint pad0;
 };
 
 // What the kernels count, copied back to the host each frame.
 struct RasterCounters {
-    uint fragments;  // fragments the pixels held this frame (what the buffer needed)
-    uint capacity;   // fragments the buffer holds
-    uint overflow;   // fragments that did not fit (dropped this frame; the renderer grows the buffer)
-    uint segments;   // segments on screen, in front of the camera
-    uint maxPixel;   // the most fragments one pixel held
-    uint hidden;     // of the segments on screen, those behind the meshes' coarse depth (not walked)
+    uint fragments; // fragments the pixels held this frame (what the buffer needed)
+    uint capacity;  // fragments the buffer holds
+    uint overflow;  // fragments that did not fit (dropped this frame; the renderer grows the buffer)
+    uint segments;  // segments on screen, in front of the camera
+    uint maxPixel;  // the most fragments one pixel held
+    uint hidden;    // of the segments on screen, those behind the meshes' coarse depth (not walked)
     uint pad1;
     uint pad2;
 };
@@ -182,12 +182,12 @@ GPU_FN float pixelFootprintCdf(float x, float a, float b)
 
 // A segment prepared for coverage tests (in screen pixels).
 struct RasterSegment {
-    vec2  a;         // start
-    vec2  dir;       // unit direction (x axis when degenerate)
-    float len;       // length, pixels
-    float ha;        // half width at the start and the end, pixels
+    vec2 a;    // start
+    vec2 dir;  // unit direction (x axis when degenerate)
+    float len; // length, pixels
+    float ha;  // half width at the start and the end, pixels
     float hb;
-    float footA;     // max(|dir.x|, |dir.y|) and min: the pixel's footprint across and along
+    float footA; // max(|dir.x|, |dir.y|) and min: the pixel's footprint across and along
     float footB;
 };
 
@@ -340,7 +340,7 @@ GPU_FN bool fragmentFarther(float da, uint ca, float db, uint cb)
 GPU_FN vec4 unpackFragmentColor(uint c)
 {
     vec4 v = unpackUnorm4x8(c);
-    return vec4(vec3(v) * vec3(v), v.w);  // stored as sqrt(rgb)
+    return vec4(vec3(v) * vec3(v), v.w); // stored as sqrt(rgb)
 }
 
 GPU_FN uint packFragmentColor(vec3 rgb, float alpha)
@@ -354,17 +354,18 @@ GPU_FN uint packFragmentColor(vec3 rgb, float alpha)
 struct PixelFragments {
     float depth[kMaxOitK];
     uint color[kMaxOitK];
-    uint tailR;       // sum of alpha * r
+    uint tailR; // sum of alpha * r
     uint tailG;
     uint tailB;
-    uint tailAlpha;   // sum of alpha
-    uint tailClear;   // sum of -log(1 - alpha): the tail lets exp(-sum) through
+    uint tailAlpha; // sum of alpha
+    uint tailClear; // sum of -log(1 - alpha): the tail lets exp(-sum) through
 };
 
 GPU_FN PixelFragments emptyPixelFragments()
 {
     PixelFragments f;
-    GPU_UNROLL for (uint i = 0u; i < kMaxOitK; ++i) {
+    GPU_UNROLL for (uint i = 0u; i < kMaxOitK; ++i)
+    {
         f.depth[i] = kRasterFarDepth;
         f.color[i] = 0u;
     }
@@ -449,30 +450,33 @@ GPU_FN void insertFragmentSummed(GPU_INOUT(PixelFragments) f, uint k, float dept
 {
     float lastDepth = kRasterFarDepth;
     uint lastColor = 0u;
-    GPU_UNROLL for (uint i = 0u; i < kMaxOitK; ++i) {
+    GPU_UNROLL for (uint i = 0u; i < kMaxOitK; ++i)
+    {
         if (i + 1u == k) {
             lastDepth = f.depth[i];
             lastColor = f.color[i];
         }
     }
     if (depth > lastDepth) {
-        addToTail(f, color, saturate);  // behind all k kept (most fragments, once k are kept): one comparison
+        addToTail(f, color, saturate); // behind all k kept (most fragments, once k are kept): one comparison
         return;
     }
     uint position = 0u;
-    GPU_UNROLL for (uint i = 0u; i < kMaxOitK; ++i)
-        position += i < k && !fragmentFarther(f.depth[i], f.color[i], depth, color) ? 1u : 0u;
+    GPU_UNROLL for (uint i = 0u; i < kMaxOitK; ++i) position +=
+        i < k && !fragmentFarther(f.depth[i], f.color[i], depth, color) ? 1u : 0u;
     if (position >= k) {
-        addToTail(f, color, saturate);  // behind all k kept, at the last one's depth
+        addToTail(f, color, saturate); // behind all k kept, at the last one's depth
         return;
     }
-    GPU_UNROLL for (uint i = kMaxOitK - 1u; i > 0u; --i) {
+    GPU_UNROLL for (uint i = kMaxOitK - 1u; i > 0u; --i)
+    {
         if (i < k && i > position) {
             f.depth[i] = f.depth[i - 1u];
             f.color[i] = f.color[i - 1u];
         }
     }
-    GPU_UNROLL for (uint i = 0u; i < kMaxOitK; ++i) {
+    GPU_UNROLL for (uint i = 0u; i < kMaxOitK; ++i)
+    {
         if (i == position) {
             f.depth[i] = depth;
             f.color[i] = color;
@@ -492,7 +496,8 @@ GPU_FN vec4 resolveFragments(PixelFragments f, uint k)
 {
     vec3 color = vec3(0.0f);
     float transmittance = 1.0f;
-    GPU_UNROLL for (uint i = 0u; i < kMaxOitK; ++i) {
+    GPU_UNROLL for (uint i = 0u; i < kMaxOitK; ++i)
+    {
         if (i < k && f.depth[i] < kRasterFarDepth) {
             vec4 c = unpackFragmentColor(f.color[i]);
             color += transmittance * c.w * vec3(c);

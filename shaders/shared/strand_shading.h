@@ -8,10 +8,10 @@
 // darkened by the same opacity. Output: tone-mapped linear RGB in [0, 1].
 #ifndef WISP_SHARED_STRAND_SHADING_H
 #define WISP_SHARED_STRAND_SHADING_H
-#include "prelude.h"
 #include "frame_params.h"
 #include "hair_shading.h"
 #include "lighting.h"
+#include "prelude.h"
 #include "sim.h"
 
 GPU_NAMESPACE_BEGIN
@@ -60,7 +60,7 @@ GPU_FN vec3 shadeStrandPoint(FrameParams frame, vec3 world, vec3 tangent, float 
     }
     vec3 radiance = s * frame.lightColor * frame.lightIntensity * visibility.x;
 
-    vec3 n = wo - tangent * dot(tangent, wo);  // the ribbon faces the camera
+    vec3 n = wo - tangent * dot(tangent, wo); // the ribbon faces the camera
     n = dot(n, n) > 1e-8f ? normalize(n) : vec3(0.0f, 1.0f, 0.0f);
     float occlusion = mix(1.0f, transmittance, frame.hairAmbientOcclusion);
     radiance += vec3(m.baseColor) * frame.ambientIntensity * occlusion *

@@ -28,10 +28,10 @@ GPU_CONST uint kMaxPatchVertices = 128u;
 GPU_CONST uint kMaxTessVerticesPerDraw = 65535u;
 
 // Bindings of the hair pass (one push-descriptor set).
-GPU_CONST uint kHairBindingFrame = 0;      // uniform FrameParams
-GPU_CONST uint kHairBindingSim = 1;        // uniform SimParams (colliders for multi-strand correction)
-GPU_CONST uint kHairBindingPositions = 2;  // the solver's positions (interleaved slots, sim.h)
-GPU_CONST uint kHairBindingTriangles = 3;  // uvec4 per guide: the guide and its two neighbours
+GPU_CONST uint kHairBindingFrame = 0;     // uniform FrameParams
+GPU_CONST uint kHairBindingSim = 1;       // uniform SimParams (colliders for multi-strand correction)
+GPU_CONST uint kHairBindingPositions = 2; // the solver's positions (interleaved slots, sim.h)
+GPU_CONST uint kHairBindingTriangles = 3; // uvec4 per guide: the guide and its two neighbours
 // 4..7: the light's maps (shared/shadows.h kBinding*)
 GPU_CONST uint kHairBindingOitHeads = 8;     // uint per pixel: the first node of its list
 GPU_CONST uint kHairBindingOitNodes = 9;     // OitNode pool
@@ -40,29 +40,29 @@ GPU_CONST uint kHairBindingLut = 11;         // sampler2DArray: the lookup mode'
 
 GPU_CONST uint kInterpolationSingle = 0u;
 GPU_CONST uint kInterpolationMulti = 1u;
-GPU_CONST uint kInterpolationMixed = 2u;   // alternate strands single / multi
+GPU_CONST uint kInterpolationMixed = 2u; // alternate strands single / multi
 
 // Push constants of the hair pass.
 struct HairPush {
-    uint  guideCount;
-    uint  verticesPerStrand;  // V of the guides
-    uint  strandsPerGuide;    // S as asked (instances cover it in chunks of up to 64)
-    uint  divisions;          // D segments per strand as asked (patches along the strand cover it)
-    uint  lengthChunks;       // patches along each strand: ceil(D / 64)
-    uint  strandsPerPatch;    // lines a patch holds (<= 64, and <= max patch vertices / (divisions + 1))
-    uint  interpolation;      // kInterpolation*
-    float clumpRadius;        // single-strand disc radius, asset units
-    float deviation;          // strength of random deviations, asset units
-    float width;              // strand width at the root, asset units
-    float lodStrands;         // strands per guide drawn after LOD (continuous, <= S)
-    float lodWidthScale;      // width multiplier from LOD (keeps coverage as strands thin out)
-    float minPixelWidth;      // ribbons narrower than this are widened, alpha scaled by coverage
-    uint  reverseOrder;       // 1: draw guides and strand chunks last to first (order-independence tests)
+    uint guideCount;
+    uint verticesPerStrand; // V of the guides
+    uint strandsPerGuide;   // S as asked (instances cover it in chunks of up to 64)
+    uint divisions;         // D segments per strand as asked (patches along the strand cover it)
+    uint lengthChunks;      // patches along each strand: ceil(D / 64)
+    uint strandsPerPatch;   // lines a patch holds (<= 64, and <= max patch vertices / (divisions + 1))
+    uint interpolation;     // kInterpolation*
+    float clumpRadius;      // single-strand disc radius, asset units
+    float deviation;        // strength of random deviations, asset units
+    float width;            // strand width at the root, asset units
+    float lodStrands;       // strands per guide drawn after LOD (continuous, <= S)
+    float lodWidthScale;    // width multiplier from LOD (keeps coverage as strands thin out)
+    float minPixelWidth;    // ribbons narrower than this are widened, alpha scaled by coverage
+    uint reverseOrder;      // 1: draw guides and strand chunks last to first (order-independence tests)
     float pad1;
     float pad2;
-    vec4  reserved0;          // (free: the hair's look lives in FrameParams.hair)
-    vec3  reserved1;
-    uint  samples;            // MSAA samples of the target (for the coverage mask)
+    vec4 reserved0; // (free: the hair's look lives in FrameParams.hair)
+    vec3 reserved1;
+    uint samples; // MSAA samples of the target (for the coverage mask)
 };
 
 // ---- Curves -----------------------------------------------------------------------------------
