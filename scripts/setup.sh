@@ -8,6 +8,7 @@ packages=(
   libvulkan-dev glslang-tools libglm-dev libassimp-dev libtinyobjloader-dev
   libglfw3-dev libimgui-dev libstb-dev nlohmann-json3-dev libcli11-dev libgtest-dev
   mesa-vulkan-drivers vulkan-validationlayers ffmpeg xvfb xauth python3-matplotlib
+  clang-format  # the format check of scripts/test.sh --ci (scripts/format.sh)
   clang libclang-rt-dev  # the sanitizer build and the fuzz targets (scripts/sanitize.sh, scripts/fuzz.sh)
 )
 

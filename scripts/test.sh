@@ -2,7 +2,8 @@
 # Sets up, builds and runs every Wisp test (GoogleTest through ctest). GPU tests run on the
 # machine's Vulkan device (Mesa's lavapipe where there is no GPU) with validation on.
 #   scripts/test.sh [CTEST ARGS...]  every suite, once
-#   scripts/test.sh --ci             what .ci/run runs: every suite, then
+#   scripts/test.sh --ci             what .ci/run runs: the format check (scripts/format.sh --check),
+#                                    every suite, then
 #     sync       the GPU suites again with the validation layer's synchronization checks
 #                (WISP_TEST_SYNC_VALIDATION=1). Left out: the suites that run the wisp binary as a
 #                subprocess (BadInput, Cli, Record, Sweep, Window, BsdfCli), which do not take the
@@ -30,6 +31,9 @@ step() {
 }
 
 step setup "$root/scripts/setup.sh"
+if [ "$ci" = 1 ]; then
+  step format "$root/scripts/format.sh" --check
+fi
 step build "$root/scripts/build.sh"
 cd "${WISP_BUILD_DIR:-$root/build}"
 step tests ctest --output-on-failure -j "$jobs" "$@"
