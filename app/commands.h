@@ -12,6 +12,7 @@ namespace wisp {
 CommandRun addRenderCommand(CLI::App& app, const GlobalOptions& global);   // render_command.cpp
 CommandRun addViewCommand(CLI::App& app, const GlobalOptions& global);     // view_command.cpp
 CommandRun addSimulateCommand(CLI::App& app, const GlobalOptions& global); // simulate_command.cpp
+CommandRun addGroomCommand(CLI::App& app, const GlobalOptions& global);    // groom_command.cpp
 CommandRun addRecordCommand(CLI::App& app, const GlobalOptions& global);   // record_command.cpp
 CommandRun addSweepCommand(CLI::App& app, const GlobalOptions& global);    // sweep_command.cpp
 CommandRun addSettingsCommand(CLI::App& app);                              // settings_command.cpp

@@ -1,12 +1,14 @@
 // app/inspect.cpp: the `inspect` subcommand: a mesh's counts and bounds; a groom's counts, bounds,
 // units, up axis, pinned tips, lengths and short strands; with --head, the groom placed as `render`
-// and `simulate` would place it (the same HairScene) and its roots against the head.
+// and `simulate` would place it (the same HairScene), its roots against the head and its side
+// standoff (physics/groom_metrics.h).
 #include "app/inspect.h"
 
 #include "assets/hair_asset.h"
 #include "assets/head.h"
 #include "assets/placement.h"
 #include "core/error.h"
+#include "physics/groom_metrics.h"
 #include "physics/hair_scene.h"
 #include "physics/strands.h"
 
@@ -82,6 +84,7 @@ int inspectGroomOnHead(const InspectOptions& o)
                             {"dropped_zero_length", scene.loaded.dropped},
                             {"treatment", kTreatment}}},
                           {"pinned_tips", scene.loaded.pinnedTips},
+                          {"side_standoff", sideStandoff(scene.head.mesh, scene.strands, scene.unitsPerMetre).value},
                           {"warnings", scene.warnings}};
     std::cout << out.dump() << "\n";
     return 0;

@@ -1,5 +1,7 @@
 // app/simulate.cpp: runs fixed steps in batches (one submit each); the last step of each batch is
-// submitted alone so the positions before and after it give the kinetic energy of the motion.
+// submitted alone so the positions before and after it give the kinetic energy of the motion. When
+// the head turns, batches end every 60 Hz frame's worth of steps and the tips' lag is sampled there;
+// the side standoff (physics/groom_metrics.h) is measured at rest and on the final positions.
 #include "app/simulate.h"
 
 #include "core/error.h"
@@ -17,6 +19,27 @@
 
 namespace wisp {
 
+namespace {
+
+constexpr float kTipLagSampleHz = 60.0f;
+
+// Whether the head's rotation changes over the next `steps` steps (a turn to measure the tips' lag
+// against), checked at the end of every step.
+bool headTurns(const HairSession& session, uint32_t steps)
+{
+    const StepClock& clock = session.clock();
+    glm::mat3 start(session.headTransformAt(clock.seconds()));
+    for (uint64_t k = clock.stepsDone(); k < clock.stepsDone() + steps; ++k) {
+        glm::mat3 now(session.headTransformAt(clock.stepEnd(k)));
+        for (int c = 0; c < 3; ++c)
+            if (glm::length(now[c] - start[c]) > 1e-5f)
+                return true;
+    }
+    return false;
+}
+
+} // namespace
+
 SimulationReport simulateHeadless(const vk::Context& ctx, HairSession& session, uint32_t steps, uint32_t sampleEvery,
                                   const std::function<void(uint32_t)>& progress)
 {
@@ -30,6 +53,15 @@ SimulationReport simulateHeadless(const vk::Context& ctx, HairSession& session, 
     double gpuMs = 0.0;
     uint32_t done = 0;
     gpu::SimStep last{};
+    last.headTransform = session.headTransformAt(session.clock().seconds());
+
+    // A head that turns during the run: the tips are sampled every 60 Hz frame's worth of steps.
+    std::optional<TipLagMeter> lag;
+    uint32_t lagEvery = session.clock().stepsPerFrame(kTipLagSampleHz);
+    if (headTurns(session, steps)) {
+        lag.emplace(scene.strands, session.headBounds().center());
+        lag->sample(session.clock().seconds(), solver.readState().positions, last.headTransform);
+    }
     auto submit = [&](uint32_t count) {
         std::vector<gpu::SimStep> list = session.nextSteps(count);
         last = list.back();
@@ -43,14 +75,28 @@ SimulationReport simulateHeadless(const vk::Context& ctx, HairSession& session, 
             gpuMs += t.milliseconds;
         done += count;
     };
+    // `count` steps, in batches of at most lagEvery when the tips are sampled.
+    auto advance = [&](uint32_t count) {
+        while (count > 0) {
+            uint32_t n = lag ? std::min(count, lagEvery) : count;
+            submit(n);
+            count -= n;
+            if (lag && count > 0)
+                lag->sample(session.clock().seconds(), solver.readState().positions, last.headTransform);
+        }
+    };
     while (done < steps) {
         uint32_t n = std::min(std::max(sampleEvery, 1u), steps - done);
         double msBefore = gpuMs;
         if (n > 1)
-            submit(n - 1);
+            advance(n - 1);
         std::vector<glm::vec4> before = solver.readState().positions;
+        if (lag && n > 1)
+            lag->sample(session.clock().seconds(), before, last.headTransform);
         submit(1);
         report.state = solver.readState();
+        if (lag)
+            lag->sample(session.clock().seconds(), report.state.positions, last.headTransform);
         report.last =
             measure(report.state, before, stepSeconds, scene.strands, session.setup(), last); // the step just run
         report.worst.maxStretch = std::max(report.worst.maxStretch, report.last.maxStretch);
@@ -67,6 +113,9 @@ SimulationReport simulateHeadless(const vk::Context& ctx, HairSession& session, 
     report.memoryEnd = sampleMemory();
     report.gpuMsPerStep = gpuMs / double(std::max(steps, 1u));
     report.nonfiniteResets = report.state.nonfiniteResets;
+    report.headTransform = last.headTransform;
+    if (lag)
+        report.tipLag = lag->result();
     return report;
 }
 
@@ -198,6 +247,24 @@ int runSimulate(const vk::Context& ctx, HairSession& session, const SimulateOpti
                          {"local_stiffness", p.localStiffness},
                          {"damping", p.ftlDamping},
                          {"drag", p.drag}});
+    // The side standoff of the rest pose and of the final positions, both in head space.
+    SideStandoff restStandoff = sideStandoff(scene.head.mesh, scene.strands, scene.unitsPerMetre);
+    glm::mat4 toHead = glm::inverse(r.headTransform);
+    std::vector<glm::vec3> finalPositions;
+    finalPositions.reserve(r.state.positions.size());
+    for (const glm::vec4& p : r.state.positions)
+        finalPositions.push_back(glm::vec3(toHead * glm::vec4(glm::vec3(p), 1.0f)));
+    SideStandoff finalStandoff =
+        sideStandoff(scene.head.mesh, finalPositions, scene.strands.verticesPerStrand, scene.unitsPerMetre);
+    nlohmann::json tipLag = nullptr;
+    if (r.tipLag)
+        tipLag = {{"peak", r.tipLag->peakDeg},
+                  {"final", r.tipLag->finalDeg},
+                  {"peak_at_s", r.tipLag->peakAtSeconds},
+                  {"head_yaw_max", r.tipLag->largestHeadYawDeg},
+                  {"tips", r.tipLag->tips},
+                  {"samples", r.tipLag->samples}};
+
     nlohmann::json out = {{"steps", o.steps},
                           {"strands", scene.strands.strandCount()},
                           {"vertices", scene.strands.vertexCount()},
@@ -209,6 +276,8 @@ int runSimulate(const vk::Context& ctx, HairSession& session, const SimulateOpti
                           {"max_penetration", r.last.maxPenetration / diagonal},
                           {"root_drift", r.last.rootDrift},
                           {"nonfinite_resets", r.nonfiniteResets},
+                          {"side_standoff", {{"rest", restStandoff.value}, {"final", finalStandoff.value}}},
+                          {"tip_lag_deg", tipLag},
                           {"worst",
                            {{"max_stretch", r.worst.maxStretch},
                             {"max_penetration", r.worst.maxPenetration / diagonal},
@@ -238,6 +307,13 @@ int runSimulate(const vk::Context& ctx, HairSession& session, const SimulateOpti
             "  non-finite resets %u\n  kinetic energy    %.4g (last)\n  GPU time per step %.4f ms\n",
             double(r.last.maxStretch), double(r.last.maxPenetration / diagonal), double(r.last.rootDrift),
             r.nonfiniteResets, double(r.last.kineticEnergy), r.gpuMsPerStep);
+        std::printf("  side standoff     %.3f at rest, %.3f at the end (hair beyond the head seen from the side, "
+                    "of its width)\n",
+                    restStandoff.value, finalStandoff.value);
+        if (r.tipLag)
+            std::printf("  tip lag           %.2f degrees at most (at %.2f s), %.2f at the end, behind a head turning "
+                        "up to %.1f degrees\n",
+                        r.tipLag->peakDeg, r.tipLag->peakAtSeconds, r.tipLag->finalDeg, r.tipLag->largestHeadYawDeg);
         for (const std::string& line : describeLoadedHair(scene))
             std::printf("  %s\n", line.c_str());
         std::printf(

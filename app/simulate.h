@@ -7,6 +7,7 @@
 #include "app/scene.h"
 #include "app/settings_table.h"
 #include "gpu/context.h"
+#include "physics/groom_metrics.h"
 #include "physics/hair_scene.h"
 #include "physics/simulation.h"
 
@@ -32,7 +33,11 @@ struct SimulationReport {
     std::vector<std::pair<uint32_t, double>> stepMs; // (step, GPU ms per step since the last sample)
     double gpuMsPerStep = 0.0;
     uint32_t nonfiniteResets = 0;
-    SimState state;                      // the final state
+    SimState state;                // the final state
+    glm::mat4 headTransform{1.0f}; // where the head is after the final step
+    // When the head turns during the run: the tips' lag behind it (physics/groom_metrics.h), the
+    // tips sampled every 60 Hz frame's worth of steps (and at every energy sample).
+    std::optional<TipLag> tipLag;
     MemorySample memoryStart, memoryEnd; // after the first sample, and at the end
 };
 
