@@ -120,7 +120,11 @@ SessionOptions SessionCommandLine::resolve() const
         setSetting(o.settings, spec, v, spec.option);
         explicitSettings.push_back(spec.name);
     }
-    for (const std::string& assignment : sets_) {
+    // A style sets every growth parameter: it goes first, so that --set curl=... after it (or before) refines it.
+    std::vector<std::string> sets = sets_;
+    std::stable_partition(sets.begin(), sets.end(),
+                          [](const std::string& a) { return a.substr(0, a.find('=')) == "hair_style"; });
+    for (const std::string& assignment : sets) {
         std::string name = assignment.substr(0, assignment.find('='));
         if (const SettingSpec* spec = findSetting(name); spec && !uses_.draws && drawsOnly(spec->group))
             throw UserError("--set " + name + ": this command does not use it (it draws nothing)");

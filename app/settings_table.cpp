@@ -4,6 +4,7 @@
 #include "app/settings_table.h"
 
 #include "core/error.h"
+#include "physics/hair_style.h"
 #include "shaders/shared/shadows.h"
 #include "shading/hair_bsdf.h"
 
@@ -226,38 +227,128 @@ std::vector<SettingSpec> buildSpecs()
     };
     const Range fraction{0.0, 1.0};
 
-    // ---- Growth: the hair grown on the scalp ----
-    add(field(
+    // ---- Growth: the groom generator (physics/growth.h), in the order of its steps ----
+    auto grown = [&](SettingSpec spec, auto ref) { add(field(std::move(spec), ref)); };
+    SettingSpec style = choice("hair_style", {}, kRestart, "--style",
+                               "a named style: sets every growth parameter below but the seed (custom: none of "
+                               "the styles' own)");
+    for (const HairStyle& h : hairStyles())
+        style.choices.push_back(h.name);
+    style.choices.push_back("custom");
+    style.saved = false;
+    style.get = [](const Settings& x) {
+        for (size_t i = 0; i < hairStyles().size(); ++i)
+            if (isHairStyle(x.growth, hairStyles()[i]))
+                return SettingValue{.number = double(i)};
+        return SettingValue{.number = double(hairStyles().size())};
+    };
+    style.put = [](Settings& x, const SettingValue& v) {
+        size_t i = size_t(v.number);
+        if (i < hairStyles().size())
+            applyHairStyle(x.growth, hairStyles()[i]); // "custom" keeps the parameters as they are
+    };
+    add(style);
+    grown(
         integer("guides", {1, kMaxGuides}, kRestart, "--guides", "guide strands grown on the scalp"),
-        [](Settings & x) -> auto& { return x.growth.guides; }));
-    add(field(
+        [](Settings & x) -> auto& { return x.growth.guides; });
+    grown(
         integer("vertices_per_strand", {kMinVerticesPerStrand, kMaxVerticesPerStrand}, kRestart, "--vertices",
                 "vertices per simulated guide (loaded hair is resampled to it)"),
-        [](Settings & x) -> auto& { return x.growth.verticesPerStrand; }));
-    add(field(
+        [](Settings & x) -> auto& { return x.growth.verticesPerStrand; });
+    grown(
+        integer("seed", {0.0, 4294967295.0}, kRestart, "--seed", "seed for root sampling and strand variation"),
+        [](Settings & x) -> auto& { return x.growth.seed; });
+    grown(
+        onOff("poisson", kRestart, "--poisson", "blue-noise (Poisson-disk) roots instead of area-weighted random"),
+        [](Settings & x) -> auto& { return x.growth.poissonDisk; });
+    grown(
+        number("hairline_band", "m", {0.001, 0.05}, kRestart, "",
+               "the root density rises from 0 to full over this inside the hairline"),
+        [](Settings & x) -> auto& { return x.growth.hairlineBandMetres; });
+    grown(
+        choice("parting", {"none", "centre", "side"}, kRestart, "", "where the hair on top is parted"),
+        [](Settings & x) -> auto& { return x.growth.parting; });
+    grown(
+        number("parting_offset", "m", {-0.08, 0.08}, kRestart, "",
+               "a side parting's distance from the middle (+: the head's left)"),
+        [](Settings & x) -> auto& { return x.growth.partingOffsetMetres; });
+    grown(
+        number("parting_sweep", "", {0.0, 2.0}, kRestart, "", "how strongly hair is combed away from the parting"),
+        [](Settings & x) -> auto& { return x.growth.partingSweep; });
+    grown(
+        number("fall_back", "", {0.0, 2.0}, kRestart, "", "how far the hair on top is combed toward the back"),
+        [](Settings & x) -> auto& { return x.growth.fallBack; });
+    grown(
+        number("crown_whorl", "", fraction, kRestart, "", "the swirl of the hair around the crown"),
+        [](Settings & x) -> auto& { return x.growth.crownWhorl; });
+    grown(
+        number("bangs", "", fraction, kRestart, "", "how much of the front is combed forward over the forehead"),
+        [](Settings & x) -> auto& { return x.growth.bangs; });
+    grown(
+        number("bangs_length", "m", {0.02, 0.3}, kRestart, "", "the length of the hair combed forward"),
+        [](Settings & x) -> auto& { return x.growth.bangsLengthMetres; });
+    grown(
+        number("root_lift", "deg", {0.0, 90.0}, kRestart, "", "angle above the scalp strands leave at"),
+        [](Settings & x) -> auto& { return x.growth.rootLiftDeg; });
+    grown(
+        number("style_gravity", "", {0.0, 4.0}, kRestart, "",
+               "how fast grown strands turn down once they leave the scalp"),
+        [](Settings & x) -> auto& { return x.growth.styleGravity; });
+    grown(
+        number("volume", "m", {0.0, 0.05}, kRestart, "",
+               "how far the hair lies off the head once it has run a head's length over it"),
+        [](Settings & x) -> auto& { return x.growth.volumeMetres; });
+    grown(
         number("hair_length", "m", {0.01, 2.0}, kRestart, "--hair-length",
-               "mean grown strand length (scaled to the head's units)"),
-        [](Settings & x) -> auto& { return x.growth.lengthMetres; }));
-    add(field(
+               "mean grown strand length before the trim (scaled to the head's units)"),
+        [](Settings & x) -> auto& { return x.growth.lengthMetres; });
+    grown(
         number("length_variation", "", {0.0, 0.9}, kRestart, "--length-variation",
                "relative spread of grown strand lengths"),
-        [](Settings & x) -> auto& { return x.growth.lengthVariation; }));
-    add(field(
-        number("curl", "m", {0.0, 0.1}, kRestart, "--curl", "curl radius of grown strands (0: straight)"),
-        [](Settings & x) -> auto& { return x.growth.curlRadiusMetres; }));
-    add(field(
-        number("curl_turns", "", {0.0, 20.0}, kRestart, "", "helix turns of a curled strand along its length"),
-        [](Settings & x) -> auto& { return x.growth.curlTurns; }));
-    add(field(
-        number("style_gravity", "", {0.0, 4.0}, kRestart, "",
-               "how fast grown strands bend down and outward as they grow"),
-        [](Settings & x) -> auto& { return x.growth.styleGravity; }));
-    add(field(
-        onOff("poisson", kRestart, "--poisson", "blue-noise (Poisson-disk) roots instead of area-weighted random"),
-        [](Settings & x) -> auto& { return x.growth.poissonDisk; }));
-    add(field(
-        integer("seed", {0.0, 4294967295.0}, kRestart, "--seed", "seed for root sampling and strand variation"),
-        [](Settings & x) -> auto& { return x.growth.seed; }));
+        [](Settings & x) -> auto& { return x.growth.lengthVariation; });
+    grown(
+        number("trim_level", "m", {0.0, 1.0}, kRestart, "",
+               "strands are cut where they fall this far below the head's top (0: no trim)"),
+        [](Settings & x) -> auto& { return x.growth.trimLevelMetres; });
+    grown(
+        number("trim_slope", "", {-2.0, 2.0}, kRestart, "",
+               "how much lower the trim line runs per unit toward the face (an A-line)"),
+        [](Settings & x) -> auto& { return x.growth.trimSlope; });
+    grown(
+        number("hairline_length", "", {0.1, 1.0}, kRestart, "",
+               "the length of a hair at the very hairline, as a share of the length"),
+        [](Settings & x) -> auto& { return x.growth.hairlineLength; });
+    grown(
+        number("clump_size", "m", {0.0, 0.05}, kRestart, "", "spacing of the grown clumps' centres (0: no clumps)"),
+        [](Settings & x) -> auto& { return x.growth.clumpSizeMetres; });
+    grown(
+        number("clump_strength", "", fraction, kRestart, "", "how far a strand's tip gathers to its clump's centre"),
+        [](Settings & x) -> auto& { return x.growth.clumpStrength; });
+    grown(
+        number("clump_shape", "", {0.2, 6.0}, kRestart, "",
+               "exponent of the clumping along the strand (higher: gathers nearer the tip)"),
+        [](Settings & x) -> auto& { return x.growth.clumpShape; });
+    grown(
+        number("curl", "m", {0.0, 0.1}, kRestart, "--curl", "curl (helix) radius of grown strands (0: straight)"),
+        [](Settings & x) -> auto& { return x.growth.curlRadiusMetres; });
+    grown(
+        number("curl_turns", "", {0.0, 20.0}, kRestart, "", "helix turns along a strand of the mean length"),
+        [](Settings & x) -> auto& { return x.growth.curlTurns; });
+    grown(
+        number("curl_randomness", "", fraction, kRestart, "", "per-strand spread of the curl's radius and frequency"),
+        [](Settings & x) -> auto& { return x.growth.curlRandomness; });
+    grown(
+        number("wave", "m", {0.0, 0.05}, kRestart, "", "wave amplitude across the strand (0: no wave)"),
+        [](Settings & x) -> auto& { return x.growth.waveMetres; });
+    grown(
+        number("wave_length", "m", {0.01, 0.5}, kRestart, "", "wavelength of the wave along the strand"),
+        [](Settings & x) -> auto& { return x.growth.waveLengthMetres; });
+    grown(
+        number("frizz", "m", {0.0, 0.02}, kRestart, "", "noise amplitude at the tips, growing from the root"),
+        [](Settings & x) -> auto& { return x.growth.frizzMetres; });
+    grown(
+        number("flyaways", "", {0.0, 0.2}, kRestart, "", "share of strands that stray off the hair's surface"),
+        [](Settings & x) -> auto& { return x.growth.flyaways; });
 
     // ---- Simulation ----
     group = SettingGroup::Simulation;
@@ -380,6 +471,57 @@ std::vector<SettingSpec> buildSpecs()
     add(field(
         number("light_intensity", "", {0.0, 20.0}, kLive, "--light-intensity", "key light strength"),
         [](Settings & x) -> auto& { return x.render.light.intensity; }));
+    add(field(
+        SettingSpec{.name = "light_color",
+                    .type = T::Color,
+                    .range = {0.0, 1.0},
+                    .help = "key light colour (linear RGB)",
+                    .change = kLive},
+        [](Settings & x) -> auto& { return x.render.light.color; }));
+    // The fill and the rim: unshadowed directional lights (renderer/settings.h kDefaultFill, kDefaultRim).
+    struct StudioLight {
+        const char* name;
+        const char* role;
+        LightSettings RenderSettings::*light;
+    };
+    for (StudioLight l :
+         {StudioLight{"fill", "fill light (unshadowed; softens the key's shadowed side)", &RenderSettings::fill},
+          StudioLight{"rim", "rim light (unshadowed; from behind, lights the hair's edge)", &RenderSettings::rim}}) {
+        std::string name = l.name, role = l.role;
+        auto light = l.light;
+        add(field(
+            number(name + "_azimuth", "deg", {-360.0, 360.0}, kLive, "",
+                   role + ": angle around the up axis (0: in front of the face)"),
+            [light](Settings & x) -> auto& { return (x.render.*light).azimuthDeg; }));
+        add(field(
+            number(name + "_elevation", "deg", {-89.0, 89.0}, kLive, "", role + ": angle above the horizon"),
+            [light](Settings & x) -> auto& { return (x.render.*light).elevationDeg; }));
+        add(field(
+            number(name + "_intensity", "", {0.0, 20.0}, kLive, "", role + ": strength (0: off)"),
+            [light](Settings & x) -> auto& { return (x.render.*light).intensity; }));
+        add(field(
+            SettingSpec{.name = name + "_color",
+                        .type = T::Color,
+                        .range = {0.0, 1.0},
+                        .help = role + ": colour (linear RGB)",
+                        .change = kLive},
+            [light](Settings & x) -> auto& { return (x.render.*light).color; }));
+    }
+    add(field(
+        SettingSpec{.name = "background_top",
+                    .type = T::Color,
+                    .range = {0.0, 1.0},
+                    .help = "the backdrop's colour at the top of the picture (linear RGB), a soft gradient down to "
+                            "background_bottom",
+                    .change = kLive},
+        [](Settings & x) -> auto& { return x.render.backgroundTop; }));
+    add(field(
+        SettingSpec{.name = "background_bottom",
+                    .type = T::Color,
+                    .range = {0.0, 1.0},
+                    .help = "the backdrop's colour at the bottom of the picture (linear RGB)",
+                    .change = kLive},
+        [](Settings & x) -> auto& { return x.render.backgroundBottom; }));
     add(field(
         number("ambient", "", {0.0, 4.0}, kLive, "", "strength of the hemisphere ambient light"),
         [](Settings & x) -> auto& { return x.render.ambient; }));

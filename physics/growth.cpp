@@ -1,4 +1,4 @@
-// physics/growth.cpp: root sampling and strand growth.
+// physics/growth.cpp: the groom generator's steps and growGuides, which runs them in order.
 #include "physics/growth.h"
 
 #include "core/error.h"
@@ -6,167 +6,449 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <unordered_map>
 
 namespace wisp {
 
 namespace {
+
+constexpr float kPi = 3.14159265f;
 
 // A deterministic stream of uniform numbers in [0, 1) (PCG hash of a counter), identical on
 // every platform, unlike std:: distributions.
 struct Random {
     uint32_t state;
     float next() { return gpu::hashToUnit(state++ * 0x9E3779B9u + 0x7F4A7C15u); }
+    float signedNext() { return 2.0f * next() - 1.0f; }
 };
 
-RootSample pointOnTriangle(const Mesh& mesh, uint32_t t, float u1, float u2)
+float smoothstep(float a, float b, float x)
 {
-    // Uniform barycentrics: (1 - sqrt(u1), sqrt(u1) (1 - u2), sqrt(u1) u2) (Osada et al. 2002).
-    float r = std::sqrt(u1);
-    float a = 1.0f - r, b = r * (1.0f - u2), c = r * u2;
-    uint32_t i0 = mesh.indices[3 * t], i1 = mesh.indices[3 * t + 1], i2 = mesh.indices[3 * t + 2];
-    glm::vec3 p = a * mesh.positions[i0] + b * mesh.positions[i1] + c * mesh.positions[i2];
-    glm::vec3 n = a * mesh.normals[i0] + b * mesh.normals[i1] + c * mesh.normals[i2];
-    glm::vec3 face = glm::cross(mesh.positions[i1] - mesh.positions[i0], mesh.positions[i2] - mesh.positions[i0]);
-    if (glm::dot(n, face) < 0.0f)
-        n = -n;
-    float len = glm::length(n);
-    return {p, len > 0.0f ? n / len : glm::normalize(face), t};
+    float t = std::clamp((x - a) / (b - a), 0.0f, 1.0f);
+    return t * t * (3.0f - 2.0f * t);
+}
+
+glm::vec3 safeNormalize(const glm::vec3& v, const glm::vec3& fallback)
+{
+    float l = glm::length(v);
+    return l > 1e-12f ? v / l : fallback;
+}
+
+// Any unit vector perpendicular to the unit vector t.
+glm::vec3 perpendicular(const glm::vec3& t)
+{
+    return glm::normalize(glm::cross(t, std::abs(t.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0)));
+}
+
+// The nearest collider surface's outward normal at p (the collider p is deepest in, or nearest).
+glm::vec3 surfaceNormal(const std::vector<gpu::Ellipsoid>& colliders, const glm::vec3& p, const glm::vec3& fallback)
+{
+    float best = -1e30f;
+    glm::vec3 n = fallback;
+    for (const gpu::Ellipsoid& e : colliders) {
+        gpu::Contact c = gpu::ellipsoidContact(e, p, 0.0f);
+        if (c.depth > best) {
+            best = c.depth;
+            n = c.normal;
+        }
+    }
+    return n;
+}
+
+// 1D value noise in [-1, 1] along x with smooth (smoothstep) interpolation, one lattice per seed.
+float valueNoise(float x, uint32_t seed)
+{
+    float i = std::floor(x);
+    float f = x - i;
+    uint32_t k = uint32_t(int32_t(i));
+    float a = 2.0f * gpu::hashToUnit(gpu::hashUint(k * 747796405u + seed)) - 1.0f;
+    float b = 2.0f * gpu::hashToUnit(gpu::hashUint((k + 1u) * 747796405u + seed)) - 1.0f;
+    return a + (b - a) * f * f * (3.0f - 2.0f * f);
+}
+
+// How far from the root a strand takes to come out of the colliders to its clearance.
+constexpr float kEmergeMetres = 0.04f;
+
+// The colliders' margin for a strand point `run` along from a root `rootDepth` inside them: as deep
+// as the root at the root (the colliders are fitted inside the scalp, so roots lie inside them),
+// rising smoothly (no slope at the root, so a strand leaves at its root lift) to `clearance` outside
+// them over `emergeLength`.
+float emergeMargin(float rootDepth, float clearance, float run, float emergeLength)
+{
+    return -rootDepth + (rootDepth + clearance) * smoothstep(0.0f, emergeLength, run);
+}
+
+// Arc length at each point of a polyline, from the root.
+std::vector<float> arcLengths(const std::vector<glm::vec3>& points)
+{
+    std::vector<float> s(points.size(), 0.0f);
+    for (size_t i = 1; i < points.size(); ++i)
+        s[i] = s[i - 1] + glm::length(points[i] - points[i - 1]);
+    return s;
 }
 
 } // namespace
 
-std::vector<RootSample> sampleRoots(const Mesh& mesh, const std::vector<uint32_t>& triangles, uint32_t count,
-                                    bool poissonDisk, uint32_t seed)
-{
-    if (triangles.empty())
-        throw UserError("the head's scalp region holds no triangles: no hair can grow (check its scalp rule)");
-    std::vector<double> cumulative(triangles.size());
-    double total = 0.0;
-    for (size_t k = 0; k < triangles.size(); ++k) {
-        uint32_t t = triangles[k];
-        glm::vec3 a = mesh.positions[mesh.indices[3 * t]];
-        glm::vec3 b = mesh.positions[mesh.indices[3 * t + 1]];
-        glm::vec3 c = mesh.positions[mesh.indices[3 * t + 2]];
-        total += 0.5 * double(glm::length(glm::cross(b - a, c - a)));
-        cumulative[k] = total;
-    }
-    Random rng{seed};
-    auto draw = [&]() {
-        double target = double(rng.next()) * total;
-        size_t k = size_t(std::lower_bound(cumulative.begin(), cumulative.end(), target) - cumulative.begin());
-        k = std::min(k, triangles.size() - 1);
-        float u1 = rng.next();
-        float u2 = rng.next();
-        return pointOnTriangle(mesh, triangles[k], u1, u2);
-    };
+namespace groom {
 
-    std::vector<RootSample> out;
-    out.reserve(count);
-    if (!poissonDisk) {
-        for (uint32_t i = 0; i < count; ++i)
-            out.push_back(draw());
-        return out;
+float bangsWeight(const GrowthSettings& s, const HeadFrame& head, const glm::vec3& p)
+{
+    glm::vec3 dir = safeNormalize(p - head.centre, glm::vec3(0.0f, 0.0f, 1.0f));
+    float frontness = glm::dot(dir, glm::normalize(glm::vec3(0.0f, 0.45f, 1.0f)));
+    return s.bangs * smoothstep(0.45f, 0.8f, frontness);
+}
+
+glm::vec3 flowDirection(const GrowthSettings& s, const HeadFrame& head, const glm::vec3& p, const glm::vec3& n)
+{
+    const glm::vec3 down(0.0f, -1.0f, 0.0f), front(0.0f, 0.0f, 1.0f);
+    float R = head.skullRadius;
+    // Combed away from the face: from a point in front of the forehead, so hair at the front
+    // hairline goes up and over, on top toward the back, and down behind the ears.
+    glm::vec3 source = head.centre + glm::vec3(0.0f, 0.2f * R, 1.8f * R);
+    glm::vec3 v = s.fallBack * safeNormalize(p - source, -front);
+    // Gravity takes over below the top of the skull.
+    float below = smoothstep(0.1f * R, 0.9f * R, head.centre.y + 0.5f * R - p.y);
+    v += (0.35f + below) * down;
+    // A parting: along the top, from the front hairline back to the crown, hair is combed away
+    // from the line to either side.
+    if (s.parting != Parting::None) {
+        float partX = head.centre.x + (s.parting == Parting::Side ? s.partingOffsetMetres * head.unitsPerMetre : 0.0f);
+        float side = p.x - partX;
+        float reach = smoothstep(head.crown.z - 0.3f * R, head.crown.z + 0.2f * R, p.z) *
+                      smoothstep(head.centre.y + 0.2f * R, head.centre.y + 0.6f * R, p.y);
+        float sweep = s.partingSweep * reach * smoothstep(0.0f, 0.004f * head.unitsPerMetre, std::abs(side));
+        v += (side >= 0.0f ? 1.0f : -1.0f) * sweep * glm::vec3(1.0f, 0.0f, 0.0f);
     }
-    // Dart throwing (Cook 1986) with a hash grid: a candidate is kept when no kept root lies within
-    // r; r starts at 0.75 of the radius of N disks tiling the area and shrinks when darts keep missing.
-    float radius = float(0.75 * std::sqrt(total / (double(count) * 3.14159265)));
-    std::unordered_map<uint64_t, std::vector<uint32_t>> grid;
-    auto key = [&](glm::ivec3 c) {
-        return (uint64_t(uint32_t(c.x) & 0x1FFFFF) << 42) | (uint64_t(uint32_t(c.y) & 0x1FFFFF) << 21) |
-               uint64_t(uint32_t(c.z) & 0x1FFFFF);
-    };
-    uint32_t misses = 0;
-    while (out.size() < count) {
-        RootSample s = draw();
-        glm::ivec3 cell(glm::floor(s.position / radius));
-        bool free = true;
-        for (int dz = -1; dz <= 1 && free; ++dz)
-            for (int dy = -1; dy <= 1 && free; ++dy)
-                for (int dx = -1; dx <= 1 && free; ++dx) {
-                    auto it = grid.find(key(cell + glm::ivec3(dx, dy, dz)));
-                    if (it == grid.end())
-                        continue;
-                    for (uint32_t j : it->second)
-                        if (glm::length(out[j].position - s.position) < radius) {
-                            free = false;
-                            break;
-                        }
-                }
-        if (free) {
-            grid[key(cell)].push_back(uint32_t(out.size()));
-            out.push_back(s);
-            misses = 0;
-        } else if (++misses > 64) {
-            radius *= 0.9f; // too dense for this radius: rebuild the grid at the new cell size
-            grid.clear();
-            for (uint32_t j = 0; j < out.size(); ++j)
-                grid[key(glm::ivec3(glm::floor(out[j].position / radius)))].push_back(j);
-            misses = 0;
+    // The crown whorl: around the crown, hair spirals outward (a clockwise whorl seen from above).
+    glm::vec3 d = p - head.crown;
+    float r = glm::length(d) / (0.45f * R);
+    float whorl = s.crownWhorl * std::exp(-r * r);
+    if (whorl > 1e-4f) {
+        glm::vec3 radial = safeNormalize(d - glm::dot(d, n) * n, -front);
+        glm::vec3 swirl = glm::cross(n, radial);
+        v = glm::mix(v, glm::length(v) * safeNormalize(radial + 1.5f * swirl, radial), whorl);
+    }
+    // Bangs: the front of the scalp combed forward and down over the forehead.
+    float bangs = bangsWeight(s, head, p);
+    v = glm::mix(v, glm::length(v) * glm::normalize(front + 0.6f * down), bangs);
+    glm::vec3 tangent = v - glm::dot(v, n) * n;
+    return safeNormalize(tangent, perpendicular(n));
+}
+
+std::vector<glm::vec3> growCentreline(const GrowthSettings& s, const HeadFrame& head,
+                                      const std::vector<gpu::Ellipsoid>& colliders, const RootSample& root,
+                                      float length, float step)
+{
+    const glm::vec3 down(0.0f, -1.0f, 0.0f);
+    float lift = glm::radians(s.rootLiftDeg);
+    glm::vec3 flow = flowDirection(s, head, root.position, root.normal);
+    glm::vec3 dir = glm::normalize(std::cos(lift) * flow + std::sin(lift) * root.normal);
+    // The comb holds a strand to the flow over its first few centimetres; then gravity turns it down
+    // over a bend length that styleGravity shortens. The hair lies in layers: a strand keeps farther
+    // off the head the longer it has run over it (strands from the crown lie over those below).
+    float combLength = 0.06f * head.unitsPerMetre;
+    float bendLength = 0.05f * head.unitsPerMetre / std::max(s.styleGravity, 1e-3f);
+    float baseClearance = 0.002f * head.unitsPerMetre;
+    float layerLength = 2.0f * head.skullRadius;
+    // Roots lie inside the colliders (they are fitted inside the scalp): see emergeMargin.
+    float rootDepth = 0.0f;
+    for (const gpu::Ellipsoid& e : colliders)
+        rootDepth = std::max(rootDepth, gpu::ellipsoidContact(e, root.position, 0.0f).depth);
+    float emergeLength = kEmergeMetres * head.unitsPerMetre;
+    std::vector<glm::vec3> points{root.position};
+    size_t steps = size_t(std::ceil(length / step));
+    float h = length / float(std::max<size_t>(steps, 1));
+    glm::vec3 p = root.position;
+    float run = 0.0f;
+    for (size_t i = 0; i < steps; ++i) {
+        glm::vec3 n = surfaceNormal(colliders, p, root.normal);
+        float comb = std::exp(-run / combLength);
+        glm::vec3 combed = flowDirection(s, head, p, n);
+        glm::vec3 target = glm::normalize(comb * combed + (1.0f - comb) * down + 1e-3f * n);
+        if (s.styleGravity > 0.0f)
+            dir = glm::normalize(glm::mix(dir, target, std::min(1.0f, h / bendLength)));
+        glm::vec3 next = p + h * dir;
+        float clearance = emergeMargin(
+            rootDepth, baseClearance + s.volumeMetres * head.unitsPerMetre * std::min(run / layerLength, 1.0f), run + h,
+            emergeLength);
+        for (int pass = 0; pass < 2; ++pass)
+            for (const gpu::Ellipsoid& e : colliders) {
+                gpu::Contact c = gpu::ellipsoidContact(e, next, clearance);
+                if (c.depth > 0.0f)
+                    next += c.depth * c.normal;
+            }
+        next = gpu::ftlProject(p, next, h);
+        dir = safeNormalize(next - p, dir);
+        p = next;
+        run += h;
+        points.push_back(p);
+    }
+    return points;
+}
+
+void trim(std::vector<glm::vec3>& points, const GrowthSettings& s, const HeadFrame& head, float jitter, float shortest)
+{
+    if (s.trimLevelMetres <= 0.0f || points.size() < 2)
+        return;
+    std::vector<float> arc = arcLengths(points);
+    for (size_t i = 1; i < points.size(); ++i) {
+        const glm::vec3& p = points[i];
+        float line = head.top - s.trimLevelMetres * head.unitsPerMetre - s.trimSlope * (p.z - head.centre.z) + jitter;
+        if (p.y < line && arc[i] >= shortest) {
+            points.resize(i + 1);
+            return;
         }
     }
+}
+
+void clump(std::vector<glm::vec3>& points, const std::vector<glm::vec3>& centre, float strength, float shape)
+{
+    if (strength <= 0.0f || centre.size() < 2 || points.size() < 2)
+        return;
+    std::vector<float> arc = arcLengths(points), centreArc = arcLengths(centre);
+    float total = arc.back(), centreTotal = centreArc.back();
+    size_t j = 0;
+    for (size_t i = 1; i < points.size(); ++i) {
+        float t = arc[i] / total;
+        // The centre's point at the same share of its length.
+        float target = t * centreTotal;
+        while (j + 2 < centre.size() && centreArc[j + 1] < target)
+            ++j;
+        float span = std::max(centreArc[j + 1] - centreArc[j], 1e-12f);
+        glm::vec3 c = glm::mix(centre[j], centre[j + 1], std::clamp((target - centreArc[j]) / span, 0.0f, 1.0f));
+        points[i] = glm::mix(points[i], c, strength * std::pow(t, shape));
+    }
+}
+
+void curl(std::vector<glm::vec3>& points, float radius, float turns, float phase, float rampLength)
+{
+    if (radius <= 0.0f || points.size() < 3)
+        return;
+    std::vector<float> arc = arcLengths(points);
+    float total = arc.back();
+    std::vector<glm::vec3> out = points;
+    // Parallel transport of a normal along the centreline (no twist of its own, unlike a Frenet frame).
+    glm::vec3 t = glm::normalize(points[1] - points[0]);
+    glm::vec3 u = perpendicular(t);
+    for (size_t i = 1; i < points.size(); ++i) {
+        glm::vec3 tNext = safeNormalize(points[std::min(i + 1, points.size() - 1)] - points[i - 1], t);
+        u = safeNormalize(u - glm::dot(u, tNext) * tNext, perpendicular(tNext));
+        t = tNext;
+        glm::vec3 w = glm::cross(t, u);
+        float angle = phase + 2.0f * kPi * turns * arc[i] / total;
+        float ramp = std::min(1.0f, arc[i] / std::max(rampLength, 1e-12f));
+        out[i] = points[i] + radius * ramp * (std::cos(angle) * u + std::sin(angle) * w);
+    }
+    points = out;
+}
+
+void wave(std::vector<glm::vec3>& points, const glm::vec3& side, float amplitude, float wavelength, float phase)
+{
+    if (amplitude <= 0.0f || points.size() < 3)
+        return;
+    std::vector<float> arc = arcLengths(points);
+    std::vector<glm::vec3> out = points;
+    for (size_t i = 1; i < points.size(); ++i) {
+        glm::vec3 t = safeNormalize(points[std::min(i + 1, points.size() - 1)] - points[i - 1], side);
+        glm::vec3 across = safeNormalize(side - glm::dot(side, t) * t, perpendicular(t));
+        float ramp = smoothstep(0.0f, 0.5f * wavelength, arc[i]);
+        out[i] += amplitude * ramp * std::sin(2.0f * kPi * arc[i] / wavelength + phase) * across;
+    }
+    points = out;
+}
+
+void frizz(std::vector<glm::vec3>& points, float amplitude, float scale, uint32_t seed)
+{
+    if (amplitude <= 0.0f || points.size() < 2)
+        return;
+    std::vector<float> arc = arcLengths(points);
+    float total = arc.back();
+    for (size_t i = 1; i < points.size(); ++i) {
+        float t = arc[i] / total;
+        float x = arc[i] / scale;
+        glm::vec3 noise(valueNoise(x, seed), valueNoise(x, seed ^ 0x5bd1e995u), valueNoise(x, seed ^ 0x27d4eb2fu));
+        points[i] += amplitude * t * t * noise;
+    }
+}
+
+void keepOutside(std::vector<glm::vec3>& points, const std::vector<gpu::Ellipsoid>& colliders, float clearance,
+                 float emergeLength)
+{
+    std::vector<float> rest(points.size(), 0.0f);
+    for (size_t i = 1; i < points.size(); ++i)
+        rest[i] = glm::length(points[i] - points[i - 1]);
+    float rootDepth = 0.0f;
+    for (const gpu::Ellipsoid& e : colliders)
+        rootDepth = std::max(rootDepth, gpu::ellipsoidContact(e, points[0], 0.0f).depth);
+    float run = 0.0f;
+    for (size_t i = 1; i < points.size(); ++i) {
+        run += rest[i];
+        float margin = emergeMargin(rootDepth, clearance, run, emergeLength);
+        glm::vec3 p = points[i];
+        for (int pass = 0; pass < 2; ++pass)
+            for (const gpu::Ellipsoid& e : colliders) {
+                gpu::Contact c = gpu::ellipsoidContact(e, p, margin);
+                if (c.depth > 0.0f)
+                    p += c.depth * c.normal;
+            }
+        points[i] = gpu::ftlProject(points[i - 1], p, rest[i]);
+    }
+}
+
+std::vector<glm::vec3> resample(const std::vector<glm::vec3>& points, uint32_t count)
+{
+    std::vector<float> arc = arcLengths(points);
+    float total = arc.back();
+    std::vector<glm::vec3> out(count);
+    size_t j = 0;
+    for (uint32_t k = 0; k < count; ++k) {
+        float target = total * float(k) / float(count - 1);
+        while (j + 2 < points.size() && arc[j + 1] < target)
+            ++j;
+        float span = std::max(arc[j + 1] - arc[j], 1e-12f);
+        out[k] = glm::mix(points[j], points[j + 1], std::clamp((target - arc[j]) / span, 0.0f, 1.0f));
+    }
     return out;
+}
+
+float polylineLength(const std::vector<glm::vec3>& points)
+{
+    return arcLengths(points).back();
+}
+
+} // namespace groom
+
+void checkGrowth(const GrowthSettings& s)
+{
+    // A helix needs about four vertices a turn to be a helix once resampled (fewer alias into zigzags).
+    if (s.curlRadiusMetres > 0.0f) {
+        float turns = s.curlTurns * (1.0f + 0.5f * s.curlRandomness);
+        uint32_t needed = uint32_t(std::ceil(4.0f * turns)) + 1u;
+        if (needed > s.verticesPerStrand)
+            throw UserError("curl_turns " + std::to_string(int(std::round(s.curlTurns))) +
+                            " needs about 4 vertices a turn: " + "vertices_per_strand " +
+                            std::to_string(s.verticesPerStrand) + " holds " +
+                            std::to_string((s.verticesPerStrand - 1) / 4) + " turns (raise vertices_per_strand to " +
+                            std::to_string(std::min(needed, kMaxVerticesPerStrand)) + " or lower curl_turns)");
+    }
+    if (s.trimLevelMetres > 0.0f && s.trimLevelMetres < 0.02f)
+        throw UserError("trim_level " + std::to_string(s.trimLevelMetres) +
+                        " m cuts every strand at the top of the head (at least 0.02, or 0 for no trim)");
 }
 
 StrandSet growGuides(const Mesh& mesh, const ScalpRule& scalp, const std::vector<gpu::Ellipsoid>& colliders,
                      const GrowthSettings& s, float unitsPerMetre)
 {
-    std::vector<RootSample> roots = sampleRoots(mesh, scalpTriangles(mesh, scalp), s.guides, s.poissonDisk, s.seed);
+    checkGrowth(s);
+    const float upm = unitsPerMetre;
+    groom::HeadFrame head;
+    head.unitsPerMetre = upm;
+    Bounds bounds = mesh.bounds();
+    head.top = bounds.max.y;
+    if (!colliders.empty()) {
+        head.centre = colliders.front().center;
+        glm::vec3 r = colliders.front().radii;
+        head.skullRadius = (r.x + r.y + r.z) / 3.0f;
+    } else {
+        head.centre = bounds.center();
+        head.skullRadius = 0.09f * upm;
+    }
+    ScalpField field = makeScalpField(scalp, upm, s.hairlineBandMetres, head.skullRadius);
+    std::vector<RootSample> roots = sampleScalpRoots(mesh, field, s.guides, s.poissonDisk, s.seed);
+    // The crown: the scalp's top toward the back (where the whorl is).
+    glm::vec3 crownward = glm::normalize(glm::vec3(0.0f, 1.0f, -0.6f));
+    head.crown = roots.front().position;
+    for (const RootSample& r : roots)
+        if (glm::dot(r.position - head.centre, crownward) > glm::dot(head.crown - head.centre, crownward))
+            head.crown = r.position;
+
+    // 2 and 3: each strand's centreline, grown and trimmed.
+    Random rng{s.seed ^ 0xA511E9B3u};
+    const float step = 0.003f * upm;
+    const float shortest = 0.03f * upm;
+    const float meanLength = s.lengthMetres * upm;
+    std::vector<std::vector<glm::vec3>> lines(roots.size());
+    std::vector<float> jitter(roots.size());
+    for (size_t k = 0; k < roots.size(); ++k) {
+        float edge = s.hairlineLength + (1.0f - s.hairlineLength) * roots[k].density;
+        float length = meanLength * (1.0f + s.lengthVariation * rng.signedNext()) * edge;
+        float bangs = groom::bangsWeight(s, head, roots[k].position);
+        length =
+            glm::mix(length, s.bangsLengthMetres * upm * (1.0f + 0.5f * s.lengthVariation * rng.signedNext()), bangs);
+        length = std::max(length, 0.5f * shortest);
+        jitter[k] = 0.006f * upm * rng.signedNext();
+        lines[k] = groom::growCentreline(s, head, colliders, roots[k], length, step);
+        groom::trim(lines[k], s, head, jitter[k], std::min(shortest, 0.9f * groom::polylineLength(lines[k])));
+    }
+
+    // 4: clumps. The centres are blue noise in their own right: the first roots (dart order is
+    // random over the scalp) kept at least clumpSize apart; every strand joins its nearest centre.
+    if (s.clumpSizeMetres > 0.0f && s.clumpStrength > 0.0f) {
+        float spacing = s.clumpSizeMetres * upm;
+        std::vector<uint32_t> centres;
+        for (uint32_t k = 0; k < roots.size(); ++k) {
+            bool apart = true;
+            for (uint32_t c : centres)
+                if (glm::length(roots[c].position - roots[k].position) < spacing) {
+                    apart = false;
+                    break;
+                }
+            if (apart)
+                centres.push_back(k);
+        }
+        std::vector<std::vector<glm::vec3>> clumped = lines;
+        for (size_t k = 0; k < roots.size(); ++k) {
+            uint32_t best = centres.front();
+            float bestD = 1e30f;
+            for (uint32_t c : centres) {
+                float d = glm::length(roots[c].position - roots[k].position);
+                if (d < bestD) {
+                    bestD = d;
+                    best = c;
+                }
+            }
+            if (best != k)
+                groom::clump(clumped[k], lines[best], s.clumpStrength, s.clumpShape);
+        }
+        lines = std::move(clumped);
+    }
+
+    // 5 and 6: curl, wave, frizz and flyaways, then outside the colliders and resampled.
     StrandSet set;
     set.verticesPerStrand = s.verticesPerStrand;
-    set.parts.push_back(PartSettings{});
+    PartSettings part;
+    part.globalStiffness = s.globalStiffness;
+    part.localStiffness = s.localStiffness;
+    set.parts.push_back(part);
     set.rest.reserve(size_t(s.guides) * s.verticesPerStrand);
-    Random rng{s.seed ^ 0xA511E9B3u};
-    const glm::vec3 down(0.0f, -1.0f, 0.0f);
-    const float clearance = 0.002f * unitsPerMetre; // grown hair rests just outside the colliders
-    std::vector<glm::vec3> points(s.verticesPerStrand);
-    // Strands are combed down, away from the crown and back (swept off the face): the bend
-    // direction is gravity plus an outward-and-back pull (straight down alone cannot bend a strand
-    // that grows straight up at the crown).
-    glm::vec3 crown(0.0f);
-    for (const RootSample& root : roots)
-        crown += root.position;
-    crown /= float(std::max<size_t>(roots.size(), 1));
-    for (const RootSample& root : roots) {
-        glm::vec3 outward = root.position - crown;
-        outward.y = 0.0f;
-        outward = glm::length(outward) > 1e-6f * unitsPerMetre ? glm::normalize(outward) : glm::vec3(0.0f);
-        glm::vec3 comb = glm::normalize(outward + glm::vec3(0.0f, 0.0f, -2.5f)); // the head faces +z
-
-        float length = s.lengthMetres * unitsPerMetre * (1.0f + s.lengthVariation * (2.0f * rng.next() - 1.0f));
-        float segment = length / float(s.verticesPerStrand - 1);
-        float curlPhase = 6.2831853f * rng.next();
-        glm::vec3 dir = root.normal;
-        points[0] = root.position;
-        for (uint32_t i = 1; i < s.verticesPerStrand; ++i) {
-            // Near the root the comb turns the strand back and outward; further out gravity takes over.
-            float u = float(i) / float(s.verticesPerStrand - 1);
-            glm::vec3 bend = 1.5f * (1.0f - u) * comb + (u + 0.2f) * down;
-            dir = glm::normalize(dir + s.styleGravity * bend);
-            glm::vec3 p = points[i - 1] + segment * dir;
-            for (const gpu::Ellipsoid& e : colliders) { // drape over the head instead of through it
-                gpu::Contact c = gpu::ellipsoidContact(e, p, clearance);
-                if (c.depth > 0.0f)
-                    p += c.depth * c.normal;
-            }
-            p = gpu::ftlProject(points[i - 1], p, segment);
-            dir = glm::normalize(p - points[i - 1]);
-            points[i] = p;
-        }
-        if (s.curlRadiusMetres > 0.0f) { // a helix around the grown strand, growing from the root
-            float radius = s.curlRadiusMetres * unitsPerMetre;
-            for (uint32_t i = 1; i < s.verticesPerStrand; ++i) {
-                glm::vec3 t = glm::normalize(points[i] - points[i - 1]);
-                glm::vec3 u =
-                    glm::normalize(glm::cross(t, std::abs(t.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)));
-                glm::vec3 w = glm::cross(t, u);
-                float along = float(i) / float(s.verticesPerStrand - 1);
-                float angle = curlPhase + 6.2831853f * s.curlTurns * along;
-                points[i] += radius * std::min(1.0f, 4.0f * along) * (std::cos(angle) * u + std::sin(angle) * w);
+    const float clearance = 0.002f * upm;
+    for (size_t k = 0; k < roots.size(); ++k) {
+        std::vector<glm::vec3>& line = lines[k];
+        float length = groom::polylineLength(line);
+        float spread = s.curlRandomness;
+        float radius = s.curlRadiusMetres * upm * (1.0f + spread * rng.signedNext());
+        float turns = s.curlTurns * (length / std::max(meanLength, 1e-12f)) * (1.0f + 0.5f * spread * rng.signedNext());
+        float phase = 2.0f * kPi * rng.next();
+        groom::curl(line, radius, turns, phase, 0.015f * upm);
+        glm::vec3 outward = glm::normalize(roots[k].position - head.centre);
+        glm::vec3 tangent = safeNormalize(line.back() - line.front(), glm::vec3(0, -1, 0));
+        glm::vec3 layerSide = safeNormalize(glm::cross(tangent, outward), perpendicular(tangent));
+        groom::wave(line, layerSide, s.waveMetres * upm * (1.0f + 0.3f * rng.signedNext()),
+                    s.waveLengthMetres * upm * (1.0f + 0.15f * rng.signedNext()), 2.0f * kPi * rng.next());
+        bool flyaway = rng.next() < s.flyaways;
+        uint32_t noiseSeed = gpu::hashUint(uint32_t(k) * 2654435761u + s.seed);
+        groom::frizz(line, (flyaway ? 6.0f : 1.0f) * s.frizzMetres * upm, 0.02f * upm, noiseSeed);
+        if (flyaway) { // strays: lifted off the hair's surface toward the tip
+            std::vector<float> arc = arcLengths(line);
+            float lift = (0.01f + 0.02f * rng.next()) * upm;
+            for (size_t i = 1; i < line.size(); ++i) {
+                float t = arc[i] / arc.back();
+                line[i] += lift * t * t * t * outward;
             }
         }
-        set.add(points, 0, 1, false);
+        groom::keepOutside(line, colliders, clearance, kEmergeMetres * upm);
+        set.add(groom::resample(line, s.verticesPerStrand), 0, 1, false);
     }
+    set.scalpPaint = scalpPaint(mesh, field);
     return set;
 }
 

@@ -1,10 +1,20 @@
-// physics/growth.h: guide strands grown on the scalp of any head. Roots are sampled area-weighted
-// over the scalp triangles (optionally Poisson-disk), from a fixed seed; each strand starts along
-// the surface normal and bends under a styling gravity (the Meshuggah and Nalu recipe), kept
-// outside the colliders as it grows, with optional curls.
+// physics/growth.h: the groom generator. Guide strands grown on any head the way artists' groom
+// tools build hair (Blender's hair node assets, Houdini's groom SOPs, XGen's modifiers), as ordered,
+// seeded steps:
+//   1. roots: blue noise at the scalp field's density (physics/scalp.h), thinning over the hairline;
+//   2. flow: a combing field on the scalp (parting, crown whorl, fall back or forward for bangs);
+//      each strand leaves the scalp near tangent along it with a little root lift, then falls under
+//      gravity, sliding over the head's colliders, layered outward the farther it has run;
+//   3. length and trim: a mean length with variation, shorter at the hairline, cut at a trim line;
+//   4. clumps: strands gather toward clump centres toward the tips;
+//   5. curl and wave: a helix around the strand and a wave in the hair's layer, with randomness;
+//   6. frizz and noise, stronger toward the tips, and a few flyaways;
+// then kept outside the colliders and resampled to V vertices of equal length. Named styles
+// (physics/hair_style.h) are sets of these parameters. Everything is deterministic for a seed.
 #pragma once
 
 #include "assets/head.h"
+#include "physics/scalp.h"
 #include "physics/strands.h"
 
 #include <vector>
@@ -14,29 +24,113 @@ namespace wisp {
 // The most guide strands Wisp simulates, grown or loaded (2e6 x 64 vertices is 10 GB of solver state).
 inline constexpr uint32_t kMaxGuides = 2'000'000;
 
+enum class Parting { None, Centre, Side };
+
+// Lengths are in metres, scaled by the head's units. The defaults are the bob (physics/hair_style.h).
 struct GrowthSettings {
-    uint32_t guides = 1000;          // number of guide strands
+    uint32_t guides = 3200;          // guide strands
     uint32_t verticesPerStrand = 16; // V
-    float lengthMetres = 0.24f;      // mean strand length (scaled by the head's units)
-    float lengthVariation = 0.15f;   // relative spread of lengths
-    float styleGravity = 1.0f;       // how fast strands bend down and outward as they grow
-    float curlRadiusMetres = 0.0f;   // helix radius of curls, 0 = straight
-    float curlTurns = 3.0f;          // helix turns along a strand
-    bool poissonDisk = false;        // blue-noise roots instead of plain area-weighted
     uint32_t seed = 1;
+    bool poissonDisk = true; // blue-noise roots (else plain area-weighted)
+    // 1. Scalp
+    float hairlineBandMetres = 0.012f; // the density rises from 0 to 1 over this inside the hairline
+    // 2. Flow
+    Parting parting = Parting::Side;
+    float partingOffsetMetres = 0.03f; // a side parting's distance from the middle (+: the head's left, +x)
+    float partingSweep = 1.0f;         // how strongly the hair is combed away from the parting, 0..2
+    float fallBack = 0.6f;             // how far the hair on top is combed toward the back, 0..2
+    float crownWhorl = 0.6f;           // the swirl around the crown, 0..1
+    float bangs = 0.0f;                // how much of the front is combed forward over the forehead, 0..1
+    float bangsLengthMetres = 0.09f;   // the length of the hair combed forward (bangs are cut short)
+    float rootLiftDeg = 12.0f;         // angle above the scalp a strand leaves at
+    float styleGravity = 1.0f;         // how fast strands turn down once they leave the scalp, 0..4
+    float volumeMetres = 0.012f;       // how far a strand lies off the head once it has run a head's length
+    // 3. Length and trim
+    float lengthMetres = 0.3f;     // mean strand length before the trim
+    float lengthVariation = 0.1f;  // relative spread of lengths
+    float trimLevelMetres = 0.19f; // strands are cut this far below the head's top (0: no trim)
+    float trimSlope = 0.35f;       // the trim line drops this much per unit toward the face (an A-line bob)
+    float hairlineLength = 0.5f;   // a hair at the very hairline is this share of the length
+    // 4. Clumps
+    float clumpSizeMetres = 0.012f; // spacing of the clump centres (0: no clumps)
+    float clumpStrength = 0.45f;    // how far a strand's tip gathers to its clump's centre, 0..1
+    float clumpShape = 1.5f;        // profile exponent along the strand: higher gathers later, 0.2..6
+    // 5. Curl and wave
+    float curlRadiusMetres = 0.0f;  // helix radius (0: no curl)
+    float curlTurns = 3.0f;         // helix turns along a strand of the mean length
+    float curlRandomness = 0.25f;   // per-strand spread of the curl's radius and frequency, 0..1
+    float waveMetres = 0.0f;        // wave amplitude in the hair's layer (0: no wave)
+    float waveLengthMetres = 0.08f; // wavelength along the strand
+    // 6. Frizz and flyaways
+    float frizzMetres = 0.002f; // noise amplitude at the tips (grows as t^2 from the root)
+    float flyaways = 0.02f;     // share of strands that stray from the hair's surface, 0..0.2
+    // The shape constraints of the grown part (PartSettings): how stiffly it keeps its style.
+    float globalStiffness = 0.004f;
+    float localStiffness = 0.12f;
+
+    bool operator==(const GrowthSettings&) const = default;
 };
 
-struct RootSample {
-    glm::vec3 position;
-    glm::vec3 normal;
-    uint32_t triangle;
+// Each step on its own, for tests and for reading: these are what growGuides runs, in order.
+namespace groom {
+
+// The head's frame for the flow: its centre (the skull's), crown and the hair's parting line.
+struct HeadFrame {
+    glm::vec3 centre{0.0f};    // the skull's centre, head space
+    glm::vec3 crown{0.0f};     // the crown (the whorl's centre): the scalp's top toward the back
+    float skullRadius = 0.09f; // head units
+    float top = 0.25f;         // the head's highest point (y)
+    float unitsPerMetre = 1.0f;
 };
 
-// Area-weighted samples on the given triangles; deterministic for a seed.
-std::vector<RootSample> sampleRoots(const Mesh& mesh, const std::vector<uint32_t>& triangles, uint32_t count,
-                                    bool poissonDisk, uint32_t seed);
+// How much of the front a point is, for bangs (0..1, times GrowthSettings::bangs).
+float bangsWeight(const GrowthSettings& s, const HeadFrame& head, const glm::vec3& p);
 
-// Grows guides; `colliders` (head space) keep them out of the head.
+// The combing direction at a root: a unit vector in the tangent plane of `n`.
+glm::vec3 flowDirection(const GrowthSettings& s, const HeadFrame& head, const glm::vec3& p, const glm::vec3& n);
+
+// A strand's centreline grown from a root along the flow, under gravity, over the colliders, in
+// steps of `step` (head units) to `length`: a dense polyline.
+std::vector<glm::vec3> growCentreline(const GrowthSettings& s, const HeadFrame& head,
+                                      const std::vector<gpu::Ellipsoid>& colliders, const RootSample& root,
+                                      float length, float step);
+
+// The polyline cut where it first falls below the trim line (never shorter than `shortest`).
+void trim(std::vector<glm::vec3>& points, const GrowthSettings& s, const HeadFrame& head, float jitter, float shortest);
+
+// Strand `points` pulled toward its clump centre's polyline `centre` (the same share of the length
+// at each point): by strength * t^shape at t along the strand.
+void clump(std::vector<glm::vec3>& points, const std::vector<glm::vec3>& centre, float strength, float shape);
+
+// A helix of `radius` and `turns` around the polyline (parallel-transport frame), starting at
+// `phase`, its radius growing in over the first `rampLength` from the root.
+void curl(std::vector<glm::vec3>& points, float radius, float turns, float phase, float rampLength);
+
+// A wave of `amplitude` and `wavelength` across the polyline along `side` (kept perpendicular).
+void wave(std::vector<glm::vec3>& points, const glm::vec3& side, float amplitude, float wavelength, float phase);
+
+// Smooth noise of `amplitude` at the tip, t^2 from the root, `scale` its feature length.
+void frizz(std::vector<glm::vec3>& points, float amplitude, float scale, uint32_t seed);
+
+// Points moved out of the colliders (with `clearance`) and put back at their parents' distance
+// (follow-the-leader), root first. Within `emergeLength` of the root a point may be as deep as the
+// root itself is (roots lie inside the colliders), the allowance fading along that length.
+void keepOutside(std::vector<glm::vec3>& points, const std::vector<gpu::Ellipsoid>& colliders, float clearance,
+                 float emergeLength);
+
+// The polyline resampled to `count` points equally spaced along it.
+std::vector<glm::vec3> resample(const std::vector<glm::vec3>& points, uint32_t count);
+
+float polylineLength(const std::vector<glm::vec3>& points);
+
+} // namespace groom
+
+// Throws UserError for parameters that contradict each other (more curl turns than the vertices
+// can hold, a trim at the top of the head).
+void checkGrowth(const GrowthSettings& settings);
+
+// Grows guides; `colliders` (head space) keep them off the head. The strand set also carries the
+// head's painted scalp (StrandSet::scalpPaint) from the same field.
 StrandSet growGuides(const Mesh& mesh, const ScalpRule& scalp, const std::vector<gpu::Ellipsoid>& colliders,
                      const GrowthSettings& settings, float unitsPerMetre);
 

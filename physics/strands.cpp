@@ -82,9 +82,23 @@ std::vector<glm::uvec4> guideTriangles(const StrandSet& strands)
     std::vector<std::vector<uint32_t>> grid(size_t(dims.x) * dims.y * dims.z);
     for (uint32_t s = 0; s < n; ++s)
         grid[key(cellOf(strands.rest[size_t(s) * V]))].push_back(s);
+    // A neighbour whose strand parts from this one (across a parting, or left and right at the front
+    // hairline) would draw the strands between them across the gap: over the scalp, over the face.
+    // It is skipped when, a third of the way along, the two strands are farther apart than three times
+    // their roots' distance plus a tenth of the strand's length.
+    uint32_t probe = std::max(1u, (V - 1) / 3);
+    std::vector<float> lengths(n, 0.0f);
+    for (size_t s = 0; s < n; ++s)
+        for (uint32_t i = 1; i < V; ++i)
+            lengths[s] += glm::length(strands.rest[s * V + i] - strands.rest[s * V + i - 1]);
+    auto parts = [&](uint32_t s, uint32_t o, float rootDistance) {
+        float apart = glm::length(strands.rest[size_t(s) * V + probe] - strands.rest[size_t(o) * V + probe]);
+        return apart > 3.0f * rootDistance + 0.1f * lengths[s];
+    };
     for (uint32_t s = 0; s < n; ++s) {
         glm::vec3 p = strands.rest[size_t(s) * V];
         glm::ivec3 c = cellOf(p);
+        bool skipped = false;
         uint32_t best[2] = {s, s};
         float bestD[2] = {1e30f, 1e30f};
         size_t seen = 0; // other guides looked at: once all of them, nothing closer is left
@@ -103,6 +117,10 @@ std::vector<glm::uvec4> guideTriangles(const StrandSet& strands)
                                 continue;
                             seen += first ? 1 : 0;
                             float d = glm::length(strands.rest[size_t(o) * V] - p);
+                            if (d < bestD[1] && parts(s, o, d)) {
+                                skipped = true;
+                                continue;
+                            }
                             if (d < bestD[0] && o != best[0] && o != best[1]) {
                                 best[1] = best[0];
                                 bestD[1] = bestD[0];
@@ -116,7 +134,10 @@ std::vector<glm::uvec4> guideTriangles(const StrandSet& strands)
                     }
             bool covered = c.x - r <= 0 && c.y - r <= 0 && c.z - r <= 0 && c.x + r >= dims.x - 1 &&
                            c.y + r >= dims.y - 1 && c.z + r >= dims.z - 1;
-            if ((bestD[1] < 1e29f && bestD[1] <= float(r - 1) * cell) || covered || seen + 1 >= n)
+            // Where parting neighbours were skipped, the search stops a few rings out (a guide whose
+            // every neighbour parts from it is its own neighbour: its strands follow it alone).
+            if ((bestD[1] < 1e29f && bestD[1] <= float(r - 1) * cell) || covered || seen + 1 >= n ||
+                (skipped && r >= 4))
                 break;
         }
         out[s] = glm::uvec4(s, bestD[0] < 1e29f ? best[0] : s, bestD[1] < 1e29f ? best[1] : s, 0u);

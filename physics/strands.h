@@ -27,6 +27,9 @@ struct StrandSet {
     std::vector<glm::vec3> rest;          // strandCount() * V, head space, root first
     std::vector<gpu::StrandInfo> strands; // one per strand
     std::vector<PartSettings> parts;      // indexed by StrandInfo::part
+    // Grown hair: how strongly each vertex of the head is painted under it (physics/scalp.h), from
+    // the field its roots were grown at; empty for loaded hair (the renderer paints around the roots).
+    std::vector<float> scalpPaint;
 
     size_t strandCount() const { return strands.size(); }
     size_t vertexCount() const { return rest.size(); }
@@ -37,8 +40,10 @@ struct StrandSet {
 };
 
 // For multi-strand interpolation: each guide with its two nearest neighbours by root distance
-// (x: the guide, y, z: the neighbours, w: 0), found through a uniform grid over the roots. A lone
-// guide is its own neighbour.
+// (x: the guide, y, z: the neighbours, w: 0), found through a uniform grid over the roots, leaving
+// out neighbours whose strands part from the guide's (a third of the way along, farther apart than
+// three times the roots' distance plus a tenth of the length: across a parting). A lone guide is its
+// own neighbour.
 std::vector<glm::uvec4> guideTriangles(const StrandSet& strands);
 
 } // namespace wisp

@@ -53,6 +53,8 @@ private:
 
 std::vector<float> scalpCoverage(const Mesh& head, const StrandSet& strands)
 {
+    if (strands.scalpPaint.size() == head.positions.size())
+        return strands.scalpPaint; // grown hair: the field its roots were grown at
     std::vector<float> out(head.positions.size(), 0.0f);
     size_t n = strands.strandCount();
     if (n == 0)

@@ -28,7 +28,8 @@ class RenderTarget;
 class FrameUniforms;
 class LightMaps;
 
-// The scalp under a groom, per vertex of the head (0..1): 1 within the roots' typical spacing of a
+// The scalp under a groom, per vertex of the head (0..1): grown hair's own field
+// (StrandSet::scalpPaint, physics/scalp.h); for loaded hair 1 within the roots' typical spacing of a
 // root, fading to 0 at two and a half times it (the hairline), so the painted scalp covers where
 // hair grows and a little past it. Head space, as the strands' rest pose.
 std::vector<float> scalpCoverage(const Mesh& head, const StrandSet& strands);

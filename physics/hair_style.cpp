@@ -1,0 +1,122 @@
+// physics/hair_style.cpp: the styles' parameters. Lengths in metres on an adult head.
+#include "physics/hair_style.h"
+
+namespace wisp {
+
+namespace {
+
+std::array<HairStyle, 6> makeStyles()
+{
+    GrowthSettings bob; // the defaults: a chin-length A-line bob with a side parting
+
+    GrowthSettings longHair;
+    longHair.parting = Parting::Centre;
+    longHair.lengthMetres = 0.5f;
+    longHair.lengthVariation = 0.06f;
+    longHair.trimLevelMetres = 0.0f;
+    longHair.volumeMetres = 0.01f;
+    longHair.clumpStrength = 0.5f;
+    longHair.globalStiffness = 0.003f;
+    longHair.localStiffness = 0.1f;
+
+    GrowthSettings wavy;
+    wavy.lengthMetres = 0.36f;
+    wavy.trimLevelMetres = 0.27f;
+    wavy.trimSlope = 0.0f;
+    wavy.waveMetres = 0.012f;
+    wavy.waveLengthMetres = 0.07f;
+    wavy.volumeMetres = 0.02f;
+    wavy.clumpStrength = 0.55f;
+    wavy.clumpSizeMetres = 0.016f;
+    wavy.frizzMetres = 0.003f;
+    wavy.localStiffness = 0.2f;
+
+    GrowthSettings crop;
+    crop.parting = Parting::None;
+    crop.fallBack = 1.2f;
+    crop.lengthMetres = 0.055f;
+    crop.lengthVariation = 0.2f;
+    crop.trimLevelMetres = 0.0f;
+    crop.rootLiftDeg = 22.0f;
+    crop.styleGravity = 0.4f;
+    crop.volumeMetres = 0.004f;
+    crop.hairlineLength = 0.35f;
+    crop.clumpSizeMetres = 0.008f;
+    crop.clumpStrength = 0.3f;
+    crop.frizzMetres = 0.001f;
+    crop.flyaways = 0.0f;
+    crop.globalStiffness = 0.05f;
+    crop.localStiffness = 0.4f;
+
+    GrowthSettings bangs;
+    bangs.bangs = 1.0f;
+    bangs.bangsLengthMetres = 0.085f;
+    bangs.lengthMetres = 0.32f;
+    bangs.trimLevelMetres = 0.21f;
+    bangs.trimSlope = 0.0f;
+    bangs.partingOffsetMetres = 0.035f;
+
+    GrowthSettings afro;
+    afro.verticesPerStrand = 32;
+    afro.guides = 2400;
+    afro.parting = Parting::None;
+    afro.fallBack = 0.3f;
+    afro.crownWhorl = 0.3f;
+    afro.rootLiftDeg = 55.0f;
+    afro.styleGravity = 0.12f;
+    afro.lengthMetres = 0.13f;
+    afro.lengthVariation = 0.2f;
+    afro.trimLevelMetres = 0.0f;
+    afro.volumeMetres = 0.0f;
+    afro.hairlineLength = 0.35f;
+    afro.clumpSizeMetres = 0.01f;
+    afro.clumpStrength = 0.25f;
+    afro.curlRadiusMetres = 0.005f;
+    afro.curlTurns = 6.0f;
+    afro.curlRandomness = 0.35f;
+    afro.frizzMetres = 0.004f;
+    afro.flyaways = 0.0f;
+    afro.globalStiffness = 0.02f;
+    afro.localStiffness = 0.5f;
+
+    return {{
+        {"bob", "chin-length A-line bob with a side parting (the default)", bob},
+        {"long", "long straight hair with a centre parting, over the shoulders", longHair},
+        {"wavy", "shoulder-length waves with a side parting", wavy},
+        {"crop", "a short crop combed back", crop},
+        {"bangs", "shoulder-length with a side parting and bangs over the forehead", bangs},
+        {"afro", "curly, coily afro-textured hair standing out in a rounded shape", afro},
+    }};
+}
+
+} // namespace
+
+const std::array<HairStyle, 6>& hairStyles()
+{
+    static const std::array<HairStyle, 6> styles = makeStyles();
+    return styles;
+}
+
+const HairStyle* findHairStyle(std::string_view name)
+{
+    for (const HairStyle& s : hairStyles())
+        if (name == s.name)
+            return &s;
+    return nullptr;
+}
+
+void applyHairStyle(GrowthSettings& growth, const HairStyle& style)
+{
+    uint32_t seed = growth.seed;
+    growth = style.growth;
+    growth.seed = seed;
+}
+
+bool isHairStyle(const GrowthSettings& growth, const HairStyle& style)
+{
+    GrowthSettings styled = style.growth;
+    styled.seed = growth.seed;
+    return styled == growth;
+}
+
+} // namespace wisp

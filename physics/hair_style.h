@@ -1,0 +1,29 @@
+// physics/hair_style.h: named hair styles, each nothing but a set of the groom generator's
+// parameters (physics/growth.h) and the shape constraints that keep it (how stiffly the grown part
+// holds its rest pose). `hair_style` in the settings table applies one; changing any of its
+// parameters afterwards makes the style "custom".
+#pragma once
+
+#include "physics/growth.h"
+
+#include <array>
+#include <string_view>
+
+namespace wisp {
+
+struct HairStyle {
+    const char* name;
+    const char* description;
+    GrowthSettings growth; // every parameter but the seed
+};
+
+// bob (the default: GrowthSettings{}), long, wavy, crop, bangs, afro.
+const std::array<HairStyle, 6>& hairStyles();
+// The style of that name, or nullptr.
+const HairStyle* findHairStyle(std::string_view name);
+// Sets every parameter of the style, keeping the seed.
+void applyHairStyle(GrowthSettings& growth, const HairStyle& style);
+// Whether the settings are the style's (the seed aside).
+bool isHairStyle(const GrowthSettings& growth, const HairStyle& style);
+
+} // namespace wisp

@@ -1,0 +1,57 @@
+// physics/scalp.h: where hair grows on a head, as a smooth field over its surface rather than a
+// set of triangles. The head's scalp rule (a plane over the hairline and the face's direction,
+// assets/head.h) becomes a signed distance in head units, positive on the scalp, evaluated at any
+// point with its interpolated normal; the root density rises from 0 to 1 across a band inside the
+// hairline, so hair thins over its last centimetre as real hairlines do. Roots are blue noise at that
+// density, anywhere inside triangles; the head's painted scalp follows the same field.
+#pragma once
+
+#include "assets/head.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace wisp {
+
+struct ScalpField {
+    ScalpRule rule;
+    float bandWidth = 0.012f; // head units: the density goes from 0 (hairline) to 1 over this
+    float faceRadius = 0.09f; // head units: turns the face rule's angle into a distance (the skull's radius)
+
+    // Signed distance inside the hairline (head units; > 0 on the scalp): the smaller of the height
+    // above the hairline plane and the face rule's margin times faceRadius, blended smoothly where
+    // they meet (a polynomial smooth minimum, Quilez 2013) so the hairline has no corner.
+    float distance(const glm::vec3& p, const glm::vec3& n) const;
+    // Root density at a point, 0..1: a smoothstep of distance() over the band.
+    float density(const glm::vec3& p, const glm::vec3& n) const;
+    // How strongly the head is painted under the hair, 0..1: the density widened by half a band
+    // outward, so the skin darkens a little before the first roots and never has a hard border.
+    float paint(const glm::vec3& p, const glm::vec3& n) const;
+};
+
+// The scalp field of a head under its rule, with the band scaled to its units.
+ScalpField makeScalpField(const ScalpRule& rule, float unitsPerMetre, float bandMetres, float skullRadius);
+
+struct RootSample {
+    glm::vec3 position;
+    glm::vec3 normal;
+    uint32_t triangle;
+    float density = 1.0f; // the scalp field's density where the root is (1 for plain sampling)
+};
+
+// Area-weighted samples on the given triangles; deterministic for a seed (blue noise with
+// `poissonDisk`: dart throwing, Cook 1986).
+std::vector<RootSample> sampleRoots(const Mesh& mesh, const std::vector<uint32_t>& triangles, uint32_t count,
+                                    bool poissonDisk, uint32_t seed);
+
+// `count` roots over the head at the field's density: candidates uniform over the area of every
+// triangle the field reaches, kept with probability density() (so the band is sparser), then kept
+// apart by dart throwing (blue noise) when `poissonDisk`. Throws UserError when the field holds no
+// area (a head with no usable scalp).
+std::vector<RootSample> sampleScalpRoots(const Mesh& mesh, const ScalpField& field, uint32_t count, bool poissonDisk,
+                                         uint32_t seed);
+
+// The painted scalp of each head vertex (ScalpField::paint at the vertex and its normal).
+std::vector<float> scalpPaint(const Mesh& mesh, const ScalpField& field);
+
+} // namespace wisp
