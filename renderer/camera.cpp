@@ -51,15 +51,20 @@ OrbitCamera OrbitCamera::framing(const Bounds& bounds, float aspect)
 {
     OrbitCamera c;
     glm::vec3 size = bounds.size();
-    // Aim a little above the centre: a bust is looked at for its head.
-    c.target = bounds.center() + glm::vec3(0.0f, 0.08f * size.y, 0.0f);
     float radius = 0.5f * glm::length(size);
-    float halfFov = glm::radians(c.fovYDeg) * 0.5f;
-    float fitVertical = radius / std::sin(halfFov);
-    float fitHorizontal = radius / std::sin(std::atan(std::tan(halfFov) * aspect));
-    c.distance = 0.8f * std::max(fitVertical, fitHorizontal);
+    // A head-and-shoulders portrait: the frame's height spans the top kPortraitSpan of the bounds'
+    // height (a bust's head, neck and the top of its shoulders) plus kPortraitHeadroom above it, for
+    // the hair over the crown; its width at least kPortraitWidth of the bounds' (the shoulders), at
+    // the target's depth.
+    float top = bounds.max.y + kPortraitHeadroom * size.y;
+    float spanY = (kPortraitSpan + kPortraitHeadroom) * size.y;
+    c.target = glm::vec3(bounds.center().x, top - 0.5f * spanY, bounds.center().z);
+    float tanHalfFov = std::tan(glm::radians(c.fovYDeg) * 0.5f);
+    float fitVertical = 0.5f * spanY / tanHalfFov;
+    float fitHorizontal = 0.5f * kPortraitWidth * std::max(size.x, size.z) / (tanHalfFov * aspect);
+    c.distance = std::max({fitVertical, fitHorizontal, 1e-6f});
     c.sceneRadius = std::max(radius, 1e-6f);
-    c.fitPlanes();
+    c.fitPlanes(glm::length(c.target - bounds.center()));
     return c;
 }
 

@@ -42,8 +42,12 @@ struct OrbitCamera {
     static constexpr float kFarReach = 8.0f;         // and behind it
     static constexpr float kMinNearFraction = 0.02f; // of the distance
 
-    // A three-quarter view that fits `bounds` in the frame with a margin.
+    // The default camera: a three-quarter portrait of `bounds` (y up; a bust or a head), its head and
+    // shoulders filling the frame (renderer/camera.cpp). Scene cameras are relative to it.
     static OrbitCamera framing(const Bounds& bounds, float aspect);
+    static constexpr float kPortraitSpan = 0.88f;     // of the bounds' height, from the top down
+    static constexpr float kPortraitHeadroom = 0.08f; // of the bounds' height, above the top
+    static constexpr float kPortraitWidth = 0.9f;     // of the bounds' width, at least
 };
 
 } // namespace wisp

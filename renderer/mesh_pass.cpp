@@ -148,6 +148,15 @@ MeshPass::MeshPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
         .samples = target.samples(),
         .name = "mesh.pipeline"};
     pipeline_ = vk::createGraphicsPipeline(ctx, shade);
+    backgroundPipeline_ = vk::createGraphicsPipeline(ctx, {.layout = layout_,
+                                                           .shaders = {"fullscreen.vert", "background.frag"},
+                                                           .cullMode = VK_CULL_MODE_NONE,
+                                                           .depthTest = false,
+                                                           .depthWrite = false,
+                                                           .colorFormat = RenderTarget::kColorFormat,
+                                                           .depthFormat = RenderTarget::kDepthFormat,
+                                                           .samples = target.samples(),
+                                                           .name = "mesh.background.pipeline"});
     vk::GraphicsPipelineDesc depth = shade;
     depth.shaders = {"mesh.vert"};
     depth.depthWrite = true;
@@ -340,9 +349,12 @@ void MeshPass::recordShadowMask(VkCommandBuffer cmd, FrameContext& frame)
 
 void MeshPass::record(VkCommandBuffer cmd, FrameContext& frame)
 {
-    target_.beginRendering(cmd, clearColor_, RenderTarget::DepthUse::TestOnly);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
+    // The backdrop first, over every sample (the clear is overdrawn), then the meshes over it.
+    target_.beginRendering(cmd, glm::vec3(0.0f), RenderTarget::DepthUse::TestOnly);
     uniforms_.push(ctx_, cmd, layout_, frame.slot);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, backgroundPipeline_);
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
     VkDescriptorImageInfo mask{nearest_, shadowMask_.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkWriteDescriptorSet maskWrite =
         vk::imageWrite(gpu::kMeshBindingShadowMask, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &mask);

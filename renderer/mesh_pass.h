@@ -59,7 +59,6 @@ public:
         scalpStrength_ = strength;
     }
     void setSurface(const glm::vec3& albedo, float roughness);
-    void setClearColor(const glm::vec3& color) { clearColor_ = color; }
     // Where the head is this frame (rigid; its surface's model matrix applies first).
     void setHeadTransform(const glm::mat4& transform) { headTransform_ = transform; }
     // The user's collision sphere (xyz centre, w radius; 0 hides it): drawn, and casts shadows.
@@ -90,7 +89,6 @@ public:
     float roughness() const { return roughness_; }
     const glm::vec3& scalpAlbedo() const { return scalpAlbedo_; }
     float scalpStrength() const { return scalpStrength_; }
-    const glm::vec3& clearColor() const { return clearColor_; }
 
     void declareDepth(PassIo& io);
     void recordDepth(VkCommandBuffer cmd, FrameContext& frame);
@@ -104,8 +102,9 @@ private:
     vk::DescriptorSetLayout setLayout_;
     vk::PipelineLayout layout_;
     vk::Pipeline pipeline_;
-    vk::Pipeline lightPipeline_; // depth only, from the light
-    vk::Pipeline depthPipeline_; // depth only, from the camera
+    vk::Pipeline backgroundPipeline_; // the backdrop's gradient behind the meshes (background.frag)
+    vk::Pipeline lightPipeline_;      // depth only, from the light
+    vk::Pipeline depthPipeline_;      // depth only, from the camera
     vk::DescriptorSetLayout shadowSetLayout_;
     vk::PipelineLayout shadowLayout_;
     vk::Pipeline shadowPipeline_; // mesh_shadow.comp
@@ -130,7 +129,6 @@ private:
     float roughness_ = 0.5f;
     glm::vec3 scalpAlbedo_{0.0f};
     float scalpStrength_ = 0.0f;
-    glm::vec3 clearColor_{0.0f};
     void draw(VkCommandBuffer cmd, const GpuMesh& mesh, const glm::mat4& model, const glm::vec3& albedo,
               float roughness);
 };

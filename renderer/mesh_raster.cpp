@@ -123,12 +123,14 @@ gpu::MeshRasterPush MeshRaster::push() const
             .headRoughness = meshes_.roughness(),
             .scalpAlbedo = meshes_.scalpAlbedo(),
             .scalpStrength = meshes_.scalpStrength(),
-            .background = meshes_.clearColor(),
             .samples = uint32_t(target_.samples()),
             .width = e.width,
             .height = e.height,
             .object = 0,
-            .triangles = 0};
+            .triangles = 0,
+            .pad0 = 0,
+            .pad1 = 0,
+            .pad2 = 0};
 }
 
 void MeshRaster::declare(Stage stage, PassIo& io)

@@ -72,7 +72,6 @@ std::vector<glm::vec3> shadeMeshes(const gpu::MeshRasterPush& push, const gpu::F
 {
     glm::vec2 size(float(push.width), float(push.height));
     std::vector<glm::vec3> out(size_t(push.width) * push.height);
-    glm::vec3 lightRadiance = frame.lightColor * frame.lightIntensity; // visibility 1
     for (uint32_t y = 0; y < push.height; ++y)
         for (uint32_t x = 0; x < push.width; ++x) {
             size_t first = (size_t(y) * push.width + x) * push.samples;
@@ -112,14 +111,14 @@ std::vector<glm::vec3> shadeMeshes(const gpu::MeshRasterPush& push, const gpu::F
                 float roughness = object == gpu::kMeshObjectHead     ? push.headRoughness
                                   : object == gpu::kMeshObjectSphere ? gpu::kSphereRoughness
                                                                      : gpu::kMarkerRoughness;
-                color += float(count) * gpu::meshSurfaceColor(
-                                            glm::normalize(normal), glm::normalize(frame.cameraPosition - world),
-                                            frame.lightDirection, lightRadiance, albedo, roughness, push.scalpAlbedo,
-                                            push.scalpStrength * std::clamp(scalp, 0.0f, 1.0f), frame.ambientIntensity,
-                                            frame.skyColor, frame.groundColor, frame.exposure);
+                color += float(count) * gpu::meshSurfaceColor(frame, glm::normalize(normal),
+                                                              glm::normalize(frame.cameraPosition - world),
+                                                              1.0f, // the key's visibility: the twin has no shadows
+                                                              albedo, roughness, push.scalpAlbedo,
+                                                              push.scalpStrength * std::clamp(scalp, 0.0f, 1.0f));
                 covered += count;
             }
-            color += float(push.samples - covered) * push.background;
+            color += float(push.samples - covered) * gpu::frameBackground(frame, centre.y);
             out[size_t(y) * push.width + x] = color / float(push.samples);
         }
     return out;

@@ -14,8 +14,10 @@
 
 namespace wisp {
 
-static_assert(sizeof(gpu::FrameParams) == 3 * 64 + 6 * 16 + 64 + 64 + 48 + 16 + 80,
+static_assert(sizeof(gpu::FrameLight) == 32);
+static_assert(sizeof(gpu::FrameParams) == 3 * 64 + 6 * 16 + 64 + 64 + 48 + 16 + 80 + 2 * 32 + 16 + 16,
               "FrameParams must match its std140 layout");
+static_assert(offsetof(gpu::FrameParams, unshadowed) == 560);
 static_assert(offsetof(gpu::FrameParams, hair) == 480);
 static_assert(offsetof(gpu::FrameParams, lightViewProjection) == 352);
 static_assert(offsetof(gpu::FrameParams, shadowsEnabled) == 460);
@@ -49,9 +51,17 @@ gpu::FrameParams pack(const RenderSettings& s, const OrbitCamera& camera, VkExte
     p.exposure = s.exposure;
     p.groundColor = s.groundColor;
     p.viewportWidth = static_cast<float>(extent.width);
-    p.backgroundColor = s.background;
+    p.backgroundTop = s.backgroundTop;
+    p.backgroundBottom = s.backgroundBottom;
     p.viewportHeight = static_cast<float>(extent.height);
     p.headTransform = glm::mat4(1.0f); // the Renderer sets the head's pose (setHeadTransform) after packing
+    const LightSettings* unshadowed[] = {&s.fill, &s.rim}; // frameLight 1 and 2
+    static_assert(std::size(unshadowed) == gpu::kFrameLights - 1);
+    for (size_t i = 0; i < std::size(unshadowed); ++i)
+        p.unshadowed[i] = {.direction = unshadowed[i]->direction(),
+                           .intensity = unshadowed[i]->intensity,
+                           .color = unshadowed[i]->color,
+                           .pad = 0.0f};
 
     // The light's view: orthographic along its direction, around the sphere holding the scene.
     glm::vec3 centre = light.scene.center();
@@ -95,7 +105,6 @@ Renderer::Renderer(const vk::Context& ctx, const RenderSettings& settings, uint3
     meshPass_->setLightMaps(lightMaps_.get());
     shadowPass_ = std::make_unique<ShadowPass>(*lightMaps_, *meshPass_, nullptr);
     opacityPass_ = std::make_unique<OpacityPass>(*lightMaps_, nullptr);
-    meshPass_->setClearColor(settings_.background);
     meshPass_->setSurface(settings_.headAlbedo, settings_.headRoughness);
 }
 
@@ -163,6 +172,8 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
         meshPass_->setScalp(kScalpDarkening * shading::colorFromSigmaA(look.sigmaA, look.betaN), settings_.scalpPaint);
     gpu::FrameParams frameParams = pack(settings_, camera, target_->extent(), timeSeconds, lightFit_);
     frameParams.headTransform = headTransform_;
+    frameParams.hairVolume =
+        glm::vec4(glm::vec3(headTransform_ * glm::vec4(glm::vec3(hairVolume_), 1.0f)), hairVolume_.w);
     frameParams.hair = material_;
     uniforms_.write(frame.slot, frameParams);
     frameParams_ = frameParams;
@@ -322,6 +333,14 @@ void Renderer::attachHair(GpuSolver& solver, const StrandSet& strands, float uni
     }
     glm::vec3 margin = 0.1f * (hi - lo);
     lightFit_.scene = {lo - margin, hi + margin};
+    if (!strands.rest.empty()) {
+        Bounds rest{strands.rest.front(), strands.rest.front()};
+        for (const glm::vec3& p : strands.rest) {
+            rest.min = glm::min(rest.min, p);
+            rest.max = glm::max(rest.max, p);
+        }
+        hairVolume_ = glm::vec4(rest.center(), std::max(0.5f * rest.diagonal(), 1e-6f));
+    }
     lightFit_.unitsPerMetre = unitsPerMetre;
     guideCount_ = uint32_t(strands.strandCount());
     verticesPerStrand_ = strands.verticesPerStrand;

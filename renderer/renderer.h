@@ -129,6 +129,7 @@ private:
     Bounds bounds_;
     Mesh headMesh_; // kept to paint its scalp once the hair is known
     LightFit lightFit_;
+    glm::vec4 hairVolume_{0.0f}; // the hair's rest bounds as a sphere in head space (radius 0: no hair)
     glm::mat4 headTransform_{1.0f};
     bool showLightMarker_ = false;
     shading::HairParams lutParams_;                     // what the hair pass's lookup tables were built for

@@ -17,14 +17,27 @@ namespace wisp {
 
 inline constexpr Range kImageSizeRange{16, 8192}; // pixels per side of the image (--width, --height)
 
+// A directional light. The key (RenderSettings::light) is shadowed (the light's maps); the fill
+// and the rim are not (shaders/shared/frame_params.h frameLight, evaluated in one loop by the meshes
+// and the hair).
 struct LightSettings {
-    float azimuthDeg = 40.0f;   // around the up axis, 0 = in front of the face, + toward the head's left (+x)
-    float elevationDeg = 35.0f; // above the horizontal plane
-    float intensity = 3.2f;
-    glm::vec3 color{1.0f, 0.96f, 0.9f}; // warm key light, linear RGB
+    float azimuthDeg = 40.0f;            // around the up axis, 0 = in front of the face, + toward the head's left (+x)
+    float elevationDeg = 35.0f;          // above the horizontal plane
+    float intensity = 3.2f;              // radiance scale; 0 turns the light off
+    glm::vec3 color{1.0f, 0.93f, 0.84f}; // warm key light, linear RGB
 
     glm::vec3 direction() const; // unit vector toward the light (world space, y up, face +z)
 };
+
+// The studio's defaults, a portrait's three lights around the default camera (yaw 25): the key
+// (LightSettings' own defaults) warm, high and to the camera's right; the fill soft and cool on its
+// left, a little above the eyes, about a quarter of the key; the rim behind and above the head,
+// stronger than the key, lighting the crown and the hair's edge through its reflection and its
+// transmission (Karis TT).
+inline constexpr LightSettings kDefaultFill{
+    .azimuthDeg = -45.0f, .elevationDeg = 10.0f, .intensity = 0.9f, .color = {0.78f, 0.87f, 1.0f}};
+inline constexpr LightSettings kDefaultRim{
+    .azimuthDeg = -160.0f, .elevationDeg = 40.0f, .intensity = 4.0f, .color = {1.0f, 0.97f, 0.93f}};
 
 enum class Interpolation { Single, Multi, Mixed };
 
@@ -87,12 +100,16 @@ constexpr HairRaster resolveHairRaster(HairRaster setting, VkPhysicalDeviceType 
 struct RenderSettings {
     uint32_t width = 1280;
     uint32_t height = 720;
-    uint32_t samples = 4; // MSAA for meshes: 1, 2, 4 or 8 (clamped to what the device has)
-    LightSettings light;
-    float ambient = 0.35f;                      // hemisphere ambient scale
-    glm::vec3 skyColor{0.55f, 0.62f, 0.75f};    // cool fill from above
-    glm::vec3 groundColor{0.22f, 0.2f, 0.18f};  // warm bounce from below
-    glm::vec3 background{0.035f, 0.04f, 0.05f}; // linear RGB, a dark neutral studio grey
+    uint32_t samples = 4;                      // MSAA for meshes: 1, 2, 4 or 8 (clamped to what the device has)
+    LightSettings light;                       // the key, shadowed
+    LightSettings fill = kDefaultFill;         // unshadowed
+    LightSettings rim = kDefaultRim;           // unshadowed
+    float ambient = 0.35f;                     // hemisphere ambient scale
+    glm::vec3 skyColor{0.55f, 0.62f, 0.75f};   // cool fill from above
+    glm::vec3 groundColor{0.22f, 0.2f, 0.18f}; // warm bounce from below
+    // The backdrop, a soft vertical gradient (linear RGB): a studio's paper lit brighter at the top.
+    glm::vec3 backgroundTop{0.07f, 0.075f, 0.085f};
+    glm::vec3 backgroundBottom{0.012f, 0.013f, 0.016f};
     float exposure = 1.0f;
     glm::vec3 headAlbedo{0.62f, 0.6f, 0.57f}; // mannequin grey-beige
     float headRoughness = 0.55f;

@@ -81,7 +81,8 @@ StrandVertices generateStrands(const gpu::StrandRasterPush& push, const gpu::Fra
         glm::vec2 size(frame.viewportWidth, frame.viewportHeight);
         float pixelsPerUnit = std::abs(frame.projection[1][1]) * 0.5f * size.y;
         out.positions[id] = gpu::projectStrandVertex(frame.viewProjection, size, p, worldWidth, pixelsPerUnit);
-        glm::vec3 color = gpu::shadeStrandPoint(frame, p, point.tangent, t, strand, glm::vec2(1.0f), glm::vec3(0.0f));
+        glm::vec3 noLut[gpu::kFrameLights]{}; // (the twin is compared in the karis and kajiya modes)
+        glm::vec3 color = gpu::shadeStrandPoint(frame, p, point.tangent, t, strand, glm::vec2(1.0f), noLut);
         out.colors[id] = gpu::packFragmentColor(color, alpha);
     }
     return out;

@@ -1,9 +1,10 @@
 #version 460
 // hair.frag: shades a hair fragment and hands it on.
-// Shading (shared/strand_shading.h over shared/hair_shading.h, frame.shadingModel): Karis 2016 with
+// Shading (shared/strand_shading.h over shared/hair_shading.h, frame.shadingModel; the key, fill and
+// rim lights of frame_params.h's frameLight): Karis 2016 with
 // his multiple scattering (default), Kajiya-Kay with Scheuermann's two lobes, or the lookup tables
 // built from the reference BSDF (single scattering) plus Karis's multiple scattering, each strand's
-// absorption varied along it. The light reaches the fragment through the head's shadow (PCF) and
+// absorption varied along it. The key light reaches the fragment through the head's shadow (PCF) and
 // the hair in front of it (deep opacity map), both evaluated per vertex in hair.tese
 // (light_visibility.glsl) and interpolated.
 // Then, by transparency mode:
@@ -43,9 +44,8 @@ layout(location = 0) out vec4 outColor;
 vec3 shade()
 {
     vec3 t = normalize(inTangent);
-    vec3 lut = vec3(0.0);
-    if (frame.shadingModel == kShadingLut)
-        lut = hairShadeLut(hairLut, t, frame.lightDirection, normalize(frame.cameraPosition - inWorld));
+    vec3 lut[kFrameLights];
+    strandLutSingles(frame, hairLut, t, normalize(frame.cameraPosition - inWorld), lut);
     return shadeStrandPoint(frame, inWorld, t, inT, inStrand, inVisibility, lut);
 }
 

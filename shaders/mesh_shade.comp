@@ -2,7 +2,8 @@
 // mesh_shade.comp: one thread per pixel, after mesh_raster.comp: each distinct triangle among the
 // pixel's samples shaded once at the pixel's centre (as a fragment shader runs under MSAA: the
 // barycentrics extrapolate where the centre lies outside), weighted by the samples it holds; the
-// samples no mesh covers take the background: the pixel's resolved colour. The key light's
+// samples no mesh covers take the backdrop (frameBackground at the pixel's centre, as the graphics
+// meshes' background.frag has it): the pixel's resolved colour. The key light's
 // visibility (light_visibility.glsl) is evaluated once, on the nearest sample's surface at the
 // centre, as mesh_shadow.comp does for mesh.frag. See shared/mesh_raster.h.
 #extension GL_GOOGLE_include_directive : require
@@ -81,7 +82,6 @@ void main()
     uint covered = 0u;
     if (nearest != kNoMesh) {
         vec2 visibility = lightVisibilityParts(surfaceAt(nearest, centre, size).position, centre, frame.shadowBias);
-        vec3 lightRadiance = frame.lightColor * frame.lightIntensity * (visibility.x * visibility.y);
         for (uint s = 0u; s < push.samples; ++s) {
             uint id = ids[first + s];
             bool seen = id == kNoMesh;
@@ -97,13 +97,13 @@ void main()
             vec3 albedo = object == kMeshObjectHead ? push.headAlbedo : object == kMeshObjectSphere ? kSphereAlbedo : kMarkerAlbedo;
             float roughness = object == kMeshObjectHead ? push.headRoughness : object == kMeshObjectSphere ? kSphereRoughness : kMarkerRoughness;
             float scalp = push.scalpStrength * clamp(surface.scalp, 0.0, 1.0);
-            color += float(count) * meshSurfaceColor(normalize(surface.normal), normalize(frame.cameraPosition - surface.position),
-                                                     frame.lightDirection, lightRadiance, albedo, roughness,
-                                                     push.scalpAlbedo, scalp, frame.ambientIntensity, frame.skyColor,
-                                                     frame.groundColor, frame.exposure);
+            color += float(count) * meshSurfaceColor(frame, normalize(surface.normal),
+                                                     normalize(frame.cameraPosition - surface.position),
+                                                     visibility.x * visibility.y, albedo, roughness,
+                                                     push.scalpAlbedo, scalp);
             covered += count;
         }
     }
-    color += float(push.samples - covered) * push.background;
+    color += float(push.samples - covered) * frameBackground(frame, centre.y);
     imageStore(meshColor, pixel, vec4(color / float(push.samples), 1.0));
 }

@@ -73,9 +73,8 @@ void main()
     // turned per strand.
     vec2 noise = vec2(float(strand % 251u), float(strand / 251u % 241u)) + 17.0 * t;
     vec2 visibility = lightVisibilityParts(p, noise, 4.0 * frame.shadowBias);
-    vec3 lut = vec3(0.0);
-    if (frame.shadingModel == kShadingLut)
-        lut = hairShadeLut(hairLut, point.tangent, frame.lightDirection, normalize(frame.cameraPosition - p));
+    vec3 lut[kFrameLights];
+    strandLutSingles(frame, hairLut, point.tangent, normalize(frame.cameraPosition - p), lut);
     colors[id] = packFragmentColor(shadeStrandPoint(frame, p, point.tangent, t, strand, visibility, lut), alpha);
 #endif
 }

@@ -174,6 +174,8 @@ TEST(SettingsTable, OutOfRangeValuesAreRefusedEverywhereWithTheSameWords)
                           Case{"substeps", "--substeps", "2.5", "2.5 is not a whole number"},
                           Case{"grid_atomics", "--grid-atomics", "double", "'double' is not allowed: fixed | float"},
                           Case{"shadow_size", "", "10", "10 is out of range: allowed 64 .. 8192 texels"},
+                          Case{"rim_intensity", "", "25", "25 is out of range: allowed 0 .. 20"},
+                          Case{"fill_elevation", "", "90", "90 is out of range: allowed -89 .. 89 deg"},
                           Case{"interpolation", "", "cubic", "'cubic' is not allowed: single | multi | mixed"},
                           Case{"wind", "--wind", "0,0,1e9",
                                "the third value (1000000000) is out of range: allowed -100 .. 100 m/s^2"}}) {

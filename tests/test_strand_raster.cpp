@@ -351,7 +351,7 @@ TEST(MeshRaster, KernelsMatchTheirCpuTwin)
     EXPECT_LT(worstDepth, 1e-6);
 
     // The shading, from the GPU's own samples: the same surfaces, RGBA16F rounding and the two
-    // compilers' arithmetic apart; the background exactly where no mesh is.
+    // compilers' arithmetic apart; the backdrop's gradient exactly where no mesh is.
     reference::MeshSamples gpuSamples{cpu.depth, ids};
     std::vector<glm::vec3> twin = reference::shadeMeshes(f.meshes, f.frame, f.head, f.sphere, gpuSamples);
     std::vector<glm::vec4> color = f.readback->meshColor();
@@ -361,9 +361,11 @@ TEST(MeshRaster, KernelsMatchTheirCpuTwin)
             double d = std::abs(double(color[p][ch]) - double(twin[p][ch]));
             worst = std::max(worst, d);
             sum += d;
-            if (ids[p] == gpu::kNoMesh)
-                worstBackground =
-                    std::max(worstBackground, std::abs(double(color[p][ch]) - double(f.meshes.background[ch])));
+            if (ids[p] == gpu::kNoMesh) {
+                float y = float(p / f.meshes.width) + 0.5f; // the backdrop's gradient at the pixel's row
+                double backdrop = double(gpu::frameBackground(f.frame, y)[ch]);
+                worstBackground = std::max(worstBackground, std::abs(double(color[p][ch]) - backdrop));
+            }
         }
     EXPECT_LT(worst, 4e-3);
     EXPECT_LT(sum / double(pixels * 3), 2e-4);

@@ -1,5 +1,6 @@
-// shaders/shared/frame_params.h: the per-frame uniform block (camera, light, background) read by
-// every graphics pass, and the binding it lives at. One definition for GLSL and C++.
+// shaders/shared/frame_params.h: the per-frame uniform block (camera, lights, background) read by
+// every graphics pass, and the binding it lives at; the lights as one list (frameLight) and the
+// backdrop's gradient (frameBackground). One definition for GLSL and C++.
 #ifndef WISP_SHARED_FRAME_PARAMS_H
 #define WISP_SHARED_FRAME_PARAMS_H
 #include "hair_shading.h"
@@ -13,6 +14,19 @@ GPU_CONST uint kFrameParamsBinding = 0;
 GPU_CONST uint kShadingKaris = 0u;
 GPU_CONST uint kShadingKajiya = 1u;
 GPU_CONST uint kShadingLut = 2u;
+
+// The studio's lights: 0 the key (shadowed: the light's maps are made along it), 1 the fill and
+// 2 the rim (unshadowed). Every shading function loops over them through frameLight.
+GPU_CONST uint kFrameLights = 3u;
+GPU_CONST uint kFrameKeyLight = 0u;
+
+// One directional light as the shading sees it.
+struct FrameLight {
+    vec3 direction;  // unit vector from the shading point toward the light
+    float intensity; // radiance scale, 0: off
+    vec3 color;      // linear RGB
+    float pad;
+};
 
 struct FrameParams {
     mat4 view;              // world -> camera
@@ -28,7 +42,7 @@ struct FrameParams {
     float exposure;         // linear multiplier before tone mapping
     vec3 groundColor;       // hemisphere ambient from below (linear RGB)
     float viewportWidth;    // pixels
-    vec3 backgroundColor;   // linear RGB clear colour
+    vec3 backgroundTop;     // the backdrop's colour at the top row (linear RGB; frameBackground)
     float viewportHeight;   // pixels
     mat4 headTransform;     // head space -> world this frame (rigid); the colliders move with it
     // The light's view (shared/shadows.h): orthographic along lightDirection, depth 0..1 linear.
@@ -51,7 +65,34 @@ struct FrameParams {
     float hairAmbientOcclusion; // how much the deep opacity map darkens the ambient, 0..1
     float pad0;
     HairMaterial hair;
+    FrameLight unshadowed[kFrameLights - 1u]; // the fill and the rim (frameLight 1 and 2)
+    vec3 backgroundBottom;                    // the backdrop's colour at the bottom row (linear RGB)
+    float pad1;
+    vec4 hairVolume; // the hair's rest bounds as a sphere, posed this frame: xyz centre (world), w radius (0: no hair)
 };
+
+// Light i of the frame (kFrameLights of them; 0 the key).
+GPU_FN FrameLight frameLight(FrameParams frame, uint i)
+{
+    if (i == kFrameKeyLight) {
+        FrameLight key;
+        key.direction = frame.lightDirection;
+        key.intensity = frame.lightIntensity;
+        key.color = frame.lightColor;
+        key.pad = 0.0f;
+        return key;
+    }
+    return frame.unshadowed[i - 1u];
+}
+
+// The backdrop behind everything at pixel row y (0 at the top, viewportHeight at the bottom; the
+// pixel's centre): a soft vertical gradient from backgroundTop to backgroundBottom, smoothstep-eased
+// so neither end shows an edge, as a studio's paper backdrop lit from above.
+GPU_FN vec3 frameBackground(FrameParams frame, float y)
+{
+    float t = clamp(y / max(frame.viewportHeight, 1.0f), 0.0f, 1.0f);
+    return mix(frame.backgroundTop, frame.backgroundBottom, t * t * (3.0f - 2.0f * t));
+}
 
 GPU_NAMESPACE_END
 

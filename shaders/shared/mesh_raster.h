@@ -10,7 +10,7 @@
 //            triangle holds that depth (atomicMin of its id: the same winner every frame)
 //   shade    one thread per pixel: each distinct triangle among its samples shaded once at the
 //            pixel's centre (as a fragment shader is run under MSAA), weighted by the samples it
-//            holds, the rest the background: the resolved colour; the key light's visibility
+//            holds, the rest the backdrop (frameBackground): the resolved colour; the key light's visibility
 //            from the nearest sample, as mesh_shadow.comp has it
 //   compose  one thread per pixel: the hair (premultiplied) over the meshes, sRGB-encoded
 // Triangles are set up in homogeneous 2D (Olano and Greer, "Triangle scan conversion using 2D
@@ -18,6 +18,7 @@
 // the same inside test, and depth is clipped to [0, 1] per sample as Vulkan's depth clip does.
 #ifndef WISP_SHARED_MESH_RASTER_H
 #define WISP_SHARED_MESH_RASTER_H
+#include "frame_params.h"
 #include "lighting.h"
 #include "prelude.h"
 
@@ -58,12 +59,14 @@ struct MeshRasterPush {
     float headRoughness;
     vec3 scalpAlbedo;
     float scalpStrength;
-    vec3 background; // linear RGB where no mesh is
-    uint samples;    // 1, 2, 4 or 8 per pixel
-    uint width;      // pixels
+    uint samples; // 1, 2, 4 or 8 per pixel
+    uint width;   // pixels
     uint height;
     uint object;    // raster: kMeshObject*; compose: 1 when there is hair to lay over
     uint triangles; // raster: the object's triangle count
+    uint pad0;
+    uint pad1;
+    uint pad2;
 };
 
 GPU_FN uint packMeshId(uint object, uint triangle)
@@ -191,16 +194,25 @@ GPU_FN vec3 meshTriangleBarycentrics(MeshTriangle t, vec2 pixel, vec2 size)
 }
 
 // The shading of mesh.frag: a surface (its scalp painted a darkened hair colour, matte) under the
-// key light as much as it reaches it, plus the hemisphere ambient, tone-mapped.
-GPU_FN vec3 meshSurfaceColor(vec3 n, vec3 v, vec3 lightDirection, vec3 lightRadiance, vec3 albedo, float roughness,
-                             vec3 scalpAlbedo, float scalp, float ambient, vec3 sky, vec3 ground, float exposure)
+// frame's lights (frameLight: the key as much as it reaches the point, `keyVisibility`; the fill and
+// the rim unshadowed), plus the hemisphere ambient, tone-mapped.
+GPU_FN vec3 meshSurfaceColor(FrameParams frame, vec3 n, vec3 v, float keyVisibility, vec3 albedo, float roughness,
+                             vec3 scalpAlbedo, float scalp)
 {
     if (dot(n, v) < 0.0f)
         n = -n; // back faces seen through open meshes shade like their front
     vec3 a = mix(albedo, scalpAlbedo, scalp);
-    vec3 radiance = surfaceRadiance(n, lightDirection, v, a, mix(roughness, 1.0f, scalp), lightRadiance);
-    radiance += a * ambient * hemisphereAmbient(n, sky, ground);
-    return toneMapAces(radiance * exposure);
+    float r = mix(roughness, 1.0f, scalp);
+    vec3 radiance = vec3(0.0f);
+    for (uint i = 0u; i < kFrameLights; ++i) {
+        FrameLight light = frameLight(frame, i);
+        if (light.intensity <= 0.0f)
+            continue;
+        float visible = i == kFrameKeyLight ? keyVisibility : 1.0f;
+        radiance += surfaceRadiance(n, light.direction, v, a, r, light.color * (light.intensity * visible));
+    }
+    radiance += a * frame.ambientIntensity * hemisphereAmbient(n, frame.skyColor, frame.groundColor);
+    return toneMapAces(radiance * frame.exposure);
 }
 
 // Linear to sRGB-encoded (IEC 61966-2-1), per channel.
