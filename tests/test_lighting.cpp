@@ -95,23 +95,24 @@ TEST(StudioLights, FrameLightListsTheKeyThenTheFillAndTheRim)
 
 TEST(StudioLights, EachLightAddsItsLambertToTheMeshAndOnlyTheKeyIsShadowed)
 {
-    // Lights at 0 and 60 degrees from the normal: the linear radiance (before the tone map, which
-    // is monotonic) is the sum of each light's Lambert term; a shadowed key leaves the others.
-    vec3 n(0, 0, 1), v(0, 0, 1), albedo(0.5f);
+    // Lights at 0 and 60 degrees from the normal, the viewer 45 degrees off it, away from both
+    // mirror directions (roughness 0: the highlight is below 1e-8 for both), so each light adds
+    // its Lambert term: the fill alone (the key shadowed) is the key's response at half the
+    // radiance; the tone map is the same monotonic curve on both sides.
+    vec3 n(0, 0, 1), v = normalize(vec3(-1, 0, 1)), albedo(0.5f);
     FrameParams f = keyOnlyFrame();
-    vec3 keyAlone = meshSurfaceColor(f, n, v, 1.0f, albedo, 1.0f, albedo, 0.0f);
-    f.unshadowed[0].direction = normalize(vec3(std::sqrt(3.0f), 0, 1)); // 60 degrees: cos = 0.5
+    vec3 keyAlone = meshSurfaceColor(f, n, v, 1.0f, albedo, 0.0f, albedo, 0.0f);
+    f.unshadowed[0].direction = normalize(vec3(-std::sqrt(3.0f), 0, 1)); // 60 degrees: cos = 0.5
     f.unshadowed[0].intensity = 2.0f;
-    vec3 withFill = meshSurfaceColor(f, n, v, 1.0f, albedo, 1.0f, albedo, 0.0f);
+    vec3 withFill = meshSurfaceColor(f, n, v, 1.0f, albedo, 0.0f, albedo, 0.0f);
     EXPECT_GT(withFill.x, keyAlone.x);
-    // The fill alone (the key shadowed) is the key's response at half the radiance.
     FrameParams half = keyOnlyFrame();
     half.lightIntensity = 1.0f;
-    EXPECT_NEAR(meshSurfaceColor(f, n, v, 0.0f, albedo, 1.0f, albedo, 0.0f).x,
-                meshSurfaceColor(half, n, v, 1.0f, albedo, 1.0f, albedo, 0.0f).x, 2e-3f);
-    // A light from behind the surface adds nothing.
-    f.unshadowed[1] = FrameLight{.direction = vec3(0, 0, -1), .intensity = 10.0f, .color = vec3(1.0f), .pad = 0.0f};
-    EXPECT_NEAR(meshSurfaceColor(f, n, v, 1.0f, albedo, 1.0f, albedo, 0.0f).x, withFill.x, 1e-6f);
+    EXPECT_NEAR(meshSurfaceColor(f, n, v, 0.0f, albedo, 0.0f, albedo, 0.0f).x,
+                meshSurfaceColor(half, n, v, 1.0f, albedo, 0.0f, albedo, 0.0f).x, 1e-6f);
+    // A light from behind the surface adds nothing, even straight opposite the viewer (l = -v).
+    f.unshadowed[1] = FrameLight{.direction = -v, .intensity = 10.0f, .color = vec3(1.0f), .pad = 0.0f};
+    EXPECT_NEAR(meshSurfaceColor(f, n, v, 1.0f, albedo, 0.0f, albedo, 0.0f).x, withFill.x, 1e-6f);
 }
 
 TEST(StudioLights, TheRimLightsAStrandFromBehindThroughItsTransmission)

@@ -22,7 +22,10 @@ GPU_FN vec3 hemisphereAmbient(vec3 n, vec3 sky, vec3 ground)
 GPU_FN vec3 surfaceRadiance(vec3 n, vec3 l, vec3 v, vec3 albedo, float roughness, vec3 lightRadiance)
 {
     float nl = max(dot(n, l), 0.0f);
-    vec3 h = normalize(l + v);
+    // (A light straight behind the point as seen, l = -v, has no half vector: a rim light can be
+    // there; nl is then 0 for any surface the viewer sees, and h = n keeps the product finite.)
+    vec3 lv = l + v;
+    vec3 h = dot(lv, lv) > 1e-12f ? normalize(lv) : n;
     float e = mix(256.0f, 4.0f, clamp(roughness, 0.0f, 1.0f));
     float spec = 0.04f * (e + 8.0f) / (8.0f * 3.14159265f) * pow(max(dot(n, h), 0.0f), e);
     return (albedo / 3.14159265f + vec3(spec)) * lightRadiance * nl;
