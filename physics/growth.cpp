@@ -48,7 +48,10 @@ glm::vec3 surfaceNormal(const std::vector<gpu::Ellipsoid>& colliders, const glm:
         gpu::Contact c = gpu::ellipsoidContact(e, p, 0.0f);
         if (c.depth > best) {
             best = c.depth;
-            n = c.normal;
+            // The ellipsoid's gradient direction (ellipsoidContact leaves the normal out outside it).
+            glm::mat3 R(e.rotation);
+            glm::vec3 local = glm::transpose(R) * (p - e.center);
+            n = safeNormalize(R * (local / (e.radii * e.radii)), fallback);
         }
     }
     return n;
@@ -66,7 +69,9 @@ float valueNoise(float x, uint32_t seed)
 }
 
 // How far from the root a strand takes to come out of the colliders to its clearance.
-constexpr float kEmergeMetres = 0.04f;
+constexpr float kEmergeMetres = 0.02f;
+// Grown strands shorter than this are rigid (they would not sway visibly, and lie within the emergence).
+constexpr float kRigidStrandMetres = 0.04f;
 
 // The colliders' margin for a strand point `run` along from a root `rootDepth` inside them: as deep
 // as the root at the root (the colliders are fitted inside the scalp, so roots lie inside them),
@@ -94,7 +99,8 @@ float bangsWeight(const GrowthSettings& s, const HeadFrame& head, const glm::vec
 {
     glm::vec3 dir = safeNormalize(p - head.centre, glm::vec3(0.0f, 0.0f, 1.0f));
     float frontness = glm::dot(dir, glm::normalize(glm::vec3(0.0f, 0.45f, 1.0f)));
-    return s.bangs * smoothstep(0.45f, 0.8f, frontness);
+    // A narrow transition: a strand half combed forward at full length would hang over the face.
+    return s.bangs * smoothstep(0.58f, 0.68f, frontness);
 }
 
 glm::vec3 flowDirection(const GrowthSettings& s, const HeadFrame& head, const glm::vec3& p, const glm::vec3& n)
@@ -283,14 +289,19 @@ void keepOutside(std::vector<glm::vec3>& points, const std::vector<gpu::Ellipsoi
     for (size_t i = 1; i < points.size(); ++i) {
         run += rest[i];
         float margin = emergeMargin(rootDepth, clearance, run, emergeLength);
-        glm::vec3 p = points[i];
-        for (int pass = 0; pass < 2; ++pass)
-            for (const gpu::Ellipsoid& e : colliders) {
-                gpu::Contact c = gpu::ellipsoidContact(e, p, margin);
-                if (c.depth > 0.0f)
-                    p += c.depth * c.normal;
-            }
-        points[i] = gpu::ftlProject(points[i - 1], p, rest[i]);
+        auto pushOut = [&](glm::vec3 p) {
+            for (int pass = 0; pass < 2; ++pass)
+                for (const gpu::Ellipsoid& e : colliders) {
+                    gpu::Contact c = gpu::ellipsoidContact(e, p, margin);
+                    if (c.depth > 0.0f)
+                        p += c.depth * c.normal;
+                }
+            return p;
+        };
+        // Out, back to the parent's distance, and out again: where the strand dives into the head,
+        // the point pushed out lands near its parent and the projection along them points inward;
+        // the second push wins over the length (the rest pose defines the lengths).
+        points[i] = pushOut(gpu::ftlProject(points[i - 1], pushOut(points[i]), rest[i]));
     }
 }
 
@@ -446,7 +457,12 @@ StrandSet growGuides(const Mesh& mesh, const ScalpRule& scalp, const std::vector
             }
         }
         groom::keepOutside(line, colliders, clearance, kEmergeMetres * upm);
-        set.add(groom::resample(line, s.verticesPerStrand), 0, 1, false);
+        // The first segment follows the head rigidly, as TressFX pins two vertices: a root lies inside
+        // the colliders (fitted inside the scalp) and its first segment emerges from them. A strand
+        // too short to sway (the nape's and the hairline's shortest) is rigid.
+        float rigidBelow = kRigidStrandMetres * upm;
+        set.add(groom::resample(line, s.verticesPerStrand), 0,
+                groom::polylineLength(line) < rigidBelow ? s.verticesPerStrand : 2u, false);
     }
     set.scalpPaint = scalpPaint(mesh, field);
     return set;

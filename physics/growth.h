@@ -65,7 +65,7 @@ struct GrowthSettings {
     float frizzMetres = 0.002f; // noise amplitude at the tips (grows as t^2 from the root)
     float flyaways = 0.02f;     // share of strands that stray from the hair's surface, 0..0.2
     // The shape constraints of the grown part (PartSettings): how stiffly it keeps its style.
-    float globalStiffness = 0.004f;
+    float globalStiffness = 0.008f;
     float localStiffness = 0.12f;
 
     bool operator==(const GrowthSettings&) const = default;

@@ -55,6 +55,8 @@ std::array<HairStyle, 6> makeStyles()
     bangs.trimLevelMetres = 0.21f;
     bangs.trimSlope = 0.0f;
     bangs.partingOffsetMetres = 0.035f;
+    bangs.globalStiffness = 0.03f; // bangs hold their line over the forehead
+    bangs.localStiffness = 0.3f;
 
     GrowthSettings afro;
     afro.verticesPerStrand = 32;
@@ -76,7 +78,7 @@ std::array<HairStyle, 6> makeStyles()
     afro.curlRandomness = 0.35f;
     afro.frizzMetres = 0.004f;
     afro.flyaways = 0.0f;
-    afro.globalStiffness = 0.02f;
+    afro.globalStiffness = 0.05f;
     afro.localStiffness = 0.5f;
 
     return {{

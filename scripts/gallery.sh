@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
-# Renders the README's gallery: the default groom on the default head from the front, the side,
-# the back and above, and every groom of ../shared/data on its own head and on the default head,
-# from the front and the back, each view `wisp render --scene VIEW --frames 30 --width W --height H`
-# (the views are scenes that only set the camera), joined side by side by ffmpeg into images/.
-# Usage: scripts/gallery.sh [OUT_DIR (default images)] [WIDTH (240)] [HEIGHT (180)]
+# Renders the README's gallery: every hair style (hair_style) on the default head from the front,
+# the side, the back and above, Sintel's artist groom from the same views, and the other grooms of
+# ../shared/data on their own heads and on the default head from the front and the back, each view
+# `wisp render --scene VIEW --frames 30 --width W --height H` (the views are scenes that only set the
+# camera), joined side by side by ffmpeg into images/gallery-NAME.png.
+# Usage: scripts/gallery.sh [OUT_DIR (default images)] [WIDTH (512)] [HEIGHT (384)]
+#   ONLY_STYLES=1 renders the styles and Sintel's groom only.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 out="${1:-$root/images}"
-width="${2:-240}"
-height="${3:-180}"
+width="${2:-512}"
+height="${3:-384}"
 wisp="${WISP:-$root/build/wisp}"
 data="${WISP_SHARED_DATA:-$root/../shared/data}"
 work="$(mktemp -d)"
@@ -38,10 +40,13 @@ strip() {
   echo "$out/gallery-$name.png"
 }
 
-strip default front side back top --
+for style in bob long wavy crop bangs afro; do
+  strip "style-$style" front side back top -- --set hair_style="$style"
+done
 if [ -d "$data" ]; then
-  strip sintel front back -- --head "$data/sintel/sintel.obj" --hair "$data/sintel/sintel_hair_11400x16.tfx" \
-    --set strands_per_guide=4
+  strip sintel front side back top -- --head "$data/sintel/sintel.obj" \
+    --hair "$data/sintel/sintel_hair_11400x16.tfx" --set strands_per_guide=8
+  [ "${ONLY_STYLES:-0}" = 1 ] && exit 0
   strip sintel-lite front back -- --head "$data/sintel-lite/sintel_lite.obj" --hair "$data/sintel-lite/sintel_hair_228x32.tfx"
   strip tressfx front back -- --head "$data/tressfx-text/head_max4.obj" \
     --hair "$data/tressfx-text/hair_front_16_guide.tfx" --hair "$data/tressfx-text/hair_tail_16_guide.tfx"

@@ -87,13 +87,14 @@ TEST(PhysicsScenes, SpherePushedThroughTheHairDisplacesItAndItRecovers)
     HairScene scene = defaultScene(150);
     vk::Context ctx(test::validatedOptions());
     SimSettings sim;
-    // A 5 cm sphere sweeps across the back of the head from t = 3 s to 4 s, then is gone.
+    // A 5 cm sphere sweeps across the back of the head, through the bob's hair, from t = 3 s to 4 s,
+    // then is gone.
     Motion motion;
     motion.sphere = [](float t) {
         if (t < 3.0f || t > 4.0f)
             return glm::vec4(0.0f);
         float u = t - 3.0f;
-        return glm::vec4(-0.2f + 0.4f * u, 0.05f, -0.14f, 0.05f);
+        return glm::vec4(-0.2f + 0.4f * u, 0.12f, -0.14f, 0.05f);
     };
     SimulationReport still = simulateHeadless(ctx, scene, sim, 900, {}, 900);
     SimulationReport during = simulateHeadless(ctx, scene, sim, 420, motion, 420); // t = 3.5 s

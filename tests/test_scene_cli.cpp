@@ -62,7 +62,8 @@ TEST(SceneCli, RecordCoversTheScenesDurationByDefault)
 TEST(SceneCli, ShippedScenesRenderAtATinySize)
 {
     TempDir dir;
-    for (const char* name : {"sphere-sweep", "wind-gusts", "head-turn", "soak"}) {
+    for (const char* name : {"sphere-sweep", "wind-gusts", "head-turn", "soak", "style-bob", "style-long", "style-wavy",
+                             "style-crop", "style-bangs", "style-afro"}) {
         std::string scene = std::string(WISP_SOURCE_DIR) + "/scenes/" + name + ".json";
         auto r = runWisp("--validation render --scene '" + scene +
                          "' --frames 2 --width 96 --height 72 --guides 60 "
