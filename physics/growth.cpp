@@ -40,7 +40,8 @@ glm::vec3 perpendicular(const glm::vec3& t)
 }
 
 // The nearest collider surface's outward normal at p (the collider p is deepest in, or nearest).
-glm::vec3 surfaceNormal(const std::vector<gpu::Ellipsoid>& colliders, const glm::vec3& p, const glm::vec3& fallback)
+glm::vec3 surfaceNormal(const std::vector<gpu::Ellipsoid>& colliders, const glm::vec3& p, const glm::vec3& fallback,
+                        float* height = nullptr)
 {
     float best = -1e30f;
     glm::vec3 n = fallback;
@@ -54,6 +55,8 @@ glm::vec3 surfaceNormal(const std::vector<gpu::Ellipsoid>& colliders, const glm:
             n = safeNormalize(R * (local / (e.radii * e.radii)), fallback);
         }
     }
+    if (height)
+        *height = -best; // above the nearest collider's surface (radially, as ellipsoidContact measures)
     return n;
 }
 
@@ -166,13 +169,22 @@ std::vector<glm::vec3> growCentreline(const GrowthSettings& s, const HeadFrame& 
     glm::vec3 p = root.position;
     float run = 0.0f;
     for (size_t i = 0; i < steps; ++i) {
-        glm::vec3 n = surfaceNormal(colliders, p, root.normal);
+        float height = 0.0f;
+        glm::vec3 n = surfaceNormal(colliders, p, root.normal, &height);
         float comb = std::exp(-run / combLength);
-        glm::vec3 combed = flowDirection(s, head, p, n);
-        glm::vec3 target = glm::normalize(comb * combed + (1.0f - comb) * down + 1e-3f * n);
+        // The comb lays the hair along the head: where the head curves away under a strand (over the
+        // forehead, at the crown) it is drawn back down toward its layer instead of flying off.
+        float layer = baseClearance + s.volumeMetres * head.unitsPerMetre * std::min(run / layerLength, 1.0f);
+        float above = std::clamp((height - layer) / (0.01f * head.unitsPerMetre), 0.0f, 1.0f);
+        glm::vec3 combed = flowDirection(s, head, p, n) - above * n;
+        glm::vec3 target = safeNormalize(comb * combed + (1.0f - comb) * down + 1e-3f * n, down);
         if (s.styleGravity > 0.0f)
             dir = glm::normalize(glm::mix(dir, target, std::min(1.0f, h / bendLength)));
         glm::vec3 next = p + h * dir;
+        // Within the comb, a strand above its layer is laid down toward it (at most a third of a
+        // step's length each step), past the emergence from the root.
+        if (run > emergeLength && height > layer)
+            next -= comb * std::min(height - layer, h / 3.0f) * n;
         float clearance = emergeMargin(
             rootDepth, baseClearance + s.volumeMetres * head.unitsPerMetre * std::min(run / layerLength, 1.0f), run + h,
             emergeLength);
@@ -450,7 +462,7 @@ StrandSet growGuides(const Mesh& mesh, const ScalpRule& scalp, const std::vector
         groom::frizz(line, (flyaway ? 6.0f : 1.0f) * s.frizzMetres * upm, 0.02f * upm, noiseSeed);
         if (flyaway) { // strays: lifted off the hair's surface toward the tip
             std::vector<float> arc = arcLengths(line);
-            float lift = (0.01f + 0.02f * rng.next()) * upm;
+            float lift = (0.005f + 0.01f * rng.next()) * upm;
             for (size_t i = 1; i < line.size(); ++i) {
                 float t = arc[i] / arc.back();
                 line[i] += lift * t * t * t * outward;

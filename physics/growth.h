@@ -28,7 +28,7 @@ enum class Parting { None, Centre, Side };
 
 // Lengths are in metres, scaled by the head's units. The defaults are the bob (physics/hair_style.h).
 struct GrowthSettings {
-    uint32_t guides = 3200;          // guide strands
+    uint32_t guides = 2200;          // guide strands
     uint32_t verticesPerStrand = 16; // V
     uint32_t seed = 1;
     bool poissonDisk = true; // blue-noise roots (else plain area-weighted)
@@ -63,7 +63,7 @@ struct GrowthSettings {
     float waveLengthMetres = 0.08f; // wavelength along the strand
     // 6. Frizz and flyaways
     float frizzMetres = 0.002f; // noise amplitude at the tips (grows as t^2 from the root)
-    float flyaways = 0.02f;     // share of strands that stray from the hair's surface, 0..0.2
+    float flyaways = 0.01f;     // share of strands that stray from the hair's surface, 0..0.2
     // The shape constraints of the grown part (PartSettings): how stiffly it keeps its style.
     float globalStiffness = 0.008f;
     float localStiffness = 0.12f;

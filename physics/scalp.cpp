@@ -133,7 +133,7 @@ float ScalpField::density(const glm::vec3& p, const glm::vec3& n) const
 
 float ScalpField::paint(const glm::vec3& p, const glm::vec3& n) const
 {
-    return smoothstep01((distance(p, n) + 0.5f * bandWidth) / bandWidth);
+    return smoothstep01((distance(p, n) + bandWidth) / bandWidth);
 }
 
 ScalpField makeScalpField(const ScalpRule& rule, float unitsPerMetre, float bandMetres, float skullRadius)

@@ -24,8 +24,9 @@ struct ScalpField {
     float distance(const glm::vec3& p, const glm::vec3& n) const;
     // Root density at a point, 0..1: a smoothstep of distance() over the band.
     float density(const glm::vec3& p, const glm::vec3& n) const;
-    // How strongly the head is painted under the hair, 0..1: the density widened by half a band
-    // outward, so the skin darkens a little before the first roots and never has a hard border.
+    // How strongly the head is painted under the hair, 0..1: the density moved a band outward, so
+    // the skin is fully painted where roots begin (partings read as partings) and fades out over a
+    // band beyond the hairline, never with a hard border.
     float paint(const glm::vec3& p, const glm::vec3& n) const;
 };
 
