@@ -180,8 +180,14 @@ TEST(HairWriter, AGrownGroomLoadsBackOnItsHeadAsInTheFile)
                 worst = std::max(worst, glm::length(loaded.strands.rest[8 * s + v] - expected[v]));
         }
         EXPECT_LT(worst, 1e-6f) << name;
+        // TressFX keeps the pinned vertices (w = 0); cyHair has no field for them, so its strands load
+        // with the root alone pinned (or rigid when too short to simulate, as the loader decides).
+        bool tfx = std::string(name).ends_with(".tfx");
         for (size_t s = 0; s < grown.strands.strandCount(); ++s)
-            EXPECT_EQ(loaded.strands.strands[s].pinnedRoot, grown.strands.strands[s].pinnedRoot) << name;
+            if (tfx)
+                EXPECT_EQ(loaded.strands.strands[s].pinnedRoot, grown.strands.strands[s].pinnedRoot) << name;
+            else
+                EXPECT_LE(loaded.strands.strands[s].pinnedRoot, grown.strands.strands[s].pinnedRoot) << name;
     }
 }
 
