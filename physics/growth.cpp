@@ -175,7 +175,9 @@ std::vector<glm::vec3> growCentreline(const GrowthSettings& s, const HeadFrame& 
         // The comb lays the hair along the head: where the head curves away under a strand (over the
         // forehead, at the crown) it is drawn back down toward its layer instead of flying off.
         float layer = baseClearance + s.volumeMetres * head.unitsPerMetre * std::min(run / layerLength, 1.0f);
-        float above = std::clamp((height - layer) / (0.01f * head.unitsPerMetre), 0.0f, 1.0f);
+        // (Hair lifted off the scalp on purpose, an afro's, stands out: the less lift, the more it lies.)
+        float hug = std::clamp(1.0f - s.rootLiftDeg / 30.0f, 0.0f, 1.0f);
+        float above = hug * std::clamp((height - layer) / (0.01f * head.unitsPerMetre), 0.0f, 1.0f);
         glm::vec3 combed = flowDirection(s, head, p, n) - above * n;
         glm::vec3 target = safeNormalize(comb * combed + (1.0f - comb) * down + 1e-3f * n, down);
         if (s.styleGravity > 0.0f)
@@ -184,7 +186,7 @@ std::vector<glm::vec3> growCentreline(const GrowthSettings& s, const HeadFrame& 
         // Within the comb, a strand above its layer is laid down toward it (at most a third of a
         // step's length each step), past the emergence from the root.
         if (run > emergeLength && height > layer)
-            next -= comb * std::min(height - layer, h / 3.0f) * n;
+            next -= hug * comb * std::min(height - layer, h / 3.0f) * n;
         float clearance = emergeMargin(
             rootDepth, baseClearance + s.volumeMetres * head.unitsPerMetre * std::min(run / layerLength, 1.0f), run + h,
             emergeLength);

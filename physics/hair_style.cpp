@@ -23,8 +23,8 @@ std::array<HairStyle, 6> makeStyles()
     wavy.lengthMetres = 0.36f;
     wavy.trimLevelMetres = 0.27f;
     wavy.trimSlope = 0.0f;
-    wavy.waveMetres = 0.012f;
-    wavy.waveLengthMetres = 0.07f;
+    wavy.waveMetres = 0.02f;
+    wavy.waveLengthMetres = 0.09f;
     wavy.volumeMetres = 0.02f;
     wavy.clumpStrength = 0.55f;
     wavy.clumpSizeMetres = 0.016f;
