@@ -64,7 +64,9 @@ OrbitCamera OrbitCamera::framing(const Bounds& bounds, float aspect)
     float fitHorizontal = 0.5f * kPortraitWidth * std::max(size.x, size.z) / (tanHalfFov * aspect);
     c.distance = std::max({fitVertical, fitHorizontal, 1e-6f});
     c.sceneRadius = std::max(radius, 1e-6f);
-    c.fitPlanes(glm::length(c.target - bounds.center()));
+    // The planes as poseCamera fits them for an unmoved target (so a scene's default camera draws
+    // the same picture); their reach, radii of the scene, covers the target's offset from its centre.
+    c.fitPlanes();
     return c;
 }
 

@@ -282,6 +282,8 @@ TEST(Scene, PosedCameraMovesTheFraming)
     EXPECT_EQ(same.yawDeg, framing.yawDeg);
     EXPECT_EQ(same.distance, framing.distance);
     EXPECT_EQ(same.target, framing.target);
+    EXPECT_EQ(same.nearPlane, framing.nearPlane); // the same projection: the same picture, byte for byte
+    EXPECT_EQ(same.farPlane, framing.farPlane);
     CameraPose pose{.yawDeg = 180.0f, .pitchDeg = 30.0f, .distance = 3.0f, .target = glm::vec3(0.0f, 0.2f, 0.0f)};
     OrbitCamera c = poseCamera(framing, pose);
     EXPECT_EQ(c.yawDeg, 180.0f);
