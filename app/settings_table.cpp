@@ -235,7 +235,8 @@ std::vector<SettingSpec> buildSpecs()
     for (const HairStyle& h : hairStyles())
         style.choices.push_back(h.name);
     style.choices.push_back("custom");
-    style.saved = false;
+    // Saved, and first: a scene of a style names it (its shape stiffness is no setting of its own),
+    // then its parameters, which the style sets again, so the scene reads back the same.
     style.get = [](const Settings& x) {
         for (size_t i = 0; i < hairStyles().size(); ++i)
             if (isHairStyle(x.growth, hairStyles()[i]))

@@ -46,7 +46,7 @@ struct OrbitCamera {
     // shoulders filling the frame (renderer/camera.cpp). Scene cameras are relative to it.
     static OrbitCamera framing(const Bounds& bounds, float aspect);
     static constexpr float kPortraitSpan = 0.88f;     // of the bounds' height, from the top down
-    static constexpr float kPortraitHeadroom = 0.08f; // of the bounds' height, above the top
+    static constexpr float kPortraitHeadroom = 0.12f; // of the bounds' height, above the top
     static constexpr float kPortraitWidth = 0.9f;     // of the bounds' width, at least
 };
 

@@ -137,6 +137,8 @@ TEST(HairLook, BacklitHairGlows)
     applyHairPreset(s.hair, "blonde");
     s.light.azimuthDeg = 180.0f;
     s.light.elevationDeg = 20.0f;
+    s.fill.intensity = 0.0f; // the key alone: the studio's fill and rim would light both pictures
+    s.rim.intensity = 0.0f;
     Picture bald = renderPicture(ctx, scene.head, s);
     Picture backlit = renderHair(ctx, scene, s);
     s.light.intensity = 0.0f;
@@ -173,6 +175,8 @@ TEST(HairLook, TheLookupTablesFollowTheLook)
 TEST(ScalpPaint, CoverageIsFullAmongTheRootsAndFadesPastTheHairline)
 {
     HairScene scene = smallHairScene(300);
+    // The rule for a loaded groom (grown hair paints its own scalp field: Groom.GrownStrandsStay...).
+    scene.strands.scalpPaint.clear();
     std::vector<float> w = scalpCoverage(scene.head.mesh, scene.strands);
     ASSERT_EQ(w.size(), scene.head.mesh.positions.size());
     // Every vertex next to a root is painted fully; the face and the shoulders are not painted.
