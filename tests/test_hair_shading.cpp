@@ -54,7 +54,7 @@ TEST(HairShading, KajiyaKayErrorAgainstTheReference)
 }
 
 // For brown hair. Not for every hair: for black hair (eumelanin 8) almost all is the surface
-// reflection R and the two are about as far off (Karis 0.694, Kajiya-Kay 0.726, README).
+// reflection R and the two are about as far off (Karis 0.694, Kajiya-Kay 0.726, docs/shading.md).
 TEST(HairShading, KarisIsClearlyBetterThanKajiyaKay)
 {
     EXPECT_LT(errorOf(HairModel::Karis), 0.6 * errorOf(HairModel::KajiyaKay));

@@ -140,7 +140,7 @@ TEST(SceneCli, CommandLineOptionsOverrideTheScene)
 
 // The soak (issue 7) shortened: the looping soak scene (wind gusts, a sphere sweeping through
 // the hair, the head turning) for 2,400 steps, 20 s of simulated time, two and a half loops. The
-// full run (100,000 steps, and 10,000 recorded frames) is in the README with its figures.
+// full run (100,000 steps, and 10,000 recorded frames) is in docs/hardening.md with its figures.
 TEST(Soak, SimulateKeepsThePhysicsBoundsAndItsMemory)
 {
     std::string scene = std::string(WISP_SOURCE_DIR) + "/scenes/soak.json";
