@@ -36,6 +36,19 @@ RootSample pointOnTriangle(const Mesh& mesh, uint32_t t, float u1, float u2)
     return {p, len > 0.0f ? n / len : glm::normalize(face), t};
 }
 
+// A point uniform over the area of `triangles` (`cumulative`: their running areas), from three
+// numbers of the stream.
+RootSample drawOnTriangles(const Mesh& mesh, const std::vector<uint32_t>& triangles,
+                           const std::vector<double>& cumulative, Random& rng)
+{
+    double target = double(rng.next()) * cumulative.back();
+    size_t k = size_t(std::lower_bound(cumulative.begin(), cumulative.end(), target) - cumulative.begin());
+    k = std::min(k, triangles.size() - 1);
+    float u1 = rng.next();
+    float u2 = rng.next();
+    return pointOnTriangle(mesh, triangles[k], u1, u2);
+}
+
 float triangleArea(const Mesh& mesh, uint32_t t)
 {
     glm::vec3 a = mesh.positions[mesh.indices[3 * t]];
@@ -157,14 +170,7 @@ std::vector<RootSample> sampleRoots(const Mesh& mesh, const std::vector<uint32_t
         cumulative[k] = total;
     }
     Random rng{seed};
-    auto draw = [&]() -> std::optional<RootSample> {
-        double target = double(rng.next()) * total;
-        size_t k = size_t(std::lower_bound(cumulative.begin(), cumulative.end(), target) - cumulative.begin());
-        k = std::min(k, triangles.size() - 1);
-        float u1 = rng.next();
-        float u2 = rng.next();
-        return pointOnTriangle(mesh, triangles[k], u1, u2);
-    };
+    auto draw = [&]() -> std::optional<RootSample> { return drawOnTriangles(mesh, triangles, cumulative, rng); };
     return throwDarts(draw, count, total, poissonDisk);
 }
 
@@ -199,13 +205,8 @@ std::vector<RootSample> sampleScalpRoots(const Mesh& mesh, const ScalpField& fie
                         "none of its surface, so no hair can grow (check the head description's scalp rule)");
     Random rng{seed};
     auto draw = [&]() -> std::optional<RootSample> {
-        double target = double(rng.next()) * total;
-        size_t k = size_t(std::lower_bound(cumulative.begin(), cumulative.end(), target) - cumulative.begin());
-        k = std::min(k, triangles.size() - 1);
-        float u1 = rng.next();
-        float u2 = rng.next();
+        RootSample s = drawOnTriangles(mesh, triangles, cumulative, rng);
         float keep = rng.next();
-        RootSample s = pointOnTriangle(mesh, triangles[k], u1, u2);
         s.density = field.density(s.position, s.normal);
         if (keep >= s.density)
             return std::nullopt;
