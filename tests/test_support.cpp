@@ -16,16 +16,43 @@ std::atomic<size_t> largest{0};
 
 } // namespace
 
-// The replaceable global allocation functions, recording the largest request (the aligned and
-// array forms forward to these).
-void* operator new(size_t bytes)
+// The replaceable global allocation functions, recording the largest request. Every form that
+// the library may pair with another is replaced here, so that a block always goes back to the
+// allocator it came from (std::stable_partition's buffer comes from the nothrow form and returns
+// through the plain delete; the sanitizer's own nothrow form would be freed by std::free). The
+// aligned and array forms forward to these.
+namespace {
+
+void* recordedAllocation(size_t bytes) noexcept
 {
     size_t seen = largest.load(std::memory_order_relaxed);
     while (bytes > seen && !largest.compare_exchange_weak(seen, bytes, std::memory_order_relaxed)) {
     }
-    if (void* p = std::malloc(bytes ? bytes : 1))
+    return std::malloc(bytes ? bytes : 1);
+}
+
+} // namespace
+
+void* operator new(size_t bytes)
+{
+    if (void* p = recordedAllocation(bytes))
         return p;
     throw std::bad_alloc();
+}
+
+void* operator new(size_t bytes, const std::nothrow_t&) noexcept
+{
+    return recordedAllocation(bytes);
+}
+
+void* operator new[](size_t bytes)
+{
+    return operator new(bytes);
+}
+
+void* operator new[](size_t bytes, const std::nothrow_t&) noexcept
+{
+    return recordedAllocation(bytes);
 }
 
 void operator delete(void* p) noexcept
@@ -34,6 +61,26 @@ void operator delete(void* p) noexcept
 }
 
 void operator delete(void* p, size_t) noexcept
+{
+    std::free(p);
+}
+
+void operator delete(void* p, const std::nothrow_t&) noexcept
+{
+    std::free(p);
+}
+
+void operator delete[](void* p) noexcept
+{
+    std::free(p);
+}
+
+void operator delete[](void* p, size_t) noexcept
+{
+    std::free(p);
+}
+
+void operator delete[](void* p, const std::nothrow_t&) noexcept
 {
     std::free(p);
 }
