@@ -9,10 +9,10 @@
 #include "physics/hair_scene.h"
 #include "physics/simulation.h"
 #include "renderer/camera.h"
-#include "renderer/hair_pass.h"
-#include "renderer/oit.h"
+#include "renderer/compute/strand_raster.h"
+#include "renderer/graphics/hair_pass.h"
+#include "renderer/graphics/oit.h"
 #include "renderer/settings.h"
-#include "renderer/strand_raster.h"
 
 #include <cstdint>
 #include <string>

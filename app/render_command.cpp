@@ -9,7 +9,7 @@
 #include "app/settings_table.h"
 #include "core/error.h"
 #include "gpu/check.h"
-#include "renderer/hair_pass.h"
+#include "renderer/graphics/hair_pass.h"
 #include "renderer/renderer.h"
 
 #include <CLI/CLI.hpp>

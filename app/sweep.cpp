@@ -5,7 +5,7 @@
 #include "app/headless.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "renderer/hair_pass.h"
+#include "renderer/graphics/hair_pass.h"
 #include "renderer/settings.h"
 
 #include <algorithm>

@@ -5,13 +5,14 @@
 
 #include "core/error.h"
 #include "gpu/context.h"
-#include "renderer/guide_pass.h"
-#include "renderer/hair_pass.h"
+#include "renderer/compute/mesh_raster.h"
+#include "renderer/compute/strand_raster.h"
+#include "renderer/graphics/guide_pass.h"
+#include "renderer/graphics/hair_pass.h"
+#include "renderer/graphics/oit.h"
+#include "renderer/hair_lut_image.h"
 #include "renderer/light_maps.h"
-#include "renderer/mesh_raster.h"
-#include "renderer/oit.h"
 #include "renderer/render_target.h"
-#include "renderer/strand_raster.h"
 
 #include <algorithm>
 #include <cmath>
@@ -59,7 +60,8 @@ GpuMemory estimateGpuMemory(const Workload& w, const vk::DeviceReport& device)
         return m;
     const RenderSettings& r = *w.render;
     VkExtent2D extent{r.width, r.height};
-    m.hair = HairPass::deviceBytes(w.guides) + GuidePass::deviceBytes(w.guides, w.verticesPerStrand);
+    m.hair =
+        HairPass::deviceBytes(w.guides) + HairLutImage::kBytes + GuidePass::deviceBytes(w.guides, w.verticesPerStrand);
     m.target = RenderTarget::deviceBytes(extent, std::max<uint32_t>(r.samples, 1));
     m.lightMaps = LightMaps::deviceBytes(r.shadows.mapSize);
     if (r.transparency.mode == Transparency::Oit)

@@ -1,7 +1,7 @@
 // app/workload.h: a workload as a whole, checked before anything is built or allocated: the
 // counts that must fit 32 bits (drawn strands, their segments), and the GPU memory the simulation
 // and the drawing of it need, against what the device has. The command line calls it before it
-// grows or loads hair; the solver (gpu_solver.cpp) and the OIT pool (renderer/oit.cpp) check
+// grows or loads hair; the solver (gpu_solver.cpp) and the OIT pool (renderer/graphics/oit.cpp) check
 // their own allocations again against the same device.
 #pragma once
 

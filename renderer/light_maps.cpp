@@ -5,7 +5,7 @@
 #include "gpu/context.h"
 #include "gpu/frame.h"
 #include "gpu/pipeline.h"
-#include "renderer/hair_pass.h"
+#include "renderer/graphics/hair_pass.h"
 #include "renderer/mesh_pass.h"
 #include "shaders/shared/shadows.h"
 

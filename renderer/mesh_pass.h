@@ -75,7 +75,7 @@ public:
     // Recreates the shadow mask at the target's size; the device must be idle.
     void resize();
 
-    // What the compute meshes (renderer/mesh_raster.h) draw: each object's vertices (7 floats:
+    // What the compute meshes (renderer/compute/mesh_raster.h) draw: each object's vertices (7 floats:
     // position, normal, scalp weight) and triangles (3 indices), and the surfaces.
     struct Buffers {
         VkBuffer vertices = VK_NULL_HANDLE;

@@ -168,7 +168,7 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
         materialParams_ = look;
     }
     // The scalp under the hair: the hair's own colour (the reference's, from its absorption), darkened.
-    if (hairPass_)
+    if (solver_)
         meshPass_->setScalp(kScalpDarkening * shading::colorFromSigmaA(look.sigmaA, look.betaN), settings_.scalpPaint);
     gpu::FrameParams frameParams = pack(settings_, camera, target_->extent(), timeSeconds, lightFit_);
     frameParams.headTransform = headTransform_;
@@ -187,8 +187,8 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
     meshPass_->setLightMarker(lightFit_.scene.center() + 0.75f * sceneRadius * settings_.light.direction(),
                               showLightMarker_ ? 0.025f * sceneRadius : 0.0f);
     shadowPass_->setEnabled(settings_.shadows.enabled);
-    if (hairPass_ && settings_.hair.model == ShadingModel::Lut && std::memcmp(&look, &lutParams_, sizeof(look)) != 0) {
-        hairPass_->setLut(shading::buildHairLut(look), &frame);
+    if (hairLut_ && settings_.hair.model == ShadingModel::Lut && std::memcmp(&look, &lutParams_, sizeof(look)) != 0) {
+        hairLut_->upload(shading::buildHairLut(look), &frame);
         lutParams_ = look;
     }
     opacityPass_->setEnabled(settings_.shadows.enabled && settings_.shadows.domLayers > 0);
@@ -199,11 +199,10 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
             meshRaster_ = std::make_unique<MeshRaster>(ctx_, *target_, uniforms_, *lightMaps_, *meshPass_);
         meshRaster_->setHair(nullptr, nullptr);
     }
-    if (!hairPass_)
+    if (!solver_)
         return;
     const StrandSettings& s = settings_.strands;
     HairDrawCounts counts = hairCounts();
-    hairPass_->setCounts(counts);
     // LOD (TressFX): beyond the default framing distance the strand count falls with the square of
     // the distance (the screen area the head covers), continuously, and the width grows to keep
     // the coverage; never below lodMinFraction of the strands.
@@ -212,31 +211,28 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
         float ratio = lodReferenceDistance_ / std::max(camera.distance, 1e-6f);
         fraction = std::clamp(ratio * ratio, s.lodMinFraction, 1.0f);
     }
-    gpu::HairPush push{};
-    push.guideCount = counts.guides;
-    push.verticesPerStrand = verticesPerStrand_;
-    push.strandsPerGuide = counts.strandsPerGuide;
-    push.divisions = counts.divisions;
-    push.lengthChunks = counts.lengthChunks;
-    push.strandsPerPatch = counts.strandsPerPatch;
-    push.interpolation = s.interpolation == Interpolation::Single  ? gpu::kInterpolationSingle
+    StrandDraw draw;
+    draw.guides = counts.guides;
+    draw.verticesPerStrand = verticesPerStrand_;
+    draw.strandsPerGuide = counts.strandsPerGuide;
+    draw.divisions = counts.divisions;
+    draw.interpolation = s.interpolation == Interpolation::Single  ? gpu::kInterpolationSingle
                          : s.interpolation == Interpolation::Multi ? gpu::kInterpolationMulti
                                                                    : gpu::kInterpolationMixed;
-    push.clumpRadius = s.clumpRadiusMetres * unitsPerMetre_;
-    push.deviation = s.deviationMetres * unitsPerMetre_;
-    push.width = s.widthMetres * unitsPerMetre_;
-    push.lodStrands = std::max(1.0f, float(counts.strandsPerGuide) * fraction);
-    push.lodWidthScale = std::sqrt(float(counts.strandsPerGuide) / push.lodStrands);
-    push.minPixelWidth = s.minPixelWidth;
-    push.reverseOrder = s.reverseOrder ? 1u : 0u;
-    hairPass_->setPush(push);
+    draw.clumpRadius = s.clumpRadiusMetres * unitsPerMetre_;
+    draw.deviation = s.deviationMetres * unitsPerMetre_;
+    draw.width = s.widthMetres * unitsPerMetre_;
+    draw.lodStrands = std::max(1.0f, float(counts.strandsPerGuide) * fraction);
+    draw.lodWidthScale = std::sqrt(float(counts.strandsPerGuide) / draw.lodStrands);
+    draw.minPixelWidth = s.minPixelWidth;
+    draw.reverseOrder = s.reverseOrder;
     // The light's maps need the hair's depth and opacity, not every strand: LOD's fewer, wider
-    // strands (the same coverage) cost a fraction of the tessellation.
-    gpu::HairPush light = push;
-    light.lodStrands = lightLodStrands(push.lodStrands, settings_.shadows.strandFraction);
-    light.lodWidthScale = push.lodWidthScale * std::sqrt(push.lodStrands / light.lodStrands);
-    hairPass_->setLightPush(light);
+    // strands (the same coverage) cost a fraction of the work.
+    StrandDraw light = draw;
+    light.lodStrands = lightLodStrands(draw.lodStrands, settings_.shadows.strandFraction);
+    light.lodWidthScale = draw.lodWidthScale * std::sqrt(draw.lodStrands / light.lodStrands);
     if (hairRaster() != HairRaster::Compute) {
+        hairPass_->setDraw(draw, light, counts);
         lightMaps_->useHairDepthValues(false);
         return;
     }
@@ -248,26 +244,11 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
     lightMaps_->useHairDepthValues(settings_.shadows.domLayers > 0);
     headShadowPass_->setEnabled(settings_.shadows.enabled);
     strandComposite_->setSource(&strandRaster_->color(), &strandRaster_->colorImage());
-    auto rasterPush = [&](const gpu::HairPush& p) {
-        gpu::StrandRasterPush r{};
-        r.guideCount = p.guideCount;
-        r.verticesPerStrand = p.verticesPerStrand;
-        r.strandsPerGuide = p.strandsPerGuide;
-        r.drawnPerGuide = drawnStrandsPerGuide(p.strandsPerGuide, p.lodStrands);
-        r.divisions = p.divisions;
-        r.interpolation = p.interpolation;
-        r.clumpRadius = p.clumpRadius;
-        r.deviation = p.deviation;
-        r.width = p.width * p.lodWidthScale;
-        r.lodStrands = p.lodStrands;
-        r.oitK = settings_.transparency.oitK;
-        r.domLayers = settings_.shadows.domLayers;
-        return r;
-    };
-    gpu::StrandRasterPush lightRaster = rasterPush(light);
-    if (!settings_.shadows.enabled)
-        lightRaster.drawnPerGuide = 0; // the maps are only cleared
-    strandRaster_->prepare(frame, rasterPush(push), lightRaster, &hairPass_->lutInfo());
+    strandRaster_->prepare(frame, draw, light,
+                           {.shadows = settings_.shadows.enabled,
+                            .oitK = settings_.transparency.oitK,
+                            .domLayers = settings_.shadows.domLayers,
+                            .lut = &hairLut_->info()});
     if (computeMeshes()) {
         meshRaster_->setHair(&strandRaster_->color(), &strandRaster_->colorImage());
         strandRaster_->setMeshSamples(&meshRaster_->depthSamples(), meshRaster_->depthBuffer().get());
@@ -299,8 +280,7 @@ bool Renderer::computeMeshes() const
 
 RasterStats Renderer::rasterStats(uint32_t slot) const
 {
-    return strandRaster_ && hairPass_ && hairRaster() == HairRaster::Compute ? strandRaster_->stats(slot)
-                                                                             : RasterStats{};
+    return strandRaster_ && solver_ && hairRaster() == HairRaster::Compute ? strandRaster_->stats(slot) : RasterStats{};
 }
 
 void Renderer::attachHair(GpuSolver& solver, const StrandSet& strands, float unitsPerMetre)
@@ -312,7 +292,9 @@ void Renderer::attachHair(GpuSolver& solver, const StrandSet& strands, float uni
     hairPass_ = std::make_unique<HairPass>(ctx_, *target_, uniforms_, solver, strands);
     hairPass_->setLightMaps(lightMaps_.get());
     lutParams_ = hairParams(settings_.hair);
-    hairPass_->setLut(shading::buildHairLut(lutParams_), nullptr);
+    hairLut_ = std::make_unique<HairLutImage>(ctx_);
+    hairLut_->upload(shading::buildHairLut(lutParams_), nullptr);
+    hairPass_->setLut(hairLut_.get());
     shadowPass_ = std::make_unique<ShadowPass>(*lightMaps_, *meshPass_, hairPass_.get());
     opacityPass_ = std::make_unique<OpacityPass>(*lightMaps_, hairPass_.get());
     if (settings_.transparency.mode == Transparency::Oit) {
@@ -384,7 +366,7 @@ std::vector<Pass*> Renderer::passes()
             list.push_back(meshPass_.get());
         }
     };
-    if (hairPass_ && hairRaster() == HairRaster::Compute) {
+    if (solver_ && hairRaster() == HairRaster::Compute) {
         using Stage = StrandRaster::Stage;
         list.push_back(strandRaster_->pass(Stage::Clear));
         list.push_back(headShadowPass_.get());
@@ -401,7 +383,7 @@ std::vector<Pass*> Renderer::passes()
             list.push_back(strandComposite_.get());
         }
         list.push_back(strandRaster_->pass(Stage::Stats));
-    } else if (!hairPass_ && meshesInCompute) {
+    } else if (!solver_ && meshesInCompute) {
         list.push_back(shadowPass_.get());
         list.push_back(opacityPass_.get());
         meshes();

@@ -10,17 +10,19 @@
 
 #include "assets/head.h"
 #include "renderer/camera.h"
+#include "renderer/composite_pass.h"
+#include "renderer/compute/mesh_raster.h"
+#include "renderer/compute/strand_raster.h"
 #include "renderer/frame_uniforms.h"
-#include "renderer/guide_pass.h"
-#include "renderer/hair_pass.h"
+#include "renderer/graphics/guide_pass.h"
+#include "renderer/graphics/hair_pass.h"
+#include "renderer/graphics/oit.h"
+#include "renderer/hair_lut_image.h"
 #include "renderer/light_maps.h"
 #include "renderer/mesh_pass.h"
-#include "renderer/mesh_raster.h"
-#include "renderer/oit.h"
 #include "renderer/physics_pass.h"
 #include "renderer/render_target.h"
 #include "renderer/settings.h"
-#include "renderer/strand_raster.h"
 #include "shading/hair_bsdf.h"
 
 #include <memory>
@@ -105,6 +107,7 @@ private:
     std::unique_ptr<PhysicsPass> physicsPass_;
     std::unique_ptr<GuidePass> guidePass_;
     std::unique_ptr<HairPass> hairPass_;
+    std::unique_ptr<HairLutImage> hairLut_; // the lookup mode's tables, sampled by both paths
     uint32_t framesInFlight_ = 1;
     std::unique_ptr<LightMaps> lightMaps_;
     std::unique_ptr<ShadowPass> shadowPass_;
@@ -132,7 +135,7 @@ private:
     glm::vec4 hairVolume_{0.0f}; // the hair's rest bounds as a sphere in head space (radius 0: no hair)
     glm::mat4 headTransform_{1.0f};
     bool showLightMarker_ = false;
-    shading::HairParams lutParams_;                     // what the hair pass's lookup tables were built for
+    shading::HairParams lutParams_;                     // what the lookup tables were built for
     std::optional<shading::HairParams> materialParams_; // what `material_` was packed from
     gpu::HairMaterial material_{};
     gpu::FrameParams frameParams_{};

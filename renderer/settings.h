@@ -41,7 +41,7 @@ inline constexpr LightSettings kDefaultRim{
 
 enum class Interpolation { Single, Multi, Mixed };
 
-// How the simulated guides become drawn strands (renderer/hair_pass.cpp, shaders/hair.*).
+// How the simulated guides become drawn strands (renderer/graphics/hair_pass.cpp, shaders/hair.*).
 struct StrandSettings {
     uint32_t strandsPerGuide = 32; // strands drawn per guide (the guide is one of them)
     uint32_t divisions = 24;       // segments per drawn strand
@@ -73,7 +73,7 @@ struct ShadowSettings {
 
 enum class Transparency { Oit, Msaa };
 
-// How hair fragments become pixels (renderer/oit.cpp, shaders/oit_resolve.comp).
+// How hair fragments become pixels (renderer/graphics/oit.cpp, shaders/oit_resolve.comp).
 struct TransparencySettings {
     Transparency mode = Transparency::Oit;
     uint32_t oitK = 8;             // nearest fragments sorted per pixel; the rest blended unsorted
@@ -84,7 +84,7 @@ struct TransparencySettings {
 };
 
 // How the hair is drawn: the tessellation and geometry stages (hair_pass.cpp), or entirely in
-// compute (strand_raster.cpp); auto picks the faster on the device (resolveHairRaster).
+// compute (renderer/compute/strand_raster.cpp); auto picks the faster on the device (resolveHairRaster).
 enum class HairRaster { Graphics, Compute, Auto };
 
 // What hair_raster=auto draws with on a device of this type: compute, the faster on every device

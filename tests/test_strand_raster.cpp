@@ -1,5 +1,5 @@
 // tests/test_strand_raster.cpp: the compute strand renderer on the device. Every kernel against
-// its CPU twin (renderer/strand_raster_reference.h) on the same input: the generated strands, the
+// its CPU twin (renderer/compute/strand_raster_reference.h) on the same input: the generated strands, the
 // pixels' fragments, the resolved pixels, the light's depth and opacity; then the whole path
 // against the tessellation path on the same scenes (how much the hair changes each 8 x 8 block
 // correlates, and adds up to about the same), determinism, and a fragment buffer that overflows,
@@ -11,10 +11,10 @@
 #include "gpu/pipeline.h"
 #include "physics/gpu_solver.h"
 #include "physics/hair_scene.h"
-#include "renderer/mesh_raster_reference.h"
+#include "renderer/compute/mesh_raster_reference.h"
+#include "renderer/compute/strand_raster.h"
+#include "renderer/compute/strand_raster_reference.h"
 #include "renderer/renderer.h"
-#include "renderer/strand_raster.h"
-#include "renderer/strand_raster_reference.h"
 #include "small_scene.h"
 #include "test_support.h"
 

@@ -1,7 +1,7 @@
 // shaders/shared/mesh_raster.h: the meshes (head, collision sphere, light marker) drawn in compute
 // beside the compute strands (hair_raster=compute), one copy of the math for the kernels
 // (shaders/mesh_raster.comp, mesh_shade.comp, hair_compose.comp) and their C++ twin
-// (renderer/mesh_raster_reference.cpp). On GPUs that run their graphics stages on a few units
+// (renderer/compute/mesh_raster_reference.cpp). On GPUs that run their graphics stages on a few units
 // (the H100: 4x MSAA depth and shading of a 6,000-triangle head cost 1.8 ms there) the whole
 // frame then stays in compute:
 //   raster   one workgroup per triangle, its threads over the triangle's pixels: at each of the

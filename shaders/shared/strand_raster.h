@@ -1,5 +1,5 @@
 // shaders/shared/strand_raster.h: the compute strand renderer's interface and pure math, one copy
-// for its kernels (shaders/strands_*.comp) and their C++ twin (renderer/strand_raster_reference.cpp).
+// for its kernels (shaders/strands_*.comp) and their C++ twin (renderer/compute/strand_raster_reference.cpp).
 // The frame, in compute (hair_raster=compute), after the physics and the meshes' depth:
 //   curves     one thread per guide point of the strands' parameters (t = i / D): the guide's C1
 //              curve there (shared/strands.h guideCurvePoint), which every strand of the guide (and

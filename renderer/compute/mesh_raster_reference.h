@@ -1,4 +1,4 @@
-// renderer/mesh_raster_reference.h: the compute meshes' kernels (shaders/mesh_raster.comp and
+// renderer/compute/mesh_raster_reference.h: the compute meshes' kernels (shaders/mesh_raster.comp and
 // mesh_shade.comp) in plain C++ over the same shared math (shaders/shared/mesh_raster.h), one loop
 // where a kernel has one thread (or workgroup) per item. tests/test_strand_raster.cpp runs both on
 // the same input and compares. No Vulkan.

@@ -1,6 +1,6 @@
-// renderer/strand_raster.cpp: the compute path's buffers, pipelines and passes (what each stage
+// renderer/compute/strand_raster.cpp: the compute path's buffers, pipelines and passes (what each stage
 // declares and records; the kernels are shaders/strands_*.comp).
-#include "renderer/strand_raster.h"
+#include "renderer/compute/strand_raster.h"
 
 #include "gpu/check.h"
 #include "gpu/context.h"
@@ -258,10 +258,30 @@ RasterStats StrandRaster::stats(uint32_t slot) const
             .maxPixel = c.maxPixel};
 }
 
-void StrandRaster::prepare(FrameContext& frame, gpu::StrandRasterPush camera, gpu::StrandRasterPush light,
-                           const VkDescriptorImageInfo* lut)
+void StrandRaster::prepare(FrameContext& frame, const StrandDraw& cameraDraw, const StrandDraw& lightDraw,
+                           const FrameOptions& options)
 {
-    lut_ = lut;
+    lut_ = options.lut;
+    auto push = [&](const StrandDraw& d) {
+        gpu::StrandRasterPush r{};
+        r.guideCount = d.guides;
+        r.verticesPerStrand = d.verticesPerStrand;
+        r.strandsPerGuide = d.strandsPerGuide;
+        r.drawnPerGuide = drawnStrandsPerGuide(d.strandsPerGuide, d.lodStrands);
+        r.divisions = d.divisions;
+        r.interpolation = d.interpolation;
+        r.clumpRadius = d.clumpRadius;
+        r.deviation = d.deviation;
+        r.width = d.width * d.lodWidthScale;
+        r.lodStrands = d.lodStrands;
+        r.oitK = options.oitK;
+        r.domLayers = options.domLayers;
+        return r;
+    };
+    gpu::StrandRasterPush camera = push(cameraDraw);
+    gpu::StrandRasterPush light = push(lightDraw);
+    if (!options.shadows)
+        light.drawnPerGuide = 0; // the maps are only cleared
     VkExtent2D e = target_.extent();
     uint64_t cameraVertices = uint64_t(camera.guideCount) * camera.drawnPerGuide * (camera.divisions + 1);
     uint64_t lightVertices = uint64_t(light.guideCount) * light.drawnPerGuide * (light.divisions + 1);

@@ -1,4 +1,4 @@
-// renderer/mesh_raster.h: the meshes (head, collision sphere, light marker) drawn in compute, for
+// renderer/compute/mesh_raster.h: the meshes (head, collision sphere, light marker) drawn in compute, for
 // frames whose hair is drawn in compute (hair_raster=compute): on a GPU that runs its graphics
 // stages on a few units (the H100), the meshes' 4x MSAA depth, shading and the hair's composite
 // cost more than all the hair's kernels together. Same sample positions, same shading
@@ -11,7 +11,7 @@
 //     (then the strands, which read the samples' depth buffer)
 //   hair.composite  the hair over the meshes, sRGB-encoded (hair_compose.comp)
 //   frame.copy      into the target's result, which readback and the window read
-// Its C++ twin is renderer/mesh_raster_reference.h (tests/test_strand_raster.cpp compares them).
+// Its C++ twin is renderer/compute/mesh_raster_reference.h (tests/test_strand_raster.cpp compares them).
 #pragma once
 
 #include "gpu/handle.h"

@@ -1,7 +1,7 @@
-// renderer/mesh_raster.cpp: the compute meshes' buffers, pipelines and passes (what each stage
+// renderer/compute/mesh_raster.cpp: the compute meshes' buffers, pipelines and passes (what each stage
 // declares and records; the kernels are shaders/mesh_raster.comp, mesh_shade.comp and
 // hair_compose.comp).
-#include "renderer/mesh_raster.h"
+#include "renderer/compute/mesh_raster.h"
 
 #include "gpu/context.h"
 #include "gpu/frame.h"

@@ -1,5 +1,5 @@
-// renderer/mesh_raster_reference.cpp: the compute meshes' kernels, one loop per kernel.
-#include "renderer/mesh_raster_reference.h"
+// renderer/compute/mesh_raster_reference.cpp: the compute meshes' kernels, one loop per kernel.
+#include "renderer/compute/mesh_raster_reference.h"
 
 #include <algorithm>
 #include <bit>

@@ -1,4 +1,4 @@
-// renderer/hair_pass.h: the simulated guides drawn as a full head of hair: tessellation (Bezier,
+// renderer/graphics/hair_pass.h: the simulated guides drawn as a full head of hair: tessellation (Bezier,
 // more strands per guide, deviations) -> geometry shader (camera-facing ribbons) -> Kajiya-Kay
 // fragments, reading the guides straight from the solver's buffers in the same frame.
 #pragma once
@@ -8,8 +8,8 @@
 #include "gpu/resources.h"
 #include "physics/strands.h"
 #include "renderer/settings.h"
+#include "renderer/strand_draw.h"
 #include "shaders/shared/strands.h"
-#include "shading/hair_lut.h"
 
 #include <vector>
 
@@ -23,6 +23,7 @@ class FrameUniforms;
 class GpuSolver;
 class LightMaps;
 class Oit;
+class HairLutImage;
 
 // What a draw produces for given settings: the Vulkan limits split it into patches and instances,
 // never cap it (the CLI and UI report these).
@@ -44,13 +45,8 @@ HairDrawCounts hairDrawCounts(uint32_t guides, const StrandSettings& settings);
 
 class HairPass : public Pass {
 public:
-    static constexpr VkFormat kLutFormat = VK_FORMAT_R32G32B32A32_SFLOAT; // the lookup tables' layers
-    // The device memory for `guides` guides: a triangle of guides each, and the lookup tables.
-    static constexpr uint64_t deviceBytes(uint64_t guides)
-    {
-        return guides * sizeof(glm::uvec4) +
-               uint64_t(gpu::kHairLutSize) * gpu::kHairLutSize * gpu::kHairLutLayers * vk::formatBytes(kLutFormat);
-    }
+    // The device memory for `guides` guides: a triangle of guides each.
+    static constexpr uint64_t deviceBytes(uint64_t guides) { return guides * sizeof(glm::uvec4); }
 
     HairPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& uniforms, GpuSolver& solver,
              const StrandSet& strands);
@@ -62,21 +58,17 @@ public:
     // in OIT mode the linked lists (null: MSAA coverage). Set before the first frame.
     void setLightMaps(LightMaps* maps) { lightMaps_ = maps; }
     void setOit(Oit* oit) { oit_ = oit; }
-    // Uploads the lookup mode's tables (waits for the upload); the image they replace goes to
-    // `frame`'s deletion list when given (it may still be in use), else is freed at once.
-    void setLut(const shading::HairLut& lut, FrameContext* frame);
-    // The tables' descriptor (the compute path shades with them too).
-    const VkDescriptorImageInfo& lutInfo() const { return lutInfo_; }
+    // The lookup mode's tables (the Renderer's, shared with the compute path). Set before the first frame.
+    void setLut(const HairLutImage* lut) { lut_ = lut; }
     // The guides the tessellation reads, for the passes that draw the hair from the light.
     void declareGuides(PassIo& io);
     enum class LightDraw { Depth, Opacity };
     // Draws the same hair from the light into the rendering the caller has begun.
     void recordFromLight(VkCommandBuffer cmd, FrameContext& frame, LightDraw draw);
 
-    // This frame's parameters (settings, LOD, the head's pose).
-    void setPush(const gpu::HairPush& push) { push_ = push; }
-    // The parameters of the draws from the light (fewer, wider strands: see shadow_strands).
-    void setLightPush(const gpu::HairPush& push) { lightPush_ = push; }
+    // This frame's strands for the camera and for the light's maps (fewer, wider: see
+    // shadow_strands), drawn in `counts`' patches and instances.
+    void setDraw(const StrandDraw& camera, const StrandDraw& light, const HairDrawCounts& counts);
     const HairDrawCounts& counts() const { return counts_; }
     // Pipeline statistics of the last recorded draw (after its frame completed): how many
     // tessellation evaluations, geometry-shader invocations and primitives the draw produced.
@@ -86,7 +78,6 @@ public:
         uint64_t geometryPrimitives = 0;
     };
     Statistics statistics() const;
-    void setCounts(const HairDrawCounts& counts) { counts_ = counts; }
 
 private:
     const vk::Context& ctx_;
@@ -100,9 +91,7 @@ private:
     vk::Pipeline depthPipeline_;   // light, depth only
     vk::Pipeline opacityPipeline_; // light, deep opacity layers
     LightMaps* lightMaps_ = nullptr;
-    vk::Image lut_;
-    vk::Sampler lutSampler_;
-    VkDescriptorImageInfo lutInfo_{};
+    const HairLutImage* lut_ = nullptr;
     Oit* oit_ = nullptr;
     vk::Buffer triangles_;
     vk::QueryPool statistics_; // empty where the device has no pipeline statistics

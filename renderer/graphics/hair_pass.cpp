@@ -1,6 +1,6 @@
-// renderer/hair_pass.cpp: the hair pipeline (vertex, tessellation, geometry, fragment) and its
+// renderer/graphics/hair_pass.cpp: the hair pipeline (vertex, tessellation, geometry, fragment) and its
 // draw: guides x length chunks patches of one control point, one instance per chunk of 64 strands.
-#include "renderer/hair_pass.h"
+#include "renderer/graphics/hair_pass.h"
 
 #include "gpu/check.h"
 #include "gpu/context.h"
@@ -8,8 +8,9 @@
 #include "gpu/pipeline.h"
 #include "physics/gpu_solver.h"
 #include "renderer/frame_uniforms.h"
+#include "renderer/graphics/oit.h"
+#include "renderer/hair_lut_image.h"
 #include "renderer/light_maps.h"
-#include "renderer/oit.h"
 #include "renderer/render_target.h"
 
 #include <algorithm>
@@ -89,7 +90,6 @@ HairPass::HairPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
               .name = "hair.layout"});
     setLayout_ = std::move(layout.setLayout);
     layout_ = std::move(layout.layout);
-    lutSampler_ = vk::createSampler(ctx, VK_FILTER_LINEAR, false, "hair.lut.sampler");
 
     vk::GraphicsPipelineDesc camera{.layout = layout_,
                                     .shaders = {"hair.vert", "hair.tesc", "hair.tese", "hair.geom", "hair.frag"},
@@ -126,49 +126,29 @@ HairPass::HairPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
     opacityPipeline_ = vk::createGraphicsPipeline(ctx, opacity);
 }
 
-void HairPass::setLut(const shading::HairLut& lut, FrameContext* frame)
+void HairPass::setDraw(const StrandDraw& camera, const StrandDraw& light, const HairDrawCounts& counts)
 {
-    uint32_t n = lut.size;
-    vk::Image image = ctx_.createImage({.format = kLutFormat,
-                                        .extent = {n, n},
-                                        .usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                                        .layers = gpu::kHairLutLayers,
-                                        .name = "hair.lut"});
-    vk::Buffer staging = ctx_.createBuffer(
-        {.size = lut.bytes(), .usage = vk::kTransferSrc, .memory = vk::Memory::Upload, .name = "hair.lut.staging"});
-    std::memcpy(staging.mapped(), lut.texels.data(), lut.bytes());
-    ctx_.submitAndWait([&](VkCommandBuffer cmd) {
-        VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, gpu::kHairLutLayers};
-        VkImageMemoryBarrier2 toCopy{.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
-                                     .srcStageMask = VK_PIPELINE_STAGE_2_NONE,
-                                     .dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
-                                     .dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                                     .oldLayout = VK_IMAGE_LAYOUT_UNDEFINED,
-                                     .newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                                     .image = image.get(),
-                                     .subresourceRange = range};
-        VkDependencyInfo dep{
-            .sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .imageMemoryBarrierCount = 1, .pImageMemoryBarriers = &toCopy};
-        vkCmdPipelineBarrier2(cmd, &dep);
-        VkBufferImageCopy region{.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, gpu::kHairLutLayers},
-                                 .imageExtent = {n, n, 1}};
-        vkCmdCopyBufferToImage(cmd, staging, image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-        VkImageMemoryBarrier2 toRead{.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
-                                     .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
-                                     .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                                     .dstStageMask = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                                     .dstAccessMask = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
-                                     .oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                                     .newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                                     .image = image.get(),
-                                     .subresourceRange = range};
-        dep.pImageMemoryBarriers = &toRead;
-        vkCmdPipelineBarrier2(cmd, &dep);
-    });
-    if (frame && lut_)
-        frame->retire(std::move(lut_));
-    lut_ = std::move(image);
-    lutInfo_ = {lutSampler_, lut_.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    counts_ = counts;
+    auto push = [&](const StrandDraw& d) {
+        gpu::HairPush p{};
+        p.guideCount = d.guides;
+        p.verticesPerStrand = d.verticesPerStrand;
+        p.strandsPerGuide = d.strandsPerGuide;
+        p.divisions = d.divisions;
+        p.lengthChunks = counts.lengthChunks;
+        p.strandsPerPatch = counts.strandsPerPatch;
+        p.interpolation = d.interpolation;
+        p.clumpRadius = d.clumpRadius;
+        p.deviation = d.deviation;
+        p.width = d.width;
+        p.lodStrands = d.lodStrands;
+        p.lodWidthScale = d.lodWidthScale;
+        p.minPixelWidth = d.minPixelWidth;
+        p.reverseOrder = d.reverseOrder ? 1u : 0u;
+        return p;
+    };
+    push_ = push(camera);
+    lightPush_ = push(light);
 }
 
 void HairPass::declareGuides(PassIo& io)
@@ -256,7 +236,7 @@ void HairPass::record(VkCommandBuffer cmd, FrameContext& frame)
                      .dstBinding = gpu::kHairBindingLut,
                      .descriptorCount = 1,
                      .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                     .pImageInfo = &lutInfo_});
+                     .pImageInfo = &lut_->info()});
     std::array<VkDescriptorBufferInfo, 3> oitInfos{};
     if (oit_) {
         oitInfos = {VkDescriptorBufferInfo{oit_->headsBuffer(), 0, VK_WHOLE_SIZE},

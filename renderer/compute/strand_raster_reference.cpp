@@ -1,7 +1,7 @@
-// renderer/strand_raster_reference.cpp: the compute strand renderer's CPU twin (see the header).
+// renderer/compute/strand_raster_reference.cpp: the compute strand renderer's CPU twin (see the header).
 // Each loop body is its kernel's main() over the same shared functions; only the addressing and
 // the atomics (here plain adds, mins and appends) differ.
-#include "renderer/strand_raster_reference.h"
+#include "renderer/compute/strand_raster_reference.h"
 
 #include "shaders/shared/strand_shading.h"
 #include "shaders/shared/strands.h"

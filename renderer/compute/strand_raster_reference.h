@@ -1,4 +1,4 @@
-// renderer/strand_raster_reference.h: the compute strand renderer's kernels in plain C++, over the
+// renderer/compute/strand_raster_reference.h: the compute strand renderer's kernels in plain C++, over the
 // same shared math (shaders/shared/strands.h, strand_shading.h, strand_raster.h): each function is
 // the twin of one kernel, one loop where the kernel has one thread per item. The tests run both on
 // the same input and compare (tests/test_strand_raster.cpp). No Vulkan.

@@ -1,4 +1,4 @@
-// renderer/strand_raster.h: the hair drawn entirely in compute (hair_raster=compute), beside the
+// renderer/compute/strand_raster.h: the hair drawn entirely in compute (hair_raster=compute), beside the
 // tessellation path (hair_pass.h), from the same guides and the same strand functions. It owns the
 // strand vertices, the pixels' fragment buffer, the light's accumulation buffers and the hair
 // image, and runs as a list of passes (each declares what it touches, so the frame derives every
@@ -24,7 +24,7 @@
 //   hair.composite        the hair image over the target
 //   strands.stats         the counters to the host
 // The kernels are shaders/strands_*.comp over shaders/shared/strand_raster.h; their C++ twin is
-// renderer/strand_raster_reference.h. The fragment buffer grows when a frame needs more (the
+// renderer/compute/strand_raster_reference.h. The fragment buffer grows when a frame needs more (the
 // overflowing frame's fragments are counted, never written out of bounds); headless pictures
 // render again.
 #pragma once
@@ -32,6 +32,7 @@
 #include "gpu/handle.h"
 #include "gpu/pass.h"
 #include "gpu/resources.h"
+#include "renderer/strand_draw.h"
 #include "shaders/shared/strand_raster.h"
 
 #include <glm/glm.hpp>
@@ -181,12 +182,17 @@ public:
                  GpuSolver& solver, const std::vector<glm::uvec4>& triangles, uint32_t framesInFlight);
     ~StrandRaster();
 
-    // This frame's strands for the camera and for the light (kernel parameters; sizes and
-    // capacities are filled in here), the lookup tables' descriptor (owned by the hair pass) and
-    // oit_k. Buffers too small for them are replaced (the old ones retired to `frame`), and the
-    // fragment buffer grows to what this slot's last frame needed.
-    void prepare(FrameContext& frame, gpu::StrandRasterPush camera, gpu::StrandRasterPush light,
-                 const VkDescriptorImageInfo* lut);
+    // What a frame draws besides its strands.
+    struct FrameOptions {
+        bool shadows = true;                        // false: the light's maps are only cleared
+        uint32_t oitK = 8;                          // the nearest fragments kept sorted per pixel
+        uint32_t domLayers = 0;                     // deep opacity layers
+        const VkDescriptorImageInfo* lut = nullptr; // the lookup mode's tables (renderer/hair_lut_image.h)
+    };
+    // This frame's strands for the camera and for the light. Buffers too small for them are
+    // replaced (the old ones retired to `frame`), and the fragment buffer grows to what this
+    // slot's last frame needed.
+    void prepare(FrameContext& frame, const StrandDraw& camera, const StrandDraw& light, const FrameOptions& options);
     // Recreates what depends on the target's size; the device must be idle.
     void resize();
 

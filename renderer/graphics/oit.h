@@ -1,10 +1,10 @@
-// renderer/oit.h: order-independent transparency for the hair with per-pixel linked lists
+// renderer/graphics/oit.h: order-independent transparency for the hair with per-pixel linked lists
 // (TressFX's PPLL). Per frame:
 //   oit.clear    every pixel's head pointer to nil, the pool counter to zero
 //   hair         (hair_oit.frag) each fragment takes a node from the pool and links it in
 //   oit.resolve    a compute pass sorts each pixel's nearest k and blends its list into one colour
 //                  (compute runs on every unit of the GPU; an H100 runs graphics on few of them)
-//   oit.composite  a full-screen pass lays that colour over the target (CompositePass)
+//   oit.composite  a full-screen pass lays that colour over the target (renderer/composite_pass.h)
 //   oit.stats      copies the counters to the host: fragments stored and those the full pool dropped
 // The pool holds nodesPerPixel x the target's pixels (automatic: 24 per pixel, at least 8M nodes); it is sized up front
 // and checked against the device's limits, so a too-large request is a clear error, and an overflowing frame loses
@@ -129,32 +129,6 @@ private:
     vk::PipelineLayout layout_;
     vk::Pipeline pipeline_;
     uint32_t k_ = 8;
-};
-
-// Lays a premultiplied hair image (the OIT resolve's, or the compute rasterizer's) over the target.
-class CompositePass : public Pass {
-public:
-    CompositePass(const vk::Context& ctx, RenderTarget& target, const char* name);
-    const char* name() const override { return name_; }
-    // The image to lay over (set before each frame it changes; tracked, sampled in fragments).
-    void setSource(TrackedImage* track, const vk::Image* image)
-    {
-        track_ = track;
-        image_ = image;
-    }
-    void declare(PassIo& io) override;
-    void record(VkCommandBuffer cmd, FrameContext& frame) override;
-
-private:
-    const vk::Context& ctx_;
-    RenderTarget& target_;
-    const char* name_;
-    TrackedImage* track_ = nullptr;
-    const vk::Image* image_ = nullptr;
-    vk::DescriptorSetLayout setLayout_;
-    vk::PipelineLayout layout_;
-    vk::Pipeline pipeline_;
-    vk::Sampler sampler_;
 };
 
 class OitStatsPass : public Pass {
