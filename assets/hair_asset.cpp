@@ -4,6 +4,7 @@
 // text errors the line.
 #include "assets/hair_asset.h"
 
+#include "assets/text.h"
 #include "core/error.h"
 
 #include <nlohmann/json.hpp>
@@ -125,12 +126,15 @@ public:
     uint16_t u16(uint64_t at) const { return static_cast<uint16_t>(byte(at) | byte(at + 1) << 8); }
     float f32(uint64_t at) const { return std::bit_cast<float>(u32(at)); }
 
-    // A point of three floats at `at`; fails on a non-finite coordinate.
+    // A point of three floats at `at`; fails on a non-finite coordinate or one past kMaxCoordinate.
     glm::vec3 point(uint64_t at, uint64_t strand, uint64_t vertex) const
     {
         glm::vec3 p(f32(at), f32(at + 4), f32(at + 8));
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
             fail(at, "point " + str(vertex) + " of strand " + str(strand) + " has a non-finite coordinate");
+        for (int axis = 0; axis < 3; ++axis)
+            if (std::string error = coordinateRangeError(p[axis]); !error.empty())
+                fail(at + 4 * uint64_t(axis), "point " + str(vertex) + " of strand " + str(strand) + ": " + error);
         return p;
     }
 
@@ -310,19 +314,12 @@ HairAsset loadCyHair(const BinaryFile& file)
 
 class TextFile {
 public:
+    // The file's lines (ended by LF, CRLF or CR) without its padding; a NUL inside them fails.
     TextFile(const std::filesystem::path& path, const std::string& data) : path_(path)
     {
-        std::string_view all(data);
-        if (all.starts_with("\xEF\xBB\xBF"))
-            all.remove_prefix(3);
-        while (!all.empty()) {
-            size_t end = all.find('\n');
-            std::string_view line = all.substr(0, end);
-            if (!line.empty() && line.back() == '\r')
-                line.remove_suffix(1);
-            lines_.push_back(line);
-            all.remove_prefix(end == std::string_view::npos ? all.size() : end + 1);
-        }
+        std::string_view text = textOf(data);
+        checkNoNulBytes(text, bomBytes(data), path, "TressFX 2 text");
+        lines_ = splitLines(text);
     }
 
     size_t lineCount() const { return lines_.size(); }
@@ -353,11 +350,18 @@ public:
 
     float number(size_t line, std::string_view word) const
     {
-        std::string_view digits = word.starts_with('+') ? word.substr(1) : word;
         float value = 0.0f;
-        auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-        if (ec != std::errc() || end != digits.data() + digits.size() || !std::isfinite(value))
-            fail(line, "'" + std::string(word) + "' is not a finite number");
+        if (std::string error = parseFloatWord(word, value); !error.empty())
+            fail(line, error);
+        return value;
+    }
+
+    // A point's coordinate: a number within kMaxCoordinate.
+    float coordinate(size_t line, std::string_view word) const
+    {
+        float value = number(line, word);
+        if (std::string error = coordinateRangeError(value); !error.empty())
+            fail(line, error);
         return value;
     }
 
@@ -366,11 +370,11 @@ public:
         uint64_t value = 0;
         auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), value);
         if (ec != std::errc() || end != word.data() + word.size())
-            fail(line, "'" + std::string(word) + "' is not a whole number");
+            fail(line, "'" + quoteText(word, 40) + "' is not a whole number");
         return value;
     }
 
-    std::string text(size_t index) const { return std::string(lines_[index]); }
+    std::string text(size_t index) const { return quoteText(lines_[index]); }
 
 private:
     const std::filesystem::path& path_;
@@ -487,12 +491,17 @@ HairAsset loadTfx2(const std::filesystem::path& path, const std::string& data)
             if (w.size() != 3)
                 file.fail(pointLine, "expected 'x y z' for point " + str(v) + " of strand " + str(s) + ", found '" +
                                          file.text(i) + "'");
-            glm::vec3 p(file.number(pointLine, w[0]), file.number(pointLine, w[1]), file.number(pointLine, w[2]));
+            glm::vec3 p(file.coordinate(pointLine, w[0]), file.coordinate(pointLine, w[1]),
+                        file.coordinate(pointLine, w[2]));
             if (transform) {
                 p = r * (scale * p) + translation;
                 if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
                     file.fail(pointLine, "point " + str(v) + " of strand " + str(s) +
                                              " is not finite once scaled, rotated and translated by the header");
+                for (int axis = 0; axis < 3; ++axis)
+                    if (std::string error = coordinateRangeError(p[axis]); !error.empty())
+                        file.fail(pointLine, "point " + str(v) + " of strand " + str(s) +
+                                                 " once scaled, rotated and translated by the header: " + error);
             }
             strand.points.push_back(p);
         }
@@ -507,23 +516,23 @@ HairAsset loadTfx2(const std::filesystem::path& path, const std::string& data)
 // The first word of a text file (after a UTF-8 byte order mark and blank space) and its line.
 std::string_view firstWord(const std::string& data, size_t& line)
 {
-    std::string_view all(data);
-    if (all.starts_with("\xEF\xBB\xBF"))
-        all.remove_prefix(3);
+    std::string_view all = textOf(data);
     size_t start = all.find_first_not_of(" \t\r\n");
     if (start == std::string_view::npos)
         return {};
-    line = 1 + static_cast<size_t>(std::count(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(start), '\n'));
+    line = lineOfByte(all, start);
     all.remove_prefix(start);
-    return all.substr(0, std::min(all.find_first_of(" \t\r\n"), size_t(64)));
+    return all.substr(0, std::min(all.find_first_of(std::string_view(" \t\r\n\0", 5)), size_t(64)));
 }
 
-bool looksLikeText(const std::string& data)
+// No control bytes in the first 256 but line endings, tabs and, with `nulAllowed`, NULs (in a
+// file that starts with a TressFX 2 key, the text reader reports a NUL with its line).
+bool looksLikeText(const std::string& data, bool nulAllowed)
 {
     size_t n = std::min(data.size(), size_t(256));
     for (size_t k = 0; k < n; ++k) {
         unsigned char c = static_cast<unsigned char>(data[k]);
-        if (c < 0x20 && c != '\n' && c != '\r' && c != '\t')
+        if (c < 0x20 && c != '\n' && c != '\r' && c != '\t' && !(nulAllowed && c == '\0'))
             return false;
     }
     return n > 0;
@@ -630,10 +639,10 @@ HairAsset parseHairAsset(const std::string& data, const std::filesystem::path& p
     } else {
         size_t line = 1;
         std::string_view word = firstWord(data, line);
-        if (looksLikeText(data) && isTfx2Key(word)) {
+        if (looksLikeText(data, true) && isTfx2Key(word)) {
             asset = loadTfx2(path, data);
-        } else if (looksLikeText(data)) {
-            throw UserError(path.string() + ":" + str(line) + ": unrecognised hair file: '" + std::string(word) +
+        } else if (looksLikeText(data, false)) {
+            throw UserError(path.string() + ":" + str(line) + ": unrecognised hair file: '" + quoteText(word) +
                             "' is not a TressFX 2 header key, and the file is not binary TressFX or cyHair");
         } else {
             binary.fail(0, "unrecognised hair file: neither the cyHair magic 'HAIR', a TressFX 2 text header, nor "

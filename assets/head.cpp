@@ -1,6 +1,7 @@
 // assets/head.cpp: head description parsing with errors that name the file and the key.
 #include "assets/head.h"
 
+#include "assets/text.h"
 #include "core/error.h"
 
 #include <nlohmann/json.hpp>
@@ -8,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 
 #ifndef WISP_MODELS_DIR
 #error "WISP_MODELS_DIR must name the source tree's models folder"
@@ -47,12 +49,22 @@ struct Reader {
             fail(key, "must be an array of 3 numbers");
         return {number(value[0], key + "[0]"), number(value[1], key + "[1]"), number(value[2], key + "[2]")};
     }
-    glm::vec3 direction(const json& value, const std::string& key) const
+    // A point or a size in the head's units: within kMaxCoordinate, as the mesh's positions.
+    glm::vec3 position(const json& value, const std::string& key) const
     {
         glm::vec3 v = vec3(value, key);
-        if (glm::length(v) < 1e-6f)
+        for (int axis = 0; axis < 3; ++axis)
+            if (std::string error = coordinateRangeError(v[axis]); !error.empty())
+                fail(key + "[" + std::to_string(axis) + "]", error);
+        return v;
+    }
+    glm::vec3 direction(const json& value, const std::string& key) const
+    {
+        glm::dvec3 v = vec3(value, key); // in double: a float's square overflows past about 1.8e19
+        double len = glm::length(v);
+        if (!(len >= 1e-6))
             fail(key, "must not be the zero vector");
-        return glm::normalize(v);
+        return glm::vec3(v / len);
     }
     std::string string(const json& value, const std::string& key) const
     {
@@ -66,14 +78,22 @@ struct Reader {
 
 HeadDescription loadHeadDescription(const std::filesystem::path& path)
 {
-    std::ifstream in(path);
+    std::ifstream in(path, std::ios::binary);
     if (!in)
         throw UserError(path.string() + ": cannot open head description");
+    std::string data{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    if (in.bad())
+        throw UserError(path.string() + ": read error");
+    // Trailing NULs and white space are padding (JSON takes any line ending as white space).
+    std::string_view text = textOf(data);
+    checkNoNulBytes(text, bomBytes(data), path, "a head description");
     json doc;
     try {
-        doc = json::parse(in);
+        doc = json::parse(text);
     } catch (const json::parse_error& e) {
-        throw UserError(path.string() + ": byte " + std::to_string(e.byte) + ": malformed JSON");
+        size_t at = e.byte > 0 ? e.byte - 1 : 0; // nlohmann counts bytes from 1
+        throw UserError(path.string() + ":" + std::to_string(lineOfByte(text, at)) + ": byte " +
+                        std::to_string(at + bomBytes(data)) + ": malformed JSON");
     }
     Reader r{path};
     if (!doc.is_object())
@@ -93,7 +113,7 @@ HeadDescription loadHeadDescription(const std::filesystem::path& path)
         if (!s.is_object())
             r.fail("scalp", "must be an object");
         ScalpRule rule;
-        rule.planePoint = r.vec3(r.require(s, "plane_point", "scalp."), "scalp.plane_point");
+        rule.planePoint = r.position(r.require(s, "plane_point", "scalp."), "scalp.plane_point");
         rule.planeNormal = r.direction(r.require(s, "plane_normal", "scalp."), "scalp.plane_normal");
         if (s.contains("face_direction"))
             rule.faceDirection = r.direction(s["face_direction"], "scalp.face_direction");
@@ -115,8 +135,8 @@ HeadDescription loadHeadDescription(const std::filesystem::path& path)
                 r.fail(key, "must be an object");
             Ellipsoid e;
             e.name = c.contains("name") ? r.string(c["name"], key + ".name") : key;
-            e.center = r.vec3(r.require(c, "center", key + "."), key + ".center");
-            e.radii = r.vec3(r.require(c, "radii", key + "."), key + ".radii");
+            e.center = r.position(r.require(c, "center", key + "."), key + ".center");
+            e.radii = r.position(r.require(c, "radii", key + "."), key + ".radii");
             if (e.radii.x <= 0.0f || e.radii.y <= 0.0f || e.radii.z <= 0.0f)
                 r.fail(key + ".radii", "must all be > 0");
             if (c.contains("rotation_deg"))

@@ -1,8 +1,10 @@
 // assets/mesh.cpp: mesh loading. OBJ files are first checked line by line (numbers parse,
-// face indices exist) so that a bad file is reported with its line; tinyobjloader then reads
-// them. Other formats go through assimp.
+// positions lie in the range Wisp handles, face indices exist) so that a bad file is reported
+// with its line; tinyobjloader then reads them. Other formats go through assimp. Normals missing or
+// giving no direction (zero) are computed from the triangles.
 #include "assets/mesh.h"
 
+#include "assets/text.h"
 #include "core/error.h"
 
 #include <assimp/Importer.hpp>
@@ -14,7 +16,9 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <map>
+#include <sstream>
 #include <string_view>
 
 namespace wisp {
@@ -64,6 +68,13 @@ glm::vec3 unitOr(glm::dvec3 v)
     return len > 0.0 && std::isfinite(len) ? glm::vec3(v / len) : glm::vec3(0.0f, 1.0f, 0.0f);
 }
 
+// A normal that gives no direction: zero (some exporters write "vn 0 0 0" for "none") or not finite.
+bool degenerateNormal(glm::dvec3 v)
+{
+    double len = glm::length(v);
+    return !(len > 0.0 && std::isfinite(len));
+}
+
 } // namespace
 
 std::vector<glm::vec3> computeVertexNormals(const std::vector<glm::vec3>& positions,
@@ -92,34 +103,11 @@ namespace {
     throw UserError(path.string() + ":" + std::to_string(line) + ": " + what);
 }
 
-bool parseFloat(std::string_view token, float& out)
-{
-    auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), out);
-    return ec == std::errc() && end == token.data() + token.size() && std::isfinite(out);
-}
-
-// One line as tinyobjloader reads it: ended by "\n", "\r" or "\r\n" (so the line numbers agree).
-bool objLine(std::istream& in, std::string& line)
-{
-    line.clear();
-    for (int c = in.get(); c != std::char_traits<char>::eof(); c = in.get()) {
-        if (c == '\n')
-            return true;
-        if (c == '\r') {
-            if (in.peek() == '\n')
-                in.get();
-            return true;
-        }
-        line.push_back(char(c));
-    }
-    return !line.empty();
-}
-
-// The words of a line as tinyobjloader splits them: on spaces and tabs only, up to a NUL.
-std::vector<std::string> objWords(const std::string& line)
+// The words of a line as tinyobjloader splits them: on spaces and tabs only.
+std::vector<std::string> objWords(std::string_view line)
 {
     std::vector<std::string> words;
-    std::string_view rest(line.c_str());
+    std::string_view rest = line;
     while (true) {
         size_t start = rest.find_first_not_of(" \t");
         if (start == std::string_view::npos)
@@ -132,22 +120,16 @@ std::vector<std::string> objWords(const std::string& line)
 }
 
 // Checks the lines tinyobjloader would otherwise accept silently or mis-read: vertex records
-// with missing or non-numeric coordinates, and faces whose indices name no vertex or that it
-// would read past (a corner ending in '/' takes its last index from the next corner).
-void checkObj(const std::filesystem::path& path, std::istream& in)
+// with missing or non-numeric coordinates (or positions past the range Wisp's float math
+// handles), and faces whose indices name no vertex or that it would read past (a corner ending in
+// '/' takes its last index from the next corner). `text` is textOf the file (no NUL in it); its
+// lines end as tinyobjloader ends them ("\n", "\r" or "\r\n"), so the line numbers agree.
+void checkObj(const std::filesystem::path& path, std::string_view text)
 {
-    std::string line;
     size_t lineNumber = 0;
     long positions = 0, texcoords = 0, normals = 0;
-    std::streamoff lineStart = 0;
-    while (objLine(in, line)) {
+    for (std::string_view line : splitLines(text)) {
         ++lineNumber;
-        // A NUL byte: binary data (an executable, an image, a binary mesh named .obj), not OBJ text.
-        if (size_t nul = line.find('\0'); nul != std::string::npos)
-            badFile(path, lineNumber,
-                    "byte " + std::to_string(lineStart + std::streamoff(nul)) +
-                        " is a NUL: the file holds binary data, not OBJ text");
-        lineStart = in.tellg();
         std::vector<std::string> args = objWords(line);
         if (args.empty() || args.front()[0] == '#')
             continue;
@@ -161,8 +143,11 @@ void checkObj(const std::filesystem::path& path, std::istream& in)
                             std::to_string(args.size()));
             for (size_t i = 0; i < need; ++i) {
                 float value = 0.0f;
-                if (!parseFloat(args[i], value))
-                    badFile(path, lineNumber, "'" + args[i] + "' is not a finite number");
+                if (std::string error = parseFloatWord(args[i], value); !error.empty())
+                    badFile(path, lineNumber, error);
+                if (key == "v")
+                    if (std::string error = coordinateRangeError(value); !error.empty())
+                        badFile(path, lineNumber, "vertex " + std::to_string(positions + 1) + ": " + error);
             }
             (key == "v" ? positions : key == "vn" ? normals : texcoords) += 1;
         } else if (key == "f") {
@@ -170,7 +155,8 @@ void checkObj(const std::filesystem::path& path, std::istream& in)
                 badFile(path, lineNumber, "a face needs at least 3 vertices, found " + std::to_string(args.size()));
             for (const std::string& corner : args) {
                 if (corner.back() == '/')
-                    badFile(path, lineNumber, "face corner '" + corner + "' ends with '/': an index must follow it");
+                    badFile(path, lineNumber,
+                            "face corner '" + quoteText(corner) + "' ends with '/': an index must follow it");
                 long counts[3] = {positions, texcoords, normals};
                 const char* names[3] = {"vertex", "texture coordinate", "normal"};
                 size_t start = 0;
@@ -184,18 +170,17 @@ void checkObj(const std::filesystem::path& path, std::istream& in)
                     long index = 0;
                     auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), index);
                     if (ec != std::errc() || end != field.data() + field.size() || index == 0)
-                        badFile(path, lineNumber, "face corner '" + corner + "' is not a valid index");
+                        badFile(path, lineNumber, "face corner '" + quoteText(corner) + "' is not a valid index");
                     long resolved = index < 0 ? counts[part] + index + 1 : index;
                     if (resolved < 1 || resolved > counts[part])
                         badFile(path, lineNumber,
-                                "face corner '" + corner + "' names " + names[part] + " " + std::to_string(index) +
-                                    " but only " + std::to_string(counts[part]) + " are defined before it");
+                                "face corner '" + quoteText(corner) + "' names " + names[part] + " " +
+                                    std::to_string(index) + " but only " + std::to_string(counts[part]) +
+                                    " are defined before it");
                 }
             }
         }
     }
-    if (in.bad())
-        throw UserError(path.string() + ": read error");
 }
 
 Mesh loadObj(const std::filesystem::path& path)
@@ -215,15 +200,21 @@ Mesh loadWithAssimp(const std::filesystem::path& path)
     if (!scene || !scene->mRootNode)
         throw UserError(path.string() + ": cannot read mesh: " + importer.GetErrorString());
     Mesh mesh;
+    std::vector<bool> degenerate; // per vertex: its normal gives no direction
     for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
         const aiMesh* src = scene->mMeshes[m];
         if (!(src->mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
             continue;
         uint32_t base = static_cast<uint32_t>(mesh.positions.size());
         for (unsigned v = 0; v < src->mNumVertices; ++v) {
-            mesh.positions.emplace_back(src->mVertices[v].x, src->mVertices[v].y, src->mVertices[v].z);
+            glm::vec3 p(src->mVertices[v].x, src->mVertices[v].y, src->mVertices[v].z);
+            for (int axis = 0; axis < 3; ++axis)
+                if (std::string error = coordinateRangeError(p[axis]); !error.empty())
+                    throw UserError(path.string() + ": vertex " + std::to_string(mesh.positions.size()) + ": " + error);
+            mesh.positions.push_back(p);
             glm::dvec3 n = src->mNormals ? glm::dvec3(src->mNormals[v].x, src->mNormals[v].y, src->mNormals[v].z)
                                          : glm::dvec3(0.0);
+            degenerate.push_back(degenerateNormal(n));
             mesh.normals.push_back(unitOr(n));
         }
         for (unsigned f = 0; f < src->mNumFaces; ++f) {
@@ -235,6 +226,12 @@ Mesh loadWithAssimp(const std::filesystem::path& path)
         }
     }
     mesh.sourceVertices = mesh.positions.size();
+    if (std::find(degenerate.begin(), degenerate.end(), true) != degenerate.end()) {
+        std::vector<glm::vec3> smooth = computeVertexNormals(mesh.positions, mesh.indices);
+        for (size_t v = 0; v < degenerate.size(); ++v)
+            if (degenerate[v])
+                mesh.normals[v] = smooth[v];
+    }
     return mesh;
 }
 
@@ -260,16 +257,21 @@ void checkNotDegenerate(const Mesh& mesh, const std::filesystem::path& path)
                     " triangles has an area (its vertices lie on a line)");
 }
 
-Mesh parseObj(std::istream& file, const std::filesystem::path& path)
+Mesh parseObj(std::istream& in, const std::filesystem::path& path)
 {
-    checkObj(path, file);
-    file.clear();
-    file.seekg(0);
+    std::string data{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    if (in.bad())
+        throw UserError(path.string() + ": read error");
+    // Trailing NULs and white space are padding; a NUL before the last word is binary data.
+    std::string_view text = textOf(data);
+    checkNoNulBytes(text, bomBytes(data), path, "OBJ text");
+    checkObj(path, text);
 
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> materials;
     std::string warnings, errors;
+    std::istringstream file{std::string(text)};
     bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warnings, &errors, &file, nullptr, true);
     if (!ok)
         throw UserError(path.string() + ": " + (errors.empty() ? std::string("malformed OBJ") : errors));
@@ -287,11 +289,15 @@ Mesh parseObj(std::istream& file, const std::filesystem::path& path)
 
     Mesh mesh;
     mesh.sourceVertices = vertexCount;
-    bool haveNormals = !attrib.normals.empty();
+    // A corner whose normal gives no direction (zero, not finite) counts as one without a normal.
+    std::vector<bool> usable(normalCount);
+    for (size_t n = 0; n < normalCount; ++n)
+        usable[n] =
+            !degenerateNormal(glm::dvec3(attrib.normals[3 * n], attrib.normals[3 * n + 1], attrib.normals[3 * n + 2]));
     std::map<std::pair<int, int>, uint32_t> corners; // (position, normal) -> vertex
     for (const tinyobj::shape_t& shape : shapes) {
         for (const tinyobj::index_t& idx : shape.mesh.indices) {
-            int normal = haveNormals ? idx.normal_index : -1;
+            int normal = idx.normal_index >= 0 && usable[size_t(idx.normal_index)] ? idx.normal_index : -1;
             auto [it, inserted] =
                 corners.try_emplace({idx.vertex_index, normal}, static_cast<uint32_t>(mesh.positions.size()));
             if (inserted) {
@@ -310,7 +316,7 @@ Mesh parseObj(std::istream& file, const std::filesystem::path& path)
     bool anyMissing = false;
     for (const auto& [key, vertex] : corners)
         anyMissing = anyMissing || key.second < 0;
-    if (anyMissing) { // some corners had no normal: smooth normals over shared positions
+    if (anyMissing) { // some corners had no usable normal: area-weighted normals over shared positions
         std::vector<glm::vec3> smooth = computeVertexNormals(mesh.positions, mesh.indices);
         for (const auto& [key, vertex] : corners)
             if (key.second < 0)

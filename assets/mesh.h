@@ -27,13 +27,15 @@ struct Mesh {
 };
 
 // Throws UserError naming the file (and line, for .obj) when it is missing, unreadable,
-// malformed, binary where text is expected, or holds no triangles or only triangles of no area.
+// malformed, binary where text is expected (a NUL byte before the padding at its end), has a
+// position past kMaxCoordinate (assets/text.h), or holds no triangles or only triangles of no
+// area. Normals missing or zero are area-weighted averages of the triangles' normals.
 Mesh loadMesh(const std::filesystem::path& path);
 // Throws UserError naming `path` when no triangle of `mesh` has an area (all vertices at one
 // point or on one line): nothing can be framed, fitted or grown on it.
 void checkNotDegenerate(const Mesh& mesh, const std::filesystem::path& path);
-// An OBJ file's text from a stream (seekable: it is read twice, checked then parsed), as loadMesh
-// reads a .obj file; `source` names it in errors. The fuzz target uses it.
+// An OBJ file's text from a stream, as loadMesh reads a .obj file (lines ended by LF, CRLF or CR;
+// trailing NULs and white space are padding); `source` names it in errors. The fuzz target uses it.
 Mesh parseObj(std::istream& in, const std::filesystem::path& source);
 
 // A unit sphere around the origin (latitude-longitude: `stacks` x `slices` quads), for the

@@ -103,6 +103,41 @@ TEST(BadInput, InspectMissingFile)
     expectUserError(runWisp("inspect /nonexistent/x.obj"), "/nonexistent/x.obj");
 }
 
+TEST(BadInput, CoordinatesPastTheFloatMathsRangeNameTheFileNotTheHair)
+{
+    // The default head scaled by 1e30 was "hair strand 0 has a zero-length segment" (no file named,
+    // the hair blamed); a TressFX vertex at 1e30 was "is 3.46e30 long, too short to split into 15
+    // segments". Each names its file and line now, exits 2 and writes nothing.
+    TempDir dir;
+    std::ifstream in(std::string(WISP_SOURCE_DIR) + "/models/head.obj");
+    std::string line, scaled;
+    size_t lineNumber = 0, firstVertex = 0;
+    while (std::getline(in, line)) {
+        ++lineNumber;
+        float x = 0, y = 0, z = 0;
+        if (std::sscanf(line.c_str(), "v %f %f %f", &x, &y, &z) == 3) {
+            char text[128];
+            std::snprintf(text, sizeof(text), "v %g %g %g", double(x) * 1e30, double(y) * 1e30, double(z) * 1e30);
+            line = text;
+            firstVertex = firstVertex == 0 && (x != 0 || y != 0 || z != 0) ? lineNumber : firstVertex;
+        }
+        scaled += line + "\n";
+    }
+    ASSERT_GT(firstVertex, 0u);
+    std::ofstream(dir / "big.obj") << scaled;
+    std::string png = (dir / "a.png").string();
+    RunResult r =
+        runWisp("render --width 64 --height 64 --head '" + (dir / "big.obj").string() + "' --out '" + png + "'");
+    expectUserError(r, (dir / "big.obj").string() + ":" + std::to_string(firstVertex) + ": vertex ");
+    EXPECT_NE(r.err.find("is out of the range Wisp's float math handles"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(png));
+
+    std::ofstream(dir / "far.tfx") << "numStrands 1\nstrand 0 numVerts 3\n0 0 0\n1e30 1e30 1e30\n0 1 0\n";
+    r = runWisp("render --width 64 --height 64 --hair '" + (dir / "far.tfx").string() + "' --out '" + png + "'");
+    expectUserError(r, (dir / "far.tfx").string() + ":4: coordinate 1e+30 is out of the range");
+    EXPECT_FALSE(std::filesystem::exists(png));
+}
+
 TEST(Cli, SettingsListsEveryNameWithRangeAndDefault)
 {
     auto r = runWisp("settings");

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 using namespace wisp;
@@ -599,7 +600,9 @@ TEST(HairErrors, Tfx2Broken)
 
     writeFile(dir / "past-end.tfx", tfx2Text("version 2.0\nnumStrands 50\n", 2, 3));
     expectTextError(dir / "past-end.tfx", 2, "numStrands 50 needs at least 150 lines");
-    writeFile(dir / "fewer.tfx", tfx2Text("numStrands 3\n", 2, 3) + "\n\n\n\n\n\n");
+    // (Blank lines inside, not after: trailing ones are padding, and too few lines are refused up front.)
+    std::string fewer = tfx2Text("numStrands 3\n", 2, 3);
+    writeFile(dir / "fewer.tfx", fewer.insert(fewer.find('\n', fewer.find("strand 0")) + 1, "\n\n\n\n\n\n"));
     expectTextError(dir / "fewer.tfx", 15, "ends after 2 of numStrands 3");
     writeFile(dir / "more.tfx", tfx2Text("numStrands 1\n", 2, 3));
     expectTextError(dir / "more.tfx", 6, "more strands than numStrands 1");
@@ -741,12 +744,96 @@ TEST(HairErrors, CyHairHeaderCountsCostNoMemoryTheFileDoesNotBack)
 
 TEST(HairErrors, Tfx2HeaderTransformToNonFinitePointsNamesTheLine)
 {
-    // Finite numbers made infinite by the header's scale (1e30 x 1e30): the points were returned
+    // Finite numbers made infinite by the header's scale (1e30 x 1e9): the points were returned
     // non-finite. The fuzz targets' contract check reports it (fuzz/fuzz_support.h); found while
     // reviewing the reader, not by the fuzzer's own search.
     TempDir dir;
-    writeFile(dir / "inf.tfx", "scale 1e30\nnumStrands 1\nstrand 0 numVerts 2 texcoord 0 0\n1e30 0 0\n0 0 0\n");
+    writeFile(dir / "inf.tfx", "scale 1e30\nnumStrands 1\nstrand 0 numVerts 2 texcoord 0 0\n1e9 0 0\n0 0 0\n");
     std::string e = errorOf(dir / "inf.tfx");
     EXPECT_NE(e.find("inf.tfx:4:"), std::string::npos) << e;
     EXPECT_NE(e.find("not finite once scaled"), std::string::npos) << e;
+}
+
+// ---- text as people's tools write it (issue 23) -------------------------------------------------
+
+TEST(HairText, TrailingNulsAndWhiteSpaceArePadding)
+{
+    // Some exporters pad a file with NULs: it was "more strands than numStrands" (the NUL read as a line).
+    TempDir dir;
+    std::string good = tfx2Text("version 2.0\nnumStrands 2\n", 2, 3);
+    writeFile(dir / "padded.tfx", good + std::string("\0\0\0", 3) + " \r\n\t" + std::string(1, '\0'));
+    expectExactPoints(loadHairAsset(dir / "padded.tfx"), {3, 3});
+    writeFile(dir / "padded-crlf.tfx", good + "\r\n\r\n" + std::string(64, '\0'));
+    expectExactPoints(loadHairAsset(dir / "padded-crlf.tfx"), {3, 3});
+}
+
+TEST(HairText, NulInsideTheTextNamesItsLineByteAndWord)
+{
+    // A NUL inside a number cut the message short at the NUL ("'-2").
+    TempDir dir;
+    std::string good = tfx2Text("version 2.0\nnumStrands 2\n", 2, 3);
+    std::string bad = good;
+    size_t at = bad.find('\n', bad.find("strand 1")) + 1; // the first point of strand 1, line 8
+    bad.insert(at + 2, 1, '\0');
+    writeFile(dir / "nul.tfx", bad);
+    std::string e = errorOf(dir / "nul.tfx");
+    EXPECT_NE(e.find("nul.tfx:8: byte " + std::to_string(at + 2) + " is a NUL byte inside the text (in '" +
+                     good.substr(at, 2) + "\\x00" + good.substr(at + 2, good.find(' ', at) - at - 2) + "')"),
+              std::string::npos)
+        << e;
+    EXPECT_EQ(e.find('\0'), std::string::npos);
+    // Early in the file (among the bytes that tell text from binary) it is still the text's error.
+    bad = good;
+    bad.insert(bad.find("2.0") + 1, 1, '\0');
+    writeFile(dir / "nul-header.tfx", bad);
+    expectTextError(dir / "nul-header.tfx", 1, "is a NUL byte inside the text (in '2\\x00.0')");
+}
+
+TEST(HairText, BareCarriageReturnsEndLinesAsLineFeedsDo)
+{
+    // Old Mac line endings: the whole file was one line, quoted with its raw CRs in the message.
+    TempDir dir;
+    std::string good = tfx2Text("version 2.0\nnumStrands 2\n", 2, 3);
+    std::string cr = good, crlf;
+    std::replace(cr.begin(), cr.end(), '\n', '\r');
+    for (char c : good)
+        crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+    writeFile(dir / "cr.tfx", cr);
+    expectExactPoints(loadHairAsset(dir / "cr.tfx"), {3, 3});
+    writeFile(dir / "crlf.tfx", crlf);
+    expectExactPoints(loadHairAsset(dir / "crlf.tfx"), {3, 3});
+    // Mixed endings count lines the same way, and an error names its line without a raw CR in it.
+    std::string mixed = "version 2.0\rnumStrands 1\r\nstrand 0 numVerts 2\n0 0 0\r1 1 banana\r";
+    writeFile(dir / "mixed.tfx", mixed);
+    expectTextError(dir / "mixed.tfx", 5, "'banana'");
+    EXPECT_EQ(errorOf(dir / "mixed.tfx").find('\r'), std::string::npos);
+}
+
+TEST(HairText, NumbersTooSmallForAFloatReadAsZero)
+{
+    // 1.58480958e-48 is finite; it was "not a finite number". It underflows to 0 in a float.
+    TempDir dir;
+    writeFile(dir / "tiny.tfx", "numStrands 1\nstrand 0 numVerts 2\n1.58480958e-48 0 -1e-50\n1 1 1e-40\n");
+    HairAsset asset = loadHairAsset(dir / "tiny.tfx");
+    EXPECT_EQ(asset.strands[0].points[0], glm::vec3(0.0f));
+    EXPECT_NEAR(asset.strands[0].points[1].z, 1e-40f, 1e-44f); // a denormal stays one
+    // Too large for a float is said as such.
+    writeFile(dir / "huge.tfx", "numStrands 1\nstrand 0 numVerts 2\n0 0 0\n1 1 4e38\n");
+    expectTextError(dir / "huge.tfx", 4, "'4e38' is beyond the float range");
+}
+
+TEST(HairText, CoordinatesPastTheFloatMathsRangeNameTheFileAndWhere)
+{
+    // A vertex at 1e30 gave "is 3.46e30 long, too short to split into 15 segments" from the scene.
+    TempDir dir;
+    writeFile(dir / "far.tfx", "numStrands 1\nstrand 0 numVerts 2\n0 0 0\n1e30 1e30 1e30\n");
+    expectTextError(dir / "far.tfx", 4, "coordinate 1e+30 is out of the range Wisp's float math handles");
+    Bytes tfx4 = tfx4File(2, 4);
+    std::string bytes = tfx4.data;
+    uint64_t at = 160 + 16 * 5 + 4; // strand 1, point 1, y
+    float far = -2e12f;
+    std::memcpy(bytes.data() + at, &far, 4);
+    writeFile(dir / "far.tfx4", bytes);
+    expectBinaryError(dir / "far.tfx4", std::to_string(at),
+                      "point 1 of strand 1: coordinate -2e+12 is out of the range");
 }

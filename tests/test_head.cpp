@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 
 using namespace wisp;
@@ -118,9 +119,43 @@ TEST(DefaultHead, GeneratorRebuildsTheCommittedFiles)
 TEST(HeadErrors, MalformedJsonNamesTheByte)
 {
     TempDir dir;
-    writeFile(dir / "h.json", "{\"mesh\": \"head.obj\",, }");
+    writeFile(dir / "h.json", "{\"mesh\": \"head.obj\",\r\n, }");
     std::string e = errorOf(dir / "h.json");
-    EXPECT_NE(e.find("h.json: byte"), std::string::npos) << e;
+    EXPECT_NE(e.find("h.json:2: byte 22: malformed JSON"), std::string::npos) << e;
+}
+
+TEST(HeadText, AnyLineEndingAndTrailingPaddingRead)
+{
+    // The same rules as every text file Wisp reads (assets/text.h): LF, CRLF or CR, and NULs or white
+    // space after the last character are padding.
+    TempDir dir;
+    std::string lf = "{\n\"mesh\": \"a.obj\",\n\"up\": [0, 1, 0],\n\"colliders\": [{\"center\": [0, 1, 0], "
+                     "\"radii\": [1, 2, 3]}]\n}\n";
+    std::string cr = lf, crlf;
+    std::replace(cr.begin(), cr.end(), '\n', '\r');
+    for (char c : lf)
+        crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+    for (const std::string& text : {lf, cr, crlf, lf + std::string(5, '\0') + "\r\n", cr + std::string(1, '\0')}) {
+        writeFile(dir / "h.json", text);
+        HeadDescription d = loadHeadDescription(dir / "h.json");
+        ASSERT_EQ(d.colliders.size(), 1u);
+        EXPECT_EQ(d.colliders[0].radii, glm::vec3(1, 2, 3));
+    }
+    // A NUL before the end is named with its line and byte.
+    writeFile(dir / "h.json", "{\r\"mesh\": \"a" + std::string(1, '\0') + ".obj\"}");
+    std::string e = errorOf(dir / "h.json");
+    EXPECT_NE(e.find("h.json:2: byte 12 is a NUL byte inside the text (in '\"a\\x00.obj\"}')"), std::string::npos) << e;
+}
+
+TEST(HeadErrors, CoordinatesPastTheFloatMathsRangeAreNamed)
+{
+    TempDir dir;
+    writeFile(dir / "h.json", R"({"mesh": "a.obj", "colliders": [{"center": [0, 1e30, 0], "radii": [1, 1, 1]}]})");
+    std::string e = errorOf(dir / "h.json");
+    EXPECT_NE(e.find("h.json: 'colliders[0].center[1]' coordinate 1e+30 is out of the range"), std::string::npos) << e;
+    // A direction may be any size: it is normalized (in double: a float's square overflows).
+    writeFile(dir / "h.json", R"({"mesh": "a.obj", "up": [0, 1e30, 0]})");
+    EXPECT_EQ(loadHeadDescription(dir / "h.json").up, glm::vec3(0, 1, 0));
 }
 
 TEST(HeadErrors, MissingMeshKeyIsNamed)

@@ -108,21 +108,23 @@ TEST(Limits, PartValuesRefuseNonFiniteAndOutOfRange)
     }
 }
 
-TEST(Limits, LoadedHairTooLargeForFloatsOncePlacedIsRefused)
+TEST(Limits, LoadedHairTooLargeForFloatsIsRefusedNamingItsLine)
 {
-    // A TressFX 2 strand with coordinates near the float maximum, scaled up 10x by its placement.
+    // A TressFX 2 strand with coordinates near the float maximum (placed 10x larger, they were not
+    // finite; 6e38 apart, a segment's length overflowed): refused as it is read, past the range
+    // the float math handles (assets/text.h kMaxCoordinate), naming the file and the line.
     test::TempDir dir;
     std::string text = "numStrands 1\nstrand 0 numVerts 3 texcoord 0 0\n0 0 0\n0 3e38 0\n0 3.2e38 0\n";
     test::writeFile(dir / "huge.tfx", text);
     HairPartSource part{.file = dir / "huge.tfx", .placement = HairPlacement{.scale = 10.0f}, .settings = {}};
     std::string what = errorOf([&] { buildLoadedScene(defaultHeadPath(), {part}, 8); });
-    EXPECT_NE(what.find("huge.tfx"), std::string::npos) << what;
-    EXPECT_NE(what.find("not finite"), std::string::npos) << what;
-    // Finite but 6e38 apart: a segment's length overflows a float.
+    EXPECT_NE(what.find("huge.tfx:4: coordinate 3e+38 is out of the range Wisp's float math handles"),
+              std::string::npos)
+        << what;
     test::writeFile(dir / "far.tfx", "numStrands 1\nstrand 0 numVerts 2 texcoord 0 0\n-3e38 0 0\n3e38 0 0\n");
     part = {.file = dir / "far.tfx", .placement = HairPlacement{}, .settings = {}};
     what = errorOf([&] { buildLoadedScene(defaultHeadPath(), {part}, 4); });
-    EXPECT_NE(what.find("too long for floats"), std::string::npos) << what;
+    EXPECT_NE(what.find("far.tfx:3: coordinate -3e+38 is out of the range"), std::string::npos) << what;
 }
 
 // ---- The workload: counts and GPU memory -------------------------------------------------------
