@@ -1,7 +1,7 @@
 // physics/cpu_solver.cpp: the reference solver. integrateStrand walks each strand with the
 // shared algorithm (shaders/shared/sim_strand.h, as sim_integrate.comp does) in the CPU's
 // strand-major order; the grid functions mirror grid_clear/splat/normalize/gather.comp over the
-// shared grid math (shaders/shared/sim.h).
+// shared grid math (shaders/shared/sim.h, and sim_grid.h for the gather's update).
 #include "physics/cpu_solver.h"
 
 #include <vector>
@@ -33,8 +33,19 @@ inline float strandRestLength(const StrandRef& s, uint i)
     return (*s.rest)[s.base + i].segmentLength;
 }
 
+// The normalized grid as sim_grid.h reaches it: the node velocities, a node's density in w.
+struct GridRef {
+    const std::vector<vec4>* velocity;
+    uint resolution;
+};
+inline float gridNodeDensity(const GridRef& grid, ivec3 node)
+{
+    return (*grid.velocity)[gridIndex(node, grid.resolution)].w;
+}
+
 } // namespace gpu
 
+#include "shaders/shared/sim_grid.h"
 #include "shaders/shared/sim_strand.h"
 
 #include <algorithm>
@@ -158,8 +169,8 @@ void CpuSolver::gridGather(const SimStep& step)
             vec4 node = gridVelocity_[gridIndex(cell.base + cornerOffset(k), params.gridResolution)];
             gs = gridAccumulate(gs, cell.frac, k, vec3(node), node.w);
         }
-        vec3 v =
-            gridBlend(vec3(state_.velocities[g]), gs, params.gridFriction, params.gridRepulsion, params.gridCellSize);
+        vec3 v = gridGatherVelocity(params, step, GridRef{&gridVelocity_, params.gridResolution}, cell,
+                                    vec3(state_.positions[g]), vec3(state_.velocities[g]), gs);
         state_.velocities[g] = vec4(v, 0.0f);
     }
 }

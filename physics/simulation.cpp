@@ -60,7 +60,40 @@ SimSetup makeSimSetup(const SimSettings& s, const StrandSet& strands, const std:
     setup.gridCenterHead = b.center();
     setup.gridSide = glm::length(b.size() + glm::vec3(2.0f * reach));
     p.gridCellSize = setup.gridSide / float(s.gridResolution - 1);
+    // Repulsion in the grid's own terms (sim.h gridRepulsionChange): density gradients relative to the rest
+    // pose's density, speeds in cells per step.
+    p.gridRestDensity = restGridDensity(strands, setup.gridCenterHead - glm::vec3(0.5f * setup.gridSide),
+                                        p.gridCellSize, s.gridResolution);
+    p.gridSeparationSpeed = gpu::kRepulsionCellsPerStep * p.gridCellSize * s.stepHz;
     return setup;
+}
+
+float restGridDensity(const StrandSet& strands, const glm::vec3& origin, float cellSize, uint32_t resolution)
+{
+    // Splat the rest pose (as gridSplat does) into the block of nodes its bounds reach.
+    Bounds b = strands.bounds();
+    glm::ivec3 lo = glm::max(glm::ivec3(glm::floor((b.min - origin) / cellSize)), glm::ivec3(0));
+    glm::ivec3 hi = glm::min(glm::ivec3(glm::floor((b.max - origin) / cellSize)) + 1, glm::ivec3(int(resolution) - 1));
+    if (glm::any(glm::lessThan(hi, lo)))
+        return 1.0f;
+    glm::ivec3 dims = hi - lo + 1;
+    std::vector<double> density(size_t(dims.x) * size_t(dims.y) * size_t(dims.z), 0.0);
+    for (const glm::vec3& p : strands.rest) {
+        gpu::GridCell cell = gpu::gridCell(p, origin, cellSize);
+        if (!gpu::cellInside(cell.base, resolution))
+            continue;
+        for (uint32_t k = 0; k < 8; ++k) {
+            glm::ivec3 n = glm::clamp(cell.base + gpu::cornerOffset(k) - lo, glm::ivec3(0), dims - 1);
+            density[size_t(n.x) + size_t(dims.x) * (size_t(n.y) + size_t(dims.y) * size_t(n.z))] +=
+                gpu::cornerWeight(cell.frac, k);
+        }
+    }
+    double sum = 0.0, squares = 0.0;
+    for (double d : density) {
+        sum += d;
+        squares += d * d;
+    }
+    return sum > 0.0 ? float(squares / sum) : 1.0f;
 }
 
 float gridFixedScale(uint64_t vertexCount, float maxSplatSpeed)

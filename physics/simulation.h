@@ -20,7 +20,7 @@ struct SimSettings {
     float windFrequency = 0.35f;          // Hz of gusts
     uint32_t gridResolution = 32;         // hair-hair grid nodes per axis
     float gridFriction = 0.05f;           // Petrovic blend toward the grid velocity
-    float gridRepulsion = 0.0f;           // volume-keeping push along the density gradient
+    float gridRepulsion = 0.0f;           // volume keeping: blend toward moving down the density gradient, [0, 1]
     float penaltyStiffness = 4000.0f;     // 1/s²
     float collisionMarginMetres = 0.003f; // colliders act this far outside their surface
     // Every part's parameters when set, over each part's own (PartSettings: grown hair's, or a
@@ -48,6 +48,11 @@ SimSetup makeSimSetup(const SimSettings& settings, const StrandSet& strands,
 // The largest scale at which no fixed-point grid node can overflow 2^62: every vertex adds at
 // most 1 (density) or maxSpeed (each momentum component) to a node.
 float gridFixedScale(uint64_t vertexCount, float maxSplatSpeed);
+
+// The density of the hair-hair grid (grid node `origin`, `cellSize`, `resolution` per axis) that a
+// vertex of the rest pose typically sits in: sum(density²) / sum(density) over the nodes, density
+// being the trilinear weights splatted. Repulsion measures gradients against it (sim.h gridRepulsionChange).
+float restGridDensity(const StrandSet& strands, const glm::vec3& origin, float cellSize, uint32_t resolution);
 // The device memory the GPU solver allocates (gpu_solver.cpp) for `strands` strands of V vertices
 // and a grid of `gridNodes` nodes summed in 64-bit fixed point (4 words a node) or float atomics:
 // the interleaved vertex buffers (positions, velocities, tangents, rest; strands padded to blocks

@@ -2,19 +2,25 @@
 // against hand-computed values, the CPU reference on a hand-checked step, the CPU reference on a
 // grown groom (every term: wind, the sphere, colliders, the grid) keeping its invariants, the
 // fixed-point grid's scale, and root sampling. (The GPU kernels against it: test_physics.cpp.)
+#include "app/settings_table.h"
 #include "core/error.h"
 #include "physics/colliders.h"
 #include "physics/cpu_solver.h"
 #include "physics/growth.h"
 #include "physics/hair_scene.h"
+#include "physics/hair_style.h"
 #include "physics/step_clock.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
 using namespace wisp;
 
@@ -278,6 +284,137 @@ TEST(CpuReference, GrownGroomKeepsItsInvariantsUnderEveryTerm)
     EXPECT_LT(m.maxPenetration, 0.01f * scene.head.mesh.bounds().diagonal());
     for (const glm::vec4& p : cpu.state().positions)
         ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+}
+
+// ---- The hair-hair grid's settings at every allowed value (issue 23) -----------------------------
+
+namespace {
+
+struct GroomRun {
+    float worstEnergy = 0.0f;
+    float lastEnergy = 0.0f; // the last step's, a second after the head stopped
+    float worstPenetration = 0.0f;
+    float worstStretch = 0.0f;
+    uint32_t resets = 0;
+    bool finite = true;
+};
+
+// `steps` steps: the head turns to and fro for the first half, then holds still.
+GroomRun runGroom(const HairScene& scene, const SimSettings& settings, uint32_t steps)
+{
+    SimSetup setup = makeSimSetup(settings, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
+    CpuSolver cpu(scene.strands, setup, glm::mat4(1.0f));
+    GroomRun run;
+    for (uint32_t k = 0; k < steps; ++k) {
+        std::vector<glm::vec4> previous = cpu.state().positions;
+        float t = float(std::min(k, steps / 2)) / settings.stepHz;
+        glm::mat4 head = glm::rotate(glm::mat4(1.0f), 0.4f * std::sin(4.0f * t), glm::vec3(0, 1, 0));
+        gpu::SimStep step = makeStep(setup, head, glm::vec4(0.0f), float(k) / settings.stepHz);
+        cpu.step(step);
+        SimMetrics m = measure(cpu.state(), previous, 1.0f / settings.stepHz, scene.strands, setup, step);
+        run.worstEnergy = std::max(run.worstEnergy, m.kineticEnergy);
+        run.worstPenetration = std::max(run.worstPenetration, m.maxPenetration);
+        run.worstStretch = std::max(run.worstStretch, m.maxStretch);
+        run.lastEnergy = m.kineticEnergy;
+    }
+    for (const glm::vec4& p : cpu.state().positions)
+        run.finite = run.finite && std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+    run.resets = cpu.state().nonfiniteResets;
+    return run;
+}
+
+} // namespace
+
+TEST(CpuReference, RepulsionAndFrictionAreStableAtEveryAllowedValue)
+{
+    // `--repulsion 0.1` blew the default bob up (worst kinetic energy 28,958 against 1.2 without,
+    // penetration 0.17 of the head's diagonal): its push was an impulse of the density gradient
+    // counted in vertices, so it grew with the groom's vertex count and built up step after step.
+    // On two small grooms (the bob, and fur: the crop cut to 4 cm), repulsion at its extremes and
+    // midpoints, and friction at its extremes with full repulsion, must keep the energy within a
+    // few times what the same run has without repulsion, add no penetration beyond the collision
+    // margin, stretch nothing, and let the hair settle once the head stops.
+    Range repulsion = settingSpec("repulsion").range;
+    Range friction = settingSpec("friction").range;
+    GrowthSettings bob;
+    bob.guides = 200;
+    GrowthSettings fur;
+    applyHairStyle(fur, *findHairStyle("crop"));
+    fur.guides = 200;
+    fur.lengthMetres = 0.04f;
+    fur.trimLevelMetres = 0.0f;
+    fur.hairlineLength = 1.0f;
+    for (const auto& [name, growth] : {std::pair{"bob", bob}, std::pair{"fur", fur}}) {
+        HairScene scene = buildGrownScene(defaultHeadPath(), growth);
+        const uint32_t steps = 240;
+        SimSettings base;
+        base.gridResolution = 16;
+        GroomRun without = runGroom(scene, base, steps);
+        float margin = base.collisionMarginMetres * scene.unitsPerMetre;
+        std::vector<std::pair<float, float>> cases; // (repulsion, friction)
+        for (double f : {0.25, 0.5, 0.75, 1.0})
+            cases.emplace_back(float(repulsion.min + f * (repulsion.max - repulsion.min)), base.gridFriction);
+        cases.emplace_back(float(repulsion.max), float(friction.min));
+        cases.emplace_back(float(repulsion.max), float(friction.max));
+        for (auto [r, f] : cases) {
+            SimSettings s = base;
+            s.gridRepulsion = r;
+            s.gridFriction = f;
+            GroomRun run = runGroom(scene, s, steps);
+            std::string what =
+                std::string(name) + ", repulsion " + std::to_string(r) + ", friction " + std::to_string(f);
+            std::fprintf(stderr, "%s: worst energy %g (without repulsion %g), last %g, penetration %g (%g)\n",
+                         what.c_str(), double(run.worstEnergy), double(without.worstEnergy), double(run.lastEnergy),
+                         double(run.worstPenetration), double(without.worstPenetration));
+            EXPECT_TRUE(run.finite) << what;
+            EXPECT_EQ(run.resets, 0u) << what;
+            EXPECT_LT(run.worstStretch, 1e-4f) << what;
+            EXPECT_LT(run.worstEnergy, 4.0f * without.worstEnergy) << what;
+            EXPECT_LT(run.worstPenetration, without.worstPenetration + margin) << what;
+            EXPECT_LT(run.lastEnergy, 0.02f * run.worstEnergy) << what << ": it settles once the head stops";
+        }
+    }
+}
+
+TEST(GridRepulsion, ABoundedBlendTowardTheSeparationSpeed)
+{
+    // Down a gradient of twice the rest density per cell the target is the full separation speed
+    // (|g| capped at 1); the component along it is blended by `repulsion`, the rest left alone,
+    // and a vertex already moving apart faster keeps its velocity.
+    glm::vec3 gradient(0.0f, 0.0f, -2.0f * 50.0f); // density falls toward +z; rest density 50
+    glm::vec3 v(1.0f, 0.0f, -3.0f);
+    glm::vec3 dv = gpu::gridRepulsionChange(v, gradient, 0.25f, 2.0f, 50.0f);
+    EXPECT_NEAR(dv.x, 0.0f, 1e-6f);
+    EXPECT_NEAR(dv.z, 0.25f * (2.0f - -3.0f), 1e-5f);
+    EXPECT_EQ(gpu::gridRepulsionChange(glm::vec3(0, 0, 5), gradient, 1.0f, 2.0f, 50.0f), glm::vec3(0.0f));
+    // Half a rest density per cell: half the speed; at repulsion 1 the vertex moves at it exactly.
+    glm::vec3 w = gpu::gridRepulsionChange(glm::vec3(0.0f), glm::vec3(0, 0, -25.0f), 1.0f, 2.0f, 50.0f);
+    EXPECT_NEAR(w.z, 1.0f, 1e-6f);
+    // Nothing of it points into a collider within reach.
+    gpu::Contact c{glm::vec3(0, 0, 1), 0.01f}; // a collider behind the vertex (-z): its normal is +z
+    glm::vec3 kept = gpu::withoutPartInto(glm::vec3(1, 0, -2), c);
+    EXPECT_EQ(kept, glm::vec3(1, 0, 0));
+    EXPECT_EQ(gpu::withoutPartInto(glm::vec3(1, 0, 2), c), glm::vec3(1, 0, 2));
+}
+
+TEST(GridRepulsion, RestDensityIsTheDensityAVertexSeesWhateverTheGroomsSize)
+{
+    // The same strands twice over (two copies of each) double the density a vertex sees; the
+    // repulsion, measured against it, is the same for both.
+    GrowthSettings g;
+    g.guides = 100;
+    HairScene one = buildGrownScene(defaultHeadPath(), g);
+    StrandSet two = one.strands;
+    for (size_t s = 0; s < one.strands.strandCount(); ++s) {
+        auto first = one.strands.rest.begin() + std::ptrdiff_t(s * g.verticesPerStrand);
+        two.add(std::vector<glm::vec3>(first, first + g.verticesPerStrand), 0, 1, false);
+    }
+    SimSettings s;
+    SimSetup a = makeSimSetup(s, one.strands, one.gpuColliders, one.unitsPerMetre);
+    SimSetup b = makeSimSetup(s, two, one.gpuColliders, one.unitsPerMetre);
+    EXPECT_GT(a.params.gridRestDensity, 1.0f);
+    EXPECT_NEAR(b.params.gridRestDensity, 2.0f * a.params.gridRestDensity, 1e-3f * a.params.gridRestDensity);
+    EXPECT_NEAR(a.params.gridSeparationSpeed, gpu::kRepulsionCellsPerStep * a.params.gridCellSize * s.stepHz, 1e-6f);
 }
 
 // ---- Root sampling -----------------------------------------------------------------------------

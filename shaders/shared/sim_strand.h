@@ -19,23 +19,13 @@
 // per-strand arrays are needed.
 //
 // In GLSL the kernel's uniform block `params` (SimParams) and push constants `step` (SimStep) are
-// globals; in C++ they are the first parameters (SIM_CONTEXT declares them, SIM_ARGS passes them).
+// globals; in C++ they are the first parameters (sim.h's SIM_CONTEXT declares them, SIM_ARGS passes them).
 // The bend reaches any vertex of its strand, so the includer defines first how (its addressing):
 // a type StrandRef naming one strand, and strandPosition(s, i), strandVelocity(s, i),
 // strandSetVertex(s, i, position, velocity) and strandRestLength(s, i) for its vertex i.
 #ifndef WISP_SHARED_SIM_STRAND_H
 #define WISP_SHARED_SIM_STRAND_H
 #include "sim.h"
-
-#ifdef __cplusplus
-#define SIM_CONTEXT [[maybe_unused]] const SimParams &params, [[maybe_unused]] const SimStep &step,
-#define SIM_ARGS params, step,
-#define GPU_INOUT(T) T&
-#else
-#define SIM_CONTEXT
-#define SIM_ARGS
-#define GPU_INOUT(T) inout T
-#endif
 
 GPU_NAMESPACE_BEGIN
 
