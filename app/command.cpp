@@ -4,9 +4,11 @@
 
 #include "app/workload.h"
 #include "core/error.h"
+#include "renderer/render_target.h"
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
@@ -47,16 +49,35 @@ CLI::Validator within(double lo, double hi)
         text.str());
 }
 
-HairScene buildCheckedScene(const GlobalOptions& g, const SessionOptions& o, const RenderSettings* render, bool window)
+void useDeviceSamples(RenderSettings& render, const vk::DeviceReport& device)
+{
+    uint32_t asked = std::max(render.samples, 1u);
+    render.samples = RenderTarget::samplesFor(device.colorDepthSampleCounts, asked);
+    if (render.samples == asked)
+        return;
+    std::string has;
+    for (uint32_t s = 1; s <= 64; s <<= 1)
+        if ((device.colorDepthSampleCounts & s) != 0)
+            has += (has.empty() ? "" : ", ") + std::to_string(s);
+    std::fprintf(stderr, "wisp: samples %u: '%s' draws %s; drawing with %u\n", asked, device.name.c_str(),
+                 has.empty() ? "1" : has.c_str(), render.samples);
+}
+
+HairScene buildCheckedScene(const GlobalOptions& g, const SessionOptions& o, RenderSettings* render, bool window)
 {
     const HairSource& h = o.source;
     const GrowthSettings& growth = o.settings.growth;
+    bool samplesSettled = false;
     auto check = [&](uint64_t guides) {
         Workload w{
             .guides = guides, .verticesPerStrand = growth.verticesPerStrand, .sim = o.settings.sim, .render = render};
         checkCounts(w);
         std::vector<vk::DeviceReport> devices = vk::enumerateDevices();
-        checkWorkload(w, vk::selectDevice(devices, g.gpu, window));
+        const vk::DeviceReport& device = vk::selectDevice(devices, g.gpu, window);
+        if (render && !samplesSettled)
+            useDeviceSamples(*render, device); // before the memory is estimated: the target's size follows
+        samplesSettled = true;
+        checkWorkload(w, device);
     };
     if (h.noHair || h.hairFiles.empty())
         check(h.noHair ? 0 : growth.guides);

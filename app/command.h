@@ -36,8 +36,12 @@ CLI::Validator within(double lo, double hi);
 // The head and the hair `options` describe, built once the workload is checked (counts that must
 // fit 32 bits, GPU memory against the device it will run on): before guides are grown, and for hair
 // files once they are loaded (only then is their strand count known). Nothing is allocated on the
-// device yet. `render`: the drawing's settings (null: simulate); `window`: the device must present.
-HairScene buildCheckedScene(const GlobalOptions& global, const SessionOptions& options, const RenderSettings* render,
+// device yet. `render`: the drawing's settings (null: simulate), its samples set to what the device
+// draws of them (useDeviceSamples); `window`: the device must present.
+HairScene buildCheckedScene(const GlobalOptions& global, const SessionOptions& options, RenderSettings* render,
                             bool window = false);
+// Sets render.samples to what `device` draws of them (RenderTarget::samplesFor: the most of the
+// asked number, half of it, ... that it has), saying so in one line on stderr when that is fewer.
+void useDeviceSamples(RenderSettings& render, const vk::DeviceReport& device);
 
 } // namespace wisp

@@ -10,14 +10,29 @@
 
 namespace wisp {
 
+void checkOutputFolder(const std::filesystem::path& dir, const std::string& what)
+{
+    std::error_code ec;
+    if (std::filesystem::is_directory(dir, ec))
+        return;
+    // The nearest part of the path that exists: a file there is why the folder cannot be.
+    for (std::filesystem::path p = dir; !p.empty(); p = p.parent_path()) {
+        std::filesystem::file_status status = std::filesystem::status(p, ec);
+        if (std::filesystem::exists(status) && !std::filesystem::is_directory(status))
+            throw UserError(what + ": '" + p.string() + "' is a file, not a folder");
+        if (std::filesystem::exists(status) || p == p.parent_path())
+            break;
+    }
+    throw UserError(what + ": folder '" + dir.string() + "' does not exist");
+}
+
 void checkPngOutput(const std::filesystem::path& path)
 {
     if (path.extension() != ".png")
         throw UserError("--out " + path.string() + ": the output must be a .png file");
     std::filesystem::path dir = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
+    checkOutputFolder(dir, "--out " + path.string());
     std::error_code ec;
-    if (!std::filesystem::is_directory(dir, ec))
-        throw UserError("--out " + path.string() + ": folder '" + dir.string() + "' does not exist");
     if (access(dir.c_str(), W_OK) != 0)
         throw UserError("--out " + path.string() + ": folder '" + dir.string() + "' is not writable");
     if (std::filesystem::is_directory(path, ec))

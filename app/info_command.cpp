@@ -15,6 +15,16 @@ namespace wisp {
 
 namespace {
 
+// The MSAA sample counts colour and depth targets both support (what `samples` can draw).
+std::vector<uint32_t> sampleCounts(const vk::DeviceReport& d)
+{
+    std::vector<uint32_t> counts;
+    for (uint32_t s = 1; s <= 64; s <<= 1)
+        if ((d.colorDepthSampleCounts & s) != 0)
+            counts.push_back(s);
+    return counts;
+}
+
 int run(bool json)
 {
     std::vector<vk::DeviceReport> devices = vk::enumerateDevices();
@@ -45,6 +55,7 @@ int run(bool json)
                            {"push_descriptor", d.pushDescriptor},
                            {"max_tessellation_generation_level", d.maxTessellationGenerationLevel},
                            {"max_tessellation_patch_size", d.maxTessellationPatchSize},
+                           {"msaa_samples", sampleCounts(d)},
                            {"device_local_bytes", d.deviceLocalBytes}});
         std::cout << out.dump(2) << "\n";
         return 0;
@@ -70,6 +81,7 @@ int run(bool json)
                   << "  timestamps:                   " << yes(d.timestamps) << " (" << d.timestampValidBits
                   << " valid bits, " << d.timestampPeriodNs << " ns per tick)\n"
                   << "  pipeline statistics:          " << yes(d.pipelineStatisticsQuery) << "\n"
+                  << "  MSAA samples (colour, depth): " << nlohmann::json(sampleCounts(d)).dump() << "\n"
                   << "  push descriptors:             " << yes(d.pushDescriptor) << "\n"
                   << "  device-local memory:          " << d.deviceLocalBytes / (1024 * 1024) << " MiB\n";
     }

@@ -50,6 +50,9 @@ CommandRun addRecordCommand(CLI::App& app, const GlobalOptions& global)
     cmd->add_option("--out", c->out,
                     "output folder for frame_00000.png ... and contact_sheet.png (created; its parent must exist)")
         ->required();
+    cmd->add_flag("--overwrite", c->options.overwrite,
+                  "delete the frames and contact sheet of an earlier run in the --out folder first (without it, "
+                  "such a folder is refused)");
     cmd->add_option("--video", c->video, "also encode the frames into this video file (H.264 through ffmpeg)");
     c->frames = cmd->add_option("--frames", c->options.frames,
                                 "frames to record (with --scene, by default as many as the scene lasts)")

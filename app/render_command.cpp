@@ -35,7 +35,7 @@ struct RenderCommand {
 
 int runProfile(const GlobalOptions& g, SessionOptions& o, const RenderCommand& c)
 {
-    const RenderSettings& settings = o.settings.render;
+    RenderSettings& settings = o.settings.render; // its samples become what the device draws
     o.source.noHair = false;
     HairScene scene = buildCheckedScene(g, o, &settings);
     vk::Context ctx(contextOptions(g));
@@ -82,7 +82,7 @@ int run(const GlobalOptions& g, const RenderCommand& c)
     if (c.profileFrames > 0)
         return runProfile(g, o, c);
     checkPngOutput(c.outFile); // fail before any GPU work
-    const RenderSettings& settings = o.settings.render;
+    RenderSettings& settings = o.settings.render;
     HairScene scene = buildCheckedScene(g, o, &settings);
     vk::Context ctx(contextOptions(g));
     // What loading the hair did (placement, short strands), printed after the picture.

@@ -2,6 +2,7 @@
 // profileFrames), results.csv, and the charts (scripts/plot_sweep.py through python3).
 #include "app/sweep.h"
 
+#include "app/command.h"
 #include "app/headless.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -27,15 +28,53 @@ SweepAxis parseSweepAxis(const std::string& spec, const Settings& base)
         throw UserError("--vary " + spec + ": expected NAME=V1,V2,... (names from 'wisp settings')");
     SweepAxis axis{spec.substr(0, eq), {}};
     const SettingSpec& setting = settingSpec(axis.name, "--vary " + spec);
-    std::stringstream list(spec.substr(eq + 1));
-    for (std::string value; std::getline(list, value, ',');) {
+    std::vector<std::string> seen; // each value as the table writes it: 1 and 1.0 are one value
+    for (size_t at = eq + 1;;) {
+        size_t comma = spec.find(',', at);
+        std::string value = spec.substr(at, comma == std::string::npos ? std::string::npos : comma - at);
         if (value.empty())
-            throw UserError("--vary " + spec + ": an empty value");
+            throw UserError("--vary " + spec + ": an empty value" +
+                            (comma == std::string::npos ? std::string(" (a trailing comma)") : std::string()));
         Settings probe = base;
-        setSetting(probe, setting, parseSetting(setting, value, "--vary " + spec), "--vary " + spec); // checked now
+        SettingValue parsed = parseSetting(setting, value, "--vary " + spec);
+        setSetting(probe, setting, parsed, "--vary " + spec); // checked now
+        std::string text = settingText(setting, parsed);
+        if (std::find(seen.begin(), seen.end(), text) != seen.end())
+            throw UserError("--vary " + spec + ": " + value + " is given twice");
+        seen.push_back(text);
         axis.values.push_back(value);
+        if (comma == std::string::npos)
+            break;
+        at = comma + 1;
     }
     return axis;
+}
+
+std::vector<SweepAxis> parseSweepGrid(const std::vector<std::string>& specs, const Settings& base)
+{
+    std::vector<SweepAxis> axes;
+    size_t points = 1;
+    std::string sizes;
+    for (const std::string& spec : specs) {
+        SweepAxis axis = parseSweepAxis(spec, base);
+        for (size_t a = 0; a < axes.size(); ++a)
+            if (axes[a].name == axis.name)
+                throw UserError("--vary " + spec + ": " + axis.name + " is varied twice (also by --vary " + specs[a] +
+                                "); give all its values in one --vary");
+        points = points > kSweepMostPoints ? points : points * axis.values.size(); // stops growing past the cap
+        sizes += (sizes.empty() ? "" : " x ") + std::to_string(axis.values.size());
+        axes.push_back(std::move(axis));
+    }
+    if (points > kSweepMostPoints) {
+        double total = 1.0;
+        for (const SweepAxis& a : axes)
+            total *= double(a.values.size());
+        char count[32];
+        std::snprintf(count, sizeof(count), "%.0f", total);
+        throw UserError("--vary: the grid has " + std::string(count) + " points (" + sizes + " values); a sweep runs " +
+                        "at most " + std::to_string(kSweepMostPoints) + ", each --warmup + --frames frames long");
+    }
+    return axes;
 }
 
 namespace {
@@ -81,6 +120,7 @@ struct SweepPoint {
     OitStats oit;
     RasterStats raster;
     HairRaster drawn = HairRaster::Graphics; // hair_raster as resolved for the device (auto: compute)
+    uint32_t samples = 1;                    // the samples drawn (the device's, of those asked)
     uint64_t strands = 0;
     uint64_t segments = 0;
     uint32_t width = 0;
@@ -109,7 +149,7 @@ std::string resultsCsv(const vk::Context& ctx, const std::vector<SweepAxis>& axe
     for (const std::string& p : passes)
         csv << p << "_ms_median," << p << "_ms_p95,";
     csv << "fps,strands,segments,oit_fragments,oit_overflow,raster_segments,raster_fragments,raster_overflow,"
-           "hair_raster_drawn,width,height,device,driver\n";
+           "hair_raster_drawn,samples_drawn,width,height,device,driver\n";
     for (const SweepPoint& point : points) {
         for (const std::string& v : point.values)
             csv << v << ",";
@@ -125,8 +165,9 @@ std::string resultsCsv(const vk::Context& ctx, const std::vector<SweepAxis>& axe
         csv << (frameMs > 0.0 ? 1000.0 / frameMs : 0.0) << "," << point.strands << "," << point.segments << ","
             << point.oit.fragments << "," << point.oit.overflow << "," << point.raster.segments << ","
             << point.raster.fragments << "," << point.raster.overflow << ","
-            << (point.drawn == HairRaster::Compute ? "compute" : "graphics") << "," << point.width << ","
-            << point.height << ",\"" << ctx.report().name << "\",\"" << ctx.report().driverInfo << "\"\n";
+            << (point.drawn == HairRaster::Compute ? "compute" : "graphics") << "," << point.samples << ","
+            << point.width << "," << point.height << ",\"" << ctx.report().name << "\",\"" << ctx.report().driverInfo
+            << "\"\n";
     }
     return csv.str();
 }
@@ -157,6 +198,8 @@ int runSweep(const vk::Context& ctx, const SweepOptions& o, const SessionOptions
             std::fprintf(stderr, " %s=%s", o.axes[i].name.c_str(), point.values[i].c_str());
         std::fprintf(stderr, "\n");
 
+        useDeviceSamples(settings.render, ctx.report());
+        point.samples = render.samples;
         HairSession session(ctx, base.source.buildScene(settings), settings.sim,
                             stillTimeline(base.source.sphere, settings.sim.wind, render.light), base.source);
         point.timings = profileFrames(ctx, session, render, 30.0f, o.warmup, o.frames, &point.oit, &point.raster);

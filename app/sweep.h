@@ -17,8 +17,14 @@ struct SweepAxis {
     std::vector<std::string> values;
 };
 
-// Parses "NAME=V1,V2,..."; every value is checked as --set checks it, on a copy of `base`.
+// Parses "NAME=V1,V2,..."; every value is checked as --set checks it, on a copy of `base`; an
+// empty value (a trailing comma too) or one given twice is refused.
 SweepAxis parseSweepAxis(const std::string& spec, const Settings& base);
+// The most points a sweep's grid may have: each point is a run of --warmup + --frames frames.
+inline constexpr size_t kSweepMostPoints = 1024;
+// Every --vary, each a setting varied once, in a grid of at most kSweepMostPoints points; throws
+// UserError naming the --vary (or the grid's size) otherwise.
+std::vector<SweepAxis> parseSweepGrid(const std::vector<std::string>& specs, const Settings& base);
 
 struct SweepOptions {
     std::filesystem::path outDir;

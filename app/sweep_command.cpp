@@ -51,8 +51,7 @@ void checkSweepGrid(const vk::DeviceReport& device, const std::vector<SweepAxis>
 int run(const GlobalOptions& g, SweepCommand& c)
 {
     SessionOptions base = c.shared->resolve();
-    for (const std::string& v : c.varies)
-        c.options.axes.push_back(parseSweepAxis(v, base.settings));
+    c.options.axes = parseSweepGrid(c.varies, base.settings);
     c.options.outDir = c.out;
     vk::Context ctx(contextOptions(g));
     checkSweepGrid(ctx.report(), c.options.axes, base);

@@ -8,20 +8,17 @@
 
 namespace wisp {
 
-namespace {
-
-VkSampleCountFlagBits chooseSamples(VkSampleCountFlags supported, uint32_t requested)
+uint32_t RenderTarget::samplesFor(VkSampleCountFlags supported, uint32_t requested)
 {
     for (uint32_t s = requested; s > 1; s >>= 1)
         if (supported & s)
-            return static_cast<VkSampleCountFlagBits>(s);
-    return VK_SAMPLE_COUNT_1_BIT;
+            return s;
+    return 1;
 }
 
-} // namespace
-
 RenderTarget::RenderTarget(const vk::Context& ctx, VkExtent2D extent, uint32_t requestedSamples)
-    : ctx_(ctx), samples_(chooseSamples(ctx.report().colorDepthSampleCounts, requestedSamples))
+    : ctx_(ctx),
+      samples_(static_cast<VkSampleCountFlagBits>(samplesFor(ctx.report().colorDepthSampleCounts, requestedSamples)))
 {
     resize(extent);
 }

@@ -31,6 +31,10 @@ public:
                          vk::formatBytes(kColorFormat));
     }
 
+    // The samples a target drawn with `requested` gets on a device whose colour and depth targets
+    // support `supported`: the most of requested, requested / 2, ... the device has (1 at least).
+    static uint32_t samplesFor(VkSampleCountFlags supported, uint32_t requested);
+
     RenderTarget(const vk::Context& ctx, VkExtent2D extent, uint32_t requestedSamples);
     // Recreates the images at a new size (passes keep their references); device must be idle.
     void resize(VkExtent2D extent);

@@ -1,6 +1,7 @@
 // tests/test_render_cli.cpp: `wisp render` through the real binary: a PNG with validation clean
 // (and synchronization validation), any mesh as a head, its own options' bad input, what --set
-// changes in the draw, and a lost device that leaves no picture.
+// changes in the draw, samples a device lacks said and recorded as drawn, and a lost device that
+// leaves no picture.
 #include "cli_support.h"
 
 #include <gtest/gtest.h>
@@ -9,7 +10,9 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 using namespace wisp::test;
 
@@ -82,10 +85,96 @@ TEST(BadInput, OutputFolderMissing)
     expectUserError(r, "/nonexistent/dir");
 }
 
+TEST(BadInput, OutputUnderAFileSaysTheFileIsNoFolder)
+{
+    TempDir dir;
+    writeFile(dir / "notes", "a file");
+    expectUserError(runWisp("render --out '" + (dir / "notes" / "a.png").string() + "'"),
+                    "'" + (dir / "notes").string() + "' is a file, not a folder");
+    expectUserError(runWisp("render --out '" + (dir / "notes" / "deeper" / "a.png").string() + "'"),
+                    "'" + (dir / "notes").string() + "' is a file, not a folder");
+    expectUserError(runWisp("record --frames 1 --out '" + (dir / "notes" / "frames").string() + "'"),
+                    "'" + (dir / "notes").string() + "' is a file, not a folder");
+}
+
 TEST(BadInput, OutputNotPng)
 {
     TempDir dir;
     expectUserError(runWisp("render --out '" + (dir / "a.jpg").string() + "'"), ".png");
+}
+
+namespace {
+
+// The MSAA sample counts of the device wisp picks (`info --json`; empty when several are usable,
+// since then which one is picked is not this test's business).
+std::vector<uint32_t> pickedDeviceSamples()
+{
+    auto info = runWisp("info --json");
+    std::vector<uint32_t> counts;
+    if (info.status != 0)
+        return counts;
+    size_t usable = 0;
+    for (const auto& d : nlohmann::json::parse(info.out))
+        if (d["usable"].get<bool>()) {
+            ++usable;
+            counts = d["msaa_samples"].get<std::vector<uint32_t>>();
+        }
+    return usable == 1 ? counts : std::vector<uint32_t>{};
+}
+
+} // namespace
+
+TEST(Cli, SamplesTheDeviceLacksAreSaidAndWhatWasDrawnRecorded)
+{
+    std::vector<uint32_t> has = pickedDeviceSamples();
+    if (has.empty())
+        GTEST_SKIP() << "not one usable device: cannot tell which device's samples apply";
+    auto drawn = [&](uint32_t asked) { // the most of asked, asked / 2, ... the device has
+        for (uint32_t s = asked; s > 1; s >>= 1)
+            if (std::find(has.begin(), has.end(), s) != has.end())
+                return s;
+        return 1u;
+    };
+    TempDir dir;
+    std::string small = " --width 32 --height 32 --guides 10 --set strands_per_guide=1";
+    for (uint32_t asked : {2u, 8u}) {
+        auto r = runWisp("render --profile 1 --warmup 0 --samples " + std::to_string(asked) + small);
+        ASSERT_EQ(r.status, 0) << r.err;
+        nlohmann::json j = nlohmann::json::parse(r.out);
+        EXPECT_EQ(j["samples"], drawn(asked)) << "the JSON records what was drawn";
+        EXPECT_EQ(j["settings"]["samples"], drawn(asked));
+        std::string line = "wisp: samples " + std::to_string(asked) + ": '";
+        if (drawn(asked) < asked) {
+            EXPECT_NE(r.err.find(line), std::string::npos) << r.err;
+            EXPECT_NE(r.err.find("; drawing with " + std::to_string(drawn(asked)) + "\n"), std::string::npos) << r.err;
+            EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+        } else {
+            EXPECT_EQ(r.err.find(line), std::string::npos) << r.err;
+        }
+    }
+    auto sweep =
+        runWisp("sweep --out '" + (dir / "s").string() + "' --vary samples=1,2,4,8 --warmup 0 --frames 1" + small);
+    ASSERT_EQ(sweep.status, 0) << sweep.err;
+    std::ifstream in(dir / "s" / "results.csv");
+    std::string header;
+    std::getline(in, header);
+    std::vector<std::string> names;
+    std::stringstream hs(header);
+    for (std::string n; std::getline(hs, n, ',');)
+        names.push_back(n);
+    auto column = std::find(names.begin(), names.end(), "samples_drawn");
+    ASSERT_NE(column, names.end()) << header;
+    for (uint32_t asked : {1u, 2u, 4u, 8u}) {
+        std::string row;
+        ASSERT_TRUE(std::getline(in, row));
+        std::vector<std::string> fields;
+        std::stringstream rs(row);
+        for (std::string f; std::getline(rs, f, ',');)
+            fields.push_back(f);
+        ASSERT_GT(fields.size(), size_t(column - names.begin())) << row;
+        EXPECT_EQ(fields[0], std::to_string(asked)) << row;
+        EXPECT_EQ(fields[size_t(column - names.begin())], std::to_string(drawn(asked))) << row;
+    }
 }
 
 TEST(Cli, SetChangesWhatIsDrawn)

@@ -1,6 +1,7 @@
 // tests/test_sweep_cli.cpp: `wisp sweep` through the real binary: a tiny grid's CSV and charts,
 // the pass columns of both ways of drawing hair, and --vary values checked before anything is
 // written.
+#include "app/sweep.h"
 #include "cli_support.h"
 #include "groom_files.h"
 
@@ -138,7 +139,27 @@ TEST(BadInput, SweepVaryValuesAreChecked)
     EXPECT_NE(r.err.find("1 .. 1024"), std::string::npos) << r.err;
     expectUserError(runWisp("sweep --vary divisions" + out), "NAME=V1,V2");
     expectUserError(runWisp("sweep --vary divisions=4,,8" + out), "empty value");
+    expectUserError(runWisp("sweep --vary divisions=4,8," + out), "--vary divisions=4,8,: an empty value (a trailing");
+    expectUserError(runWisp("sweep --vary oit_k=1,2 --vary oit_k=3,4" + out),
+                    "--vary oit_k=3,4: oit_k is varied twice (also by --vary oit_k=1,2)");
+    expectUserError(runWisp("sweep --vary divisions=4,8,4" + out), "--vary divisions=4,8,4: 4 is given twice");
+    expectUserError(runWisp("sweep --vary light_intensity=2,2.0" + out), "2.0 is given twice"); // one value, two ways
     EXPECT_FALSE(std::filesystem::exists(dir / "s")); // checked before anything is written
+}
+
+TEST(BadInput, ASweepGridTooLargeIsRefusedUpFrontWithItsSize)
+{
+    TempDir dir;
+    std::string values;
+    for (int v = 1; v <= 65; ++v) // 65 x 65 = 4225 points, past kSweepMostPoints
+        values += (values.empty() ? "" : ",") + std::to_string(v);
+    static_assert(65 * 65 > wisp::kSweepMostPoints && 65 <= wisp::kSweepMostPoints);
+    auto r =
+        runWisp("sweep --out '" + (dir / "s").string() + "' --vary seed=" + values + " --vary divisions=" + values);
+    expectUserError(r, "--vary: the grid has 4225 points (65 x 65 values); a sweep runs at most " +
+                           std::to_string(wisp::kSweepMostPoints));
+    EXPECT_EQ(r.err.find("point 1/"), std::string::npos) << r.err; // refused before the first point
+    EXPECT_FALSE(std::filesystem::exists(dir / "s"));
 }
 
 TEST(BadInput, ASweepFailingAtItsSecondPointLeavesNoFolder)
