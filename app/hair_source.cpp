@@ -5,7 +5,7 @@
 #include "assets/hair_asset.h"
 #include "core/error.h"
 
-#include <sstream>
+#include <algorithm>
 #include <utility>
 
 namespace wisp {
@@ -46,6 +46,7 @@ PlacementRequest HairSource::placementRequest() const
         r.offset = *hairOffset;
     r.zUp = zUp;
     r.mirrorZ = mirrorZ;
+    r.halfTurn = halfTurn;
     return r;
 }
 
@@ -59,37 +60,55 @@ std::vector<PartSettings> HairSource::partsFor(const std::vector<PartSettings>& 
         p.drag = sim.drag.value_or(p.drag);
     }
     for (const std::string& spec : scenePartOverrides)
-        applyPartOverride(parts, spec);
+        applyPartOverride(parts, spec, hairFiles);
     for (const std::string& spec : partOverrides)
-        applyPartOverride(parts, spec);
+        applyPartOverride(parts, spec, hairFiles);
     return parts;
 }
 
-void HairSource::applyPartOverride(std::vector<PartSettings>& parts, const std::string& spec)
+void HairSource::applyPartOverride(std::vector<PartSettings>& parts, const std::string& spec,
+                                   const std::vector<std::string>& files)
 {
     auto bad = [&](const std::string& why) { throw UserError("--part " + spec + ": " + why); };
     size_t colon = spec.find(':');
     if (colon == std::string::npos)
-        bad("expected PART:key=value[,key=value...] (PART: a part's index or name)");
+        bad("expected PART:key=value[,key=value...] (PART: a part's index, name or file name)");
     std::string which = spec.substr(0, colon);
-    PartSettings* part = nullptr;
+    std::vector<size_t> matches;
     std::string names;
     for (size_t i = 0; i < parts.size(); ++i) {
         names += (i ? ", " : "") + std::to_string(i) + " " + parts[i].name;
-        if (which == std::to_string(i) || which == parts[i].name)
-            part = &parts[i];
+        bool named = which == std::to_string(i) || which == parts[i].name;
+        if (i < files.size() && parts.size() == files.size())
+            named = named || which == files[i] || which == std::filesystem::path(files[i]).filename().string();
+        if (named)
+            matches.push_back(i);
     }
-    if (!part)
+    if (matches.empty())
         bad("no part '" + which + "' (parts: " + names + ")");
+    if (matches.size() > 1)
+        bad("'" + which + "' names parts " + std::to_string(matches[0]) + " and " + std::to_string(matches[1]) +
+            ": give the index");
+    PartSettings* part = &parts[matches.front()];
+    if (colon + 1 == spec.size())
+        bad("no key=value after '" + which + ":' (keys global, local, damping, drag)");
     // Each key is the every-part setting of the same meaning, with its range.
     const std::pair<const char*, const char*> keys[] = {
         {"global", "global_stiffness"}, {"local", "local_stiffness"}, {"damping", "damping"}, {"drag", "drag"}};
-    std::stringstream list(spec.substr(colon + 1));
-    for (std::string item; std::getline(list, item, ',');) {
+    std::vector<std::string> given;
+    for (size_t at = colon + 1;;) {
+        size_t comma = spec.find(',', at);
+        std::string item = spec.substr(at, comma == std::string::npos ? std::string::npos : comma - at);
+        at = comma + 1;
+        if (item.empty())
+            bad("an empty key=value (a comma too many)");
         size_t eq = item.find('=');
         if (eq == std::string::npos)
             bad("'" + item + "' is not key=value");
         std::string key = item.substr(0, eq);
+        if (std::find(given.begin(), given.end(), key) != given.end())
+            bad(key + " is given twice");
+        given.push_back(key);
         const char* setting = nullptr;
         for (const auto& [name, settingName] : keys)
             if (key == name)
@@ -109,6 +128,8 @@ void HairSource::applyPartOverride(std::vector<PartSettings>& parts, const std::
             part->ftlDamping = value;
         else
             part->drag = value;
+        if (comma == std::string::npos)
+            break;
     }
 }
 

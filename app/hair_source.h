@@ -28,6 +28,7 @@ struct HairSource {
     float hairScale = 0.0f;              // 0: automatic placement
     std::optional<glm::vec3> hairOffset; // head units, after scaling
     std::optional<bool> zUp, mirrorZ;    // placement overrides for loaded hair
+    std::optional<bool> halfTurn;        // turned round about the up axis (unset: chosen by the fit)
     // "PART:key=value,..." (PART: a part's index or name; keys global, local, damping, drag): a
     // scene file's per-file values, then the command line's --part, each over the one before.
     std::vector<std::string> scenePartOverrides, partOverrides;
@@ -38,13 +39,17 @@ struct HairSource {
     // The head with grown guides (or none with noHair), or with the hair files as parts, each
     // placed; each part's parameters as grown or loaded (a HairSession applies partsFor()).
     HairScene buildScene(const Settings& settings) const;
-    // What --hair-scale, --hair-offset, --hair-z-up and --hair-mirror-z fix of the placement.
+    // What --hair-scale, --hair-offset, --hair-z-up, --hair-mirror-z and --hair-half-turn fix of
+    // the placement.
     PlacementRequest placementRequest() const;
     // Each part's simulation parameters: as grown or loaded (`asBuilt`), then every part's values
     // from the settings (global_stiffness ...), then the per-part overrides.
     std::vector<PartSettings> partsFor(const std::vector<PartSettings>& asBuilt, const SimSettings& sim) const;
-    // "PART:key=value,...": throws UserError "--part SPEC: ..." on bad input.
-    static void applyPartOverride(std::vector<PartSettings>& parts, const std::string& spec);
+    // "PART:key=value,...", PART a part's index, name (its file's stem), or its file's name or path
+    // as given in `files` (one per part; empty: grown hair): throws UserError "--part SPEC: ..." on
+    // bad input (no such part, a name two parts share, no key, a key given twice).
+    static void applyPartOverride(std::vector<PartSettings>& parts, const std::string& spec,
+                                  const std::vector<std::string>& files = {});
 };
 
 } // namespace wisp

@@ -4,6 +4,7 @@
 // standoff (physics/groom_metrics.h).
 #include "app/inspect.h"
 
+#include "app/session_options.h"
 #include "assets/hair_asset.h"
 #include "assets/head.h"
 #include "assets/placement.h"
@@ -55,7 +56,7 @@ nlohmann::json lengths(const HairAsset& asset, float scale)
 const char* kTreatment =
     "kept rigid: they follow the head and are drawn, not simulated; strands of no length are dropped";
 
-int inspectGroomOnHead(const InspectOptions& o)
+int inspectGroomOnHead(const InspectOptions& o, const PlacementRequest& request)
 {
     std::vector<std::string> files = o.hair;
     if (!o.file.empty())
@@ -67,7 +68,7 @@ int inspectGroomOnHead(const InspectOptions& o)
     Bounds b = head.mesh.bounds();
     float diagonal = b.diagonal();
     // The scene render and simulate build: the same placement, the same treatment of strands.
-    HairScene scene = buildLoadedScene(std::move(head), parts, o.verticesPerStrand);
+    HairScene scene = buildLoadedScene(std::move(head), parts, o.verticesPerStrand, request);
     nlohmann::json out = {{"kind", "groom_on_head"},
                           {"head",
                            {{"file", o.head.empty() ? defaultHeadPath().string() : o.head},
@@ -140,16 +141,22 @@ std::function<int()> addInspectCommand(CLI::App& app)
                     "vertices per strand after resampling (what short strands are measured against)")
         ->check(CLI::Range(kMinVerticesPerStrand, kMaxVerticesPerStrand))
         ->capture_default_str();
-    return [o, cmd]() -> int {
+    auto placement = std::make_shared<PlacementOptions>(cmd); // as render places a groom
+    return [o, cmd, placement]() -> int {
         if (!*cmd)
             return -1;
         if (o->file.empty() && o->hair.empty())
             throw UserError("inspect: name a file, or a groom with --hair (and a head with --head)");
-        if (!o->hair.empty() || !o->head.empty()) {
+        HairSource source;
+        placement->apply(source);
+        PlacementRequest request = source.placementRequest();
+        bool placed = request.scale || request.offset || request.zUp || request.mirrorZ || request.halfTurn;
+        if (!o->hair.empty() || !o->head.empty() || placed) {
             if (!o->file.empty() && !isHairFile(o->file))
                 throw UserError("inspect: " + o->file +
-                                " is not a hair file (.tfx, .hair): with --head, inspect places a groom");
-            return inspectGroomOnHead(*o);
+                                " is not a hair file (.tfx, .hair): with --head or a placement, inspect places a "
+                                "groom");
+            return inspectGroomOnHead(*o, request);
         }
         if (isHairFile(o->file)) {
             std::cout << describeGroom(loadHairAsset(o->file), o->verticesPerStrand).dump() << "\n";

@@ -1,7 +1,7 @@
 // app/inspect.h: `wisp inspect`: what a hair or mesh file holds, as one JSON object; for a groom
 // also its units, the up axis it is taken to have, its pinned tips and its strands too short to
 // simulate; with --head, the placement Wisp would use on that head and the roots' distance to
-// its surface.
+// its surface (--hair-scale, --hair-offset, --hair-z-up and --hair-mirror-z as render takes them).
 #pragma once
 
 #include <CLI/CLI.hpp>

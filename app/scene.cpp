@@ -17,6 +17,7 @@
 #include <fstream>
 #include <initializer_list>
 #include <iomanip>
+#include <memory>
 #include <sstream>
 
 #ifndef WISP_SOURCE_DIR
@@ -186,7 +187,7 @@ void readHair(const Reader& r, const Json& v, SceneHair& hair)
     const std::string at = "/hair";
     r.object(v, at,
              {"guides", "vertices", "hair_length", "length_variation", "curl", "poisson", "seed", "files", "scale",
-              "offset", "z_up", "mirror_z", "global_stiffness", "local_stiffness", "damping", "drag"});
+              "offset", "z_up", "mirror_z", "half_turn", "global_stiffness", "local_stiffness", "damping", "drag"});
     auto has = [&](const char* key) { return v.contains(key); };
     auto p = [&](const char* key) { return pointerTo(at, key); };
     // The growth keys are the growth settings' ("vertices" is vertices_per_strand).
@@ -212,6 +213,8 @@ void readHair(const Reader& r, const Json& v, SceneHair& hair)
         hair.zUp = r.boolean(v["z_up"], p("z_up"));
     if (has("mirror_z"))
         hair.mirrorZ = r.boolean(v["mirror_z"], p("mirror_z"));
+    if (has("half_turn"))
+        hair.halfTurn = r.boolean(v["half_turn"], p("half_turn"));
     auto partValues = [&](const Json& o, const std::string& where, std::optional<float>& global,
                           std::optional<float>& local, std::optional<float>& damping, std::optional<float>& drag) {
         // Numbers only: "part" (each part's own) is what leaving the key out says.
@@ -254,7 +257,7 @@ void readHair(const Reader& r, const Json& v, SceneHair& hair)
             if (has(grown))
                 r.fail(p(grown), "applies to grown hair, but this hair is loaded from /hair/files");
     } else {
-        for (const char* placed : {"scale", "offset", "z_up", "mirror_z"})
+        for (const char* placed : {"scale", "offset", "z_up", "mirror_z", "half_turn"})
             if (has(placed))
                 r.fail(p(placed), "places loaded hair, but this hair is grown (no /hair/files)");
     }
@@ -401,6 +404,59 @@ double Scene::length() const
     return keys.empty() ? 0.0 : keys.back().time;
 }
 
+namespace {
+
+// A parser callback that refuses a key given twice in one object (JSON leaves it undefined and
+// nlohmann keeps the last: a scene would silently lose a value), naming the key's JSON pointer.
+Json::parser_callback_t duplicateKeyCheck(const std::filesystem::path& path)
+{
+    struct Container {
+        bool object = false;
+        std::vector<std::string> keys; // an object's, in order
+        size_t elements = 0;           // an array's so far
+    };
+    auto open = std::make_shared<std::vector<Container>>();
+    return [open, path](int, Json::parse_event_t event, Json& parsed) {
+        std::vector<Container>& stack = *open;
+        auto element = [&] { // a value starts: an array counts it
+            if (!stack.empty() && !stack.back().object)
+                ++stack.back().elements;
+        };
+        switch (event) {
+        case Json::parse_event_t::object_start:
+        case Json::parse_event_t::array_start:
+            element();
+            stack.push_back({.object = event == Json::parse_event_t::object_start, .keys = {}, .elements = 0});
+            break;
+        case Json::parse_event_t::object_end:
+        case Json::parse_event_t::array_end:
+            if (!stack.empty())
+                stack.pop_back();
+            break;
+        case Json::parse_event_t::key: {
+            std::string key = parsed.get<std::string>();
+            std::vector<std::string>& keys = stack.back().keys;
+            if (std::find(keys.begin(), keys.end(), key) != keys.end()) {
+                std::string pointer;
+                for (size_t i = 0; i + 1 < stack.size(); ++i)
+                    pointer += "/" + (stack[i].object ? stack[i].keys.back() : std::to_string(stack[i].elements - 1));
+                pointer += "/" + key;
+                throw UserError(path.string() + ": " + pointer + ": the key '" + key +
+                                "' is given twice in one object (give it once)");
+            }
+            keys.push_back(key);
+            break;
+        }
+        case Json::parse_event_t::value:
+            element();
+            break;
+        }
+        return true;
+    };
+}
+
+} // namespace
+
 Scene loadScene(const std::filesystem::path& path)
 {
     std::error_code ec;
@@ -417,7 +473,7 @@ Scene parseScene(const std::string& content, const std::filesystem::path& path)
 {
     Json doc;
     try {
-        doc = Json::parse(content);
+        doc = Json::parse(content, duplicateKeyCheck(path));
     } catch (const Json::parse_error& e) {
         auto [line, column] = lineAndColumn(content, e.byte > 0 ? e.byte - 1 : 0);
         std::string why = e.what();
@@ -564,6 +620,8 @@ std::string sceneJson(const Scene& scene)
         hair["z_up"] = *h.zUp;
     if (h.mirrorZ)
         hair["mirror_z"] = *h.mirrorZ;
+    if (h.halfTurn)
+        hair["half_turn"] = *h.halfTurn;
     partValues(hair, h.globalStiffness, h.localStiffness, h.damping, h.drag);
     if (!hair.empty())
         doc["hair"] = hair;
@@ -737,6 +795,8 @@ void applyScene(const Scene& scene, const std::filesystem::path& sceneFile, Sett
         source.zUp = h.zUp;
     if (h.mirrorZ)
         source.mirrorZ = h.mirrorZ;
+    if (h.halfTurn)
+        source.halfTurn = h.halfTurn;
     optionalNumber("global_stiffness", h.globalStiffness, "/hair/global_stiffness");
     optionalNumber("local_stiffness", h.localStiffness, "/hair/local_stiffness");
     optionalNumber("damping", h.damping, "/hair/damping");

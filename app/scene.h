@@ -67,7 +67,7 @@ struct SceneHair {
     std::vector<SceneHairFile> files;
     std::optional<float> scale; // placement of loaded hair (as --hair-scale, ...)
     std::optional<glm::vec3> offset;
-    std::optional<bool> zUp, mirrorZ;
+    std::optional<bool> zUp, mirrorZ, halfTurn;
     std::optional<float> globalStiffness, localStiffness, damping, drag; // every part
     bool operator==(const SceneHair&) const = default;
 };

@@ -10,7 +10,64 @@
 
 namespace wisp {
 
-SessionCommandLine::SessionCommandLine(CLI::App* cmd, Uses uses) : command_(cmd), uses_(uses)
+namespace {
+
+// true | false (or on | off, 1 | 0), as on/off settings take them.
+bool parseYesNo(const std::string& text, const std::string& option)
+{
+    if (text == "true" || text == "on" || text == "1")
+        return true;
+    if (text == "false" || text == "off" || text == "0")
+        return false;
+    throw UserError(option + ": '" + text + "' is not allowed: true | false (or on | off, 1 | 0)");
+}
+
+} // namespace
+
+PlacementOptions::PlacementOptions(CLI::App* cmd) : command_(cmd)
+{
+    cmd->add_option("--hair-scale", scale_, "scale loaded hair by this (default: automatic when units clearly differ)")
+        ->check(CLI::Validator(
+            [](std::string& text) {
+                try {
+                    parseNumber(text, kHairScaleRange, "", "value");
+                } catch (const UserError& e) {
+                    return std::string(e.what());
+                }
+                return std::string();
+            },
+            "SCALE"));
+    cmd->add_option("--hair-offset", offset_, "move loaded hair by x,y,z (head units) after scaling");
+    cmd->add_option("--hair-z-up", zUp_,
+                    "loaded hair is z-up: turn it y-up, true | false (default: automatic, true for cyHair)");
+    cmd->add_option("--hair-mirror-z", mirrorZ_,
+                    "mirror loaded hair's z, true | false (default: automatic, true for TressFX 3)");
+    cmd->add_option("--hair-half-turn", halfTurn_,
+                    "turn loaded hair round about the up axis (its front to the back), true | false (default: "
+                    "automatic: a groom fitted to the scalp faces the way the head faces)");
+}
+
+void PlacementOptions::apply(HairSource& source) const
+{
+    auto given = [&](const char* option) {
+        const CLI::Option* o = command_->get_option_no_throw(option);
+        return o && o->count() > 0;
+    };
+    if (given("--hair-scale"))
+        source.hairScale = scale_;
+    if (given("--hair-offset")) {
+        std::vector<double> v = parseNumbers(offset_, 3, "x,y,z", kPositionRange, "head units", "--hair-offset");
+        source.hairOffset = glm::vec3(float(v[0]), float(v[1]), float(v[2]));
+    }
+    if (given("--hair-z-up"))
+        source.zUp = parseYesNo(zUp_, "--hair-z-up");
+    if (given("--hair-mirror-z"))
+        source.mirrorZ = parseYesNo(mirrorZ_, "--hair-mirror-z");
+    if (given("--hair-half-turn"))
+        source.halfTurn = parseYesNo(halfTurn_, "--hair-half-turn");
+}
+
+SessionCommandLine::SessionCommandLine(CLI::App* cmd, Uses uses) : command_(cmd), uses_(uses), placement_(cmd)
 {
     Settings defaults;
     for (const SettingSpec& spec : settingSpecs()) {
@@ -42,21 +99,6 @@ SessionCommandLine::SessionCommandLine(CLI::App* cmd, Uses uses) : command_(cmd)
                     "hair file to load instead of growing guides (TressFX .tfx 2/3/4, cyHair .hair); repeat for a "
                     "groom in parts")
         ->check(CLI::ExistingFile);
-    cmd->add_option("--hair-scale", hairScale_,
-                    "scale loaded hair by this (default: automatic when units clearly differ)")
-        ->check(CLI::Validator(
-            [](std::string& text) {
-                try {
-                    parseNumber(text, kHairScaleRange, "", "value");
-                } catch (const UserError& e) {
-                    return std::string(e.what());
-                }
-                return std::string();
-            },
-            "SCALE"));
-    cmd->add_option("--hair-offset", hairOffset_, "move loaded hair by x,y,z (head units) after scaling");
-    cmd->add_option("--hair-z-up", zUp_, "loaded hair is z-up: turn it y-up (default: automatic, true for cyHair)");
-    cmd->add_option("--hair-mirror-z", mirrorZ_, "mirror loaded hair's z (default: automatic, true for TressFX 3)");
     cmd->add_option("--part", partOverrides_,
                     "one part's parameters: PART:key=value,... with PART its index or file name, keys global, local, "
                     "damping, drag");
@@ -86,16 +128,7 @@ SessionOptions SessionCommandLine::resolve() const
         o.source.hairFiles = hairFiles_;
         o.source.scenePartOverrides.clear(); // other files: the scene's per-file values do not apply
     }
-    if (given("--hair-scale"))
-        o.source.hairScale = hairScale_;
-    if (given("--hair-offset")) {
-        std::vector<double> v = parseNumbers(hairOffset_, 3, "x,y,z", kPositionRange, "head units", "--hair-offset");
-        o.source.hairOffset = glm::vec3(float(v[0]), float(v[1]), float(v[2]));
-    }
-    if (zUp_)
-        o.source.zUp = zUp_;
-    if (mirrorZ_)
-        o.source.mirrorZ = mirrorZ_;
+    placement_.apply(o.source);
     o.source.partOverrides = partOverrides_;
     if (given("--sphere")) {
         std::vector<double> v = parseNumbers(sphere_, 4, "x,y,z,r", kPositionRange, "head units", "--sphere");

@@ -34,6 +34,22 @@ struct SessionOptions {
     double sceneLength() const { return scene ? scene->length() : 0.0; }
 };
 
+// A loaded groom's placement options (--hair-scale, --hair-offset, --hair-z-up, --hair-mirror-z,
+// --hair-half-turn), the same on every command that places hair (the session's, and inspect).
+class PlacementOptions {
+public:
+    // Registers the options on `command` (which must outlive this object).
+    explicit PlacementOptions(CLI::App* command);
+    // After parsing: what was given, checked (UserError names the option), into `source`; what
+    // was not given stays as it was (a scene's).
+    void apply(HairSource& source) const;
+
+private:
+    CLI::App* command_;
+    float scale_ = 0.0f;
+    std::string offset_, zUp_, mirrorZ_, halfTurn_;
+};
+
 class SessionCommandLine {
 public:
     struct Uses {
@@ -60,9 +76,8 @@ private:
     std::string sceneFile_, headFile_;
     bool noHair_ = false;
     std::vector<std::string> hairFiles_, partOverrides_;
-    std::string sphere_, hairOffset_;
-    float hairScale_ = 0.0f;
-    std::optional<bool> zUp_, mirrorZ_;
+    std::string sphere_;
+    PlacementOptions placement_;
     uint32_t width_ = RenderSettings{}.width, height_ = RenderSettings{}.height;
 };
 

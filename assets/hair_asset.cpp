@@ -704,6 +704,8 @@ glm::vec3 applyPlacement(const HairPlacement& placement, glm::vec3 point)
         p.z = -p.z;
     if (placement.zUpToYUp)
         p = glm::vec3(p.x, p.z, -p.y);
+    if (placement.halfTurn)
+        p = glm::vec3(-p.x, p.y, -p.z);
     return p + placement.offset;
 }
 

@@ -58,12 +58,14 @@ HairAsset parseHairAsset(const std::string& data, const std::filesystem::path& s
 std::vector<glm::vec3> resampleStrand(const std::vector<glm::vec3>& points, uint32_t count);
 
 // Placing an asset on a head: scale, then axis fixes (mirrorZ in the file's frame, then z-up to
-// y-up as a rotation of -90 degrees about x: (x, y, z) -> (x, z, -y)), then offset.
+// y-up as a rotation of -90 degrees about x: (x, y, z) -> (x, z, -y)), then a half turn about the
+// up axis when asked ((x, y, z) -> (-x, y, -z): the groom's front to the back), then offset.
 struct HairPlacement {
     float scale = 1.0f;
     glm::vec3 offset{0.0f};
     bool zUpToYUp = false;
     bool mirrorZ = false;
+    bool halfTurn = false;
 };
 
 // Bounding-box diagonals of asset and head whose ratio lies outside this range are taken to be in

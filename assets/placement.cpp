@@ -1,7 +1,7 @@
 // assets/placement.cpp: closest points on a mesh (a bounding-volume hierarchy of its triangles),
 // the roots' distances to the head, and placing a groom: as in the file, in other units, or
 // fitted to the scalp (sphere fits of the roots and the cranium, then the roots moved onto the
-// surface by iterated closest points).
+// surface by iterated closest points), a fitted groom turned to face the way the head faces.
 #include "assets/placement.h"
 
 #include <nlohmann/json.hpp>
@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numeric>
+#include <tuple>
 
 namespace wisp {
 
@@ -279,6 +280,30 @@ std::string number(float v)
     return text;
 }
 
+std::string percent(float share)
+{
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.3g%%", double(100.0f * share));
+    return text;
+}
+
+const char* frontName(GroomPlacement::Front f)
+{
+    switch (f) {
+    case GroomPlacement::Front::AsPlaced:
+        return "as_placed";
+    case GroomPlacement::Front::Roots:
+        return "roots";
+    case GroomPlacement::Front::Face:
+        return "face";
+    case GroomPlacement::Front::LongStrands:
+        return "long_strands";
+    case GroomPlacement::Front::Ambiguous:
+        break;
+    }
+    return "ambiguous";
+}
+
 } // namespace
 
 HeadRegion headRegion(const Mesh& mesh)
@@ -451,7 +476,25 @@ std::string GroomPlacement::describe() const
     text += placement.zUpToYUp ? ", z-up turned y-up" : ", y-up";
     if (placement.mirrorZ)
         text += ", z mirrored";
+    if (placement.halfTurn)
+        text += ", turned round";
+    if (front == Front::Face)
+        text += " (its front by the hair over the face)";
+    else if (front == Front::LongStrands)
+        text += " (its front by its long strands)";
     return text;
+}
+
+std::string GroomPlacement::ambiguity() const
+{
+    if (front != Front::Ambiguous || !turned || !turnedFit)
+        return "";
+    return "which way round the groom goes is ambiguous: as placed and turned round, " + percent(fit.onSurface) +
+           " and " + percent(turnedFit->onSurface) + " of its roots lie on the head, " + percent(facing.overFace) +
+           " and " + percent(turned->overFace) + " of its points hang over the face, and its long strands grow " +
+           "on neither side (" + number(facing.longAtBack) + " of -1 front .. 1 back); kept " +
+           (placement.halfTurn ? "turned round" : "as the file faces") + ": --hair-half-turn " +
+           (placement.halfTurn ? "false" : "true") + " turns it the other way (in a scene: hair's half_turn)";
 }
 
 nlohmann::json GroomPlacement::toJson() const
@@ -465,6 +508,15 @@ nlohmann::json GroomPlacement::toJson() const
             {"offset", {placement.offset.x, placement.offset.y, placement.offset.z}},
             {"up_axis", placement.zUpToYUp ? "z" : "y"},
             {"mirror_z", placement.mirrorZ},
+            {"half_turn", placement.halfTurn},
+            {"front",
+             {{"chosen_by", frontName(front)},
+              {"over_face", facing.overFace},
+              {"long_at_back", facing.longAtBack},
+              {"turned_round", turned && turnedFit ? nlohmann::json{{"over_face", turned->overFace},
+                                                                    {"long_at_back", turned->longAtBack},
+                                                                    {"roots_on_surface", turnedFit->onSurface}}
+                                                   : nlohmann::json(nullptr)}}},
             {"roots",
              {{"count", fit.roots},
               {"median", fit.median},
@@ -475,9 +527,77 @@ nlohmann::json GroomPlacement::toJson() const
               {"unit", "fraction of the head's bounding-box diagonal"}}}};
 }
 
-GroomPlacement placeGroom(const std::vector<glm::vec3>& roots, const Bounds& groomBounds, const HairPlacement& defaults,
+GroomFacing measureFacing(const std::vector<std::vector<glm::vec3>>& strands, const HairPlacement& placement,
+                          const Mesh& head, glm::vec3 headFront)
+{
+    GroomFacing out;
+    glm::vec3 front(headFront.x, 0.0f, headFront.z);
+    front = glm::length(front) > 0.0f ? glm::normalize(front) : glm::vec3(0.0f, 0.0f, 1.0f);
+    glm::vec3 side = glm::cross(glm::vec3(0.0f, 1.0f, 0.0f), front);
+    // The face: the head between the chin and the brow (a tenth to seven tenths of the way from
+    // the neck to the top), its reach forward and its width from the middle of that band.
+    HeadRegion region = headRegion(head);
+    float height = region.top - region.neck;
+    float low = region.neck + 0.1f * height, high = region.neck + 0.7f * height;
+    float forwardLo = INFINITY, forwardHi = -INFINITY, sideLo = INFINITY, sideHi = -INFINITY;
+    for (const glm::vec3& v : head.positions)
+        if (v.y >= low && v.y <= high) {
+            forwardLo = std::min(forwardLo, glm::dot(v, front));
+            forwardHi = std::max(forwardHi, glm::dot(v, front));
+            sideLo = std::min(sideLo, glm::dot(v, side));
+            sideHi = std::max(sideHi, glm::dot(v, side));
+        }
+    if (!(forwardHi > forwardLo) || strands.empty())
+        return out;
+    float middle = 0.5f * (forwardLo + forwardHi), reach = 0.5f * (forwardHi - forwardLo);
+    float across = 0.5f * (sideLo + sideHi), halfWidth = 0.5f * (sideHi - sideLo);
+
+    // Points over the face: in the band, in front of six tenths of its reach, within half its width.
+    size_t points = 0, over = 0;
+    std::vector<float> lengths, depth; // per strand: its length, its root's place along the front
+    for (const std::vector<glm::vec3>& strand : strands) {
+        if (strand.empty())
+            continue;
+        float length = 0.0f;
+        glm::vec3 previous = applyPlacement(placement, strand.front());
+        for (const glm::vec3& raw : strand) {
+            glm::vec3 q = applyPlacement(placement, raw);
+            length += glm::length(q - previous);
+            previous = q;
+            ++points;
+            over += q.y >= low && q.y <= high && glm::dot(q, front) - middle > 0.6f * reach &&
+                            std::abs(glm::dot(q, side) - across) < 0.5f * halfWidth
+                        ? 1
+                        : 0;
+        }
+        lengths.push_back(length);
+        depth.push_back(glm::dot(applyPlacement(placement, strand.front()), front));
+    }
+    out.overFace = points > 0 ? float(over) / float(points) : 0.0f;
+
+    // The long strands: their length above or below the mean against where their roots sit along
+    // the front, normalized to [-1, 1]; positive when the longer ones grow behind.
+    double meanLength = 0.0, meanDepth = 0.0;
+    for (size_t k = 0; k < lengths.size(); ++k) {
+        meanLength += lengths[k];
+        meanDepth += depth[k];
+    }
+    meanLength /= double(lengths.size());
+    meanDepth /= double(lengths.size());
+    double sum = 0.0, norm = 0.0;
+    for (size_t k = 0; k < lengths.size(); ++k) {
+        double dl = lengths[k] - meanLength, dz = depth[k] - meanDepth;
+        sum += dl * dz;
+        norm += std::abs(dl) * std::abs(dz);
+    }
+    out.longAtBack = norm > 0.0 ? float(-sum / norm) : 0.0f;
+    return out;
+}
+
+GroomPlacement placeGroom(const GroomShape& shape, const Bounds& groomBounds, const HairPlacement& defaults,
                           const Mesh& head, const PlacementRequest& request)
 {
+    const std::vector<glm::vec3>& roots = shape.roots;
     MeshDistance distance(head);
     Bounds headBounds = head.bounds();
     float diagonal = headBounds.diagonal();
@@ -494,22 +614,36 @@ GroomPlacement placeGroom(const std::vector<glm::vec3>& roots, const Bounds& gro
     std::vector<bool> mirrors =
         request.mirrorZ ? std::vector<bool>{*request.mirrorZ} : std::vector<bool>{defaults.mirrorZ, !defaults.mirrorZ};
 
-    GroomPlacement best;
     if (request.placesByHand()) {
-        best.method = GroomPlacement::Method::Given;
-        best.placement.scale = request.scale.value_or(unitScale);
-        best.placement.offset = request.offset.value_or(glm::vec3(0.0f));
-        best.placement.zUpToYUp = ups.front();
-        best.placement.mirrorZ = mirrors.front();
-        best.fit = measureRoots(placed(best.placement, roots), distance, diagonal);
-        return best;
+        GroomPlacement given;
+        given.method = GroomPlacement::Method::Given;
+        given.placement.scale = request.scale.value_or(unitScale);
+        given.placement.offset = request.offset.value_or(glm::vec3(0.0f));
+        given.placement.zUpToYUp = ups.front();
+        given.placement.mirrorZ = mirrors.front();
+        given.placement.halfTurn = request.halfTurn.value_or(false);
+        given.fit = measureRoots(placed(given.placement, roots), distance, diagonal);
+        given.facing = measureFacing(shape.strands, given.placement, head, shape.headFront);
+        return given;
     }
 
-    // As in the file (in the head's units): either up axis, either handedness.
-    bool first = true;
-    for (bool up : ups)
-        for (bool mirror : mirrors) {
-            HairPlacement p{.scale = unitScale, .offset = glm::vec3(0.0f), .zUpToYUp = up, .mirrorZ = mirror};
+    std::vector<glm::vec3> top;
+    HeadRegion region = headRegion(head);
+    float cut = region.top - 0.5f * (region.top - region.neck); // the skull above the eyes
+    for (const glm::vec3& v : head.positions)
+        if (v.y >= cut)
+            top.push_back(v);
+    std::optional<Sphere> cranium = fitSphere(top);
+
+    // The best placement with or without the half turn and the mirror: as in the file (in the
+    // head's units), with either up axis; else fitted to the scalp.
+    auto search = [&](bool turn, bool mirror) {
+        GroomPlacement best;
+        // As in the file (in the head's units): either up axis.
+        bool first = true;
+        for (bool up : ups) {
+            HairPlacement p{
+                .scale = unitScale, .offset = glm::vec3(0.0f), .zUpToYUp = up, .mirrorZ = mirror, .halfTurn = turn};
             RootFit fit = evaluate(p);
             if (first || better(fit, up != defaults.zUpToYUp, best.fit, best.placement.zUpToYUp != defaults.zUpToYUp)) {
                 best.placement = p;
@@ -519,69 +653,154 @@ GroomPlacement placeGroom(const std::vector<glm::vec3>& roots, const Bounds& gro
             }
         }
 
-    // Fitted to the scalp, each candidate moved onto the surface from where it starts; the first
-    // that puts the roots on the head is taken (the format's axes first), else the best. Scales:
-    // the units' (a groom made for a head of about the same size), then, where the roots span
-    // enough of a sphere to measure it, that sphere's radius onto the cranium's (the cranium: a
-    // sphere fitted to the top 30% of the head).
-    std::vector<glm::vec3> top;
-    HeadRegion region = headRegion(head);
-    float cut = region.top - 0.5f * (region.top - region.neck); // the skull above the eyes
-    for (const glm::vec3& v : head.positions)
-        if (v.y >= cut)
-            top.push_back(v);
-    std::optional<Sphere> cranium = fitSphere(top);
-    for (int pass = 0; pass < 2 && !best.fit.onHead(); ++pass) {
-        for (bool up : ups) {
-            if (best.fit.onHead())
-                break;
-            HairPlacement p{.scale = unitScale, .offset = glm::vec3(0.0f), .zUpToYUp = up, .mirrorZ = mirrors.front()};
-            std::vector<glm::vec3> oriented;
-            oriented.reserve(sample.size());
-            for (const glm::vec3& r : sample)
-                oriented.push_back(orient(p, r));
-            std::optional<Sphere> groom = fitSphere(oriented);
-            bool sphere = cranium && groom && groom->reliable && groom->radius > 0.0f;
-            if (pass == 1) {
-                if (!sphere)
-                    continue;
-                p.scale = cranium->radius / groom->radius;
-            }
-            // Where each try starts: the roots' sphere on the cranium's; else (a patch or a strip of
-            // roots: the fringe, a hair band) the roots' centre on the cranium's surface above, behind,
-            // in front and to either side, and the roots' top on the head's top.
-            std::vector<glm::vec3> starts;
-            if (sphere) {
-                starts.push_back(cranium->centre - p.scale * groom->centre);
-            } else {
-                Bounds rb;
-                rb.min = rb.max = p.scale * oriented.front();
-                for (const glm::vec3& r : oriented) {
-                    rb.min = glm::min(rb.min, p.scale * r);
-                    rb.max = glm::max(rb.max, p.scale * r);
+        // Fitted to the scalp, each candidate moved onto the surface from where it starts; the first
+        // that puts the roots on the head is taken (the format's axes first), else the best. Scales:
+        // the units' (a groom made for a head of about the same size), then, where the roots span
+        // enough of a sphere to measure it, that sphere's radius onto the cranium's (the cranium: a
+        // sphere fitted to the top 30% of the head).
+        for (int pass = 0; pass < 2 && !best.fit.onHead(); ++pass) {
+            for (bool up : ups) {
+                if (best.fit.onHead())
+                    break;
+                HairPlacement p{
+                    .scale = unitScale, .offset = glm::vec3(0.0f), .zUpToYUp = up, .mirrorZ = mirror, .halfTurn = turn};
+                std::vector<glm::vec3> oriented;
+                oriented.reserve(sample.size());
+                for (const glm::vec3& r : sample)
+                    oriented.push_back(orient(p, r));
+                std::optional<Sphere> groom = fitSphere(oriented);
+                bool sphere = cranium && groom && groom->reliable && groom->radius > 0.0f;
+                if (pass == 1) {
+                    if (!sphere)
+                        continue;
+                    p.scale = cranium->radius / groom->radius;
                 }
-                glm::vec3 headTop(headBounds.center().x, headBounds.max.y, headBounds.center().z);
-                starts.push_back(headTop - glm::vec3(rb.center().x, rb.max.y, rb.center().z));
-                if (cranium)
-                    for (glm::vec3 d :
-                         {glm::vec3(0, 1, 0), glm::vec3(0, 0, -1), glm::vec3(0, 0, 1), glm::vec3(1, 0, 0),
-                          glm::vec3(-1, 0, 0), glm::normalize(glm::vec3(0, 1, -1)), glm::normalize(glm::vec3(0, 1, 1))})
-                        starts.push_back(cranium->centre + cranium->radius * d - rb.center());
-            }
-            for (glm::vec3 start : starts) {
-                p.offset = start;
-                settleOnSurface(p, sample, distance);
-                RootFit fit = evaluate(p);
-                if (better(fit, up != defaults.zUpToYUp, best.fit, best.placement.zUpToYUp != defaults.zUpToYUp)) {
-                    best.placement = p;
-                    best.fit = fit;
-                    best.method = GroomPlacement::Method::Fitted;
+                // Where each try starts: the roots' sphere on the cranium's; else (a patch or a strip of
+                // roots: the fringe, a hair band) the roots' centre on the cranium's surface above, behind,
+                // in front and to either side, and the roots' top on the head's top.
+                std::vector<glm::vec3> starts;
+                if (sphere) {
+                    starts.push_back(cranium->centre - p.scale * groom->centre);
+                } else {
+                    Bounds rb;
+                    rb.min = rb.max = p.scale * oriented.front();
+                    for (const glm::vec3& r : oriented) {
+                        rb.min = glm::min(rb.min, p.scale * r);
+                        rb.max = glm::max(rb.max, p.scale * r);
+                    }
+                    glm::vec3 headTop(headBounds.center().x, headBounds.max.y, headBounds.center().z);
+                    starts.push_back(headTop - glm::vec3(rb.center().x, rb.max.y, rb.center().z));
+                    if (cranium)
+                        for (glm::vec3 d : {glm::vec3(0, 1, 0), glm::vec3(0, 0, -1), glm::vec3(0, 0, 1),
+                                            glm::vec3(1, 0, 0), glm::vec3(-1, 0, 0),
+                                            glm::normalize(glm::vec3(0, 1, -1)), glm::normalize(glm::vec3(0, 1, 1))})
+                            starts.push_back(cranium->centre + cranium->radius * d - rb.center());
+                }
+                for (glm::vec3 start : starts) {
+                    p.offset = start;
+                    settleOnSurface(p, sample, distance);
+                    RootFit fit = evaluate(p);
+                    if (better(fit, up != defaults.zUpToYUp, best.fit, best.placement.zUpToYUp != defaults.zUpToYUp)) {
+                        best.placement = p;
+                        best.fit = fit;
+                        best.method = GroomPlacement::Method::Fitted;
+                    }
                 }
             }
         }
+        return best;
+    };
+
+    // The candidates: each handedness, and (with strands to tell a front from a back) each way
+    // round about the up axis, unless the request fixes them. Root distance cannot tell a front
+    // from a back (a cranium is nearly symmetric; a mirrored z turns a groom round as well as
+    // mirroring it), so the candidates that fit the roots alike (within kFacingRoots of the best)
+    // are weighed by the hair over the face, then by the long strands; then the format's
+    // handedness, then the file's way round.
+    std::vector<bool> turns = request.halfTurn        ? std::vector<bool>{*request.halfTurn}
+                              : shape.strands.empty() ? std::vector<bool>{false}
+                                                      : std::vector<bool>{false, true};
+    struct Candidate {
+        GroomPlacement placed;
+        GroomFacing facing;
+        bool facesBack = false; // turned round, counting a flipped handedness as a turn
+    };
+    std::vector<Candidate> candidates;
+    for (bool t : turns)
+        for (bool m : mirrors) {
+            Candidate c{.placed = search(t, m), .facing = {}, .facesBack = t != (m != defaults.mirrorZ)};
+            c.facing = measureFacing(shape.strands, c.placed.placement, head, shape.headFront);
+            candidates.push_back(std::move(c));
+        }
+    auto fitOrder = [&](const Candidate& a, const Candidate& b) {
+        const HairPlacement &pa = a.placed.placement, &pb = b.placed.placement;
+        return better(a.placed.fit, pa.zUpToYUp != defaults.zUpToYUp, b.placed.fit, pb.zUpToYUp != defaults.zUpToYUp);
+    };
+    const Candidate& fittest = *std::min_element(candidates.begin(), candidates.end(), fitOrder);
+    using Front = GroomPlacement::Front;
+    Front front = turns.size() > 1 ? Front::Ambiguous : Front::AsPlaced;
+    std::vector<const Candidate*> alike;
+    for (const Candidate& c : candidates) // the up axis is the roots' (the format's unless clearly worse)
+        if (c.placed.placement.zUpToYUp == fittest.placed.placement.zUpToYUp &&
+            c.placed.fit.onSurface >= fittest.placed.fit.onSurface - kFacingRoots)
+            alike.push_back(&c);
+    auto bothWays = [&] {
+        return std::any_of(alike.begin(), alike.end(), [](const Candidate* c) { return c->facesBack; }) &&
+               std::any_of(alike.begin(), alike.end(), [](const Candidate* c) { return !c->facesBack; });
+    };
+    auto keep = [&](auto&& ok) {
+        std::vector<const Candidate*> kept;
+        for (const Candidate* c : alike)
+            if (ok(*c))
+                kept.push_back(c);
+        alike = kept;
+    };
+    if (turns.size() > 1 && !bothWays()) {
+        front = Front::Roots;
+    } else if (turns.size() > 1) {
+        float least = INFINITY, most = 0.0f;
+        for (const Candidate* c : alike) {
+            least = std::min(least, c->facing.overFace);
+            most = std::max(most, c->facing.overFace);
+        }
+        float bound = std::max(kFacingOverFace, 2.0f * least);
+        if (most >= bound) {
+            keep([&](const Candidate& c) { return c.facing.overFace < bound; });
+            front = bothWays() ? Front::Ambiguous : Front::Face;
+        }
+        if (front == Front::Ambiguous) {
+            float strongest = 0.0f;
+            for (const Candidate* c : alike)
+                strongest = std::max(strongest, std::abs(c->facing.longAtBack));
+            if (strongest >= kFacingLongAtBack) {
+                keep([&](const Candidate& c) { return c.facing.longAtBack > 0.0f; });
+                front = bothWays() ? Front::Ambiguous : Front::LongStrands;
+            }
+        }
     }
-    best.fit = measureRoots(placed(best.placement, roots), distance, diagonal);
-    return best;
+    // Then the format's handedness, the file's way round, the roots.
+    const Candidate* chosen = nullptr;
+    for (const Candidate* c : alike) {
+        auto rank = [&](const Candidate* x) {
+            return std::make_tuple(x->placed.placement.mirrorZ != defaults.mirrorZ, x->placed.placement.halfTurn);
+        };
+        if (!chosen || rank(c) < rank(chosen) || (rank(c) == rank(chosen) && fitOrder(*c, *chosen)))
+            chosen = c;
+    }
+    GroomPlacement out = chosen->placed;
+    out.front = front;
+    out.facing = chosen->facing;
+    // The best of the other way round, for the figures and the ambiguity's sentence.
+    const Candidate* other = nullptr;
+    for (const Candidate& c : candidates)
+        if (c.facesBack != chosen->facesBack && (!other || fitOrder(c, *other)))
+            other = &c;
+    if (other) {
+        out.turned = other->facing;
+        out.turnedFit = measureRoots(placed(other->placed.placement, roots), distance, diagonal);
+    }
+    out.fit = measureRoots(placed(out.placement, roots), distance, diagonal);
+    return out;
 }
 
 } // namespace wisp

@@ -3,7 +3,7 @@
 // the head's surface (a bounding-volume hierarchy over its triangles), the roots' figures as
 // fractions of the head's size, and the choice of scale, axes and offset: as in the file when
 // the roots are already on the head, else fitted to the scalp (the roots' sphere onto the
-// cranium's, then moved onto the surface).
+// cranium's, then moved onto the surface) and turned to face the way the head faces.
 #pragma once
 
 #include "assets/hair_asset.h"
@@ -69,33 +69,76 @@ struct RootFit {
 RootFit measureRoots(const std::vector<glm::vec3>& roots, const MeshDistance& head, float headDiagonal);
 
 // What the user fixed of the placement (--hair-scale, --hair-offset, --hair-z-up,
-// --hair-mirror-z); the rest is chosen.
+// --hair-mirror-z, --hair-half-turn); the rest is chosen.
 struct PlacementRequest {
     std::optional<float> scale;
     std::optional<glm::vec3> offset;
     std::optional<bool> zUp;
     std::optional<bool> mirrorZ;
+    std::optional<bool> halfTurn;
     // Scale or offset given: the placement is the user's (axes default to the format's).
     bool placesByHand() const { return scale.has_value() || offset.has_value(); }
 };
 
+// Which way round a groom is, once placed, against the head's face (its direction from the head
+// description, the face the part of the head in front between the chin and the brow):
+// `overFace` the share of the groom's points in front of the face (hair hanging over it),
+// `longAtBack` from -1 to 1, how much the longer strands grow from the back of the roots' spread
+// (1: every strand longer than the mean grows behind the centre, every shorter one in front).
+struct GroomFacing {
+    float overFace = 0.0f;
+    float longAtBack = 0.0f;
+};
+// A fitted groom's turned-round twin is taken, or the fit kept, when one puts clearly more roots on
+// the surface (kFacingRoots more of them), else when the hair over the face differs clearly (at
+// least kFacingOverFace of the points on the worse side, twice the other), else when the long
+// strands tell (|longAtBack| at least kFacingLongAtBack); else it is ambiguous.
+inline constexpr float kFacingRoots = 0.1f;
+inline constexpr float kFacingOverFace = 0.02f;
+inline constexpr float kFacingLongAtBack = 0.15f;
+
 // How a groom was placed, and its roots against the head afterwards.
 struct GroomPlacement {
     enum class Method { File, Units, Fitted, Given };
+    // How the front was told from the back: the file's (or the user's) orientation, the roots
+    // (one way fits clearly better), the hair over the face, the long strands, or not at all (both
+    // ways fit, neither tells: the file's is kept).
+    enum class Front { AsPlaced, Roots, Face, LongStrands, Ambiguous };
     HairPlacement placement;
     Method method = Method::File;
     RootFit fit;
-    std::string describe() const; // "fitted to the scalp: scale 0.4, offset (0, 1.2, -3), z-up turned y-up"
+    Front front = Front::AsPlaced;
+    GroomFacing facing;                // as placed (with Front::AsPlaced and no strands: zeros)
+    std::optional<GroomFacing> turned; // its turned-round twin, when one was weighed
+    std::optional<RootFit> turnedFit;  // and that twin's roots
+    std::string describe() const;      // "fitted to the scalp: scale 0.4, offset (0, 1.2, -3), z-up turned y-up"
+    // With Front::Ambiguous: the sentence that says so and how to choose (empty otherwise).
+    std::string ambiguity() const;
     nlohmann::json toJson() const;
 };
 
-// The groom (its parts' roots, as the files store them) placed on `head`. With nothing requested:
-// as in the file (with the power-of-ten scale when units clearly differ) where that puts the roots
-// on the head, with either up axis and either handedness; else fitted to the scalp, with either up
-// axis; the best by the share of roots on the surface. What the request fixes is kept. The caller
-// decides what an off-head result means (HairScene refuses an automatic one).
-// `defaults`: the format's axes (cyHair z-up, TressFX 3 mirrored).
-GroomPlacement placeGroom(const std::vector<glm::vec3>& roots, const Bounds& groomBounds, const HairPlacement& defaults,
+// The groom as placement sees it: every root (as the files store them), and a sample of whole
+// strands (roots first) that tells its front from its back against the head's face direction
+// (HeadDescription::front; +z for a bare mesh). No strands: roots alone decide, as in the file's
+// orientation.
+struct GroomShape {
+    std::vector<glm::vec3> roots;
+    std::vector<std::vector<glm::vec3>> strands;
+    glm::vec3 headFront{0.0f, 0.0f, 1.0f};
+};
+
+// The groom placed on `head`. With nothing requested: as in the file (with the power-of-ten scale
+// when units clearly differ) where that puts the roots on the head, with either up axis and either
+// handedness; else fitted to the scalp, with either up axis; the best by the share of roots on the
+// surface. A fitted groom is weighed against its twin turned round about the up axis (root
+// distance alone cannot tell a front from a back): by the roots when they clearly differ, else by
+// the hair over the face and the long strands (GroomFacing). What the request fixes is kept. The
+// caller decides what an off-head result means (HairScene refuses an automatic one) and passes on
+// an ambiguity. `defaults`: the format's axes (cyHair z-up, TressFX 3 mirrored).
+GroomPlacement placeGroom(const GroomShape& groom, const Bounds& groomBounds, const HairPlacement& defaults,
                           const Mesh& head, const PlacementRequest& request = {});
+// The figures of GroomFacing for `strands` placed by `placement` on `head`.
+GroomFacing measureFacing(const std::vector<std::vector<glm::vec3>>& strands, const HairPlacement& placement,
+                          const Mesh& head, glm::vec3 headFront);
 
 } // namespace wisp

@@ -101,14 +101,25 @@ HairScene buildLoadedScene(Head head, const std::vector<HairPartSource>& parts, 
                 ", more than the " + std::to_string(kMaxGuides) + " guides Wisp simulates");
     }
 
-    // One placement for the whole groom, from the roots of the parts that have none of their own.
-    std::vector<glm::vec3> roots;
+    // One placement for the whole groom, from the roots of the parts that have none of their own
+    // (and a sample of their strands, which tells the groom's front from its back).
+    GroomShape shape{.roots = {}, .strands = {}, .headFront = scene.head.description.front};
+    std::vector<glm::vec3>& roots = shape.roots;
     Bounds groomBounds;
     bool firstPoint = true;
+    size_t unplaced = 0;
+    for (size_t index = 0; index < parts.size(); ++index)
+        unplaced += parts[index].placement ? 0 : assets[index].strands.size();
+    constexpr size_t kFacingStrands = 2000;
+    size_t seen = 0;
     for (size_t index = 0; index < parts.size(); ++index) {
         if (parts[index].placement)
             continue;
         for (const HairStrand& strand : assets[index].strands) {
+            // Up to kFacingStrands of them, evenly spaced through the parts.
+            if (shape.strands.size() < kFacingStrands && seen * kFacingStrands >= shape.strands.size() * unplaced)
+                shape.strands.push_back(strand.points);
+            ++seen;
             roots.push_back(strand.points.front());
             for (const glm::vec3& p : strand.points) {
                 groomBounds.min = firstPoint ? p : glm::min(groomBounds.min, p);
@@ -123,7 +134,7 @@ HairScene buildLoadedScene(Head head, const std::vector<HairPartSource>& parts, 
             parts.begin())];
         HairPlacement defaults{
             .scale = 1.0f, .offset = glm::vec3(0.0f), .zUpToYUp = lead.zUp, .mirrorZ = lead.mirroredZ};
-        scene.placement = placeGroom(roots, groomBounds, defaults, scene.head.mesh, request);
+        scene.placement = placeGroom(shape, groomBounds, defaults, scene.head.mesh, request);
         const GroomPlacement& placed = *scene.placement;
         std::string where = "the groom's roots are not on the head: " + placed.describe() + " leaves " +
                             percent(1.0f - placed.fit.onSurface) + " of them farther than " + percent(kRootOnSurface) +
@@ -131,10 +142,13 @@ HairScene buildLoadedScene(Head head, const std::vector<HairPartSource>& parts, 
         const std::string& file = parts.front().file.string();
         if (placed.method != GroomPlacement::Method::Given && !placed.fit.onHead())
             throw UserError(file + ": " + where +
-                            "; place it by hand with --hair-scale S, --hair-offset X,Y,Z, --hair-z-up true|false and "
-                            "--hair-mirror-z true|false (in a scene: hair's scale, offset, z_up, mirror_z)");
+                            "; place it by hand with --hair-scale S, --hair-offset X,Y,Z, --hair-z-up true|false, "
+                            "--hair-mirror-z true|false and --hair-half-turn true|false (in a scene: hair's scale, "
+                            "offset, z_up, mirror_z, half_turn)");
         if (!placed.fit.onHead())
             scene.warnings.push_back(file + ": " + where);
+        if (std::string ambiguous = placed.ambiguity(); !ambiguous.empty())
+            scene.warnings.push_back(file + ": " + ambiguous);
     }
 
     float headDiagonal = scene.head.mesh.bounds().diagonal();

@@ -4,6 +4,7 @@
 // naming the options that place a groom by hand) and warns about roots placed off it by hand;
 // `simulate` keeps a TressFX 3 groom pinned at both ends from stretching. The grooms are written
 // here, moved from hair grown on the default head.
+#include "cli_support.h"
 #include "groom_files.h"
 #include "test_support.h"
 
@@ -103,9 +104,48 @@ TEST(GroomCli, InspectAndRenderSayHowAGroomInOtherUnitsAndAxesIsPlaced)
                 " --guides 1 --set strands_per_guide=2 --width 96 --height 64 --out " + quoted(dir / "big.png"));
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.out.find("hair placement: fitted to the scalp: scale 0.4"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("z-up turned y-up; roots: median"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("z-up turned y-up (its front by the hair over the face); roots: median"), std::string::npos)
+        << r.out;
     EXPECT_NE(r.out.find("hair strands: 300 simulated"), std::string::npos) << r.out;
     EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+}
+
+TEST(GroomCli, InspectTakesThePlacementOptionsRenderTakes)
+{
+    TempDir dir;
+    test::writeCyHair(dir / "big.hair", test::grownStrands(60, 8, [](glm::vec3 p) { return 2.5f * p; }));
+    // By hand: kept as given, as render keeps it (the same words).
+    auto r =
+        runWisp("inspect --hair " + quoted(dir / "big.hair") +
+                " --hair-scale 0.4 --hair-offset 0,0.01,0 --hair-z-up true --hair-mirror-z off --hair-half-turn 1");
+    ASSERT_EQ(r.status, 0) << r.err;
+    nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["placement"]["method"], "given");
+    EXPECT_NEAR(j["placement"]["scale"].get<double>(), 0.4, 1e-6);
+    EXPECT_NEAR(j["placement"]["offset"][1].get<double>(), 0.01, 1e-6);
+    EXPECT_EQ(j["placement"]["up_axis"], "z");
+    EXPECT_EQ(j["placement"]["mirror_z"], false);
+    EXPECT_EQ(j["placement"]["half_turn"], true);
+    EXPECT_EQ(j["placement"]["front"]["chosen_by"], "as_placed");
+    // A file alone with a placement: placed on the default head.
+    r = runWisp("inspect " + quoted(dir / "big.hair") + " --hair-scale 0.4 --hair-offset 0,0,0");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(nlohmann::json::parse(r.out)["kind"], "groom_on_head");
+}
+
+TEST(GroomCli, PlacementSwitchesTakeTrueOrFalseOnly)
+{
+    TempDir dir;
+    test::writeCyHair(dir / "g.hair", test::grownStrands(20, 8, [](glm::vec3 p) { return p; }));
+    std::string hair = " --hair " + quoted(dir / "g.hair");
+    for (const std::string& command : {"inspect" + hair, "simulate --steps 1" + hair}) {
+        test::expectUserError(runWisp(command + " --hair-mirror-z 2"),
+                              "--hair-mirror-z: '2' is not allowed: true | false (or on | off, 1 | 0)");
+        test::expectUserError(runWisp(command + " --hair-z-up maybe"),
+                              "--hair-z-up: 'maybe' is not allowed: true | false");
+        test::expectUserError(runWisp(command + " --hair-half-turn 180"),
+                              "--hair-half-turn: '180' is not allowed: true | false");
+    }
 }
 
 TEST(GroomCli, RootsOffTheHeadAreRefusedOrPlacedByHandWithAWarning)

@@ -1,14 +1,16 @@
 // tests/test_placement.cpp: a groom against a head: closest points on the mesh against brute force,
 // the head's region, the roots' figures, placing grooms whose units, axes or position differ from
 // the head's (made here by moving a groom grown on the default head: scaled 2.5 times, z-up,
-// floating above, in centimetres), refusing a groom whose roots cannot be put on the head, and the
-// treatment of strands too short to simulate.
+// floating above, in centimetres), a fitted groom turned to face the way the head faces (or said to
+// be ambiguous), refusing a groom whose roots cannot be put on the head, and the treatment of
+// strands too short to simulate.
 #include "assets/head.h"
 #include "assets/placement.h"
 #include "core/error.h"
 #include "groom_files.h"
 #include "physics/cpu_solver.h"
 #include "physics/hair_scene.h"
+#include "physics/hair_style.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -44,6 +46,32 @@ Bounds boundsOf(const Strands& strands)
             b.max = glm::max(b.max, p);
         }
     return b;
+}
+
+// The groom as placement sees it: its roots and its strands, against a head facing +z.
+GroomShape shapeOf(const Strands& strands)
+{
+    return {.roots = rootsOf(strands), .strands = strands, .headFront = glm::vec3(0.0f, 0.0f, 1.0f)};
+}
+
+// Long straight hair grown on the default head (which faces +z), each point moved by `transform`.
+Strands longHair(glm::vec3 (*transform)(glm::vec3))
+{
+    GrowthSettings g;
+    applyHairStyle(g, *findHairStyle("long"));
+    g.guides = 300;
+    g.verticesPerStrand = 12;
+    HairScene scene = buildGrownScene(defaultHeadPath(), g);
+    Strands out(scene.strands.strandCount());
+    for (size_t s = 0; s < out.size(); ++s)
+        for (uint32_t i = 0; i < g.verticesPerStrand; ++i)
+            out[s].push_back(transform(scene.strands.rest[s * g.verticesPerStrand + i]));
+    return out;
+}
+
+glm::vec3 turnedRound(glm::vec3 p)
+{
+    return glm::vec3(-p.x, p.y, -p.z);
 }
 
 std::string errorOf(const std::function<void()>& f)
@@ -99,7 +127,7 @@ TEST(Placement, TheHeadRegionFindsTheNeckOfABust)
 TEST(Placement, AGroomMadeForTheHeadStaysAsInTheFile)
 {
     Strands groom = test::grownStrands(300, 8, [](glm::vec3 p) { return p; });
-    GroomPlacement g = placeGroom(rootsOf(groom), boundsOf(groom), HairPlacement{}, defaultHead().mesh);
+    GroomPlacement g = placeGroom({.roots = rootsOf(groom)}, boundsOf(groom), HairPlacement{}, defaultHead().mesh);
     EXPECT_EQ(g.method, GroomPlacement::Method::File);
     EXPECT_EQ(g.placement.scale, 1.0f);
     EXPECT_EQ(g.placement.offset, glm::vec3(0.0f));
@@ -129,7 +157,7 @@ TEST(Placement, AGroomInOtherUnitsAxesAndPlaceIsFittedToTheScalp)
     };
     for (const Case& c : cases) {
         Strands groom = test::grownStrands(400, 8, c.transform);
-        GroomPlacement g = placeGroom(rootsOf(groom), boundsOf(groom), c.defaults, head);
+        GroomPlacement g = placeGroom({.roots = rootsOf(groom)}, boundsOf(groom), c.defaults, head);
         EXPECT_EQ(g.method, GroomPlacement::Method::Fitted) << c.name;
         EXPECT_NEAR(g.placement.scale / c.scale, 1.0f, 0.1f) << c.name;
         EXPECT_EQ(g.placement.zUpToYUp, c.defaults.zUpToYUp) << c.name;
@@ -142,6 +170,132 @@ TEST(Placement, AGroomInOtherUnitsAxesAndPlaceIsFittedToTheScalp)
             worst = std::max(worst, glm::length(applyPlacement(g.placement, groom[s][0]) - original[s][0]));
         EXPECT_LT(worst, 0.05f * head.bounds().diagonal()) << c.name;
     }
+}
+
+TEST(Placement, AGroomFittedTurnedRoundIsTurnedToFaceTheWayTheHeadFaces)
+{
+    // Long straight hair, floating above the head (so it is fitted), turned round or not: root
+    // distance fits it either way round (the cranium is nearly symmetric front to back); the hair
+    // over the face and the long strands at the back say which.
+    const Mesh& head = defaultHead().mesh;
+    Strands original = longHair([](glm::vec3 p) { return p; });
+    Strands turned = longHair([](glm::vec3 p) { return turnedRound(p) + glm::vec3(0.0f, 0.3f, 0.0f); });
+    Strands straight = longHair([](glm::vec3 p) { return p + glm::vec3(0.0f, 0.3f, 0.0f); });
+    GroomPlacement t = placeGroom(shapeOf(turned), boundsOf(turned), HairPlacement{}, head);
+    GroomPlacement s = placeGroom(shapeOf(straight), boundsOf(straight), HairPlacement{}, head);
+    ASSERT_EQ(t.method, GroomPlacement::Method::Fitted);
+    ASSERT_EQ(s.method, GroomPlacement::Method::Fitted);
+    EXPECT_TRUE(t.placement.halfTurn) << "the turned groom is turned back";
+    EXPECT_FALSE(s.placement.halfTurn);
+    for (const GroomPlacement* g : {&t, &s}) {
+        EXPECT_TRUE(g->fit.onHead()) << g->fit.onSurface;
+        EXPECT_NE(g->front, GroomPlacement::Front::Ambiguous);
+        EXPECT_NE(g->front, GroomPlacement::Front::AsPlaced);
+        ASSERT_TRUE(g->turned.has_value());
+        EXPECT_LT(g->facing.overFace, g->turned->overFace) << "less hair over the face than the other way";
+        EXPECT_GT(g->facing.longAtBack, 0.0f) << "the long strands at the back";
+        EXPECT_NE(g->describe().find("(its front by "), std::string::npos) << g->describe();
+    }
+    EXPECT_NE(t.describe().find(", turned round"), std::string::npos) << t.describe();
+    // The turned groom's roots land where they grew, within a few percent of the head.
+    float worst = 0.0f;
+    for (size_t k = 0; k < turned.size(); k += 5)
+        worst = std::max(worst, glm::length(applyPlacement(t.placement, turned[k][0]) - original[k][0]));
+    EXPECT_LT(worst, 0.05f * head.bounds().diagonal());
+    // Asked for, the turn is the user's: kept, nothing weighed.
+    GroomPlacement kept =
+        placeGroom(shapeOf(turned), boundsOf(turned), HairPlacement{}, head, PlacementRequest{.halfTurn = false});
+    EXPECT_FALSE(kept.placement.halfTurn);
+    EXPECT_EQ(kept.front, GroomPlacement::Front::AsPlaced);
+    EXPECT_GT(kept.facing.overFace, t.facing.overFace);
+}
+
+TEST(Placement, ATressFxGroomInPartsTurnedRoundOnItsHeadIsTurnedBack)
+{
+    // The TressFX 2 sample: a fringe and a long ponytail on their bust, turned round about the up
+    // axis: placed, the ponytail hangs at the back again and each root lands where it was.
+    WISP_REQUIRE_DATA(front, "tressfx-text/hair_front_16_guide.tfx");
+    WISP_REQUIRE_DATA(tail, "tressfx-text/hair_tail_16_guide.tfx");
+    WISP_REQUIRE_DATA(headFile, "tressfx-text/head_max4.obj");
+    std::vector<HairPartSource> parts = {{.file = front, .placement = std::nullopt, .settings = {}},
+                                         {.file = tail, .placement = std::nullopt, .settings = {}}};
+    HairScene asMade = buildLoadedScene(headFile, parts, 16);
+    ASSERT_FALSE(asMade.placement->placement.halfTurn);
+    uint32_t v = asMade.strands.verticesPerStrand;
+    TempDir dir;
+    std::vector<Strands> turned(2);
+    Strands original;
+    for (size_t s = 0; s < asMade.strands.strandCount(); ++s) {
+        Strands& part = turned[asMade.strands.strands[s].part];
+        part.emplace_back();
+        for (uint32_t i = 0; i < v; ++i)
+            part.back().push_back(turnedRound(asMade.strands.rest[s * v + i]));
+        original.push_back({asMade.strands.rest[s * v]});
+    }
+    test::writeTfx4(dir / "front.tfx", turned[0]);
+    test::writeTfx4(dir / "tail.tfx", turned[1]);
+    HairScene back = buildLoadedScene(headFile,
+                                      {{.file = dir / "front.tfx", .placement = std::nullopt, .settings = {}},
+                                       {.file = dir / "tail.tfx", .placement = std::nullopt, .settings = {}}},
+                                      16);
+    const GroomPlacement& g = *back.placement;
+    EXPECT_TRUE(g.placement.halfTurn) << g.describe();
+    EXPECT_FALSE(g.placement.mirrorZ) << g.describe();
+    EXPECT_NE(g.front, GroomPlacement::Front::Ambiguous) << g.describe();
+    EXPECT_TRUE(g.fit.onHead()) << g.fit.onSurface;
+    EXPECT_GT(g.facing.longAtBack, 0.0f) << "the ponytail at the back";
+    ASSERT_EQ(back.strands.strandCount(), original.size());
+    float worst = 0.0f;
+    for (size_t s = 0; s < original.size(); ++s)
+        worst = std::max(worst, glm::length(back.strands.rest[s * v] - original[s][0]));
+    EXPECT_LT(worst, 0.05f * back.head.mesh.bounds().diagonal()) << g.describe();
+}
+
+TEST(Placement, SintelsGroomTurnedRoundOnHerHeadIsTurnedBack)
+{
+    WISP_REQUIRE_DATA(hair, "sintel-lite/sintel_hair_228x32.tfx");
+    WISP_REQUIRE_DATA(headFile, "sintel-lite/sintel_lite.obj");
+    HairScene asMade = buildLoadedScene(headFile, {{.file = hair, .placement = std::nullopt, .settings = {}}}, 16);
+    ASSERT_EQ(asMade.placement->method, GroomPlacement::Method::File);
+    uint32_t v = asMade.strands.verticesPerStrand;
+    Strands original(asMade.strands.strandCount()), turned(original.size());
+    for (size_t s = 0; s < original.size(); ++s)
+        for (uint32_t i = 0; i < v; ++i) {
+            original[s].push_back(asMade.strands.rest[s * v + i]);
+            turned[s].push_back(turnedRound(original[s].back()));
+        }
+    TempDir dir;
+    test::writeTfx4(dir / "turned.tfx", turned);
+    HairScene back =
+        buildLoadedScene(headFile, {{.file = dir / "turned.tfx", .placement = std::nullopt, .settings = {}}}, 16);
+    const GroomPlacement& g = *back.placement;
+    EXPECT_NE(g.method, GroomPlacement::Method::Given);
+    EXPECT_TRUE(g.placement.halfTurn) << g.describe();
+    EXPECT_EQ(g.placement.mirrorZ, asMade.placement->placement.mirrorZ) << g.describe();
+    EXPECT_TRUE(g.fit.onHead()) << g.fit.onSurface;
+    float worst = 0.0f;
+    for (size_t k = 0; k < turned.size(); ++k)
+        worst = std::max(worst, glm::length(applyPlacement(g.placement, turned[k][0]) - original[k][0]));
+    EXPECT_LT(worst, 0.05f * back.head.mesh.bounds().diagonal()) << g.describe();
+}
+
+TEST(Placement, AGroomThatLooksTheSameBothWaysRoundIsSaidToBeAmbiguous)
+{
+    // Every strand beside its twin turned round: no root, face or length tells front from back.
+    Strands grown = test::grownStrands(150, 8, [](glm::vec3 p) { return p + glm::vec3(0.0f, 0.3f, 0.0f); });
+    Strands both = grown;
+    for (const auto& s : grown) {
+        both.push_back({});
+        for (const glm::vec3& p : s)
+            both.back().push_back(turnedRound(p - glm::vec3(0.0f, 0.3f, 0.0f)) + glm::vec3(0.0f, 0.3f, 0.0f));
+    }
+    GroomPlacement g = placeGroom(shapeOf(both), boundsOf(both), HairPlacement{}, defaultHead().mesh);
+    ASSERT_EQ(g.method, GroomPlacement::Method::Fitted);
+    EXPECT_EQ(g.front, GroomPlacement::Front::Ambiguous);
+    EXPECT_FALSE(g.placement.halfTurn) << "kept as the file faces";
+    std::string said = g.ambiguity();
+    EXPECT_NE(said.find("which way round the groom goes is ambiguous"), std::string::npos) << said;
+    EXPECT_NE(said.find("--hair-half-turn true turns it the other way"), std::string::npos) << said;
 }
 
 TEST(Placement, RootsThatFitNowhereAreRefusedNamingTheOptions)

@@ -490,6 +490,18 @@ TEST(SceneErrors, UnknownKeysListTheKnownOnes)
         std::string::npos);
 }
 
+TEST(SceneErrors, AKeyGivenTwiceIsNamedWithItsFile)
+{
+    std::string top = loadError(R"({"duration": 2, "loop": true, "duration": 3})");
+    EXPECT_NE(top.find("/duration: the key 'duration' is given twice in one object"), std::string::npos) << top;
+    std::string deep = loadError(R"({"keys": [{"time": 0}, {"time": 1, "wind": [1, 0, 0], "wind": [0, 0, 1]}]})");
+    EXPECT_NE(deep.find("/keys/1/wind: the key 'wind' is given twice"), std::string::npos) << deep;
+    std::string setting = loadError(R"({"settings": {"oit_k": 4, "samples": 4, "oit_k": 8}})");
+    EXPECT_NE(setting.find("/settings/oit_k: the key 'oit_k' is given twice"), std::string::npos) << setting;
+    // The same key in two objects is no repetition.
+    EXPECT_EQ(loadError(R"({"keys": [{"time": 0, "wind": [1, 0, 0]}, {"time": 1, "wind": [0, 0, 1]}]})"), "");
+}
+
 TEST(SceneErrors, TimesMustIncrease)
 {
     std::string m = loadError(R"({"keys": [{"time": 0}, {"time": 2}, {"time": 1.5}]})");

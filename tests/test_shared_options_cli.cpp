@@ -190,6 +190,26 @@ TEST(BadInput, BadPartSettings)
     expectUserError(runWisp("simulate --steps 1 --part 0:stiff=0.1"), "unknown key 'stiff'");
     expectUserError(runWisp("simulate --steps 1 --part 0:global=abc"), "not a number");
     expectUserError(runWisp("simulate --steps 1 --part global=0.1"), "PART:key=value");
+    expectUserError(runWisp("simulate --steps 1 --part 0:"), "--part 0:: no key=value after '0:'");
+    expectUserError(runWisp("simulate --steps 1 --part 0:global=0.1,global=0.2"),
+                    "--part 0:global=0.1,global=0.2: global is given twice");
+    expectUserError(runWisp("simulate --steps 1 --part 0:global=0.1,"), "an empty key=value");
+}
+
+TEST(BadInput, APartNameTwoFilesShareIsRefused)
+{
+    WISP_REQUIRE_DATA(front, "tressfx-text/hair_front_16_guide.tfx");
+    WISP_REQUIRE_DATA(head, "tressfx-text/head_max4.obj");
+    TempDir dir;
+    std::filesystem::create_directories(dir / "a");
+    std::filesystem::create_directories(dir / "b");
+    std::filesystem::copy_file(front, dir / "a" / "fringe.tfx");
+    std::filesystem::copy_file(front, dir / "b" / "fringe.tfx");
+    std::string hair =
+        " --hair '" + (dir / "a" / "fringe.tfx").string() + "' --hair '" + (dir / "b" / "fringe.tfx").string() + "'";
+    expectUserError(
+        runWisp("simulate --steps 1 --head '" + head.string() + "'" + hair + " --part fringe.tfx:global=0.5"),
+        "--part fringe.tfx:global=0.5: 'fringe.tfx' names parts 0 and 1: give the index");
 }
 
 TEST(Cli, EachPartTakesItsOwnParameters)
@@ -206,6 +226,14 @@ TEST(Cli, EachPartTakesItsOwnParameters)
     EXPECT_FLOAT_EQ(j["parts"][1]["drag"].get<float>(), 3.0f);
     EXPECT_FLOAT_EQ(j["parts"][0]["local_stiffness"].get<float>(), 0.05f);
     EXPECT_NE(j["parts"][0]["global_stiffness"], j["parts"][1]["global_stiffness"]);
+    // A part by its file's name (as the README says), or by the path given to --hair.
+    auto named = runWisp("simulate --json --steps 1 --head '" + head.string() + "' --hair '" + front.string() +
+                         "' --hair '" + tail.string() + "' --part hair_tail_16_guide.tfx:global=0.5 --part '" +
+                         front.string() + ":local=0.05'");
+    ASSERT_EQ(named.status, 0) << named.err;
+    nlohmann::json k = nlohmann::json::parse(named.out);
+    EXPECT_FLOAT_EQ(k["parts"][1]["global_stiffness"].get<float>(), 0.5f);
+    EXPECT_FLOAT_EQ(k["parts"][0]["local_stiffness"].get<float>(), 0.05f);
 }
 
 TEST(Cli, RenderLoadedHairInParts)
