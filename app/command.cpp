@@ -82,8 +82,19 @@ HairScene buildCheckedScene(const GlobalOptions& g, const SessionOptions& o, Ren
     if (h.noHair || h.hairFiles.empty())
         check(h.noHair ? 0 : growth.guides);
     HairScene scene = h.buildScene(o.settings);
-    if (!h.noHair && !h.hairFiles.empty())
-        check(scene.strands.strandCount());
+    if (!h.noHair && !h.hairFiles.empty()) {
+        // A loaded groom is drawn at a density chosen from it, unless strands_per_guide is given.
+        uint64_t strands = scene.strands.strandCount();
+        if (render && !o.settingGiven("strands_per_guide")) {
+            render->strands.strandsPerGuide = loadedStrandsPerGuide(strands, render->strands.strandsPerGuide);
+            scene.notes.push_back("hair density: " + std::to_string(strands) + " strands in the file" +
+                                  (h.hairFiles.size() > 1 ? "s" : "") + ", each drawn as " +
+                                  std::to_string(render->strands.strandsPerGuide) + " (strands_per_guide, about " +
+                                  std::to_string(kLoadedGroomStrands) +
+                                  " strands in all; --set strands_per_guide=N to choose)");
+        }
+        check(strands);
+    }
     for (const std::string& w : scene.warnings)
         std::fprintf(stderr, "wisp: warning: %s\n", w.c_str());
     return scene;

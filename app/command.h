@@ -37,7 +37,9 @@ CLI::Validator within(double lo, double hi);
 // fit 32 bits, GPU memory against the device it will run on): before guides are grown, and for hair
 // files once they are loaded (only then is their strand count known). Nothing is allocated on the
 // device yet. `render`: the drawing's settings (null: simulate), its samples set to what the device
-// draws of them (useDeviceSamples); `window`: the device must present.
+// draws of them (useDeviceSamples), and a loaded groom's strands_per_guide chosen there
+// (loadedStrandsPerGuide) unless the command line or the scene gave it; `window`: the device must
+// present.
 HairScene buildCheckedScene(const GlobalOptions& global, const SessionOptions& options, RenderSettings* render,
                             bool window = false);
 // Sets render.samples to what `device` draws of them (RenderTarget::samplesFor: the most of the

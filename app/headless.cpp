@@ -131,7 +131,10 @@ std::vector<PassTiming> profileFrames(const vk::Context& ctx, HairSession& sessi
     session.attachTo(renderer);
     Frame frame(ctx, 1);
     uint32_t stepsPerFrame = session.clock().stepsPerFrame(fps);
-    OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(settings.width) / float(settings.height));
+    // The scene's first pose (its camera, head and light), held: what is timed is the drawing.
+    OrbitCamera camera =
+        poseFrame(renderer, session.timeline(), session.clock().seconds(),
+                  OrbitCamera::framing(renderer.sceneBounds(), float(settings.width) / float(settings.height)));
     std::map<std::string, std::vector<double>> samples;
     std::vector<std::string> order;
     std::vector<double> totals;

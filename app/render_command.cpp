@@ -35,7 +35,7 @@ struct RenderCommand {
 
 int runProfile(const GlobalOptions& g, SessionOptions& o, const RenderCommand& c)
 {
-    RenderSettings& settings = o.settings.render; // its samples become what the device draws
+    RenderSettings& settings = o.settings.render; // its samples and a loaded groom's density are chosen into it
     o.source.noHair = false;
     HairScene scene = buildCheckedScene(g, o, &settings);
     vk::Context ctx(contextOptions(g));
@@ -67,7 +67,8 @@ int runProfile(const GlobalOptions& g, SessionOptions& o, const RenderCommand& c
                           {"settings", settingsJson(o.settings)}};
     if (path == HairRaster::Compute)
         out["raster"] = {{"segments", raster.segments}, {"hidden", raster.hidden},     {"fragments", raster.fragments},
-                         {"capacity", raster.capacity}, {"overflow", raster.overflow}, {"max_pixel", raster.maxPixel}};
+                         {"capacity", raster.capacity}, {"overflow", raster.overflow}, {"max_pixel", raster.maxPixel},
+                         {"pieces", raster.pieces}};
     for (const PassTiming& t : timings)
         out["ms"][t.name] = {{"median", t.medianMs}, {"p95", t.p95Ms}};
     std::cout << out.dump() << "\n";
@@ -105,10 +106,12 @@ int run(const GlobalOptions& g, const RenderCommand& c)
         std::cout << picture.hairCounts << "\n";
     if (picture.raster.capacity > 0) {
         std::cout << describeRasterStats(picture.raster) << "\n";
-        if (picture.raster.overflow > 0)
-            std::cerr << "wisp: warning: the compute path's fragment buffer was full: " << picture.raster.overflow
-                      << " of " << picture.raster.fragments << " hair fragments were dropped ('" << ctx.report().name
-                      << "' holds no larger buffer); lower the resolution or strands_per_guide\n";
+        if (picture.raster.overflow > 0) // (drawn again with the pieces it needed: only past kRasterMaxPieces)
+            std::cerr << "wisp: warning: the frame needed " << picture.raster.pieces
+                      << " pieces of the compute path's fragment buffer, more than the " << gpu::kRasterMaxPieces
+                      << " a frame records: " << picture.raster.overflow << " of " << picture.raster.fragments
+                      << " hair fragments were not drawn; raise fragment_budget, or lower the resolution or "
+                         "strands_per_guide\n";
     }
     if (picture.oit.capacity > 0) {
         std::cout << "oit: " << picture.oit.fragments << " hair fragments, pool of " << picture.oit.capacity << "\n";

@@ -165,6 +165,11 @@ SessionOptions SessionCommandLine::resolve() const
         explicitSettings.push_back(name);
     }
 
+    o.givenSettings = explicitSettings;
+    if (o.scene)
+        for (const auto& [name, value] : o.scene->settings)
+            o.givenSettings.push_back(name);
+
     // The timeline: the scene's keys over the command line's base.
     SceneState base;
     base.sphere = o.source.sphere;

@@ -10,6 +10,7 @@
 #include "app/scene.h"
 #include "app/settings_table.h"
 
+#include <algorithm>
 #include <map>
 #include <optional>
 #include <string>
@@ -31,6 +32,12 @@ struct SessionOptions {
     // command line sets explicitly (--wind, --sphere, --light-*, or --set of those settings) holds
     // the command line's value throughout. Without a scene, the base alone.
     SceneTimeline timeline;
+    // The settings the command line or the scene gave a value (the rest are the defaults).
+    std::vector<std::string> givenSettings;
+    bool settingGiven(const std::string& name) const
+    {
+        return std::find(givenSettings.begin(), givenSettings.end(), name) != givenSettings.end();
+    }
     double sceneLength() const { return scene ? scene->length() : 0.0; }
 };
 

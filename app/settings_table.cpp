@@ -574,6 +574,12 @@ std::vector<SettingSpec> buildSpecs()
                 "dropped and counted)"),
         [](Settings & x) -> auto& { return x.render.transparency.oitNodesPerPixel; }));
     add(field(
+        integer(
+            "fragment_budget", {0, 65536}, kLive, "",
+            "the compute path's fragment buffer at most in MiB, 0 = automatic (1/8 of the device's memory, within one "
+            "buffer's range); a frame that needs more is drawn in pieces, the same picture"),
+        [](Settings & x) -> auto& { return x.render.fragmentBudgetMiB; }));
+    add(field(
         number("hair_opacity", "", {0.01, 1.0}, kLive, "", "opacity of one strand that covers its pixel"),
         [](Settings & x) -> auto& { return x.render.transparency.hairOpacity; }));
 

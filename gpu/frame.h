@@ -33,7 +33,9 @@ struct FrameContext {
 
 class Frame {
 public:
-    static constexpr uint32_t kMaxScopes = 32;
+    // Timed scopes a frame holds at most: every pass is one (the compute path records up to 64
+    // pieces of two passes each).
+    static constexpr uint32_t kMaxScopes = 192;
 
     Frame(const vk::Context& ctx, uint32_t framesInFlight);
     ~Frame();

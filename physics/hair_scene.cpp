@@ -219,6 +219,7 @@ std::vector<std::string> describeLoadedHair(const HairScene& scene)
                   std::to_string(scene.loaded.rigid) + " of them kept rigid (shorter than " + threshold +
                   " head units), " + std::to_string(scene.loaded.dropped) + " dropped (no length), " +
                   std::to_string(scene.loaded.pinnedTips) + " pinned at both ends");
+    out.insert(out.end(), scene.notes.begin(), scene.notes.end());
     return out;
 }
 

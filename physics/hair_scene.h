@@ -39,6 +39,9 @@ struct HairScene {
     LoadedStrands loaded;
     // Warnings for the person (roots off the head under a placement given by hand), one line each.
     std::vector<std::string> warnings;
+    // What was chosen for the loaded hair that the person did not give (strands_per_guide), one
+    // line each; describeLoadedHair ends with them.
+    std::vector<std::string> notes;
 };
 
 // Loads the head and grows guides on it.

@@ -192,8 +192,6 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
         lutParams_ = look;
     }
     opacityPass_->setEnabled(settings_.shadows.enabled && settings_.shadows.domLayers > 0);
-    if (oitResolve_)
-        oitResolve_->setK(settings_.transparency.oitK, frame);
     if (computeMeshes()) {
         if (!meshRaster_)
             meshRaster_ = std::make_unique<MeshRaster>(ctx_, *target_, uniforms_, *lightMaps_, *meshPass_);
@@ -232,6 +230,9 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
     light.lodStrands = lightLodStrands(draw.lodStrands, settings_.shadows.strandFraction);
     light.lodWidthScale = draw.lodWidthScale * std::sqrt(draw.lodStrands / light.lodStrands);
     if (hairRaster() != HairRaster::Compute) {
+        makeOit();
+        if (oitResolve_)
+            oitResolve_->setK(settings_.transparency.oitK, frame);
         hairPass_->setDraw(draw, light, counts);
         lightMaps_->useHairDepthValues(false);
         return;
@@ -248,13 +249,30 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
                            {.shadows = settings_.shadows.enabled,
                             .oitK = settings_.transparency.oitK,
                             .domLayers = settings_.shadows.domLayers,
-                            .lut = &hairLut_->info()});
+                            .lut = &hairLut_->info(),
+                            .fragmentBudgetBytes = uint64_t(settings_.fragmentBudgetMiB) << 20});
     if (computeMeshes()) {
         meshRaster_->setHair(&strandRaster_->color(), &strandRaster_->colorImage());
         strandRaster_->setMeshSamples(&meshRaster_->depthSamples(), meshRaster_->depthBuffer().get());
     } else {
         strandRaster_->setMeshSamples(nullptr, VK_NULL_HANDLE);
     }
+}
+
+void Renderer::makeOit()
+{
+    // The linked lists only where the graphics path draws the hair with them: the compute path has
+    // buffers of its own, sized for it.
+    if (oit_ || settings_.transparency.mode != Transparency::Oit)
+        return;
+    oit_ = std::make_unique<Oit>(ctx_, target_->extent(), settings_.transparency.oitNodesPerPixel, framesInFlight_,
+                                 settings_.transparency.oitAutoNodes);
+    oitClear_ = std::make_unique<OitClearPass>(*oit_);
+    oitResolve_ = std::make_unique<OitResolvePass>(ctx_, *oit_);
+    oitComposite_ = std::make_unique<CompositePass>(ctx_, *target_, "oit.composite");
+    oitComposite_->setSource(&oit_->color(), &oit_->colorImage());
+    oitStats_ = std::make_unique<OitStatsPass>(*oit_);
+    hairPass_->setOit(oit_.get());
 }
 
 void Renderer::makeStrandRaster()
@@ -297,16 +315,8 @@ void Renderer::attachHair(GpuSolver& solver, const StrandSet& strands, float uni
     hairPass_->setLut(hairLut_.get());
     shadowPass_ = std::make_unique<ShadowPass>(*lightMaps_, *meshPass_, hairPass_.get());
     opacityPass_ = std::make_unique<OpacityPass>(*lightMaps_, hairPass_.get());
-    if (settings_.transparency.mode == Transparency::Oit) {
-        oit_ = std::make_unique<Oit>(ctx_, target_->extent(), settings_.transparency.oitNodesPerPixel, framesInFlight_,
-                                     settings_.transparency.oitAutoNodes);
-        oitClear_ = std::make_unique<OitClearPass>(*oit_);
-        oitResolve_ = std::make_unique<OitResolvePass>(ctx_, *oit_);
-        oitComposite_ = std::make_unique<CompositePass>(ctx_, *target_, "oit.composite");
-        oitComposite_->setSource(&oit_->color(), &oit_->colorImage());
-        oitStats_ = std::make_unique<OitStatsPass>(*oit_);
-        hairPass_->setOit(oit_.get());
-    }
+    if (hairRaster() == HairRaster::Graphics)
+        makeOit(); // (else made the first time a frame draws with the graphics path)
     // The light's view holds the head and the hair at rest, with room for the hair to swing.
     glm::vec3 lo = lightFit_.scene.min, hi = lightFit_.scene.max;
     for (const glm::vec3& p : strands.rest) {
@@ -376,6 +386,10 @@ std::vector<Pass*> Renderer::passes()
         meshes();
         for (Stage stage : StrandRaster::kCameraStages)
             list.push_back(strandRaster_->pass(stage));
+        for (uint32_t piece = 0; piece < strandRaster_->recordedPieces(); ++piece) {
+            list.push_back(strandRaster_->piecePass(Stage::Write, piece));
+            list.push_back(strandRaster_->piecePass(Stage::Resolve, piece));
+        }
         if (meshesInCompute) {
             for (MeshRaster::Stage stage : MeshRaster::kFinalStages)
                 list.push_back(meshRaster_->pass(stage));

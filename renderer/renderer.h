@@ -125,6 +125,7 @@ private:
     GpuSolver* solver_ = nullptr;
     std::vector<glm::uvec4> guideTriangles_;
     void makeStrandRaster();
+    void makeOit();
     uint32_t guideCount_ = 0;
     uint32_t verticesPerStrand_ = 0;
     float unitsPerMetre_ = 1.0f;

@@ -60,6 +60,18 @@ struct StrandSettings {
 };
 
 // The key light's shadows (renderer/light_maps.cpp, shaders/light_visibility.glsl).
+// strands_per_guide for a loaded groom when none is given: about kLoadedGroomStrands drawn in all
+// (a head of hair has 100,000 to 150,000), so a file that holds every strand of a groom draws each
+// once or a few times and a file of sparse guides draws more, at most `most` (the default).
+inline constexpr uint64_t kLoadedGroomStrands = 100000;
+constexpr uint32_t loadedStrandsPerGuide(uint64_t strandsInFiles, uint32_t most)
+{
+    if (strandsInFiles == 0)
+        return most;
+    uint64_t perStrand = (kLoadedGroomStrands + strandsInFiles / 2) / strandsInFiles;
+    return uint32_t(perStrand < 1 ? 1 : perStrand > most ? most : perStrand);
+}
+
 struct ShadowSettings {
     bool enabled = true;
     uint32_t mapSize = 2048;         // shadow and deep opacity maps, texels per side
@@ -117,6 +129,9 @@ struct RenderSettings {
     // production grooms do, so that skin does not show between strands and along partings.
     float scalpPaint = 0.9f;
     HairRaster hairRaster = HairRaster::Auto;
+    uint32_t fragmentBudgetMiB = 0; // fragment_budget: the compute path's fragment buffer at most; past it a
+                                    // frame is drawn in pieces (0: automatic, 1/8 of the device's memory
+                                    // within one buffer's range)
     StrandSettings strands;
     ShadowSettings shadows;
     TransparencySettings transparency;

@@ -5,7 +5,8 @@
 #   the seed's workload (900 grown guides x 10 vertices, 12 strands per guide, 42 divisions) at
 #   1080 x 720 and 1920 x 1080; Sintel's groom (11,400 guides) with 1, 4, 8, 16 and 32 strands per
 #   guide at 1920 x 1080 (and 8 at 256 x 144, and 8 without MSAA); a million strands (Sintel x 88
-#   strands per guide, 1,003,200 strands).
+#   strands per guide, 1,003,200 strands); Sintel with 1 and 8 strands per guide close up
+#   (scenes/close-up.json: the hair over about a third of the frame); Sintel with 8 at 3840 x 2160.
 # Usage: scripts/bench_raster.sh OUT_DIR [DATA_DIR] [FRAMES] [WARMUP]
 #   WISP=path/to/wisp picks the binary; DATA_DIR holds sintel/ (default ../shared/data);
 #   ONLY=graphics|compute runs one path; QUICK=1 runs the first three workloads only.
@@ -37,6 +38,9 @@ if [ "${QUICK:-0}" != 1 ]; then
     "sintel-32-1920x1080|--width 1920 --height 1080 ${sintel[*]} --set strands_per_guide=32"
     "sintel-8-1920x1080-1x|--width 1920 --height 1080 ${sintel[*]} --set strands_per_guide=8 --set samples=1"
     "million-1920x1080|--width 1920 --height 1080 ${sintel[*]} --set strands_per_guide=88"
+    "sintel-1-close-1920x1080|--width 1920 --height 1080 ${sintel[*]} --set strands_per_guide=1 --scene $root/scenes/close-up.json"
+    "sintel-8-close-1920x1080|--width 1920 --height 1080 ${sintel[*]} --set strands_per_guide=8 --scene $root/scenes/close-up.json"
+    "sintel-8-3840x2160|--width 3840 --height 2160 ${sintel[*]} --set strands_per_guide=8"
   )
 fi
 for w in "${workloads[@]}"; do
@@ -60,7 +64,7 @@ rows = [json.loads(l) for l in open(sys.argv[1])]
 hair = {"graphics": ["shadow", "opacity", "oit.clear", "hair", "oit.resolve", "oit.composite", "oit.stats"],
         "compute": ["strands.clear", "shadow", "strands.light", "light.depth", "light.opacity", "light.resolve",
                     "light.copy", "strands.generate", "strands.depth", "strands.count", "strands.scan.blocks",
-                    "strands.scan.totals", "strands.scan.offsets", "strands.write", "strands.resolve",
+                    "strands.scan.totals", "strands.scan.offsets", "strands.pieces", "strands.write", "strands.resolve",
                     "hair.composite", "strands.stats"]}
 by = {}
 for r in rows:
@@ -74,7 +78,7 @@ for w, paths in by.items():
             cells += ["-", "-"]
             continue
         ms = r["ms"]
-        cells += ["%.2f" % ms["frame"]["median"], "%.2f" % sum(ms[n]["median"] for n in hair[p] if n in ms)]
+        cells += ["%.2f" % ms["frame"]["median"], "%.2f" % sum(t["median"] for n, t in ms.items() if n.split(" ")[0] in hair[p])]
     try:
         ratio = "%.1fx" % (float(cells[0]) / float(cells[2]))
     except ValueError:

@@ -7,8 +7,11 @@
 // Specialization constant 0 chooses:
 //   false (strands.count): each fragment that stays is counted at its pixel (atomicAdd)
 //   true  (strands.write): written to its pixel's next slot, from a cursor (the counts, which the
-//                          scan set to each pixel's offset); slots past the buffer's capacity are
-//                          skipped (the scan counted them as overflow)
+//                          scan set to each pixel's offset), one piece of the frame a dispatch
+//                          (push.piece, shared/strand_raster.h "Pieces"): only the piece's pixels,
+//                          at their slot less the piece's start, segments off the piece's rows
+//                          not walked; a pixel's fragments past rasterPixelCap are skipped (the
+//                          scan counted them as not drawn)
 // Both variants make exactly the same decisions (the same arithmetic on the same input).
 // Segments with an end behind the camera or outside the depth range are not drawn; nor are those
 // behind the farthest mesh sample of every 8 x 8 tile they reach (the coarse depth of
@@ -31,6 +34,8 @@ layout(set = 0, binding = kRasterBindingDepthRange, std430) readonly buffer Dept
 layout(set = 0, binding = kRasterBindingMeshSamples, std430) readonly buffer MeshSamples { uint meshSamples[]; };
 
 layout(set = 0, binding = kRasterBindingTileDepth, std430) readonly buffer TileDepth { float tileDepth[]; };
+layout(set = 0, binding = kRasterBindingOffsets, std430) readonly buffer Offsets { uint offsets[]; };
+layout(set = 0, binding = kRasterBindingPieces, std430) readonly buffer Pieces { RasterPiece pieces[]; };
 
 shared uint groupSegments;
 shared uint groupHidden;
@@ -59,6 +64,25 @@ void main()
     }
     barrier();
 
+    // The piece this dispatch writes (the whole frame where it is one piece): its pixels, rows and
+    // first slot; whether some pixel holds more than it may keep.
+    uint firstPixel = 0u, endPixel = 0xffffffffu, firstRow = 0u, endRow = 0xffffffffu, base = 0u;
+    bool capped = false;
+    uint cap = push.fragmentCapacity;
+    if (kWrite) {
+        uint stride = counters.stride;
+        if (stride != kRasterOnePiece) {
+            RasterPiece piece = pieces[push.piece];
+            firstPixel = piece.firstPixel;
+            endPixel = piece.endPixel;
+            firstRow = piece.firstRow;
+            endRow = piece.endRow;
+            base = push.piece * stride;
+            cap = rasterPixelCap(push.fragmentCapacity, stride);
+            capped = counters.maxPixel > cap;
+        }
+    }
+
     uint thread = linearInvocation(gl_GlobalInvocationID, gl_NumWorkGroups.x * gl_WorkGroupSize.x);
     uint segment = clumpOrderedSegment(thread, push.divisions, push.drawnPerGuide);
     bool drawn = false;
@@ -71,6 +95,10 @@ void main()
         RasterSegment s = makeRasterSegment(a.xy, b.xy, a.w, b.w);
         ivec4 bounds = ribbonPixelBounds(s, a.xy, b.xy, push.targetWidth, push.targetHeight);
         hidden = drawn && bounds.x <= bounds.z && bounds.y <= bounds.w && !reachesUnhiddenTile(bounds, min(a.z, b.z));
+        if (kWrite) {  // only the piece's rows
+            bounds.y = max(bounds.y, int(firstRow));
+            bounds.w = min(bounds.w, int(min(endRow, 0x7fffffffu)) - 1);
+        }
         if (drawn && !hidden) {
             vec4 colorA = unpackFragmentColor(colors[v]);
             vec4 colorB = unpackFragmentColor(colors[v + 1u]);
@@ -100,7 +128,12 @@ void main()
                     if (alpha < 0.5 / 255.0)
                         continue;  // below what the fragment's 8 bits of alpha hold
                     if (kWrite) {
-                        uint slot = atomicAdd(counts[p], 1u);  // the cursor starts at the pixel's offset
+                        if (p < firstPixel || p >= endPixel)
+                            continue;  // another piece's pixel
+                        uint cursor = atomicAdd(counts[p], 1u);  // it starts at the pixel's offset
+                        if (capped && cursor - offsets[p] >= cap)
+                            continue;
+                        uint slot = cursor - base;
                         if (slot < push.fragmentCapacity)
                             fragments[slot] = uvec2(floatBitsToUint(depth), packFragmentColor(c.rgb, alpha));
                     } else {

@@ -3,8 +3,9 @@
 // from offsets[pixel] to offsets[pixel + 1], as far as the buffer holds them) kept as the list
 // resolve keeps them, the nearest oit_k sorted and the rest blended as one order-independent layer
 // (shared/strand_raster.h insertFragment / resolveFragments; oit_k is specialization constant 0,
-// so the lists stay in registers); the pixel's premultiplied hair written once. hair.composite
-// lays the picture over the target.
+// so the lists stay in registers); the pixel's premultiplied hair written once. One piece of the
+// frame a dispatch (push.piece: its rows of tiles, only its pixels, their slots less the piece's
+// start; shared/strand_raster.h "Pieces"). hair.composite lays the picture over the target.
 #extension GL_GOOGLE_include_directive : require
 // The tail's clear units (tailClearUnits) of each alpha byte, filled at the workgroup's start: a
 // shared-memory load where each fragment of the tail would take a logarithm.
@@ -17,24 +18,32 @@ layout(constant_id = 0) const uint kOitK = 8u;
 layout(push_constant) uniform PushBlock { StrandRasterPush push; };
 layout(set = 0, binding = kRasterBindingOffsets, std430) readonly buffer Offsets { uint offsets[]; };
 layout(set = 0, binding = kRasterBindingFragments, std430) readonly buffer Fragments { uvec2 fragments[]; };
-layout(set = 0, binding = kRasterBindingCounters, std430) buffer Counters { RasterCounters counters; };
+layout(set = 0, binding = kRasterBindingCounters, std430) readonly buffer Counters { RasterCounters counters; };
 layout(set = 0, binding = kRasterBindingHairColor, rgba16f) uniform writeonly image2D hairColor;
-
-shared uint groupMost;
+layout(set = 0, binding = kRasterBindingPieces, std430) readonly buffer Pieces { RasterPiece pieces[]; };
 
 void main()
 {
-    if (gl_LocalInvocationIndex == 0u)
-        groupMost = 0u;
     for (uint a = gl_LocalInvocationIndex; a < 256u; a += gl_WorkGroupSize.x * gl_WorkGroupSize.y)
         tailClearTable[a] = tailClearUnits(a);
     barrier();
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    bool inside = pixel.x < int(push.targetWidth) && pixel.y < int(push.targetHeight);
+    uint stride = counters.stride;
+    uint firstPixel = 0u, endPixel = 0xffffffffu, base = 0u, cap = push.fragmentCapacity;
+    uvec2 origin = uvec2(0u);
+    if (stride != kRasterOnePiece) {
+        RasterPiece piece = pieces[push.piece];
+        firstPixel = piece.firstPixel;
+        endPixel = piece.endPixel;
+        origin.y = piece.resolveRow * 8u;
+        base = push.piece * stride;
+        cap = rasterPixelCap(push.fragmentCapacity, stride);
+    }
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy + origin);
+    uint p = uint(pixel.y) * push.targetWidth + uint(pixel.x);
+    bool inside = pixel.x < int(push.targetWidth) && pixel.y < int(push.targetHeight) && p >= firstPixel && p < endPixel;
     if (inside) {
-        uint p = uint(pixel.y) * push.targetWidth + uint(pixel.x);
-        uint begin = min(offsets[p], push.fragmentCapacity);
-        uint end = min(offsets[p + 1u], push.fragmentCapacity);
+        uint begin = min(offsets[p] - base, push.fragmentCapacity);
+        uint end = min(begin + min(offsets[p + 1u] - offsets[p], cap), push.fragmentCapacity);
         const uint k = kOitK;  // 1 .. kMaxOitK (the renderer clamps it)
         PixelFragments f = emptyPixelFragments();
         // The list in batches of eight, the next batch's loads issued before this one's inserts: a
@@ -62,10 +71,5 @@ void main()
             batch = ahead;
         }
         imageStore(hairColor, pixel, resolveFragments(f, k));
-        if (end > begin)
-            atomicMax(groupMost, end - begin);
     }
-    barrier();
-    if (gl_LocalInvocationIndex == 0u && groupMost > 0u)
-        atomicMax(counters.maxPixel, groupMost);
 }

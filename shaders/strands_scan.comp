@@ -2,12 +2,16 @@
 // strands_scan.comp: the exclusive prefix sum of the pixels' fragment counts (and one count past
 // the last pixel, always 0, so its offset is the total), in three dispatches; specialization
 // constant 0 chooses the phase:
-//   0 (strands.scan.blocks)  one workgroup per block of kRasterScanBlock counts: its total
+//   0 (strands.scan.blocks)  one workgroup per block of kRasterScanBlock counts: its total, and
+//                            the largest count into the counters (maxPixel)
 //   1 (strands.scan.totals)  one workgroup: the blocks' totals scanned into their offsets; the
-//                            grand total, the capacity and what does not fit into the counters
+//                            grand total, the capacity, and the pieces the frame takes with
+//                            their stride (rasterPieceStride, rasterPieces) into the counters
 //   2 (strands.scan.offsets) one workgroup per block: each count's offset (its block's plus its
 //                            own within the block); each pixel's count becomes its write cursor,
-//                            starting at its offset (strands.write takes its slots from it)
+//                            starting at its offset (strands.write takes its slots from it); the
+//                            fragments a pixel holds past rasterPixelCap (more than half the
+//                            buffer in one pixel) are counted as not drawn
 #extension GL_GOOGLE_include_directive : require
 #include "shared/strand_raster.h"
 
@@ -20,6 +24,7 @@ layout(set = 0, binding = kRasterBindingBlockSums, std430) buffer BlockSums { ui
 layout(set = 0, binding = kRasterBindingCounters, std430) buffer Counters { RasterCounters counters; };
 
 shared uint sums[kRasterScanGroupSize];
+shared uint groupMost;
 
 // The exclusive prefix of `value` over the workgroup; `total` gets the sum of all.
 uint exclusiveScan(uint lane, uint value, out uint total)
@@ -55,15 +60,20 @@ void main()
             offset += s;
         }
         if (lane == 0u) {
+            uint stride = rasterPieceStride(total, push.fragmentCapacity, counters.maxPixel);
             counters.fragments = total;
             counters.capacity = push.fragmentCapacity;
-            counters.overflow = total > push.fragmentCapacity ? total - push.fragmentCapacity : 0u;
+            counters.stride = stride;
+            counters.pieces = rasterPieces(total, stride);
         }
         return;
     }
     uint block = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
     if (block >= push.scanBlocks)
         return;  // (whole workgroups)
+    if (lane == 0u)
+        groupMost = 0u;
+    barrier();
     uint per = kRasterScanBlock / gl_WorkGroupSize.x;
     uint first = block * kRasterScanBlock + lane * per;
     uint values[4];
@@ -75,17 +85,27 @@ void main()
     uint total;
     uint offset = exclusiveScan(lane, sum, total);
     if (kPhase == 0u) {
-        if (lane == 0u)
+        atomicMax(groupMost, max(max(values[0], values[1]), max(values[2], values[3])));
+        barrier();
+        if (lane == 0u) {
             blockSums[block] = total;
+            if (groupMost > 0u)
+                atomicMax(counters.maxPixel, groupMost);
+        }
         return;
     }
     offset += blockSums[block];
+    uint cap = rasterPixelCap(counters.capacity, counters.stride);
+    uint notDrawn = 0u;
     for (uint i = 0u; i < 4u; ++i) {
         if (i < per && first + i < count) {
             offsets[first + i] = offset;
             if (first + i + 1u < count)
                 counts[first + i] = offset;  // the pixel's write cursor (the count past the last stays 0)
+            notDrawn += values[i] > cap ? values[i] - cap : 0u;
             offset += values[i];
         }
     }
+    if (notDrawn > 0u)
+        atomicAdd(counters.overflow, notDrawn);
 }

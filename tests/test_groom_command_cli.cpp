@@ -124,3 +124,23 @@ TEST(Cli, SimulateReportsTheTipsLagBehindAHeadTurn)
     EXPECT_GE(soft["peak"].get<double>(), soft["final"].get<double>());
     EXPECT_LT(rigid["peak"].get<double>(), 0.5) << rigid;
 }
+
+TEST(GroomCommandCli, ALoadedGroomsDensityIsChosenAndSaidUnlessGiven)
+{
+    // A groom of 4,000 strands, written by `wisp groom`, drawn on the default head: 25 strands
+    // each (about 100,000), said in one line; strands_per_guide given on the command line wins.
+    TempDir dir;
+    std::filesystem::path groom = dir / "groom.tfx";
+    ASSERT_EQ(runWisp("groom --guides 4000 --vertices 8 --out " + quoted(groom)).status, 0);
+    std::string render = "render --width 48 --height 36 --hair " + quoted(groom) + " --out " + quoted(dir / "a.png");
+    RunResult chosen = runWisp(render);
+    ASSERT_EQ(chosen.status, 0) << chosen.err;
+    EXPECT_NE(chosen.out.find("hair density: 4000 strands in the file, each drawn as 25 (strands_per_guide"),
+              std::string::npos)
+        << chosen.out;
+    EXPECT_NE(chosen.out.find("4000 guides x 25 strands"), std::string::npos) << chosen.out;
+    RunResult given = runWisp(render + " --set strands_per_guide=3");
+    ASSERT_EQ(given.status, 0) << given.err;
+    EXPECT_EQ(given.out.find("hair density"), std::string::npos) << given.out;
+    EXPECT_NE(given.out.find("4000 guides x 3 strands"), std::string::npos) << given.out;
+}

@@ -215,6 +215,7 @@ TEST(Workload, ComputeRasterMemoryByHand)
                       + 5u * 4u                    // the scan's block sums: ceil(5001 / 1024)
                       + 64u * 64u * (4u + 16u)     // the light's depth and opacity layers per texel
                       + (1u << 18) * 8u            // at least 2^18 fragments of 8 bytes (120 segments x 8 is fewer)
+                      + 64u * 48u                  // the pieces the frame may record: their pixels and dispatches
                       + 5000u * 8u                 // the hair image, RGBA16F
                       + 5000u * 4u * 4u            // the meshes' depth samples the strands test against
                       // the meshes in compute: each sample's depth and triangle, their colour
@@ -222,8 +223,8 @@ TEST(Workload, ComputeRasterMemoryByHand)
                       + 5000u * (4u * 8u + 8u + 4u);
     EXPECT_EQ(m.raster, byHand);
     EXPECT_EQ(m.total(), m.simulation + m.hair + m.target + m.lightMaps + m.oit + m.raster);
-    // The OIT lists are made with transparency=oit whichever path draws: still counted.
-    EXPECT_EQ(m.oit, 5000u * (4u + 8u + 120u));
+    // The OIT lists are the graphics path's: not made when the compute path draws the hair.
+    EXPECT_EQ(m.oit, 0u);
     r.hairRaster = HairRaster::Auto; // compute everywhere measured
     EXPECT_EQ(estimateGpuMemory(w).raster, byHand);
     r.hairRaster = HairRaster::Graphics;
@@ -239,9 +240,42 @@ TEST(Workload, ComputeRasterMemoryByHand)
     vk::DeviceReport small;
     small.maxStorageBufferRange = 1u << 20; // holds 2^17 fragments
     EXPECT_EQ(estimateGpuMemory(w).raster - estimateGpuMemory(w, small).raster, 8000000u * 8u - (1u << 20));
+    // Within the budget: an eighth of the device's memory (8 MiB of 64), or fragment_budget.
+    vk::DeviceReport device;
+    device.maxStorageBufferRange = std::numeric_limits<uint32_t>::max();
+    device.deviceLocalBytes = uint64_t(64) << 20;
+    uint64_t unbounded = estimateGpuMemory(w).raster;
+    EXPECT_EQ(unbounded - estimateGpuMemory(w, device).raster, 8000000u * 8u - (8u << 20));
+    r.fragmentBudgetMiB = 4;
+    EXPECT_EQ(unbounded - estimateGpuMemory(w).raster, 8000000u * 8u - (4u << 20));
+    r.fragmentBudgetMiB = 0;
     // No hair, or the simulation alone: nothing drawn.
     EXPECT_EQ(estimateGpuMemory({.guides = 0, .verticesPerStrand = 4, .sim = sim, .render = &r}).raster, 0u);
     EXPECT_EQ(estimateGpuMemory({.guides = 10, .verticesPerStrand = 4, .sim = sim, .render = nullptr}).raster, 0u);
+}
+
+TEST(Workload, ABufferPastOneStorageBuffersRangeIsRefusedUpFront)
+{
+    // 50 guides x 4096 strands x 65 vertices of 16 bytes: 212,992,000 bytes of strand vertices for
+    // the compute path, past lavapipe's 128 MiB a storage buffer may hold (validation would
+    // refuse the binding; a driver that does not check would read past it).
+    vk::DeviceReport device;
+    device.name = "Range GPU";
+    device.deviceLocalBytes = uint64_t(8) << 30;
+    device.maxStorageBufferRange = 134217728;
+    RenderSettings r;
+    r.width = 64;
+    r.height = 48;
+    r.strands.strandsPerGuide = 4096;
+    r.strands.divisions = 64;
+    r.hairRaster = HairRaster::Compute;
+    Workload w{.guides = 50, .verticesPerStrand = 16, .sim = {}, .render = &r};
+    std::string what = errorOf([&] { checkWorkload(w, device); });
+    EXPECT_NE(what.find("strands.vertices needs 212992000 bytes"), std::string::npos) << what;
+    EXPECT_NE(what.find("more than the 134217728 bytes one storage buffer may hold on 'Range GPU'"), std::string::npos)
+        << what;
+    r.strands.strandsPerGuide = 2048; // 106,496,000 bytes: fits
+    EXPECT_EQ(errorOf([&] { checkWorkload(w, device); }), "");
 }
 
 TEST(Workload, DrawnStrandsAndSegmentsMustFit32Bits)
@@ -315,4 +349,19 @@ TEST(Workload, AComputeRasterTooLargeForTheDeviceIsNamed)
     EXPECT_NE(what.find("strands_per_guide, divisions, the size"), std::string::npos) << what;
     r.hairRaster = HairRaster::Graphics; // the tessellation keeps no per-vertex buffers: it fits
     EXPECT_EQ(errorOf([&] { checkWorkload(w, device); }), "");
+}
+
+TEST(Workload, ALoadedGroomIsDrawnAtAboutAHundredThousandStrands)
+{
+    // A file of every strand of a groom draws each once or twice; one of sparse guides draws more,
+    // at most the default's 32 a guide.
+    uint32_t most = StrandSettings{}.strandsPerGuide;
+    EXPECT_EQ(loadedStrandsPerGuide(150000, most), 1u);
+    EXPECT_EQ(loadedStrandsPerGuide(100000, most), 1u);
+    EXPECT_EQ(loadedStrandsPerGuide(50000, most), 2u);
+    EXPECT_EQ(loadedStrandsPerGuide(11400, most), 9u); // Sintel's groom: 102,600 strands
+    EXPECT_EQ(loadedStrandsPerGuide(10000, most), 10u);
+    EXPECT_EQ(loadedStrandsPerGuide(228, most), 32u); // Sintel lite's: capped
+    EXPECT_EQ(loadedStrandsPerGuide(228, 4), 4u);
+    EXPECT_EQ(loadedStrandsPerGuide(0, most), most);
 }

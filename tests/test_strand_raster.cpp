@@ -25,6 +25,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <map>
 #include <memory>
 
@@ -37,9 +38,9 @@ struct uvec2Fragment { // as strands.write stores a fragment
     uint32_t depth;    // float bits
     uint32_t color;
 };
-constexpr Buffer kReadBuffers[] = {Buffer::Curves,      Buffer::Vertices,    Buffer::Colors,    Buffer::LightVertices,
-                                   Buffer::LightColors, Buffer::Offsets,     Buffer::Fragments, Buffer::Counters,
-                                   Buffer::LightDepth,  Buffer::LightOpacity};
+constexpr Buffer kReadBuffers[] = {Buffer::Curves,      Buffer::Vertices,     Buffer::Colors,    Buffer::LightVertices,
+                                   Buffer::LightColors, Buffer::Offsets,      Buffer::Fragments, Buffer::Counters,
+                                   Buffer::LightDepth,  Buffer::LightOpacity, Buffer::Pieces};
 
 // Copies the compute path's buffers, its hair image, the compute meshes' samples (depth and
 // triangle, one sample a pixel) and their colour to the host at the end of the frame that made them.
@@ -149,6 +150,7 @@ struct RasterFrame {
     std::vector<glm::uvec4> triangles;
     gpu::MeshRasterPush meshes{};
     reference::MeshObject head, sphere; // as the renderer uploaded them
+    uint32_t recordedPieces = 1;
 
     reference::StrandVertices strands(bool fromLight) const
     {
@@ -159,7 +161,10 @@ struct RasterFrame {
     }
 };
 
-RasterFrame renderRasterFrame(const vk::Context& ctx, const HairScene& scene, RenderSettings s)
+// One frame of the compute path with every buffer read back; `fragmentBudget` > 0 holds the
+// fragment buffer to that many (the frame records one piece and one spare).
+RasterFrame renderRasterFrame(const vk::Context& ctx, const HairScene& scene, RenderSettings s,
+                              uint64_t fragmentBudget = 0)
 {
     s.hairRaster = HairRaster::Compute;
     s.samples = 1; // the meshes' depth read back as one sample per pixel
@@ -168,9 +173,12 @@ RasterFrame renderRasterFrame(const vk::Context& ctx, const HairScene& scene, Re
     GpuSolver& solver = hair.solver;
     Frame frame(ctx, 1);
     OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(s.width) / float(s.height));
+    if (fragmentBudget > 0)
+        renderer.strandRaster()->setFragmentCapacity(fragmentBudget);
     FrameContext& fc = frame.begin(renderer.transientImages());
     renderer.prepare(fc, camera, 0.0f);
     RasterFrame out;
+    out.recordedPieces = renderer.strandRaster()->recordedPieces();
     out.readback =
         std::make_unique<RasterReadback>(ctx, *renderer.strandRaster(), *renderer.meshRaster(), renderer.target());
     std::vector<Pass*> passes = renderer.passes();
@@ -321,6 +329,48 @@ TEST(StrandRaster, CameraKernelsMatchTheirCpuTwin)
             EXPECT_LT(worstTwin, 0.05) << "a fragment's 8-bit step, or one fragment more or less at an edge";
             EXPECT_LT(sumTwin / double(pixels * 4), 2e-4);
         }
+    }
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
+TEST(StrandRaster, ThePiecesKernelMatchesItsCpuTwin)
+{
+    // strands.pieces from the GPU's own scan, with the buffer held to a quarter of the frame's
+    // fragments (two pieces recorded of the five it needs) and unbounded (one piece and a spare).
+    vk::Context ctx(test::validatedOptions());
+    HairScene scene = test::smallHairScene(60);
+    RenderSettings s = test::smallRenderSettings();
+    s.shadows.enabled = false;
+    RasterFrame whole = renderRasterFrame(ctx, scene, s);
+    gpu::RasterCounters wholeCounters = whole.readback->read<gpu::RasterCounters>(Buffer::Counters, 1)[0];
+    ASSERT_GT(wholeCounters.fragments, 4000u);
+    for (uint64_t budget : {uint64_t(0), uint64_t(wholeCounters.fragments / 4)}) {
+        SCOPED_TRACE("budget " + std::to_string(budget));
+        RasterFrame f = budget > 0 ? renderRasterFrame(ctx, scene, s, budget) : std::move(whole);
+        size_t pixels = size_t(f.camera.targetWidth) * f.camera.targetHeight;
+        std::vector<uint32_t> offsets = f.readback->read<uint32_t>(Buffer::Offsets, pixels + 1);
+        gpu::RasterCounters c = f.readback->read<gpu::RasterCounters>(Buffer::Counters, 1)[0];
+        EXPECT_EQ(c.fragments, offsets[pixels]);
+        EXPECT_EQ(c.stride, gpu::rasterPieceStride(c.fragments, c.capacity, c.maxPixel));
+        EXPECT_EQ(c.pieces, gpu::rasterPieces(c.fragments, c.stride));
+        EXPECT_EQ(c.pieces >= 5u, budget > 0) << c.pieces;
+        EXPECT_EQ(c.pieces == 1u, budget == 0) << c.pieces;
+        ASSERT_EQ(f.recordedPieces, 2u);
+        uint32_t notDrawn = 0;
+        std::vector<gpu::RasterPiece> cpu =
+            reference::framePieces(f.camera, offsets, c.stride, c.pieces, f.recordedPieces, &notDrawn);
+        std::vector<gpu::RasterPiece> gpu = f.readback->read<gpu::RasterPiece>(Buffer::Pieces, f.recordedPieces);
+        auto text = [](const gpu::RasterPiece& r) {
+            const uint32_t* w = reinterpret_cast<const uint32_t*>(&r);
+            std::string t;
+            for (size_t i = 0; i < sizeof(r) / 4; ++i)
+                t += std::to_string(w[i]) + " ";
+            return t;
+        };
+        for (uint32_t p = 0; p < f.recordedPieces; ++p)
+            EXPECT_EQ(text(cpu[p]), text(gpu[p])) << "piece " << p;
+        EXPECT_EQ(c.overflow, notDrawn);
+        EXPECT_EQ(notDrawn > 0, budget > 0);
     }
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
@@ -558,30 +608,90 @@ TEST(StrandRaster, TwoRendersAreIdentical)
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 
-TEST(StrandRaster, AFullFragmentBufferIsCountedAndGrowsForTheNextFrame)
+TEST(StrandRaster, ASmallBudgetDrawsTheSamePictureInPieces)
 {
+    // The fragment buffer held to a fifth of what the frame needs: the frame is drawn in pieces,
+    // byte for byte the picture of an unbounded buffer. The first frame after the budget shrinks
+    // records the pieces its slot needed before (one, and one spare): it counts what it could
+    // not draw, and the next frame records enough.
     vk::Context ctx(test::validatedOptions());
     HairScene scene = test::smallHairScene(150);
     RenderSettings s = test::smallRenderSettings();
     s.hairRaster = HairRaster::Compute;
     Picture reference = test::renderHair(ctx, scene, s);
+    ASSERT_EQ(reference.raster.pieces, 1u);
+    ASSERT_EQ(reference.raster.overflow, 0u);
 
     test::HairRenderer hair(ctx, scene, s);
     Renderer& renderer = hair.renderer;
     Frame frame(ctx, 1);
     OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(s.width) / float(s.height));
-    // A first frame sizes the fragment buffer; then it is made far too small.
-    renderFrame(ctx, renderer, frame, camera);
-    renderer.strandRaster()->setFragmentCapacity(1000);
-    Picture small = renderFrame(ctx, renderer, frame, camera);
-    EXPECT_EQ(small.raster.capacity, 1000u);
-    EXPECT_GT(small.raster.fragments, 1000u);
-    EXPECT_EQ(small.raster.overflow, small.raster.fragments - 1000u) << "every fragment past the capacity is counted";
-    EXPECT_NE(small.rgba, reference.rgba) << "the fragments that did not fit are missing";
-    Picture grown = renderFrame(ctx, renderer, frame, camera);
-    EXPECT_GE(grown.raster.capacity, small.raster.fragments);
-    EXPECT_EQ(grown.raster.overflow, 0u);
-    EXPECT_EQ(grown.rgba, reference.rgba) << "once grown, nothing is missing";
+    Picture whole = renderFrame(ctx, renderer, frame, camera);
+    EXPECT_EQ(whole.rgba, reference.rgba);
+    uint64_t budget = whole.raster.fragments / 5;
+    ASSERT_GT(budget, 2 * whole.raster.maxPixel) << "every pixel fits half the budget";
+    renderer.strandRaster()->setFragmentCapacity(budget);
+    Picture first = renderFrame(ctx, renderer, frame, camera);
+    EXPECT_EQ(renderer.strandRaster()->recordedPieces(), 2u);
+    EXPECT_EQ(first.raster.capacity, budget);
+    EXPECT_EQ(first.raster.fragments, whole.raster.fragments);
+    EXPECT_GE(first.raster.pieces, 5u);
+    EXPECT_GT(first.raster.overflow, 0u) << "the pieces past the two recorded are counted";
+    EXPECT_LT(first.raster.overflow, first.raster.fragments);
+    // (Its pixels past the recorded pieces are not resolved: the hair image keeps what it held.)
+    Picture pieces = renderFrame(ctx, renderer, frame, camera);
+    EXPECT_GE(renderer.strandRaster()->recordedPieces(), first.raster.pieces);
+    EXPECT_EQ(pieces.raster.capacity, budget) << "the buffer stays within the budget";
+    EXPECT_EQ(pieces.raster.pieces, first.raster.pieces);
+    EXPECT_EQ(pieces.raster.overflow, 0u);
+    EXPECT_EQ(pieces.raster.maxPixel, whole.raster.maxPixel);
+    EXPECT_EQ(pieces.rgba, reference.rgba) << "pieces draw the picture of an unbounded buffer";
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
+TEST(StrandRaster, PiecesDrawEveryCaseByteForByte)
+{
+    // The cases the paths are compared in (a loaded groom with its own head, MSAA meshes, the
+    // nearest fragment alone, blonde backlit hair), each drawn whole and with a buffer of a
+    // third of its fragments.
+    vk::Context ctx(test::validatedOptions());
+    struct Case {
+        const char* name;
+        std::function<void(RenderSettings&)> set;
+        bool loaded;
+    };
+    for (const Case& c : {Case{"default", [](RenderSettings&) {}, false},
+                          Case{"one sorted", [](RenderSettings& s) { s.transparency.oitK = 1; }, false},
+                          Case{"single sample", [](RenderSettings& s) { s.samples = 1; }, false},
+                          Case{"loaded", [](RenderSettings&) {}, true}}) {
+        SCOPED_TRACE(c.name);
+        HairScene scene;
+        if (c.loaded) { // (last: without the data, the cases before it have run)
+            WISP_REQUIRE_DATA(head, "sintel-lite/sintel_lite.obj");
+            WISP_REQUIRE_DATA(hair, "sintel-lite/sintel_hair_228x32.tfx");
+            HairSource source;
+            source.headFile = head;
+            source.hairFiles = {hair.string()};
+            scene = source.buildScene(Settings{});
+        } else {
+            scene = test::smallHairScene(120);
+        }
+        RenderSettings s = test::smallRenderSettings();
+        s.hairRaster = HairRaster::Compute;
+        c.set(s);
+        test::HairRenderer hair(ctx, scene, s);
+        Frame frame(ctx, 1);
+        OrbitCamera camera = OrbitCamera::framing(hair.renderer.sceneBounds(), float(s.width) / float(s.height));
+        Picture whole = renderFrame(ctx, hair.renderer, frame, camera);
+        ASSERT_EQ(whole.raster.pieces, 1u);
+        hair.renderer.strandRaster()->setFragmentCapacity(
+            std::max(whole.raster.fragments / 3, 2 * whole.raster.maxPixel));
+        renderFrame(ctx, hair.renderer, frame, camera); // records the pieces the next one needs
+        Picture pieces = renderFrame(ctx, hair.renderer, frame, camera);
+        EXPECT_GE(pieces.raster.pieces, 2u);
+        EXPECT_EQ(pieces.raster.overflow, 0u);
+        EXPECT_EQ(pieces.rgba, whole.rgba);
+    }
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 
@@ -616,7 +726,7 @@ TEST(StrandRaster, DeviceBytesIsWhatItAllocates)
                                                        .divisions = cam.divisions,
                                                        .lightMapSize = s.shadows.mapSize,
                                                        .samples = uint32_t(renderer.target().samples()),
-                                                       .maxStorageBufferRange = ctx.report().maxStorageBufferRange});
+                                                       .fragmentBudget = raster.fragmentBudget()});
         EXPECT_EQ(raster.allocatedBytes(), estimate) << "shadows " << shadows;
         ASSERT_NE(renderer.meshRaster(), nullptr) << "the meshes drawn in compute too";
         uint64_t meshes = renderer.meshRaster()->allocatedBytes();
@@ -638,8 +748,29 @@ TEST(StrandRaster, StatsAreDescribedInOneLine)
     RasterStats s{.segments = 1200, .hidden = 300, .fragments = 5000, .capacity = 8000, .overflow = 0, .maxPixel = 17};
     EXPECT_EQ(describeRasterStats(s), "compute raster: 1200 segments on screen (300 behind the meshes), 5000 hair "
                                       "fragments (at most 17 in a pixel), buffer of 8000");
-    s.capacity = 4000;
+    s.capacity = 2000;
+    s.pieces = 3;
+    EXPECT_EQ(describeRasterStats(s), "compute raster: 1200 segments on screen (300 behind the meshes), 5000 hair "
+                                      "fragments (at most 17 in a pixel), buffer of 2000, drawn in 3 pieces");
     s.overflow = 1000;
     EXPECT_EQ(describeRasterStats(s), "compute raster: 1200 segments on screen (300 behind the meshes), 5000 hair "
-                                      "fragments (at most 17 in a pixel), buffer of 4000, dropped 1000");
+                                      "fragments (at most 17 in a pixel), buffer of 2000, drawn in 3 pieces, 1000 not "
+                                      "drawn (more pieces are recorded for the next frame)");
+}
+
+TEST(StrandRaster, TheFragmentBudgetSettingDrawsTheSamePicture)
+{
+    // `wisp render` with the smallest budget (1 MiB: 131,072 fragments) draws the frame in pieces,
+    // says so, and writes the PNG of the automatic budget byte for byte.
+    test::TempDir dir;
+    std::string common = "--validation render --guides 300 --width 240 --height 180 --set strands_per_guide=32 ";
+    test::RunResult whole = test::runWisp(common + "--out '" + (dir / "whole.png").string() + "'");
+    ASSERT_EQ(whole.status, 0) << whole.err;
+    test::RunResult pieces =
+        test::runWisp(common + "--set fragment_budget=1 --out '" + (dir / "pieces.png").string() + "'");
+    ASSERT_EQ(pieces.status, 0) << pieces.err;
+    EXPECT_EQ(whole.out.find("pieces"), std::string::npos) << whole.out;
+    EXPECT_NE(pieces.out.find("buffer of 131072, drawn in "), std::string::npos) << pieces.out;
+    EXPECT_EQ(pieces.err.find("warning"), std::string::npos) << pieces.err;
+    EXPECT_EQ(test::readFile(dir / "pieces.png"), test::readFile(dir / "whole.png"));
 }

@@ -482,3 +482,64 @@ TEST(MeshRasterMath, SharedEdgesLeaveNoGapAndNoOverlap)
     EXPECT_GT(inside, size_t(size.x * size.y) / 5);
     EXPECT_LE(twice, inside / 500) << "samples exactly on an edge count for both sides, nothing more";
 }
+
+TEST(RasterPieces, EveryPieceFitsTheBufferAndEveryPixelIsWholeInOne)
+{
+    // Pixels' fragment counts (mostly few, some many, runs of none), scanned as strands_scan.comp
+    // scans them, split into pieces for buffers from ample to a few times the largest pixel, and
+    // below it (a pixel holding more than half the buffer keeps what fits).
+    std::mt19937 rng(7);
+    for (int trial = 0; trial < 40; ++trial) {
+        std::vector<uint32_t> counts(1 + rng() % 3000);
+        for (uint32_t& c : counts) {
+            uint32_t kind = uint32_t(rng() % 10);
+            c = uint32_t(kind < 4 ? 0 : kind < 9 ? rng() % 12 : rng() % 400);
+        }
+        std::vector<uint32_t> offsets(counts.size() + 1, 0);
+        std::partial_sum(counts.begin(), counts.end(), offsets.begin() + 1);
+        uint32_t total = offsets.back();
+        uint32_t most = *std::max_element(counts.begin(), counts.end());
+        for (uint32_t capacity : {total + 5, total, std::max(total / 3, 1u), std::max(2 * most + 1, 2u),
+                                  std::max(most, 2u), std::max(most / 2, 2u)}) {
+            uint32_t stride = gpu::rasterPieceStride(total, capacity, most);
+            uint32_t pieces = gpu::rasterPieces(total, stride);
+            uint32_t cap = gpu::rasterPixelCap(capacity, stride);
+            SCOPED_TRACE("trial " + std::to_string(trial) + ", capacity " + std::to_string(capacity));
+            if (total <= capacity) {
+                EXPECT_EQ(pieces, 1u) << "a frame that fits is one piece";
+                EXPECT_EQ(cap, capacity);
+            } else {
+                EXPECT_GE(pieces, 2u);
+                EXPECT_LE(uint64_t(pieces - 1) * stride, total) << "no piece past the last pixel's offset";
+            }
+            if (2 * most <= capacity) {
+                EXPECT_GE(cap, most) << "no pixel loses fragments unless it holds more than half the buffer";
+            }
+            // Each piece's slots: inside the buffer, one fragment each.
+            std::vector<std::vector<bool>> used(pieces, std::vector<bool>(capacity, false));
+            for (size_t p = 0; p < counts.size(); ++p) {
+                uint32_t piece = stride == gpu::kRasterOnePiece ? 0u : offsets[p] / stride;
+                ASSERT_LT(piece, pieces) << "pixel " << p;
+                uint32_t base = piece * (stride == gpu::kRasterOnePiece ? 0u : stride);
+                for (uint32_t i = 0; i < std::min(counts[p], cap); ++i) {
+                    uint32_t slot = offsets[p] + i - base;
+                    ASSERT_LT(slot, capacity) << "pixel " << p << " fragment " << i;
+                    ASSERT_FALSE(used[piece][slot]) << "pixel " << p << " fragment " << i;
+                    used[piece][slot] = true;
+                }
+            }
+        }
+    }
+}
+
+TEST(RasterPieces, LinearGroupsCoverEveryItemWithinTheDispatchLimit)
+{
+    for (uint32_t items : {0u, 1u, 64u, 65u, 65535u * 64u, 65535u * 64u + 1u, 123456789u, 0xffffffffu}) {
+        glm::uvec2 g = gpu::rasterLinearGroups(items, 64);
+        EXPECT_LE(g.x, 65535u) << items;
+        EXPECT_GE(uint64_t(g.x) * g.y * 64, items) << items;
+        EXPECT_LT(uint64_t(g.x) * (g.y > 0 ? g.y - 1 : 0) * 64, std::max<uint64_t>(items, 1))
+            << "no empty row " << items;
+        EXPECT_EQ(items == 0, g.x == 0 && g.y == 0) << items;
+    }
+}

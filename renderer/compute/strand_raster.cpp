@@ -18,10 +18,11 @@ namespace wisp {
 
 static_assert(sizeof(gpu::StrandRasterPush) == 80, "StrandRasterPush must fit the 128 bytes of push constants");
 static_assert(sizeof(gpu::RasterCounters) == 32);
+static_assert(sizeof(gpu::RasterPiece) == 48 && offsetof(gpu::RasterPiece, walkGroups) == 16 &&
+                  offsetof(gpu::RasterPiece, resolveGroups) == 32,
+              "RasterPiece must match its std430 layout (its dispatches are read at these offsets)");
 
 namespace {
-
-constexpr uint32_t kMaxGroupsPerDimension = 65535; // maxComputeWorkGroupCount's guaranteed minimum
 
 const char* stageName(StrandRaster::Stage stage)
 {
@@ -52,6 +53,8 @@ const char* stageName(StrandRaster::Stage stage)
         return "strands.scan.totals";
     case StrandRaster::Stage::ScanOffsets:
         return "strands.scan.offsets";
+    case StrandRaster::Stage::Pieces:
+        return "strands.pieces";
     case StrandRaster::Stage::Write:
         return "strands.write";
     case StrandRaster::Stage::Resolve:
@@ -63,6 +66,26 @@ const char* stageName(StrandRaster::Stage stage)
 }
 
 constexpr uint32_t kScanBlockThreads = 256; // strands_scan.comp's blocks: 4 counts a thread
+constexpr VkBufferUsageFlags kIndirect = VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
+
+// strands.write or strands.resolve of one recorded piece.
+class PiecePass : public Pass {
+public:
+    PiecePass(StrandRaster& owner, StrandRaster::Stage stage, uint32_t piece)
+        : owner_(owner), stage_(stage), piece_(piece),
+          name_(std::string(stageName(stage)) + (piece > 0 ? " " + std::to_string(piece) : ""))
+    {
+    }
+    const char* name() const override { return name_.c_str(); }
+    void declare(PassIo& io) override { owner_.declare(stage_, io); }
+    void record(VkCommandBuffer cmd, FrameContext& frame) override { owner_.record(stage_, cmd, frame, piece_); }
+
+private:
+    StrandRaster& owner_;
+    StrandRaster::Stage stage_;
+    uint32_t piece_;
+    std::string name_;
+};
 
 } // namespace
 
@@ -72,8 +95,10 @@ std::string describeRasterStats(const RasterStats& s)
                        std::to_string(s.hidden) + " behind the meshes), " + std::to_string(s.fragments) +
                        " hair fragments (at most " + std::to_string(s.maxPixel) + " in a pixel), buffer of " +
                        std::to_string(s.capacity);
+    if (s.pieces > 1)
+        text += ", drawn in " + std::to_string(s.pieces) + " pieces";
     if (s.overflow > 0)
-        text += ", dropped " + std::to_string(s.overflow);
+        text += ", " + std::to_string(s.overflow) + " not drawn (more pieces are recorded for the next frame)";
     return text;
 }
 
@@ -111,7 +136,8 @@ StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUn
                            {gpu::kRasterBindingMeshSamples, kStorage, kCompute},
                            {gpu::kRasterBindingLightDepthImage, kImage, kCompute},
                            {gpu::kRasterBindingTileDepth, kStorage, kCompute},
-                           {gpu::kRasterBindingCurves, kStorage, kCompute}},
+                           {gpu::kRasterBindingCurves, kStorage, kCompute},
+                           {gpu::kRasterBindingPieces, kStorage, kCompute}},
               .pushConstantBytes = sizeof(gpu::StrandRasterPush),
               .pushConstantStages = kCompute,
               .name = "strands.layout"});
@@ -136,6 +162,7 @@ StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUn
                                                     {/*kPhase=*/1, gpu::kRasterScanGroupSize});
     scanOffsetsPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_scan.comp", "strands.scan.offsets.pipeline",
                                                      {/*kPhase=*/2, kScanBlockThreads});
+    piecesPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_pieces.comp", "strands.pieces.pipeline");
     lightDepthPipeline_ =
         vk::createComputePipeline(ctx, layout_, "strands_light.comp", "light.depth.pipeline", {/*kOpacity=*/0});
     lightOpacityPipeline_ =
@@ -149,6 +176,8 @@ StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUn
         triangles.data(), triangles.size() * sizeof(glm::uvec4));
     allocate(counters_, sizeof(gpu::RasterCounters), vk::kStorage | vk::kTransferDst | vk::kTransferSrc,
              "strands.counters", nullptr);
+    allocate(pieces_, gpu::kRasterMaxPieces * kPieceBytes, vk::kStorage | kIndirect | vk::kTransferSrc,
+             "strands.pieces", nullptr);
     for (uint32_t i = 0; i < framesInFlight; ++i) {
         readback_.push_back(ctx.createBuffer({.size = sizeof(gpu::RasterCounters),
                                               .usage = vk::kTransferDst,
@@ -158,6 +187,10 @@ StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUn
     }
     for (int s = 0; s <= int(Stage::Stats); ++s)
         passes_.push_back(std::make_unique<StagePass<StrandRaster, Stage>>(*this, Stage(s), stageName(Stage(s))));
+    for (uint32_t piece = 0; piece < gpu::kRasterMaxPieces; ++piece) {
+        piecePasses_.push_back(std::make_unique<PiecePass>(*this, Stage::Write, piece));
+        piecePasses_.push_back(std::make_unique<PiecePass>(*this, Stage::Resolve, piece));
+    }
     resize();
 }
 
@@ -226,6 +259,8 @@ StrandRaster::Storage& StrandRaster::storage(Buffer which)
         return lightDepth_;
     case Buffer::LightOpacity:
         return lightOpacity_;
+    case Buffer::Pieces:
+        return pieces_;
     }
     return counters_;
 }
@@ -236,7 +271,7 @@ uint64_t StrandRaster::allocatedBytes() const
         triangles_.size() + uint64_t(color_.extent().width) * color_.extent().height * vk::formatBytes(color_.format());
     for (const Storage* s :
          {&curves_, &vertices_, &colors_, &lightVertices_, &lightColors_, &counts_, &offsets_, &fragments_, &counters_,
-          &depthRange_, &tileDepth_, &blockSums_, &lightDepth_, &lightOpacity_, &meshSamples_})
+          &depthRange_, &tileDepth_, &blockSums_, &lightDepth_, &lightOpacity_, &meshSamples_, &pieces_})
         bytes += s->buffer ? s->buffer.size() : 0;
     return bytes;
 }
@@ -244,6 +279,11 @@ uint64_t StrandRaster::allocatedBytes() const
 Pass* StrandRaster::pass(Stage stage)
 {
     return passes_[size_t(stage)].get();
+}
+
+Pass* StrandRaster::piecePass(Stage stage, uint32_t piece)
+{
+    return piecePasses_.at(2 * size_t(piece) + (stage == Stage::Resolve ? 1 : 0)).get();
 }
 
 RasterStats StrandRaster::stats(uint32_t slot) const
@@ -255,7 +295,8 @@ RasterStats StrandRaster::stats(uint32_t slot) const
             .fragments = c.fragments,
             .capacity = c.capacity,
             .overflow = c.overflow,
-            .maxPixel = c.maxPixel};
+            .maxPixel = c.maxPixel,
+            .pieces = std::max(c.pieces, 1u)};
 }
 
 void StrandRaster::prepare(FrameContext& frame, const StrandDraw& cameraDraw, const StrandDraw& lightDraw,
@@ -307,20 +348,26 @@ void StrandRaster::prepare(FrameContext& frame, const StrandDraw& cameraDraw, co
                  "strands.light_opacity", &frame);
     }
     // The fragments: room for what this slot's last frame needed (it has completed), with some to
-    // spare; at first a few per segment. Never past what one buffer may hold.
+    // spare, up to the budget; at first a few per segment. Past the budget, pieces: as many as the
+    // last frame took, and a quarter more (at least one) to spare.
     uint64_t segments = uint64_t(camera.guideCount) * camera.drawnPerGuide * camera.divisions;
-    uint64_t limit = fragmentLimit(ctx_.report().maxStorageBufferRange);
-    uint64_t wanted =
-        forcedCapacity_ > 0 ? forcedCapacity_ : initialFragments(segments, ctx_.report().maxStorageBufferRange);
+    const vk::DeviceReport& device = ctx_.report();
+    budget_ = forcedCapacity_ > 0
+                  ? forcedCapacity_
+                  : fragmentBudget(options.fragmentBudgetBytes, device.deviceLocalBytes, device.maxStorageBufferRange);
+    uint64_t wanted = forcedCapacity_ > 0 ? forcedCapacity_ : initialFragments(segments, budget_);
     RasterStats last = stats(frame.slot);
     if (last.fragments > fragmentCapacity_)
         wanted = std::max(wanted, last.fragments + last.fragments / 4);
-    wanted = std::min(wanted, limit);
-    if (wanted > fragmentCapacity_ || !fragments_.buffer) {
-        fragmentCapacity_ = std::max(wanted, fragmentCapacity_);
+    wanted = std::min(wanted, budget_);
+    if (wanted > fragmentCapacity_ || fragmentCapacity_ > budget_ || !fragments_.buffer) {
+        fragmentCapacity_ = fragmentCapacity_ > budget_ ? wanted : std::max(wanted, fragmentCapacity_);
         allocate(fragments_, fragmentCapacity_ * kFragmentBytes, vk::kStorage | vk::kTransferSrc, "strands.fragments",
                  &frame);
     }
+    uint64_t neededPieces = last.fragments > fragmentCapacity_ ? std::max<uint64_t>(last.pieces, 2) : 1;
+    recordedPieces_ =
+        uint32_t(std::min<uint64_t>(neededPieces + std::max<uint64_t>(1, neededPieces / 4), gpu::kRasterMaxPieces));
     // oit_k is the resolve's specialization constant.
     uint32_t k = std::clamp(camera.oitK, 1u, gpu::kMaxOitK);
     if (k != pipelineK_) {
@@ -404,7 +451,7 @@ void StrandRaster::declare(Stage stage, PassIo& io)
         io.use(tileDepth_.track, Access::ComputeWrite);
         io.use(counts_.track, Access::ComputeWrite);
         break;
-    case Stage::Count: // (one shader with strands.write: it binds, never touches, the fragments)
+    case Stage::Count: // (one shader with strands.write: it binds, never touches, the fragments and pieces)
     case Stage::Write:
         io.use(vertices_.track, Access::ComputeRead);
         io.use(colors_.track, Access::ComputeRead);
@@ -414,6 +461,15 @@ void StrandRaster::declare(Stage stage, PassIo& io)
         io.use(counts_.track, Access::ComputeWrite); // counts, then (strands.write) cursors
         io.use(fragments_.track, Access::ComputeWrite);
         io.use(counters_.track, Access::ComputeWrite);
+        io.use(offsets_.track, Access::ComputeRead);
+        io.use(pieces_.track, Access::ComputeRead);
+        if (stage == Stage::Write)
+            io.use(pieces_.track, Access::IndirectRead);
+        break;
+    case Stage::Pieces:
+        io.use(offsets_.track, Access::ComputeRead);
+        io.use(counters_.track, Access::ComputeWrite);
+        io.use(pieces_.track, Access::ComputeWrite);
         break;
     case Stage::ScanBlocks:
     case Stage::ScanTotals:
@@ -426,7 +482,9 @@ void StrandRaster::declare(Stage stage, PassIo& io)
     case Stage::Resolve:
         io.use(offsets_.track, Access::ComputeRead);
         io.use(fragments_.track, Access::ComputeRead);
-        io.use(counters_.track, Access::ComputeWrite);
+        io.use(counters_.track, Access::ComputeRead);
+        io.use(pieces_.track, Access::ComputeRead);
+        io.use(pieces_.track, Access::IndirectRead);
         io.use(colorTrack_, Access::ComputeWrite);
         break;
     case Stage::Stats:
@@ -446,18 +504,25 @@ void StrandRaster::dispatch(VkCommandBuffer cmd, VkPipeline pipeline, const gpu:
     vkCmdDispatch(cmd, x, y, 1);
 }
 
+void StrandRaster::dispatchIndirect(VkCommandBuffer cmd, VkPipeline pipeline, const gpu::StrandRasterPush& push,
+                                    const std::vector<VkWriteDescriptorSet>& writes, VkDeviceSize offset)
+{
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, uint32_t(writes.size()), writes.data());
+    vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdDispatchIndirect(cmd, pieces_.buffer, offset);
+}
+
 void StrandRaster::dispatchLinear(VkCommandBuffer cmd, VkPipeline pipeline, const gpu::StrandRasterPush& push,
                                   const std::vector<VkWriteDescriptorSet>& writes, uint64_t items, uint32_t groupSize)
 {
-    // Rows of at most kMaxGroupsPerDimension groups; the kernels number their items
-    // x + y * (groups per row * group size) and skip those past the end.
-    uint64_t groups = (items + groupSize - 1) / groupSize;
-    uint32_t x = uint32_t(std::min<uint64_t>(groups, kMaxGroupsPerDimension));
-    uint32_t y = x == 0 ? 0 : uint32_t((groups + x - 1) / x);
-    dispatch(cmd, pipeline, push, writes, x, y);
+    // Rows of at most 65535 groups; the kernels number their items x + y * (groups per row *
+    // group size) and skip those past the end (the same rows strands.pieces dispatches the walk in).
+    glm::uvec2 groups = gpu::rasterLinearGroups(uint32_t(items), groupSize);
+    dispatch(cmd, pipeline, push, writes, groups.x, groups.y);
 }
 
-void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
+void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame, uint32_t piece)
 {
     constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     auto whole = [](const Storage& s) { return VkDescriptorBufferInfo{s.buffer, 0, VK_WHOLE_SIZE}; };
@@ -469,7 +534,7 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
     VkDescriptorBufferInfo lightVertices = whole(lightVertices_), lightColors = whole(lightColors_);
     VkDescriptorBufferInfo counts = whole(counts_), offsets = whole(offsets_), fragments = whole(fragments_);
     VkDescriptorBufferInfo counters = whole(counters_), depthRange = whole(depthRange_), blockSums = whole(blockSums_);
-    VkDescriptorBufferInfo tileDepth = whole(tileDepth_);
+    VkDescriptorBufferInfo tileDepth = whole(tileDepth_), pieces = whole(pieces_);
     VkDescriptorBufferInfo lightDepth = whole(lightDepth_), lightOpacity = whole(lightOpacity_);
     VkDescriptorImageInfo meshDepth{depthSampler_, target_.depthImage().view(),
                                     VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL};
@@ -566,9 +631,26 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
             vk::bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters),
             vk::bufferWrite(gpu::kRasterBindingDepthRange, kStorage, &depthRange),
             vk::bufferWrite(gpu::kRasterBindingTileDepth, kStorage, &tileDepth),
-            vk::bufferWrite(gpu::kRasterBindingMeshSamples, kStorage, &meshSamples)};
-        dispatchLinear(cmd, stage == Stage::Count ? countPipeline_.get() : writePipeline_.get(), camera_, writes,
-                       camera_.segmentCount, gpu::kRasterGroupSize);
+            vk::bufferWrite(gpu::kRasterBindingMeshSamples, kStorage, &meshSamples),
+            vk::bufferWrite(gpu::kRasterBindingOffsets, kStorage, &offsets),
+            vk::bufferWrite(gpu::kRasterBindingPieces, kStorage, &pieces)};
+        if (stage == Stage::Count) {
+            dispatchLinear(cmd, countPipeline_, camera_, writes, camera_.segmentCount, gpu::kRasterGroupSize);
+        } else {
+            gpu::StrandRasterPush push = camera_;
+            push.piece = piece;
+            dispatchIndirect(cmd, writePipeline_, push, writes,
+                             piece * kPieceBytes + offsetof(gpu::RasterPiece, walkGroups));
+        }
+        break;
+    }
+    case Stage::Pieces: {
+        std::vector<VkWriteDescriptorSet> writes = {vk::bufferWrite(gpu::kRasterBindingOffsets, kStorage, &offsets),
+                                                    vk::bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters),
+                                                    vk::bufferWrite(gpu::kRasterBindingPieces, kStorage, &pieces)};
+        gpu::StrandRasterPush push = camera_;
+        push.piece = recordedPieces_;
+        dispatch(cmd, piecesPipeline_, push, writes, 1);
         break;
     }
     case Stage::ScanBlocks:
@@ -591,9 +673,12 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
             vk::bufferWrite(gpu::kRasterBindingOffsets, kStorage, &offsets),
             vk::bufferWrite(gpu::kRasterBindingFragments, kStorage, &fragments),
             vk::bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters),
+            vk::bufferWrite(gpu::kRasterBindingPieces, kStorage, &pieces),
             vk::imageWrite(gpu::kRasterBindingHairColor, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &color)};
-        dispatch(cmd, resolvePipeline_, camera_, writes, vk::groupCount(camera_.targetWidth, 8),
-                 vk::groupCount(camera_.targetHeight, 8));
+        gpu::StrandRasterPush push = camera_;
+        push.piece = piece;
+        dispatchIndirect(cmd, resolvePipeline_, push, writes,
+                         piece * kPieceBytes + offsetof(gpu::RasterPiece, resolveGroups));
         break;
     }
     case Stage::Stats: {

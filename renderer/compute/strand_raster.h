@@ -18,15 +18,20 @@
 //   strands.scan.blocks   the counts' prefix sum: each block's total,
 //   strands.scan.totals   the blocks' offsets and the total against the capacity,
 //   strands.scan.offsets  each pixel's first slot
-//   strands.write         each fragment written to its pixel's next slot
-//   strands.resolve       per pixel: the nearest k sorted and the rest blended (the lists'
-//                         semantics), one write
+//   strands.pieces        the pieces of the frame that fit the fragment buffer (one where the
+//                         frame fits): each piece's pixels and its two indirect dispatches
+//   strands.write N       (per piece) each of the piece's fragments written to its pixel's slot
+//   strands.resolve N     (per piece) per pixel: the nearest k sorted and the rest blended (the
+//                         lists' semantics), one write
 //   hair.composite        the hair image over the target
 //   strands.stats         the counters to the host
 // The kernels are shaders/strands_*.comp over shaders/shared/strand_raster.h; their C++ twin is
-// renderer/compute/strand_raster_reference.h. The fragment buffer grows when a frame needs more (the
-// overflowing frame's fragments are counted, never written out of bounds); headless pictures
-// render again.
+// renderer/compute/strand_raster_reference.h. The fragment buffer grows to what a frame needs, up
+// to a budget (fragment_budget, or a share of the device's memory within one buffer's range);
+// a frame past the budget is drawn in pieces (shaders/shared/strand_raster.h "Pieces"), the same
+// picture, never missing hair. The pieces are recorded from what the slot's last frame needed,
+// with room to spare; a frame that needs more than were recorded counts what it left out, and
+// headless pictures render again.
 #pragma once
 
 #include "gpu/handle.h"
@@ -73,8 +78,9 @@ struct RasterStats {
     uint64_t hidden = 0;    // of those, the ones behind the meshes' coarse depth (not walked)
     uint64_t fragments = 0; // fragments the pixels held (what the buffer needed)
     uint64_t capacity = 0;  // fragments the buffer held
-    uint64_t overflow = 0;  // fragments that did not fit: dropped that frame, the buffer grows for the next
+    uint64_t overflow = 0;  // fragments not drawn: pieces past those recorded (more are recorded next frame)
     uint64_t maxPixel = 0;  // the most fragments one pixel held
+    uint64_t pieces = 1;    // the pieces the frame took (1: it fit the buffer whole)
 };
 // "compute raster: S segments on screen (H behind the meshes), F hair fragments (at most P in a pixel), buffer of C"
 // and ", dropped K" when some did not fit: the line `wisp render` prints and the window's panel shows.
@@ -96,6 +102,7 @@ public:
         ScanBlocks,
         ScanTotals,
         ScanOffsets,
+        Pieces,
         Write,
         Resolve,
         Stats
@@ -104,12 +111,17 @@ public:
     static constexpr std::array<Stage, 7> kLightStages = {Stage::Clear,      Stage::Curves,       Stage::LightGenerate,
                                                           Stage::LightDepth, Stage::LightOpacity, Stage::LightResolve,
                                                           Stage::LightCopy};
-    static constexpr std::array<Stage, 8> kCameraStages = {Stage::Generate,   Stage::Depth,      Stage::Count,
+    // (Then strands.write and strands.resolve for each recorded piece: piecePass.)
+    static constexpr std::array<Stage, 7> kCameraStages = {Stage::Generate,   Stage::Depth,      Stage::Count,
                                                            Stage::ScanBlocks, Stage::ScanTotals, Stage::ScanOffsets,
-                                                           Stage::Write,      Stage::Resolve};
+                                                           Stage::Pieces};
     // The fragment buffer holds at least this many fragments, and starts at
     // kInitialFragmentsPerSegment per segment drawn.
     static constexpr uint64_t kMinFragments = 1u << 18;
+    // The automatic budget: this share of the device-local memory (and at most one buffer's range);
+    // any budget holds at least kMinBudget fragments (1 MiB).
+    static constexpr uint64_t kBudgetShareOfMemory = 8;
+    static constexpr uint64_t kMinBudget = 1u << 17;
     static constexpr uint64_t kInitialFragmentsPerSegment = 8;
     // What each buffer holds per item (shaders/shared/strand_raster.h's bindings).
     static constexpr uint64_t kCurvePointBytes = 2 * sizeof(glm::vec4);     // a guide's curve point: position, tangent
@@ -118,6 +130,7 @@ public:
     static constexpr uint64_t kFragmentBytes = 2 * sizeof(uint32_t);        // depth bits, packed colour and opacity
     static constexpr uint64_t kLightDepthBytes = sizeof(float);             // a light texel's first hair depth
     static constexpr uint64_t kLightOpacityBytes = 4 * sizeof(uint32_t);    // its opacity layers, fixed point
+    static constexpr uint64_t kPieceBytes = sizeof(gpu::RasterPiece);       // a recorded piece
     static constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT; // the hair image, premultiplied
 
     // A buffer's size as allocated: never empty.
@@ -127,20 +140,29 @@ public:
     {
         return (maxStorageBufferRange < 0xffffffffull ? maxStorageBufferRange : 0xffffffffull) / kFragmentBytes;
     }
+    // The fragments the buffer may grow to: `budgetBytes` (fragment_budget; 0: automatic, a share
+    // of the device-local memory), within one buffer's range, at least kMinBudget.
+    static constexpr uint64_t fragmentBudget(uint64_t budgetBytes, uint64_t deviceLocalBytes,
+                                             uint64_t maxStorageBufferRange)
+    {
+        uint64_t bytes = budgetBytes > 0 ? budgetBytes : deviceLocalBytes / kBudgetShareOfMemory;
+        uint64_t fragments = bytes / kFragmentBytes > kMinBudget ? bytes / kFragmentBytes : kMinBudget;
+        uint64_t limit = fragmentLimit(maxStorageBufferRange);
+        return fragments < limit ? fragments : limit;
+    }
     // The coarse depth's tiles over a target (kRasterDepthTile pixels a side, partial ones included).
     static constexpr uint64_t depthTiles(VkExtent2D extent)
     {
         return uint64_t((extent.width + gpu::kRasterDepthTile - 1) / gpu::kRasterDepthTile) *
                ((extent.height + gpu::kRasterDepthTile - 1) / gpu::kRasterDepthTile);
     }
-    // The fragment buffer a first frame of `segments` segments gets.
-    static constexpr uint64_t initialFragments(uint64_t segments, uint64_t maxStorageBufferRange)
+    // The fragment buffer a first frame of `segments` segments gets, within the budget.
+    static constexpr uint64_t initialFragments(uint64_t segments, uint64_t budget)
     {
         uint64_t wanted = segments * kInitialFragmentsPerSegment > kMinFragments
                               ? segments * kInitialFragmentsPerSegment
                               : kMinFragments;
-        uint64_t limit = fragmentLimit(maxStorageBufferRange);
-        return wanted < limit ? wanted : limit;
+        return wanted < budget ? wanted : budget;
     }
 
     // What the compute path allocates on the device for a first frame (the fragment buffer grows
@@ -151,9 +173,9 @@ public:
         uint32_t strandsPerGuide = 0;      // drawn for the camera (all of them at full detail)
         uint32_t lightStrandsPerGuide = 0; // drawn into the light's maps (0: shadows off)
         uint32_t divisions = 0;
-        uint32_t lightMapSize = 0; // shadow_size: texels per side
-        uint32_t samples = 1;      // the target's MSAA samples (the meshes' depth samples)
-        uint64_t maxStorageBufferRange = 0xffffffffull;
+        uint32_t lightMapSize = 0;               // shadow_size: texels per side
+        uint32_t samples = 1;                    // the target's MSAA samples (the meshes' depth samples)
+        uint64_t fragmentBudget = kMinFragments; // fragmentBudget(...) on the device
     };
     static constexpr uint64_t deviceBytes(const DeviceSizes& s)
     {
@@ -173,8 +195,29 @@ public:
                bufferBytes(blocks * sizeof(uint32_t)) +            // the scan's block sums
                bufferBytes(pixels * (s.samples > 1 ? s.samples : 1) * sizeof(uint32_t)) + // the meshes' depth samples
                bufferBytes(texels * kLightDepthBytes) + bufferBytes(texels * kLightOpacityBytes) +
-               bufferBytes(initialFragments(segments, s.maxStorageBufferRange) * kFragmentBytes) +
-               pixels * vk::formatBytes(kColorFormat);
+               bufferBytes(initialFragments(segments, s.fragmentBudget) * kFragmentBytes) +
+               gpu::kRasterMaxPieces * kPieceBytes + pixels * vk::formatBytes(kColorFormat);
+    }
+
+    // The storage buffers whose size grows with the workload, each of which must fit one buffer's
+    // range (maxStorageBufferRange): the strand vertices and their colours, the guides' curve
+    // points, the light's strand vertices, the per-pixel and per-sample buffers.
+    struct SizedBuffer {
+        const char* name;
+        uint64_t bytes;
+    };
+    static std::vector<SizedBuffer> growingBuffers(const DeviceSizes& s)
+    {
+        uint64_t pixels = uint64_t(s.extent.width) * s.extent.height;
+        uint64_t cameraVertices = s.guides * s.strandsPerGuide * (s.divisions + 1);
+        uint64_t lightVertices = s.guides * s.lightStrandsPerGuide * (s.divisions + 1);
+        return {{"strands.vertices", cameraVertices * kVertexBytes},
+                {"strands.colors", cameraVertices * kColorBytes},
+                {"strands.light_vertices", lightVertices * kVertexBytes},
+                {"strands.curves", s.guides * (s.divisions + 1) * kCurvePointBytes},
+                {"strands.depth_range", pixels * 2 * sizeof(float)},
+                {"strands.mesh_samples", pixels * (s.samples > 1 ? s.samples : 1) * sizeof(uint32_t)},
+                {"strands.light_opacity", uint64_t(s.lightMapSize) * s.lightMapSize * kLightOpacityBytes}};
     }
 
     // `triangles`: each guide and its two neighbours (guideTriangles), for multi-strand interpolation.
@@ -188,6 +231,7 @@ public:
         uint32_t oitK = 8;                          // the nearest fragments kept sorted per pixel
         uint32_t domLayers = 0;                     // deep opacity layers
         const VkDescriptorImageInfo* lut = nullptr; // the lookup mode's tables (renderer/hair_lut_image.h)
+        uint64_t fragmentBudgetBytes = 0;           // fragment_budget (0: automatic)
     };
     // This frame's strands for the camera and for the light. Buffers too small for them are
     // replaced (the old ones retired to `frame`), and the fragment buffer grows to what this
@@ -206,6 +250,12 @@ public:
     }
 
     Pass* pass(Stage stage);
+    // strands.write or strands.resolve of recorded piece `piece` (< recordedPieces()).
+    Pass* piecePass(Stage stage, uint32_t piece);
+    // The pieces this frame records (prepare chose them from the slot's last frame).
+    uint32_t recordedPieces() const { return recordedPieces_; }
+    // The fragments the buffer may grow to on this device with this frame's budget.
+    uint64_t fragmentBudget() const { return budget_; }
     TrackedImage& color() { return colorTrack_; } // the hair, premultiplied RGBA16F
     const vk::Image& colorImage() const { return color_; }
     RasterStats stats(uint32_t slot) const;
@@ -225,18 +275,20 @@ public:
         Fragments,
         Counters,
         LightDepth,
-        LightOpacity
+        LightOpacity,
+        Pieces
     };
     TrackedBuffer& track(Buffer which) { return storage(which).track; }
     const vk::Buffer& buffer(Buffer which) { return storage(which).buffer; }
     const gpu::StrandRasterPush& cameraPush() const { return camera_; }
     const gpu::StrandRasterPush& lightPush() const { return light_; }
-    // Test hook: the fragment buffer is remade this small, and grows from there only as overflow
-    // makes it. The device must be idle.
+    // Test hook: the budget is this many fragments, the buffer remade that size, and what earlier
+    // frames needed forgotten (so the next frame records one piece and one to spare). The device
+    // must be idle.
     void setFragmentCapacity(uint64_t fragments);
 
     void declare(Stage stage, PassIo& io);
-    void record(Stage stage, VkCommandBuffer cmd, FrameContext& frame);
+    void record(Stage stage, VkCommandBuffer cmd, FrameContext& frame, uint32_t piece = 0);
 
 private:
     struct Storage {
@@ -247,6 +299,9 @@ private:
     void allocate(Storage& storage, uint64_t bytes, VkBufferUsageFlags usage, const char* name, FrameContext* frame);
     void dispatch(VkCommandBuffer cmd, VkPipeline pipeline, const gpu::StrandRasterPush& push,
                   const std::vector<VkWriteDescriptorSet>& writes, uint32_t x, uint32_t y = 1);
+    // The dispatch a recorded piece's indirect arguments hold (`offset` into the pieces' buffer).
+    void dispatchIndirect(VkCommandBuffer cmd, VkPipeline pipeline, const gpu::StrandRasterPush& push,
+                          const std::vector<VkWriteDescriptorSet>& writes, VkDeviceSize offset);
     // Groups of `groupSize` for `items` items, in rows of at most 65535 workgroups.
     void dispatchLinear(VkCommandBuffer cmd, VkPipeline pipeline, const gpu::StrandRasterPush& push,
                         const std::vector<VkWriteDescriptorSet>& writes, uint64_t items, uint32_t groupSize);
@@ -260,7 +315,7 @@ private:
     vk::PipelineLayout layout_;
     vk::Pipeline generatePipeline_, generateLightPipeline_, depthPipeline_, depthBufferPipeline_, countPipeline_,
         writePipeline_;
-    vk::Pipeline scanBlocksPipeline_, scanTotalsPipeline_, scanOffsetsPipeline_, resolvePipeline_;
+    vk::Pipeline scanBlocksPipeline_, scanTotalsPipeline_, scanOffsetsPipeline_, piecesPipeline_, resolvePipeline_;
     vk::Pipeline lightDepthPipeline_, lightOpacityPipeline_, lightResolvePipeline_, curvesPipeline_;
     uint32_t pipelineK_ = 0;   // the oit_k the resolve pipeline was built for
     vk::Sampler depthSampler_; // the meshes' depth, fetched by texel
@@ -268,7 +323,7 @@ private:
     Storage curves_;                      // the guides' curve points (strands.curves)
     Storage vertices_, colors_;           // the camera's strand vertices
     Storage lightVertices_, lightColors_; // the light's
-    Storage counts_, offsets_, fragments_, counters_, depthRange_, tileDepth_, blockSums_;
+    Storage counts_, offsets_, fragments_, counters_, depthRange_, tileDepth_, blockSums_, pieces_;
     Storage meshSamples_; // the depth image's samples, when the meshes are drawn by graphics
     TrackedBuffer* externalSamples_ = nullptr;
     VkBuffer externalSamplesBuffer_ = VK_NULL_HANDLE;
@@ -278,11 +333,14 @@ private:
     TrackedImage colorTrack_;
     uint64_t fragmentCapacity_ = 0;
     uint64_t forcedCapacity_ = 0;
+    uint64_t budget_ = kMinFragments;
+    uint32_t recordedPieces_ = 1;
     uint32_t lightSize_ = 0;
     gpu::StrandRasterPush camera_{};
     gpu::StrandRasterPush light_{};
     const VkDescriptorImageInfo* lut_ = nullptr;
-    std::vector<std::unique_ptr<Pass>> passes_; // one per Stage
+    std::vector<std::unique_ptr<Pass>> passes_;      // one per Stage
+    std::vector<std::unique_ptr<Pass>> piecePasses_; // strands.write N, strands.resolve N, pair by pair
 };
 
 } // namespace wisp

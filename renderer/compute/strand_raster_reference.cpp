@@ -155,6 +155,40 @@ std::vector<std::vector<Fragment>> pixelFragments(const gpu::StrandRasterPush& p
     return out;
 }
 
+std::vector<gpu::RasterPiece> framePieces(const gpu::StrandRasterPush& push, const std::vector<uint32_t>& offsets,
+                                          uint32_t stride, uint32_t needed, uint32_t recorded, uint32_t* notDrawn)
+{
+    uint32_t width = push.targetWidth;
+    uint32_t pixels = width * push.targetHeight;
+    auto firstPixelFrom = [&](uint32_t target) {
+        return uint32_t(std::lower_bound(offsets.begin(), offsets.begin() + pixels, target) - offsets.begin());
+    };
+    std::vector<gpu::RasterPiece> out(recorded);
+    *notDrawn = 0;
+    for (uint32_t p = 0; p < recorded; ++p) {
+        gpu::RasterPiece& r = out[p];
+        r = {};
+        if (p < needed) {
+            r.firstPixel = p == 0 ? 0u : firstPixelFrom(p * stride);
+            r.endPixel = p + 1 < needed ? firstPixelFrom((p + 1) * stride) : pixels;
+        }
+        bool drawn = r.firstPixel < r.endPixel;
+        r.firstRow = drawn ? r.firstPixel / width : 0u;
+        r.endRow = drawn ? (r.endPixel - 1) / width + 1 : 0u;
+        glm::uvec2 walk = drawn ? gpu::rasterLinearGroups(push.segmentCount, gpu::kRasterGroupSize) : glm::uvec2(0);
+        r.walkGroups[0] = walk.x;
+        r.walkGroups[1] = walk.y;
+        r.walkGroups[2] = 1;
+        r.resolveRow = r.firstRow / 8;
+        r.resolveGroups[0] = drawn ? (width + 7) / 8 : 0u;
+        r.resolveGroups[1] = drawn ? (r.endRow + 7) / 8 - r.resolveRow : 0u;
+        r.resolveGroups[2] = 1;
+        if (p + 1 == recorded && needed > recorded)
+            *notDrawn = offsets[pixels] - offsets[firstPixelFrom(recorded * stride)];
+    }
+    return out;
+}
+
 std::vector<glm::vec4> resolvePixels(const gpu::StrandRasterPush& push,
                                      const std::vector<std::vector<Fragment>>& pixels)
 {

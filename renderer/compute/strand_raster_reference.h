@@ -56,6 +56,12 @@ struct SegmentCounts {
 std::vector<std::vector<Fragment>> pixelFragments(const gpu::StrandRasterPush& push, const StrandVertices& strands,
                                                   const std::vector<float>& meshDepth, SegmentCounts* counts = nullptr);
 
+// strands_pieces.comp: the `recorded` pieces of a frame whose scan gave `offsets` (pixels + 1,
+// the total last), cut at `stride` into `needed` pieces; `notDrawn` gets the fragments of the
+// pixels past the recorded pieces.
+std::vector<gpu::RasterPiece> framePieces(const gpu::StrandRasterPush& push, const std::vector<uint32_t>& offsets,
+                                          uint32_t stride, uint32_t needed, uint32_t recorded, uint32_t* notDrawn);
+
 // strands_resolve.comp: the premultiplied hair of every pixel.
 std::vector<glm::vec4> resolvePixels(const gpu::StrandRasterPush& push,
                                      const std::vector<std::vector<Fragment>>& pixels);

@@ -20,16 +20,19 @@
 //   scan       the counts' exclusive prefix sum (blocks, their totals, the offsets): each pixel's
 //              first slot in one fragment buffer, the total against its capacity; the counts
 //              become write cursors
-//   write      the same walk again, each fragment (depth, colour and opacity) written to its slot:
-//              every pixel's fragments side by side, binned by prefix sums, no cap per pixel
-//   resolve    one thread per pixel: its fragments kept as the list resolve keeps them, the
+//   pieces     one workgroup: the pieces of the frame that fit the buffer (one where it fits
+//              whole), each piece's pixels and its walk's and resolve's indirect dispatches
+//   write      per piece, the same walk again over the piece's rows, each fragment of its pixels
+//              (depth, colour and opacity) written to its slot: every pixel's fragments side by
+//              side, binned by prefix sums
+//   resolve    per piece, one thread per pixel: its fragments kept as the list resolve keeps them, the
 //              nearest k sorted and the rest blended as one order-independent layer
 //              (insertFragment / resolveFragments, shared with oit_resolve.comp); one write
 //   light      from the light, the same generated segments (fewer, wider: shadow_strands) are
 //              rasterized one thread per segment into the hair's depth (atomicMin) and then the
 //              deep opacity layers (fixed-point atomicAdd: sums commute, so frames repeat bit for bit)
-// Nothing is dropped silently: fragments past the buffer's capacity are counted, and the renderer
-// grows it for the next frame. Conventions: screen positions in pixels, (0, 0) the top-left
+// The buffer grows to what a frame needs within a budget; a frame past it is drawn in pieces that
+// fit (see "Pieces" below), the same picture. Conventions: screen positions in pixels, (0, 0) the top-left
 // corner of the top-left pixel, pixel centres at + 0.5; depth as the depth buffer holds it (0 near,
 // 1 far); colours tone-mapped linear RGB.
 #ifndef WISP_SHARED_STRAND_RASTER_H
@@ -72,6 +75,7 @@ GPU_CONST uint kRasterBindingMeshSamples = 22;     // uint per mesh depth sample
 GPU_CONST uint kRasterBindingLightDepthImage = 23; // image2D r32f: the hair's first depth from the light, as values
 GPU_CONST uint kRasterBindingTileDepth = 24; // float per kRasterDepthTile^2 pixels: their farthest mesh depth sample
 GPU_CONST uint kRasterBindingCurves = 25;    // vec4 x 2 per guide point (guide * (D + 1) + i): position, tangent
+GPU_CONST uint kRasterBindingPieces = 26;    // RasterPiece per recorded piece (strands.pieces)
 
 // The coarse depth's tiles: kRasterDepthTile x kRasterDepthTile pixels (strands_depth.comp's workgroup).
 GPU_CONST uint kRasterDepthTile = 8u;
@@ -108,20 +112,76 @@ struct StrandRasterPush {
     uint domLayers;        // deep opacity layers (light opacity kernel)
     uint scanBlocks;       // ceil((pixels + 1) / kRasterScanBlock)
     uint oitK;             // nearest fragments kept sorted (the resolve's specialization constant)
-    uint pad0;
+    uint piece;            // the piece strands.write and strands.resolve draw; strands.pieces: how many are recorded
 };
 
 // What the kernels count, copied back to the host each frame.
 struct RasterCounters {
     uint fragments; // fragments the pixels held this frame (what the buffer needed)
     uint capacity;  // fragments the buffer holds
-    uint overflow;  // fragments that did not fit (dropped this frame; the renderer grows the buffer)
+    uint overflow;  // fragments not drawn: pieces past those recorded (the renderer records more next frame)
     uint segments;  // segments on screen, in front of the camera
     uint maxPixel;  // the most fragments one pixel held
     uint hidden;    // of the segments on screen, those behind the meshes' coarse depth (not walked)
-    uint pad1;
-    uint pad2;
+    uint pieces;    // the pieces the frame's fragments needed (rasterPieces)
+    uint stride;    // the pieces' stride in the scan's offsets (rasterPieceStride)
 };
+
+// ---- Pieces: any frame in a bounded fragment buffer --------------------------------------------
+// The scan lays every pixel's fragments side by side in pixel order (row by row), so a piece of
+// the frame is a run of pixels: those whose first fragment's offset o lies in [p * stride,
+// (p + 1) * stride). The walk is done once per piece (its segments culled to the piece's rows),
+// each fragment of the piece's pixels written at o + cursor - p * stride, and the piece resolved;
+// a pixel is whole in one piece, so each picture is the same however many pieces it took. With
+// stride = capacity - (the most fragments one pixel holds), every piece's fragments fit the
+// buffer. A frame that fits is one piece (stride past every offset), drawn as before.
+GPU_CONST uint kRasterMaxPieces = 64u; // pieces the renderer records at most in one frame
+GPU_CONST uint kRasterOnePiece = 0xffffffffu;
+
+// The stride for `total` fragments in a buffer of `capacity`, the largest pixel holding `maxPixel`.
+// A pixel of more than half the buffer keeps capacity - stride of them (rasterPixelCap).
+GPU_FN uint rasterPieceStride(uint total, uint capacity, uint maxPixel)
+{
+    if (total <= capacity)
+        return kRasterOnePiece;
+    return capacity - min(maxPixel, capacity / 2u);
+}
+
+// The pieces a frame of `total` fragments takes at `stride` (every pixel's offset is at most the
+// total, so the last piece holds the pixels at the end, with fragments or none).
+GPU_FN uint rasterPieces(uint total, uint stride)
+{
+    return stride == kRasterOnePiece ? 1u : total / stride + 1u;
+}
+
+// The most fragments a pixel keeps: all of them unless it alone holds more than half the buffer.
+GPU_FN uint rasterPixelCap(uint capacity, uint stride)
+{
+    return stride == kRasterOnePiece ? capacity : capacity - stride;
+}
+
+// A recorded piece as strands.pieces finds it (binary searches over the offsets), with the
+// indirect dispatches of its walk and its resolve (no groups where the piece is empty or was not
+// needed).
+struct RasterPiece {
+    uint firstPixel; // its pixels: [firstPixel, endPixel) in row-major order
+    uint endPixel;
+    uint firstRow; // the rows they span: [firstRow, endRow)
+    uint endRow;
+    uint walkGroups[3];    // strands.write's dispatch (the segments' rows of workgroups, or none)
+    uint resolveRow;       // the first row of its resolve's workgroups (8 rows a workgroup)
+    uint resolveGroups[3]; // strands.resolve's dispatch: the piece's rows of 8 x 8 tiles
+    uint pad0;
+};
+
+// Workgroups of `groupSize` for `items` items, in rows of at most 65535 (the per-vertex,
+// per-segment and per-block kernels' dispatch): x per row, y rows.
+GPU_FN uvec2 rasterLinearGroups(uint items, uint groupSize)
+{
+    uint groups = items / groupSize + (items % groupSize != 0u ? 1u : 0u);
+    uint x = min(groups, 65535u);
+    return uvec2(x, x == 0u ? 0u : (groups + x - 1u) / x);
+}
 
 // One strand vertex as the rasterizer reads it: where it is on the screen and how wide.
 // position.xy pixels, .z depth (0 near .. 1 far), .w half the ribbon's width in pixels;
