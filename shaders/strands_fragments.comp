@@ -4,9 +4,10 @@
 // (segmentCoverage) and tested against the meshes' depth (the share of MSAA samples in front
 // scales the coverage, so the head's silhouette stays antialiased); the colour and opacity
 // interpolate the two vertices' (shaded along the strand by strands_generate.comp).
-// Specialization constant 0 chooses:
-//   false (strands.count): each fragment that stays is counted at its pixel (atomicAdd)
-//   true  (strands.write): written to its pixel's next slot, from a cursor (the counts, which the
+// Two variants (the walk is the same code, the pieces' bookkeeping only in the second, so that
+// the count's loop is not made heavier by what it never runs):
+//   strands_fragments.comp (strands.count): each fragment that stays is counted at its pixel (atomicAdd)
+//   strands_fragments_write.comp (RASTER_WRITE, strands.write): written to its pixel's next slot, from a cursor (the counts, which the
 //                          scan set to each pixel's offset), one piece of the frame a dispatch
 //                          (push.piece, shared/strand_raster.h "Pieces"): only the piece's pixels,
 //                          at their slot less the piece's start, segments off the piece's rows
@@ -23,7 +24,11 @@
 #include "shared/strand_raster.h"
 
 layout(local_size_x = 64) in;  // kRasterGroupSize
-layout(constant_id = 0) const bool kWrite = false;
+#ifdef RASTER_WRITE
+const bool kWrite = true;
+#else
+const bool kWrite = false;
+#endif
 layout(push_constant) uniform PushBlock { StrandRasterPush push; };
 layout(set = 0, binding = kRasterBindingVertices, std430) readonly buffer Vertices { vec4 vertices[]; };
 layout(set = 0, binding = kRasterBindingColors, std430) readonly buffer Colors { uint colors[]; };
@@ -34,8 +39,10 @@ layout(set = 0, binding = kRasterBindingDepthRange, std430) readonly buffer Dept
 layout(set = 0, binding = kRasterBindingMeshSamples, std430) readonly buffer MeshSamples { uint meshSamples[]; };
 
 layout(set = 0, binding = kRasterBindingTileDepth, std430) readonly buffer TileDepth { float tileDepth[]; };
+#ifdef RASTER_WRITE
 layout(set = 0, binding = kRasterBindingOffsets, std430) readonly buffer Offsets { uint offsets[]; };
 layout(set = 0, binding = kRasterBindingPieces, std430) readonly buffer Pieces { RasterPiece pieces[]; };
+#endif
 
 shared uint groupSegments;
 shared uint groupHidden;
@@ -66,10 +73,11 @@ void main()
 
     // The piece this dispatch writes (the whole frame where it is one piece): its pixels, rows and
     // first slot; whether some pixel holds more than it may keep.
+#ifdef RASTER_WRITE
     uint firstPixel = 0u, endPixel = 0xffffffffu, firstRow = 0u, endRow = 0xffffffffu, base = 0u;
     bool capped = false;
     uint cap = push.fragmentCapacity;
-    if (kWrite) {
+    {
         uint stride = counters.stride;
         if (stride != kRasterOnePiece) {
             RasterPiece piece = pieces[push.piece];
@@ -82,6 +90,7 @@ void main()
             capped = counters.maxPixel > cap;
         }
     }
+#endif
 
     uint thread = linearInvocation(gl_GlobalInvocationID, gl_NumWorkGroups.x * gl_WorkGroupSize.x);
     uint segment = clumpOrderedSegment(thread, push.divisions, push.drawnPerGuide);
@@ -95,10 +104,10 @@ void main()
         RasterSegment s = makeRasterSegment(a.xy, b.xy, a.w, b.w);
         ivec4 bounds = ribbonPixelBounds(s, a.xy, b.xy, push.targetWidth, push.targetHeight);
         hidden = drawn && bounds.x <= bounds.z && bounds.y <= bounds.w && !reachesUnhiddenTile(bounds, min(a.z, b.z));
-        if (kWrite) {  // only the piece's rows
-            bounds.y = max(bounds.y, int(firstRow));
-            bounds.w = min(bounds.w, int(min(endRow, 0x7fffffffu)) - 1);
-        }
+#ifdef RASTER_WRITE
+        bounds.y = max(bounds.y, int(firstRow));  // only the piece's rows
+        bounds.w = min(bounds.w, int(min(endRow, 0x7fffffffu)) - 1);
+#endif
         if (drawn && !hidden) {
             vec4 colorA = unpackFragmentColor(colors[v]);
             vec4 colorB = unpackFragmentColor(colors[v + 1u]);
@@ -127,18 +136,18 @@ void main()
                     float alpha = c.w * hit.x * float(front) / float(samples);
                     if (alpha < 0.5 / 255.0)
                         continue;  // below what the fragment's 8 bits of alpha hold
-                    if (kWrite) {
-                        if (p < firstPixel || p >= endPixel)
-                            continue;  // another piece's pixel
-                        uint cursor = atomicAdd(counts[p], 1u);  // it starts at the pixel's offset
-                        if (capped && cursor - offsets[p] >= cap)
-                            continue;
-                        uint slot = cursor - base;
-                        if (slot < push.fragmentCapacity)
-                            fragments[slot] = uvec2(floatBitsToUint(depth), packFragmentColor(c.rgb, alpha));
-                    } else {
-                        atomicAdd(counts[p], 1u);
-                    }
+#ifdef RASTER_WRITE
+                    if (p < firstPixel || p >= endPixel)
+                        continue;  // another piece's pixel
+                    uint cursor = atomicAdd(counts[p], 1u);  // it starts at the pixel's offset
+                    if (capped && cursor - offsets[p] >= cap)
+                        continue;
+                    uint slot = cursor - base;
+                    if (slot < push.fragmentCapacity)
+                        fragments[slot] = uvec2(floatBitsToUint(depth), packFragmentColor(c.rgb, alpha));
+#else
+                    atomicAdd(counts[p], 1u);
+#endif
                 }
             }
         }

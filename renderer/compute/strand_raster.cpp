@@ -152,10 +152,8 @@ StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUn
                                                "strands.depth.pipeline");
     depthBufferPipeline_ =
         vk::createComputePipeline(ctx, layout_, "strands_depth_buffer.comp", "strands.depth.pipeline");
-    countPipeline_ =
-        vk::createComputePipeline(ctx, layout_, "strands_fragments.comp", "strands.count.pipeline", {/*kWrite=*/0});
-    writePipeline_ =
-        vk::createComputePipeline(ctx, layout_, "strands_fragments.comp", "strands.write.pipeline", {/*kWrite=*/1});
+    countPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_fragments.comp", "strands.count.pipeline");
+    writePipeline_ = vk::createComputePipeline(ctx, layout_, "strands_fragments_write.comp", "strands.write.pipeline");
     scanBlocksPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_scan.comp", "strands.scan.blocks.pipeline",
                                                     {/*kPhase=*/0, kScanBlockThreads});
     scanTotalsPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_scan.comp", "strands.scan.totals.pipeline",
@@ -451,7 +449,7 @@ void StrandRaster::declare(Stage stage, PassIo& io)
         io.use(tileDepth_.track, Access::ComputeWrite);
         io.use(counts_.track, Access::ComputeWrite);
         break;
-    case Stage::Count: // (one shader with strands.write: it binds, never touches, the fragments and pieces)
+    case Stage::Count: // (the walk of strands.write: it binds, never touches, the fragments)
     case Stage::Write:
         io.use(vertices_.track, Access::ComputeRead);
         io.use(colors_.track, Access::ComputeRead);
@@ -461,10 +459,11 @@ void StrandRaster::declare(Stage stage, PassIo& io)
         io.use(counts_.track, Access::ComputeWrite); // counts, then (strands.write) cursors
         io.use(fragments_.track, Access::ComputeWrite);
         io.use(counters_.track, Access::ComputeWrite);
-        io.use(offsets_.track, Access::ComputeRead);
-        io.use(pieces_.track, Access::ComputeRead);
-        if (stage == Stage::Write)
+        if (stage == Stage::Write) {
+            io.use(offsets_.track, Access::ComputeRead);
+            io.use(pieces_.track, Access::ComputeRead);
             io.use(pieces_.track, Access::IndirectRead);
+        }
         break;
     case Stage::Pieces:
         io.use(offsets_.track, Access::ComputeRead);
@@ -631,12 +630,12 @@ void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame,
             vk::bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters),
             vk::bufferWrite(gpu::kRasterBindingDepthRange, kStorage, &depthRange),
             vk::bufferWrite(gpu::kRasterBindingTileDepth, kStorage, &tileDepth),
-            vk::bufferWrite(gpu::kRasterBindingMeshSamples, kStorage, &meshSamples),
-            vk::bufferWrite(gpu::kRasterBindingOffsets, kStorage, &offsets),
-            vk::bufferWrite(gpu::kRasterBindingPieces, kStorage, &pieces)};
+            vk::bufferWrite(gpu::kRasterBindingMeshSamples, kStorage, &meshSamples)};
         if (stage == Stage::Count) {
             dispatchLinear(cmd, countPipeline_, camera_, writes, camera_.segmentCount, gpu::kRasterGroupSize);
         } else {
+            writes.push_back(vk::bufferWrite(gpu::kRasterBindingOffsets, kStorage, &offsets));
+            writes.push_back(vk::bufferWrite(gpu::kRasterBindingPieces, kStorage, &pieces));
             gpu::StrandRasterPush push = camera_;
             push.piece = piece;
             dispatchIndirect(cmd, writePipeline_, push, writes,
