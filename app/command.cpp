@@ -49,18 +49,18 @@ CLI::Validator within(double lo, double hi)
         text.str());
 }
 
-void useDeviceSamples(RenderSettings& render, const vk::DeviceReport& device)
+std::string useDeviceSamples(RenderSettings& render, const vk::DeviceReport& device)
 {
     uint32_t asked = std::max(render.samples, 1u);
     render.samples = RenderTarget::samplesFor(device.colorDepthSampleCounts, asked);
     if (render.samples == asked)
-        return;
+        return "";
     std::string has;
     for (uint32_t s = 1; s <= 64; s <<= 1)
         if ((device.colorDepthSampleCounts & s) != 0)
             has += (has.empty() ? "" : ", ") + std::to_string(s);
-    std::fprintf(stderr, "wisp: samples %u: '%s' draws %s; drawing with %u\n", asked, device.name.c_str(),
-                 has.empty() ? "1" : has.c_str(), render.samples);
+    return "wisp: samples " + std::to_string(asked) + ": '" + device.name + "' draws " + (has.empty() ? "1" : has) +
+           "; drawing with " + std::to_string(render.samples);
 }
 
 HairScene buildCheckedScene(const GlobalOptions& g, const SessionOptions& o, RenderSettings* render, bool window)
@@ -68,6 +68,7 @@ HairScene buildCheckedScene(const GlobalOptions& g, const SessionOptions& o, Ren
     const HairSource& h = o.source;
     const GrowthSettings& growth = o.settings.growth;
     bool samplesSettled = false;
+    std::string samplesNote; // said once the workload is not refused: a refusal is one line
     auto check = [&](uint64_t guides) {
         Workload w{
             .guides = guides, .verticesPerStrand = growth.verticesPerStrand, .sim = o.settings.sim, .render = render};
@@ -75,7 +76,7 @@ HairScene buildCheckedScene(const GlobalOptions& g, const SessionOptions& o, Ren
         std::vector<vk::DeviceReport> devices = vk::enumerateDevices();
         const vk::DeviceReport& device = vk::selectDevice(devices, g.gpu, window);
         if (render && !samplesSettled)
-            useDeviceSamples(*render, device); // before the memory is estimated: the target's size follows
+            samplesNote = useDeviceSamples(*render, device); // before the estimate: the samples size the target
         samplesSettled = true;
         checkWorkload(w, device);
     };
@@ -95,6 +96,8 @@ HairScene buildCheckedScene(const GlobalOptions& g, const SessionOptions& o, Ren
         }
         check(strands);
     }
+    if (!samplesNote.empty())
+        std::fprintf(stderr, "%s\n", samplesNote.c_str());
     for (const std::string& w : scene.warnings)
         std::fprintf(stderr, "wisp: warning: %s\n", w.c_str());
     return scene;

@@ -43,7 +43,8 @@ CLI::Validator within(double lo, double hi);
 HairScene buildCheckedScene(const GlobalOptions& global, const SessionOptions& options, RenderSettings* render,
                             bool window = false);
 // Sets render.samples to what `device` draws of them (RenderTarget::samplesFor: the most of the
-// asked number, half of it, ... that it has), saying so in one line on stderr when that is fewer.
-void useDeviceSamples(RenderSettings& render, const vk::DeviceReport& device);
+// asked number, half of it, ... that it has); returns the one line that says so when that is fewer
+// ("" otherwise), for the caller to print once the run is not refused.
+std::string useDeviceSamples(RenderSettings& render, const vk::DeviceReport& device);
 
 } // namespace wisp

@@ -198,7 +198,8 @@ int runSweep(const vk::Context& ctx, const SweepOptions& o, const SessionOptions
             std::fprintf(stderr, " %s=%s", o.axes[i].name.c_str(), point.values[i].c_str());
         std::fprintf(stderr, "\n");
 
-        useDeviceSamples(settings.render, ctx.report());
+        if (std::string note = useDeviceSamples(settings.render, ctx.report()); !note.empty())
+            std::fprintf(stderr, "%s\n", note.c_str());
         point.samples = render.samples;
         HairSession session(ctx, base.source.buildScene(settings), settings.sim,
                             stillTimeline(base.source.sphere, settings.sim.wind, render.light), base.source);
