@@ -166,12 +166,14 @@ TEST(BadInput, ASweepFailingAtItsSecondPointLeavesNoFolder)
 {
     // The second point's pool (1024 x 1024 x 256 nodes of 12 bytes) is more than the device
     // allows; the first point has run by then (a loaded groom is checked per point, once loaded).
+    // The graphics path draws the hair: only it makes the lists (the compute path's frame needs no pool).
     // Nothing half-written: no folder, and a folder that was already there keeps what it held.
     TempDir dir;
     wisp::test::writeTfx4(dir / "groom.tfx", wisp::test::grownStrands(5, 4, [](glm::vec3 p) { return p; }));
     std::string args =
         " --hair '" + (dir / "groom.tfx").string() +
-        "' --vary oit_nodes_per_pixel=1,256 --width 1024 --height 1024 --warmup 0 --frames 1 --set shadow_size=64";
+        "' --vary oit_nodes_per_pixel=1,256 --width 1024 --height 1024 --warmup 0 --frames 1 --set shadow_size=64 "
+        "--set hair_raster=graphics";
     auto r = runWisp("sweep --out '" + (dir / "s").string() + "'" + args);
     EXPECT_EQ(r.status, 2) << r.err;
     EXPECT_NE(r.err.find("point 2/2"), std::string::npos) << r.err; // the progress lines, then one error line
