@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -57,6 +58,32 @@ TEST(StrandMath, InterpolationWeightsSumToOneAndDiscIsFilled)
     EXPECT_FALSE(gpu::strandIsMulti(gpu::kInterpolationMulti, 0));
     EXPECT_TRUE(gpu::strandIsMulti(gpu::kInterpolationMixed, 3));
     EXPECT_FALSE(gpu::strandIsMulti(gpu::kInterpolationMixed, 4));
+}
+
+// The frame the clump discs and deviations offset strands in is orthonormal and turns continuously
+// with the tangent: over tangents swept through every direction but straight up, a step of 0.01
+// radians in the tangent turns the frame by little (the frame it replaced switched its helper axis
+// at |t.y| = 0.9 and jumped by up to 90 degrees there, drawing hanging strands' offsets as zigzags).
+TEST(StrandMath, TheOffsetFrameTurnsContinuouslyWithTheTangent)
+{
+    auto frameAt = [](float polar, float azimuth) {
+        // polar 0: straight down (-y); pi: straight up.
+        glm::vec3 t(std::sin(polar) * std::cos(azimuth), -std::cos(polar), std::sin(polar) * std::sin(azimuth));
+        return gpu::strandFrame(t);
+    };
+    float worst = 0.0f;
+    for (float azimuth = 0.0f; azimuth < 6.28f; azimuth += 0.1f)
+        for (float polar = 0.0f; polar < 2.8f; polar += 0.01f) {
+            glm::mat3 a = frameAt(polar, azimuth), b = frameAt(polar + 0.01f, azimuth);
+            for (int k = 1; k < 3; ++k) {
+                ASSERT_NEAR(glm::length(a[k]), 1.0f, 1e-4f);
+                ASSERT_NEAR(glm::dot(a[k], a[0]), 0.0f, 1e-4f);
+            }
+            ASSERT_NEAR(glm::dot(a[1], a[2]), 0.0f, 1e-4f);
+            worst = std::max({worst, glm::length(a[1] - b[1]), glm::length(a[2] - b[2])});
+        }
+    // A least rotation turns the frame by about the tangent's own step far from straight up.
+    EXPECT_LT(worst, 0.1f);
 }
 
 TEST(StrandMath, DeviationsAreDeterministicAndAboutHalfTheStrands)

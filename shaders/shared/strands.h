@@ -127,12 +127,18 @@ GPU_FN float curveLocal(float t, uint V, uint segment)
 
 // ---- Strands around and between guides ---------------------------------------------------------
 
-// Two unit vectors perpendicular to the tangent t (a frame for offsets around the strand).
+// Two unit vectors perpendicular to the unit tangent t (a frame for offsets around the strand):
+// the x and z axes turned by the least rotation taking straight down (-y, where hair mostly points)
+// onto t (Rodrigues' formula with k = -y x t, cos = -t.y). The frame turns continuously with the
+// tangent everywhere but at t = +y, a single direction (a frame switching its helper axis at a
+// threshold flipped back and forth along hanging strands and drew their offsets as zigzags).
 GPU_FN mat3 strandFrame(vec3 t)
 {
-    vec3 helper = abs(t.y) < 0.9f ? vec3(0.0f, 1.0f, 0.0f) : vec3(1.0f, 0.0f, 0.0f);
-    vec3 n = normalize(cross(t, helper));
-    return mat3(t, n, cross(t, n));
+    float c = -t.y;
+    float inv = 1.0f / max(1.0f + c, 1e-4f);
+    vec3 e1 = vec3(c + t.z * t.z * inv, t.x, -t.z * t.x * inv);
+    vec3 e2 = vec3(-t.x * t.z * inv, t.z, c + t.x * t.x * inv);
+    return mat3(t, normalize(e1), normalize(e2));
 }
 
 // The clump profile: zero at the root (strands grow from one follicle region), full a fifth of
