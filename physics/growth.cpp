@@ -98,6 +98,18 @@ std::vector<float> arcLengths(const std::vector<glm::vec3>& points)
 
 namespace groom {
 
+float partingX(const GrowthSettings& s, const HeadFrame& head)
+{
+    return head.centre.x + (s.parting == Parting::Side ? s.partingOffsetMetres * head.unitsPerMetre : 0.0f);
+}
+
+float partingReach(const HeadFrame& head, const glm::vec3& p)
+{
+    float R = head.skullRadius;
+    return smoothstep(head.crown.z - 0.3f * R, head.crown.z + 0.2f * R, p.z) *
+           smoothstep(head.centre.y + 0.2f * R, head.centre.y + 0.6f * R, p.y);
+}
+
 float bangsWeight(const GrowthSettings& s, const HeadFrame& head, const glm::vec3& p)
 {
     glm::vec3 dir = safeNormalize(p - head.centre, glm::vec3(0.0f, 0.0f, 1.0f));
@@ -120,11 +132,11 @@ glm::vec3 flowDirection(const GrowthSettings& s, const HeadFrame& head, const gl
     // A parting: along the top, from the front hairline back to the crown, hair is combed away
     // from the line to either side.
     if (s.parting != Parting::None) {
-        float partX = head.centre.x + (s.parting == Parting::Side ? s.partingOffsetMetres * head.unitsPerMetre : 0.0f);
-        float side = p.x - partX;
-        float reach = smoothstep(head.crown.z - 0.3f * R, head.crown.z + 0.2f * R, p.z) *
-                      smoothstep(head.centre.y + 0.2f * R, head.centre.y + 0.6f * R, p.y);
-        float sweep = s.partingSweep * reach * smoothstep(0.0f, 0.004f * head.unitsPerMetre, std::abs(side));
+        // Every strand goes to its own side, those at the line too (a dead band there laid strands
+        // along the parting), the more the farther from it.
+        float side = p.x - partingX(s, head);
+        float sweep = s.partingSweep * partingReach(head, p) *
+                      (0.6f + 0.4f * smoothstep(0.0f, 0.004f * head.unitsPerMetre, std::abs(side)));
         v += (side >= 0.0f ? 1.0f : -1.0f) * sweep * glm::vec3(1.0f, 0.0f, 0.0f);
     }
     // The crown whorl: around the crown, hair spirals outward (a clockwise whorl seen from above).
@@ -148,7 +160,8 @@ std::vector<glm::vec3> growCentreline(const GrowthSettings& s, const HeadFrame& 
                                       float length, float step)
 {
     const glm::vec3 down(0.0f, -1.0f, 0.0f);
-    float lift = glm::radians(s.rootLiftDeg);
+    // Hair at the hairline lies flatter than behind it (a lifted edge reads as a cap's rim).
+    float lift = glm::radians(s.rootLiftDeg) * (0.35f + 0.65f * root.density);
     glm::vec3 flow = flowDirection(s, head, root.position, root.normal);
     glm::vec3 dir = glm::normalize(std::cos(lift) * flow + std::sin(lift) * root.normal);
     // The comb holds a strand to the flow over its first few centimetres; then gravity turns it down
@@ -378,13 +391,35 @@ StrandSet growGuides(const Mesh& mesh, const ScalpRule& scalp, const std::vector
         head.skullRadius = 0.09f * upm;
     }
     ScalpField field = makeScalpField(scalp, upm, s.hairlineBandMetres, head.skullRadius);
-    std::vector<RootSample> roots = sampleScalpRoots(mesh, field, s.guides, s.poissonDisk, s.seed);
-    // The crown: the scalp's top toward the back (where the whorl is).
+    // The crown: the scalp's top toward the back (where the whorl is), on the head where the field
+    // is full.
     glm::vec3 crownward = glm::normalize(glm::vec3(0.0f, 1.0f, -0.6f));
-    head.crown = roots.front().position;
-    for (const RootSample& r : roots)
-        if (glm::dot(r.position - head.centre, crownward) > glm::dot(head.crown - head.centre, crownward))
-            head.crown = r.position;
+    float crownReach = -1e30f;
+    for (size_t v = 0; v < mesh.positions.size(); ++v) {
+        float along = glm::dot(mesh.positions[v] - head.centre, crownward);
+        if (field.density(mesh.positions[v], mesh.normals[v]) > 0.5f && along > crownReach) {
+            crownReach = along;
+            head.crown = mesh.positions[v];
+        }
+    }
+    if (crownReach == -1e30f)
+        head.crown = head.centre + head.skullRadius * crownward;
+    // A parting's edges are rows of roots a little either side of its line, so the scalp shows
+    // there as a thin straight line, not as the ragged gap blue noise leaves between two sides.
+    std::vector<RootRow> rows;
+    if (s.parting != Parting::None && s.poissonDisk) {
+        float offset = 0.35f * rootSpacing(scalpArea(mesh, field), s.guides);
+        for (float sign : {-1.0f, 1.0f}) {
+            RootRow row;
+            row.point = glm::vec3(partingX(s, head) + sign * offset, 0.0f, 0.0f);
+            row.normal = glm::vec3(1.0f, 0.0f, 0.0f);
+            row.keep = [&s, &head](const glm::vec3& p) {
+                return groom::partingReach(head, p) > 0.5f && groom::bangsWeight(s, head, p) < 0.5f * s.bangs + 1e-3f;
+            };
+            rows.push_back(std::move(row));
+        }
+    }
+    std::vector<RootSample> roots = sampleScalpRoots(mesh, field, s.guides, s.poissonDisk, s.seed, rows);
 
     // 2 and 3: each strand's centreline, grown and trimmed.
     Random rng{s.seed ^ 0xA511E9B3u};
@@ -461,8 +496,12 @@ StrandSet growGuides(const Mesh& mesh, const ScalpRule& scalp, const std::vector
                     s.waveLengthMetres * upm * (1.0f + 0.15f * rng.signedNext()), 2.0f * kPi * rng.next());
         bool flyaway = rng.next() < s.flyaways;
         uint32_t noiseSeed = gpu::hashUint(uint32_t(k) * 2654435761u + s.seed);
-        groom::frizz(line, (flyaway ? 6.0f : 1.0f) * s.frizzMetres * upm, 0.02f * upm, noiseSeed);
-        if (flyaway) { // strays: lifted off the hair's surface toward the tip
+        // The noise's features at least two of the simulated segments long: finer ones alias into
+        // zigzags once resampled to V vertices (flyaways drew scribbles round the outline).
+        float segment = length / float(std::max(s.verticesPerStrand - 1u, 1u));
+        float scale = std::max(0.02f * upm, 2.0f * segment);
+        groom::frizz(line, (flyaway ? 2.0f : 1.0f) * s.frizzMetres * upm, (flyaway ? 2.0f : 1.0f) * scale, noiseSeed);
+        if (flyaway) { // strays: lifted off the hair's surface toward the tip in a smooth arc
             std::vector<float> arc = arcLengths(line);
             float lift = (0.005f + 0.01f * rng.next()) * upm;
             for (size_t i = 1; i < line.size(); ++i) {

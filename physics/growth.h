@@ -83,6 +83,13 @@ struct HeadFrame {
     float unitsPerMetre = 1.0f;
 };
 
+// A parting's line: x in head space (GrowthSettings::parting, partingOffsetMetres).
+float partingX(const GrowthSettings& s, const HeadFrame& head);
+
+// How much of the parting's sweep reaches a point, 0..1: from a little behind the crown forward,
+// on the top of the head.
+float partingReach(const HeadFrame& head, const glm::vec3& p);
+
 // How much of the front a point is, for bangs (0..1, times GrowthSettings::bangs).
 float bangsWeight(const GrowthSettings& s, const HeadFrame& head, const glm::vec3& p);
 

@@ -57,14 +57,14 @@ float triangleArea(const Mesh& mesh, uint32_t t)
     return 0.5f * glm::length(glm::cross(b - a, c - a));
 }
 
-// Dart throwing (Cook 1986) with a hash grid: a candidate from `draw` is kept when no kept root lies
-// within r; r starts at 0.75 of the radius of `count` disks tiling `area` and shrinks when darts keep
-// missing. `draw` may refuse a candidate (nullopt), which counts as a miss only once `count` of them
-// in a row were refused (a sparse field is not a full one).
+// Dart throwing (Cook 1986) with a hash grid, after the roots `placed` already: a candidate from
+// `draw` is kept when no kept root lies within r; r starts at rootSpacing(area, count) and shrinks
+// when darts keep missing. `draw` may refuse a candidate (nullopt), which counts as a miss only once
+// `count` of them in a row were refused (a sparse field is not a full one).
 std::vector<RootSample> throwDarts(const std::function<std::optional<RootSample>()>& draw, uint32_t count, double area,
-                                   bool poissonDisk)
+                                   bool poissonDisk, std::vector<RootSample> placed = {})
 {
-    std::vector<RootSample> out;
+    std::vector<RootSample> out = std::move(placed);
     out.reserve(count);
     uint64_t refusedInARow = 0;
     auto next = [&]() -> RootSample {
@@ -79,16 +79,18 @@ std::vector<RootSample> throwDarts(const std::function<std::optional<RootSample>
         }
     };
     if (!poissonDisk) {
-        for (uint32_t i = 0; i < count; ++i)
+        while (out.size() < count)
             out.push_back(next());
         return out;
     }
-    float radius = float(0.75 * std::sqrt(area / (double(count) * 3.14159265)));
+    float radius = rootSpacing(area, count);
     std::unordered_map<uint64_t, std::vector<uint32_t>> grid;
     auto key = [&](glm::ivec3 c) {
         return (uint64_t(uint32_t(c.x) & 0x1FFFFF) << 42) | (uint64_t(uint32_t(c.y) & 0x1FFFFF) << 21) |
                uint64_t(uint32_t(c.z) & 0x1FFFFF);
     };
+    for (uint32_t j = 0; j < out.size(); ++j)
+        grid[key(glm::ivec3(glm::floor(out[j].position / radius)))].push_back(j);
     uint32_t misses = 0;
     while (out.size() < count) {
         RootSample s = next();
@@ -118,6 +120,101 @@ std::vector<RootSample> throwDarts(const std::function<std::optional<RootSample>
             misses = 0;
         }
     }
+    return out;
+}
+
+// The triangles the field reaches (any vertex within a band of the hairline's inside), their
+// running areas, and the area they hold weighted by the field's density.
+struct ScalpTriangles {
+    std::vector<uint32_t> triangles;
+    std::vector<double> cumulative;
+    double weighted = 0.0;
+};
+
+ScalpTriangles scalpTriangles(const Mesh& mesh, const ScalpField& field)
+{
+    std::vector<float> vertexDistance(mesh.positions.size());
+    for (size_t v = 0; v < mesh.positions.size(); ++v)
+        vertexDistance[v] = field.distance(mesh.positions[v], mesh.normals[v]);
+    ScalpTriangles out;
+    double total = 0.0;
+    for (uint32_t t = 0; t < mesh.triangleCount(); ++t) {
+        float reach = std::max({vertexDistance[mesh.indices[3 * t]], vertexDistance[mesh.indices[3 * t + 1]],
+                                vertexDistance[mesh.indices[3 * t + 2]]});
+        float area = triangleArea(mesh, t);
+        if (reach <= -field.bandWidth || !(area > 0.0f))
+            continue;
+        out.triangles.push_back(t);
+        total += double(area);
+        out.cumulative.push_back(total);
+        glm::vec3 c = (mesh.positions[mesh.indices[3 * t]] + mesh.positions[mesh.indices[3 * t + 1]] +
+                       mesh.positions[mesh.indices[3 * t + 2]]) /
+                      3.0f;
+        glm::vec3 n = mesh.normals[mesh.indices[3 * t]] + mesh.normals[mesh.indices[3 * t + 1]] +
+                      mesh.normals[mesh.indices[3 * t + 2]];
+        out.weighted += double(area) * double(field.density(c, glm::length(n) > 0.0f ? glm::normalize(n) : n));
+    }
+    return out;
+}
+
+// A row's roots: points where its plane cuts the scalp's triangles (every spacing / 8 along each
+// cut), inside the hairline (density above one half) where the row keeps them, ordered along the
+// cut by their angle about the head's centre in the plane (from the head's up, so a row over the top
+// has no seam), then taken one `spacing` on from the last.
+std::vector<RootSample> rowRoots(const Mesh& mesh, const ScalpField& field, const std::vector<uint32_t>& triangles,
+                                 const RootRow& row, float spacing)
+{
+    glm::vec3 n = glm::normalize(row.normal);
+    glm::vec3 up = glm::vec3(0.0f, 1.0f, 0.0f) - n.y * n;
+    glm::vec3 e1 = glm::length(up) > 1e-3f ? glm::normalize(up) : glm::normalize(glm::cross(n, glm::vec3(1, 0, 0)));
+    glm::vec3 e2 = glm::cross(n, e1);
+    glm::vec3 centre = mesh.bounds().center();
+    std::vector<std::pair<float, RootSample>> cut;
+    for (uint32_t t : triangles) {
+        uint32_t idx[3] = {mesh.indices[3 * t], mesh.indices[3 * t + 1], mesh.indices[3 * t + 2]};
+        float d[3];
+        for (int k = 0; k < 3; ++k)
+            d[k] = glm::dot(mesh.positions[idx[k]] - row.point, n);
+        // The cut's ends as barycentric coordinates on the edges the plane crosses.
+        glm::vec3 ends[2];
+        int found = 0;
+        for (int k = 0; k < 3 && found < 2; ++k) {
+            int a = k, b = (k + 1) % 3;
+            if ((d[a] < 0.0f) == (d[b] < 0.0f))
+                continue;
+            float u = d[a] / (d[a] - d[b]);
+            glm::vec3 bary(0.0f);
+            bary[a] = 1.0f - u;
+            bary[b] = u;
+            ends[found++] = bary;
+        }
+        if (found < 2)
+            continue;
+        auto at = [&](const glm::vec3& bary) {
+            return bary.x * mesh.positions[idx[0]] + bary.y * mesh.positions[idx[1]] + bary.z * mesh.positions[idx[2]];
+        };
+        float length = glm::length(at(ends[1]) - at(ends[0]));
+        int steps = std::max(1, int(std::ceil(8.0f * length / spacing)));
+        for (int k = 0; k <= steps; ++k) {
+            glm::vec3 bary = glm::mix(ends[0], ends[1], float(k) / float(steps));
+            glm::vec3 p = at(bary);
+            glm::vec3 normal =
+                bary.x * mesh.normals[idx[0]] + bary.y * mesh.normals[idx[1]] + bary.z * mesh.normals[idx[2]];
+            if (!(glm::length(normal) > 0.0f))
+                continue;
+            normal = glm::normalize(normal);
+            float density = field.density(p, normal);
+            if (density < 0.5f || (row.keep && !row.keep(p)))
+                continue;
+            glm::vec3 r = p - centre;
+            cut.push_back({std::atan2(glm::dot(r, e2), glm::dot(r, e1)), RootSample{p, normal, t, density}});
+        }
+    }
+    std::sort(cut.begin(), cut.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<RootSample> out;
+    for (const auto& [angle, s] : cut)
+        if (out.empty() || glm::length(s.position - out.back().position) >= spacing)
+            out.push_back(s);
     return out;
 }
 
@@ -174,38 +271,34 @@ std::vector<RootSample> sampleRoots(const Mesh& mesh, const std::vector<uint32_t
     return throwDarts(draw, count, total, poissonDisk);
 }
 
-std::vector<RootSample> sampleScalpRoots(const Mesh& mesh, const ScalpField& field, uint32_t count, bool poissonDisk,
-                                         uint32_t seed)
+float rootSpacing(double area, uint32_t count)
 {
-    // The triangles the field reaches: any vertex within a band of the hairline's inside.
-    std::vector<float> vertexDistance(mesh.positions.size());
-    for (size_t v = 0; v < mesh.positions.size(); ++v)
-        vertexDistance[v] = field.distance(mesh.positions[v], mesh.normals[v]);
-    std::vector<uint32_t> triangles;
-    std::vector<double> cumulative;
-    double total = 0.0, weighted = 0.0;
-    for (uint32_t t = 0; t < mesh.triangleCount(); ++t) {
-        float reach = std::max({vertexDistance[mesh.indices[3 * t]], vertexDistance[mesh.indices[3 * t + 1]],
-                                vertexDistance[mesh.indices[3 * t + 2]]});
-        float area = triangleArea(mesh, t);
-        if (reach <= -field.bandWidth || !(area > 0.0f))
-            continue;
-        triangles.push_back(t);
-        total += double(area);
-        cumulative.push_back(total);
-        glm::vec3 c = (mesh.positions[mesh.indices[3 * t]] + mesh.positions[mesh.indices[3 * t + 1]] +
-                       mesh.positions[mesh.indices[3 * t + 2]]) /
-                      3.0f;
-        glm::vec3 n = mesh.normals[mesh.indices[3 * t]] + mesh.normals[mesh.indices[3 * t + 1]] +
-                      mesh.normals[mesh.indices[3 * t + 2]];
-        weighted += double(area) * double(field.density(c, glm::length(n) > 0.0f ? glm::normalize(n) : n));
-    }
-    if (triangles.empty() || !(weighted > 0.0))
+    return float(0.75 * std::sqrt(area / (double(std::max<uint32_t>(count, 1)) * 3.14159265)));
+}
+
+double scalpArea(const Mesh& mesh, const ScalpField& field)
+{
+    return scalpTriangles(mesh, field).weighted;
+}
+
+std::vector<RootSample> sampleScalpRoots(const Mesh& mesh, const ScalpField& field, uint32_t count, bool poissonDisk,
+                                         uint32_t seed, const std::vector<RootRow>& rows, float rowSpacing)
+{
+    ScalpTriangles scalp = scalpTriangles(mesh, field);
+    if (scalp.triangles.empty() || !(scalp.weighted > 0.0))
         throw UserError("the head has no usable scalp: its scalp field (the rule's plane and face direction) covers "
                         "none of its surface, so no hair can grow (check the head description's scalp rule)");
+    std::vector<RootSample> placed;
+    float spacing = rowSpacing * rootSpacing(scalp.weighted, count);
+    for (const RootRow& row : rows) {
+        std::vector<RootSample> r = rowRoots(mesh, field, scalp.triangles, row, spacing);
+        placed.insert(placed.end(), r.begin(), r.end());
+    }
+    if (placed.size() > count / 4)
+        placed.clear(); // too few roots for rows: blue noise alone
     Random rng{seed};
     auto draw = [&]() -> std::optional<RootSample> {
-        RootSample s = drawOnTriangles(mesh, triangles, cumulative, rng);
+        RootSample s = drawOnTriangles(mesh, scalp.triangles, scalp.cumulative, rng);
         float keep = rng.next();
         s.density = field.density(s.position, s.normal);
         if (keep >= s.density)
@@ -213,7 +306,7 @@ std::vector<RootSample> sampleScalpRoots(const Mesh& mesh, const ScalpField& fie
         return s;
     };
     // The dart radius follows the area the hair covers at full density.
-    return throwDarts(draw, count, weighted, poissonDisk);
+    return throwDarts(draw, count, scalp.weighted, poissonDisk, std::move(placed));
 }
 
 std::vector<float> scalpPaint(const Mesh& mesh, const ScalpField& field)

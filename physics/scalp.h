@@ -9,6 +9,7 @@
 #include "assets/head.h"
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace wisp {
@@ -45,12 +46,29 @@ struct RootSample {
 std::vector<RootSample> sampleRoots(const Mesh& mesh, const std::vector<uint32_t>& triangles, uint32_t count,
                                     bool poissonDisk, uint32_t seed);
 
-// `count` roots over the head at the field's density: candidates uniform over the area of every
-// triangle the field reaches, kept with probability density() (so the band is sparser), then kept
-// apart by dart throwing (blue noise) when `poissonDisk`. Throws UserError when the field holds no
-// area (a head with no usable scalp).
+// A row of roots along a curve on the scalp: where the plane through `point` with normal `normal`
+// cuts the head, where `keep` holds. A parting's two edges are rows a little apart, so the scalp
+// shows as a thin line between them rather than as the gap blue noise leaves between its sides.
+struct RootRow {
+    glm::vec3 point{0.0f};
+    glm::vec3 normal{1.0f, 0.0f, 0.0f};
+    std::function<bool(const glm::vec3&)> keep;
+};
+
+// The smallest distance blue-noise roots keep between them (the dart radius, head units) when
+// `count` of them cover `area` (head units squared).
+float rootSpacing(double area, uint32_t count);
+
+// The scalp's area at full density (each triangle the field reaches weighted by its density).
+double scalpArea(const Mesh& mesh, const ScalpField& field);
+
+// `count` roots over the head at the field's density: first the `rows`' roots (`rowSpacing` dart
+// radii apart along each row, inside the hairline; at most a quarter of `count`), then candidates
+// uniform over the area of every triangle the field reaches, kept with probability density() (so
+// the band is sparser), kept apart by dart throwing (blue noise) when `poissonDisk`. Throws
+// UserError when the field holds no area (a head with no usable scalp).
 std::vector<RootSample> sampleScalpRoots(const Mesh& mesh, const ScalpField& field, uint32_t count, bool poissonDisk,
-                                         uint32_t seed);
+                                         uint32_t seed, const std::vector<RootRow>& rows = {}, float rowSpacing = 1.5f);
 
 // The painted scalp of each head vertex (ScalpField::paint at the vertex and its normal).
 std::vector<float> scalpPaint(const Mesh& mesh, const ScalpField& field);

@@ -5,7 +5,7 @@
 # `wisp render --scene VIEW --frames 30 --width W --height H` (the views are scenes that only set the
 # camera), joined side by side by ffmpeg into images/gallery-NAME.png.
 # Usage: scripts/gallery.sh [OUT_DIR (default images)] [WIDTH (512)] [HEIGHT (384)]
-#   ONLY_STYLES=1 renders the styles and Sintel's groom only.
+#   ONLY_STYLES=1 renders the styles and Sintel's groom only; STYLES="bob crop" only those styles.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 out="${1:-$root/images}"
@@ -40,14 +40,10 @@ strip() {
   echo "$out/gallery-$name.png"
 }
 
-# The longer styles make more fragments than lavapipe's compute raster holds at this size (it would
-# drop some): they are drawn with 12 strands per guide here, not 32.
-for style in bob long wavy crop bangs afro; do
-  case "$style" in
-    bob | crop) density=() ;;
-    *) density=(--set strands_per_guide=12) ;;
-  esac
-  strip "style-$style" front side back top -- --set hair_style="$style" "${density[@]}"
+# Every style at its own density (the longer ones make more fragments than lavapipe's buffer holds:
+# the compute raster draws them in pieces).
+for style in ${STYLES:-bob long wavy crop bangs afro}; do
+  strip "style-$style" front side back top -- --set hair_style="$style"
 done
 if [ -d "$data" ]; then
   strip sintel front side back top -- --head "$data/sintel/sintel.obj" \
