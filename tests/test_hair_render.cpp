@@ -98,6 +98,17 @@ TEST(StrandMath, DeviationsAreDeterministicAndAboutHalfTheStrands)
         deviating += any ? 1u : 0u;
     }
     EXPECT_NEAR(double(deviating) / 4000.0, 0.5, 0.04);
+    // Every profile is smooth at the drawn resolution: between two points of the default 24
+    // divisions it changes by at most a third of its peak, so no bump is drawn as a triangle.
+    for (uint32_t s = 0; s < 4000; ++s)
+        for (int k = 0; k < 24; ++k) {
+            float a = gpu::deviationProfile(s / 40, s % 40, float(k) / 24.0f);
+            float b = gpu::deviationProfile(s / 40, s % 40, float(k + 1) / 24.0f);
+            ASSERT_LE(std::abs(b - a), 0.34f) << "strand " << s << ", division " << k;
+        }
+    // Roots stay where interpolation puts them.
+    for (uint32_t s = 0; s < 4000; ++s)
+        ASSERT_LT(gpu::deviationProfile(s / 40, s % 40, 0.0f), 0.07f);
 }
 
 TEST(StrandMath, LodFadesTheLastStrandInstead)

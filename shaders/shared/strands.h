@@ -189,9 +189,11 @@ GPU_FN bool strandIsMulti(uint interpolation, uint s)
 }
 
 // Random deviations (Rapp 2014): with probability 1/2 a strand strays from its guide along one of
-// five profiles over t: a Gaussian near the root (strays), two Gaussians lower down, a sharp
-// exponential at the tip (flyaways) and a gradual one (drift). Returns the profile's weight at t
-// (0 for strands that do not deviate); the direction comes from deviationDirection().
+// five profiles over t: a Gaussian near the root (strays), two Gaussians lower down, an exponential
+// at the tip (flyaways) and a gradual one (drift). Returns the profile's weight at t (0 for strands
+// that do not deviate); the direction comes from deviationDirection(). Each profile rises over at
+// least a fifth of the strand, so the default 24 divisions draw it with five points or more (bumps a
+// tenth of the strand wide were drawn with two or three: a triangle, scribbles round the outline).
 GPU_FN float deviationProfile(uint guide, uint s, float t)
 {
     uint h = hashUint(guide * 3571u + s * 2903u + 101u);
@@ -199,13 +201,13 @@ GPU_FN float deviationProfile(uint guide, uint s, float t)
         return 0.0f;
     uint kind = uint(5.0f * hashToUnit(h ^ 0x1B873593u)) % 5u;
     if (kind == 0u)
-        return exp(-pow((t - 0.12f) / 0.08f, 2.0f));
+        return exp(-pow((t - 0.2f) / 0.12f, 2.0f));
     if (kind == 1u)
-        return exp(-pow((t - 0.45f) / 0.12f, 2.0f));
+        return exp(-pow((t - 0.45f) / 0.14f, 2.0f));
     if (kind == 2u)
-        return exp(-pow((t - 0.75f) / 0.12f, 2.0f));
+        return exp(-pow((t - 0.75f) / 0.14f, 2.0f));
     if (kind == 3u)
-        return exp(12.0f * (t - 1.0f));
+        return exp(5.0f * (t - 1.0f));
     return exp(3.0f * (t - 1.0f)) * t;
 }
 
