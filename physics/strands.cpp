@@ -140,7 +140,8 @@ std::vector<glm::uvec4> guideTriangles(const StrandSet& strands)
                 (skipped && r >= 4))
                 break;
         }
-        out[s] = glm::uvec4(s, bestD[0] < 1e29f ? best[0] : s, bestD[1] < 1e29f ? best[1] : s, 0u);
+        out[s] = glm::uvec4(s, bestD[0] < 1e29f ? best[0] : s, bestD[1] < 1e29f ? best[1] : s,
+                            glm::floatBitsToUint(lengths[s]));
     }
     return out;
 }

@@ -40,8 +40,9 @@ struct StrandSet {
 };
 
 // For multi-strand interpolation: each guide with its two nearest neighbours by root distance
-// (x: the guide, y, z: the neighbours, w: 0), found through a uniform grid over the roots, leaving
-// out neighbours whose strands part from the guide's (a third of the way along, farther apart than
+// (x: the guide, y, z: the neighbours, w: the guide's rest length as float bits, which limits the
+// render-time spread of its strands: placeStrandPoint in shaders/shared/strands.h), found through a uniform grid over
+// the roots, leaving out neighbours whose strands part from the guide's (a third of the way along, farther apart than
 // three times the roots' distance plus a tenth of the length: across a parting). A lone guide is its
 // own neighbour.
 std::vector<glm::uvec4> guideTriangles(const StrandSet& strands);

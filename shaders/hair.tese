@@ -56,12 +56,13 @@ void main()
 
     CurvePoint g = evaluateGuide(guide, t);
     CurvePoint g1 = g, g2 = g;
+    uvec4 tri = triangles[guide];
     if (strandIsMulti(push.interpolation, s)) {
-        uvec4 tri = triangles[guide];
         g1 = evaluateGuide(tri.y, t);
         g2 = evaluateGuide(tri.z, t);
     }
-    CurvePoint point = placeStrandPoint(g, g1, g2, guide, s, t, push.interpolation, push.clumpRadius, push.deviation);
+    CurvePoint point = placeStrandPoint(g, g1, g2, guide, s, t, push.interpolation, push.clumpRadius, push.deviation,
+                                          uintBitsToFloat(tri.w));
     vec3 p = point.position;
     // Every generated strand is kept out of the head's colliders: blends of two outside points,
     // and offsets across a guide lying on the scalp, would otherwise fall inside the head.

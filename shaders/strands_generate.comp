@@ -47,12 +47,13 @@ void main()
 
     CurvePoint g = guideCurve(guide, i);
     CurvePoint g1 = g, g2 = g;
+    uvec4 tri = triangles[guide];
     if (strandIsMulti(push.interpolation, s)) {
-        uvec4 tri = triangles[guide];
         g1 = guideCurve(tri.y, i);
         g2 = guideCurve(tri.z, i);
     }
-    CurvePoint point = placeStrandPoint(g, g1, g2, guide, s, t, push.interpolation, push.clumpRadius, push.deviation);
+    CurvePoint point = placeStrandPoint(g, g1, g2, guide, s, t, push.interpolation, push.clumpRadius, push.deviation,
+                                          uintBitsToFloat(tri.w));
     vec3 p = point.position;
     if (s != 0u)
         for (uint c = 0u; c < sim.colliderCount; ++c)

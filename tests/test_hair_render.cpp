@@ -64,6 +64,31 @@ TEST(StrandMath, InterpolationWeightsSumToOneAndDiscIsFilled)
 // with the tangent: over tangents swept through every direction but straight up, a step of 0.01
 // radians in the tangent turns the frame by little (the frame it replaced switched its helper axis
 // at |t.y| = 0.9 and jumped by up to 90 degrees there, drawing hanging strands' offsets as zigzags).
+// A short guide's strands spread less: the clump disc at most a fifteenth of its length and the
+// deviation at most a twelfth, so a crop's 5 cm strands are not drawn as fuzz; a long guide's take
+// the settings whole.
+TEST(StrandMath, AShortGuidesStrandsSpreadInProportionToItsLength)
+{
+    gpu::CurvePoint g;
+    g.position = glm::vec3(0.0f);
+    g.tangent = glm::vec3(0.0f, -1.0f, 0.0f);
+    auto widest = [&](float length) {
+        float out = 0.0f;
+        for (uint32_t guide = 0; guide < 50; ++guide)
+            for (uint32_t s = 1; s < 64; ++s)
+                for (float t = 0.0f; t <= 1.0f; t += 0.05f) {
+                    gpu::CurvePoint p =
+                        gpu::placeStrandPoint(g, g, g, guide, s, t, gpu::kInterpolationMixed, 0.01f, 0.012f, length);
+                    out = std::max(out, glm::length(p.position - g.position));
+                }
+        return out;
+    };
+    float shortest = widest(0.05f);
+    EXPECT_LE(shortest, 0.05f / 15.0f + 0.05f / 12.0f + 1e-6f);
+    EXPECT_GT(shortest, 0.5f * 0.05f / 12.0f);
+    EXPECT_GT(widest(0.3f), 0.012f) << "a long guide's strands reach the whole deviation";
+}
+
 TEST(StrandMath, TheOffsetFrameTurnsContinuouslyWithTheTangent)
 {
     auto frameAt = [](float polar, float azimuth) {
@@ -150,8 +175,8 @@ TEST(StrandMath, GuideNeighboursOfFewGuidesOnALine)
     set.parts.push_back({});
     std::vector<glm::uvec4> tri = guideTriangles(set);
     ASSERT_EQ(tri.size(), 2u);
-    EXPECT_EQ(tri[0], glm::uvec4(0, 1, 0, 0));
-    EXPECT_EQ(tri[1], glm::uvec4(1, 0, 1, 0));
+    EXPECT_EQ(tri[0], glm::uvec4(0, 1, 0, glm::floatBitsToUint(1.5f)));
+    EXPECT_EQ(tri[1], glm::uvec4(1, 0, 1, glm::floatBitsToUint(1.5f)));
     for (uint32_t s = 2; s < 7; ++s) // and a few more on the line: the two nearest
         set.add({glm::vec3(0.2f * float(s), 1.5f, -1.0f), glm::vec3(0.2f * float(s), 1.0f, -1.0f),
                  glm::vec3(0.2f * float(s), 0.5f, -1.0f), glm::vec3(0.2f * float(s), 0.0f, -1.0f)},

@@ -62,8 +62,8 @@ StrandVertices generateStrands(const gpu::StrandRasterPush& push, const gpu::Fra
             g1 = curves[size_t(triangles[guide].y) * perStrand + i];
             g2 = curves[size_t(triangles[guide].z) * perStrand + i];
         }
-        gpu::CurvePoint point =
-            gpu::placeStrandPoint(g, g1, g2, guide, s, t, push.interpolation, push.clumpRadius, push.deviation);
+        gpu::CurvePoint point = gpu::placeStrandPoint(g, g1, g2, guide, s, t, push.interpolation, push.clumpRadius,
+                                                      push.deviation, glm::uintBitsToFloat(triangles[guide].w));
         glm::vec3 p = point.position;
         if (s != 0)
             for (uint32_t c = 0; c < sim.colliderCount; ++c)

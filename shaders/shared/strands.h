@@ -220,11 +220,16 @@ GPU_FN float deviationAngle(uint guide, uint s)
 // Point t of strand s of `guide`, before it is pushed out of the colliders: `g` is the guide's curve
 // at t, `g1` and `g2` its two neighbours' (read only by multi-strand interpolation). A multi strand
 // blends the three with barycentric weights; a single strand is offset in the guide's clump disc;
-// then the random deviation. Returns the position and the unit tangent. The tessellation path
-// (hair.tese) and the compute path (strands_generate.comp) both place their strands with this.
+// then the random deviation. A short guide (`guideLength`, its rest length) takes a clump disc of at
+// most a fifteenth of its length and a deviation of at most a twelfth (a crop's 5 cm strands under
+// the 1 cm disc and 1.2 cm deviations for long hair were drawn as fuzz). Returns the position and
+// the unit tangent. The tessellation path (hair.tese) and the compute path (strands_generate.comp)
+// both place their strands with this.
 GPU_FN CurvePoint placeStrandPoint(CurvePoint g, CurvePoint g1, CurvePoint g2, uint guide, uint s, float t,
-                                   uint interpolation, float clumpRadius, float deviation)
+                                   uint interpolation, float clumpRadius, float deviation, float guideLength)
 {
+    clumpRadius = min(clumpRadius, guideLength / 15.0f);
+    deviation = min(deviation, guideLength / 12.0f);
     vec3 p = g.position;
     vec3 tangent = g.tangent;
     bool multi = strandIsMulti(interpolation, s);
