@@ -67,7 +67,7 @@ std::vector<RestVertex> restVertices(const StrandSet& strands)
 
 CpuSolver::CpuSolver(const StrandSet& strands, const SimSetup& setup, const glm::mat4& headTransform)
     : strands_(strands), setup_(setup), rest_(restVertices(strands)), state_(initialState(strands, headTransform)),
-      grid_(setup.params.gridNodeCount), gridVelocity_(setup.params.gridNodeCount)
+      grid_(setup.params.gridNodeCount), gridVelocity_(setup.params.gridNodeCount), reached_(setup.params.gridNodeCount)
 {
 }
 
@@ -123,10 +123,17 @@ void CpuSolver::integrateStrand(uint32_t s, const SimStep& step)
     }
 }
 
+// Only the nodes the last splat reached hold anything: clearing and normalizing them alone is the
+// kernels' result over every node (the others stay zero), at the cost of the hair's vertices
+// rather than the grid's nodes (256³ nodes are 16.7 million).
 void CpuSolver::gridClear()
 {
-    for (GridNode& n : grid_)
-        n = GridNode{vec3(0.0f), 0.0f};
+    for (uint32_t n : touched_) {
+        grid_[n] = GridNode{vec3(0.0f), 0.0f};
+        gridVelocity_[n] = vec4(0.0f);
+        reached_[n] = 0;
+    }
+    touched_.clear();
 }
 
 void CpuSolver::gridSplat(const SimStep& step)
@@ -140,6 +147,10 @@ void CpuSolver::gridSplat(const SimStep& step)
         for (uint32_t k = 0; k < 8; ++k) {
             float w = cornerWeight(cell.frac, k);
             uint32_t n = gridIndex(cell.base + cornerOffset(k), params.gridResolution);
+            if (!reached_[n]) {
+                reached_[n] = 1;
+                touched_.push_back(n);
+            }
             grid_[n].density += w;
             grid_[n].momentum += w * v;
         }
@@ -148,7 +159,7 @@ void CpuSolver::gridSplat(const SimStep& step)
 
 void CpuSolver::gridNormalize()
 {
-    for (size_t n = 0; n < grid_.size(); ++n) {
+    for (uint32_t n : touched_) {
         const GridNode& node = grid_[n];
         vec3 velocity = node.density > kGridMinDensity ? node.momentum / node.density : vec3(0.0f);
         gridVelocity_[n] = vec4(velocity, node.density);

@@ -6,6 +6,9 @@
 
 #include "physics/simulation.h"
 
+#include <cstdint>
+#include <vector>
+
 namespace wisp {
 
 class CpuSolver {
@@ -34,6 +37,8 @@ private:
     SimState state_;
     std::vector<gpu::GridNode> grid_;
     std::vector<glm::vec4> gridVelocity_;
+    std::vector<uint8_t> reached_;  // 1: the node is in touched_
+    std::vector<uint32_t> touched_; // the nodes the last splat reached
 };
 
 // Rest vertices as the GPU stores them (position + segment length).
