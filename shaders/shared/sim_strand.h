@@ -29,16 +29,37 @@
 
 GPU_NAMESPACE_BEGIN
 
+// The head's colliders are ellipsoids fitted under the scalp (physics/colliders.h), so a strand
+// grown or styled along the head rests within the margin shell, and even dips into a collider by a
+// millimetre or so where the scalp does; the first vertices of every strand, rooted on the scalp,
+// rest inside the shell. The penalty measures depth into the shell beyond the rest position's own
+// (`restHead`, head space; restDepth: how deep it lies inside collider c, <= 0 outside): pushed
+// from the shell's surface instead, those vertices were pushed against their pinned roots every
+// step, k * margin up to 20 g at the 5 cm margin, which the FTL correction turned into sideways
+// velocity. Measured on the bob's 160 guides, CPU, two seconds, worst kinetic energy: 4,677 at
+// margin 0.05 m against 64 at the default 0.003 m (a5c4863); now 52 against 50
+// (tests/test_sim_stability.cpp, after a quarter of a second's settling).
+// (The push-out still moves a rest vertex inside a collider out at the first steps: measured
+// against its rest depth too it popped nothing, but fur's crown strands, no longer held off the
+// head, kept moving 1 to 3 mm a step once the head stopped; docs/physics.md.)
+GPU_FN float restDepth(Ellipsoid e, vec3 restHead)
+{
+    return ellipsoidContact(e, restHead, 0.0f).depth;
+}
+
 // Acceleration from the colliders' penalty forces k * depth * n at x (x in the head's space once
-// for every head collider), with the margin.
-GPU_FN vec3 colliderPenalty(SIM_CONTEXT vec3 x)
+// for every head collider), with the margin: the depth beyond the rest pose's depth into the
+// margin shell (at most the margin: no allowance reaches inside the collider for the penalty).
+GPU_FN vec3 colliderPenalty(SIM_CONTEXT vec3 x, vec3 restHead)
 {
     vec3 a = vec3(0.0f);
     vec3 local = toHeadSpace(step.headTransform, x);
     for (uint c = 0u; c < params.colliderCount; ++c) {
         Contact k = ellipsoidContact(params.colliders[c], local, params.collisionMargin);
-        if (k.depth > 0.0f)
-            a += params.penaltyStiffness * k.depth * (mat3(step.headTransform) * k.normal);
+        float allowed =
+            clamp(restDepth(params.colliders[c], restHead) + params.collisionMargin, 0.0f, params.collisionMargin);
+        if (k.depth > allowed)
+            a += params.penaltyStiffness * (k.depth - allowed) * (mat3(step.headTransform) * k.normal);
     }
     if (step.sphereRadius > 0.0f) {
         Contact k = sphereContact(step.sphereCenter, step.sphereRadius, x, params.collisionMargin);
@@ -128,7 +149,8 @@ GPU_FN WalkedVertex strandWalkStep(SIM_CONTEXT GPU_INOUT(StrandWalk) w, uint i, 
         vec3 segment = x - w.prevX;
         float segLen = length(segment);
         vec3 t = segLen > 1e-12f ? segment / segLen : targetDir;
-        vec3 a = params.gravity - w.part.drag * v + windAcceleration(t, w.wind) + colliderPenalty(SIM_ARGS x);
+        vec3 a =
+            params.gravity - w.part.drag * v + windAcceleration(t, w.wind) + colliderPenalty(SIM_ARGS x, r.position);
         p = x + dt * v + dt * dt * a;
         p = mix(p, restWorld, globalShapeWeight(w.part.globalStiffness, i, V));
         vec3 beforeShape = p;
