@@ -18,7 +18,7 @@ struct PartSettings {
     std::string name = "guides";
     float globalStiffness = 0.015f; // per step at the root, [0, 1]
     float localStiffness = 0.04f;   // per step, [0, 1]
-    float ftlDamping = 0.9f;        // s_damp, [0, 1]
+    float ftlDamping = 0.9f;        // s_damp, [0.5, 1]
     float drag = 0.6f;              // 1/s
 };
 

@@ -53,7 +53,7 @@ struct Ellipsoid {
 struct SimPart {
     float globalStiffness; // pull toward the rest pose in the head frame per step, [0, 1], at the root
     float localStiffness;  // pull of each segment toward its rest direction in its parent's frame, [0, 1]
-    float ftlDamping;      // s_damp of Muller et al. 2012, [0, 1]
+    float ftlDamping;      // s_damp of Muller et al. 2012, [0.5, 1] (settings_table.cpp says why)
     float drag;            // velocity damping, 1/s
 };
 
