@@ -7,6 +7,7 @@
 #include "physics/cpu_solver.h"
 #include "physics/gpu_solver.h"
 #include "physics/hair_scene.h"
+#include "physics_trials.h"
 #include "renderer/physics_pass.h"
 #include "test_support.h"
 
@@ -20,6 +21,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 #include <memory>
+#include <string>
 #include <utility>
 
 using namespace wisp;
@@ -290,6 +292,90 @@ TEST(GpuSolver, RepulsionMatchesTheCpuAndStaysBoundedAtItsExtremes)
         EXPECT_LT(m.maxStretch, 1e-4f);
         EXPECT_LT(m.maxPenetration, without.maxPenetration + 0.003f);
         EXPECT_LT(m.kineticEnergy, 4.0f * without.kineticEnergy + 1e-3f);
+    }
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
+// A handful of the stability trials (tests/test_sim_stability.cpp: every physics setting at its
+// extremes and midpoint on the CPU) on the GPU against the CPU: the settings at the top of their
+// ranges where the shared math has the most to do (the collision margin, the penalty, repulsion,
+// full local stiffness, the float grid), on the bob and fur. One step agrees to rounding; over the
+// two seconds the motion is chaotic (GpuMatchesCpu), so the GPU run keeps the CPU's bounds and its
+// worst kinetic energy, both sampled every 5th step, stays within a factor of two of the CPU's.
+TEST(GpuSolver, StabilityTrialsMatchTheCpu)
+{
+    vk::Context ctx(test::validatedOptions());
+    struct Case {
+        const char* groom;
+        const char* assignment;
+    };
+    const Case cases[] = {{"bob", "collision_margin=0.05"},
+                          {"bob", "penalty_stiffness=100000"},
+                          {"bob", "repulsion=1"},
+                          {"bob", "local_stiffness=1"},
+                          {"bob", "grid_atomics=float"},
+                          {"fur", "collision_margin=0.05"},
+                          {"fur", "repulsion=1"}};
+    constexpr uint32_t kEvery = 5;
+    for (const auto& [groomName, growth] : test::trialGrooms()) {
+        HairScene scene = buildGrownScene(defaultHeadPath(), growth);
+        float diagonal = scene.head.mesh.bounds().diagonal();
+        float rest = test::restPenetration(scene);
+        float margin = SimSettings{}.collisionMarginMetres * scene.unitsPerMetre;
+        for (const Case& c : cases) {
+            if (groomName != c.groom)
+                continue;
+            Settings settings;
+            applySetting(settings, c.assignment);
+            const SimSettings& sim = settings.sim;
+            StrandSet strands = test::strandsUnder(scene, sim);
+            SimSetup setup = makeSimSetup(sim, strands, scene.gpuColliders, scene.unitsPerMetre);
+            const int settle = int(test::trialSettleSteps(sim));
+            auto stepAt = [&](uint32_t k) { return test::trialStep(setup, sim, int(k) - settle); };
+            std::string what = groomName + ", " + c.assignment;
+            { // one step agrees to rounding
+                CpuSolver cpu(strands, setup, glm::mat4(1.0f));
+                cpu.step(stepAt(0));
+                GpuSolver gpuSolver(ctx, strands, setup, glm::mat4(1.0f));
+                EXPECT_LT(agreement(runGpu(ctx, gpuSolver, setup, 1, stepAt), cpu.state()).max, 1e-5f) << what;
+            }
+            const uint32_t steps = test::trialSteps(sim) + uint32_t(settle);
+            test::TrialRun onCpu, onGpu;
+            CpuSolver cpu(strands, setup, glm::mat4(1.0f));
+            GpuSolver gpuSolver(ctx, strands, setup, glm::mat4(1.0f));
+            runGpu(ctx, gpuSolver, setup, uint32_t(settle), stepAt, 10);
+            for (uint32_t n = 0; n < uint32_t(settle); ++n)
+                cpu.step(stepAt(n));
+            for (uint32_t done = uint32_t(settle); done < steps; done += kEvery) {
+                auto from = [&](uint32_t first) { return [&, first](uint32_t k) { return stepAt(first + k); }; };
+                SimState before = runGpu(ctx, gpuSolver, setup, kEvery - 1, from(done), kEvery);
+                SimState after = runGpu(ctx, gpuSolver, setup, 1, from(done + kEvery - 1));
+                uint32_t k = done + kEvery - 1;
+                onGpu.add(measure(after, before.positions, 1.0f / sim.stepHz, strands, setup, stepAt(k)), k, steps);
+                for (uint32_t n = done; n < k; ++n)
+                    cpu.step(stepAt(n));
+                std::vector<glm::vec4> previous = cpu.state().positions;
+                cpu.step(stepAt(k));
+                onCpu.add(measure(cpu.state(), previous, 1.0f / sim.stepHz, strands, setup, stepAt(k)), k, steps);
+                if (done + kEvery >= steps)
+                    onGpu.finish(after);
+            }
+            onCpu.finish(cpu.state());
+            std::fprintf(stderr,
+                         "%s: worst energy GPU %.4g CPU %.4g, a second after %.3g %.3g, penetration %.3g %.3g "
+                         "of the diagonal, stretch %.2g %.2g\n",
+                         what.c_str(), double(onGpu.worstEnergy), double(onCpu.worstEnergy), double(onGpu.lastEnergy),
+                         double(onCpu.lastEnergy), double(onGpu.worstPenetration / diagonal),
+                         double(onCpu.worstPenetration / diagonal), double(onGpu.worstStretch),
+                         double(onCpu.worstStretch));
+            EXPECT_TRUE(onGpu.finite) << what;
+            EXPECT_EQ(onGpu.resets, 0u) << what;
+            EXPECT_LT(onGpu.worstStretch, 1e-4f) << what;
+            EXPECT_LT(onGpu.worstPenetration, rest + margin) << what;
+            EXPECT_GT(onGpu.worstEnergy, 0.5f * onCpu.worstEnergy) << what;
+            EXPECT_LT(onGpu.worstEnergy, 2.0f * onCpu.worstEnergy) << what;
+            EXPECT_LT(onGpu.lastEnergy, 0.03f * onCpu.worstEnergy) << what << ": it settles";
+        }
     }
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
