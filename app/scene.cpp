@@ -3,6 +3,7 @@
 // timeline.
 #include "app/scene.h"
 
+#include "assets/text.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "physics/strands.h"
@@ -363,19 +364,14 @@ SceneKey readKey(const Reader& r, const Json& v, const std::string& at)
     return k;
 }
 
-// Where in `text` byte `offset` is, as line and column (1-based).
-std::pair<size_t, size_t> lineAndColumn(const std::string& text, size_t offset)
+// Where in `text` byte `offset` is, as line and column (1-based), lines ended as every text reader
+// ends them (assets/text.h: LF, CRLF or a bare CR).
+std::pair<size_t, size_t> lineAndColumn(std::string_view text, size_t offset)
 {
-    size_t line = 1, column = 1;
-    for (size_t i = 0; i < std::min(offset, text.size()); ++i) {
-        if (text[i] == '\n') {
-            ++line;
-            column = 1;
-        } else {
-            ++column;
-        }
-    }
-    return {line, column};
+    offset = std::min(offset, text.size());
+    size_t lineStart = text.find_last_of("\r\n", offset == 0 ? std::string_view::npos : offset - 1);
+    lineStart = lineStart == std::string_view::npos || offset == 0 ? 0 : lineStart + 1;
+    return {lineOfByte(text, offset), offset - lineStart + 1};
 }
 
 // A float as the shortest decimal that reads back as the same float (0.3f is written 0.3, not
@@ -471,11 +467,15 @@ Scene loadScene(const std::filesystem::path& path)
 
 Scene parseScene(const std::string& content, const std::filesystem::path& path)
 {
+    // Trailing NULs and white space are padding; a NUL inside the text is an error naming its byte
+    // (assets/text.h, the rule of every text reader). JSON takes any line ending as white space.
+    std::string_view body = textOf(content);
+    checkNoNulBytes(body, bomBytes(content), path, "a scene file");
     Json doc;
     try {
-        doc = Json::parse(content, duplicateKeyCheck(path));
+        doc = Json::parse(body, duplicateKeyCheck(path));
     } catch (const Json::parse_error& e) {
-        auto [line, column] = lineAndColumn(content, e.byte > 0 ? e.byte - 1 : 0);
+        auto [line, column] = lineAndColumn(body, e.byte > 0 ? e.byte - 1 : 0);
         std::string why = e.what();
         if (size_t c = why.find("column"); c != std::string::npos && why.find(": ", c) != std::string::npos)
             why = why.substr(why.find(": ", c) + 2);
@@ -488,8 +488,8 @@ Scene parseScene(const std::string& content, const std::filesystem::path& path)
         size_t quote = why.find('\'');
         if (quote != std::string::npos && why.find('\'', quote + 1) != std::string::npos) {
             std::string literal = why.substr(quote + 1, why.find('\'', quote + 1) - quote - 1);
-            if (size_t at = content.find(literal); at != std::string::npos) {
-                auto [line, column] = lineAndColumn(content, at);
+            if (size_t at = body.find(literal); at != std::string_view::npos) {
+                auto [line, column] = lineAndColumn(body, at);
                 where += ":" + std::to_string(line) + ":" + std::to_string(column);
             }
             why = literal + " is too large a number";

@@ -4,11 +4,13 @@
 // and every validation error naming the file and the value's JSON pointer.
 #include "app/scene.h"
 #include "app/viewer.h"
+#include "assets/text.h"
 #include "core/error.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 
 using namespace wisp;
@@ -188,6 +190,43 @@ TEST(Scene, ParsedTextIsTheSameAsTheLoadedFile)
     } catch (const UserError& e) {
         EXPECT_EQ(std::string(e.what()).rfind("scenes/broken.json:2:12: malformed JSON", 0), 0u) << e.what();
     }
+}
+
+TEST(Scene, TrailingPaddingIsReadAndANulInsideIsNamed)
+{
+    // The rule of every text file Wisp reads (assets/text.h): NULs and white space after the last
+    // character are padding (a trailing NUL was "malformed JSON"), any line ending reads, and a NUL
+    // inside the text is an error naming its line and byte.
+    std::string lf = "{\n  \"hair\": {\"guides\": 40},\n  \"keys\": [{\"time\": 0, \"head_yaw\": 10}]\n}\n";
+    std::string cr = lf;
+    std::replace(cr.begin(), cr.end(), '\n', '\r');
+    for (const std::string& text :
+         {lf + std::string(3, '\0'), lf + std::string(1, '\0') + " \r\n\t" + std::string(8, '\0'),
+          cr + std::string(1, '\0'), "\xEF\xBB\xBF" + lf + std::string(2, '\0')}) {
+        EXPECT_EQ(loadError(text, "padded.json"), "") << quoteText(text);
+        TempDir dir;
+        writeFile(dir / "padded.json", text);
+        Scene s = loadScene(dir / "padded.json");
+        EXPECT_EQ(s.hair.guides, 40u);
+        ASSERT_EQ(s.keys.size(), 1u);
+        EXPECT_EQ(*s.keys[0].headYawDeg, 10.0f);
+    }
+    std::string inside = lf;
+    inside.insert(inside.find("40") + 1, 1, '\0'); // byte 24, on line 2
+    std::string e = loadError(inside, "nul.json");
+    EXPECT_NE(e.find("nul.json:2: byte 24 is a NUL byte inside the text (in '4\\x000},')"), std::string::npos) << e;
+    EXPECT_NE(e.find("a scene file holds none but as padding"), std::string::npos) << e;
+    EXPECT_EQ(e.find('\0'), std::string::npos);
+    // The JSON reader stops at a NUL: what followed one was ignored without a word.
+    e = loadError(lf + std::string(1, '\0') + "{\"keys\": 5}\n", "after.json");
+    EXPECT_NE(e.find("after.json:5: byte " + std::to_string(lf.size()) + " is a NUL byte inside the text"),
+              std::string::npos)
+        << e;
+    // With bare CR line endings a JSON error names the line it is on.
+    std::string broken = cr;
+    broken.replace(broken.find("10"), 2, "1x");
+    e = loadError(broken, "cr.json");
+    EXPECT_NE(e.find("cr.json:3:"), std::string::npos) << e;
 }
 
 TEST(SceneTimeline, LinearValuesByHand)
