@@ -4,6 +4,7 @@
 // solver), the steps due, the passes, present. Scenes are saved and loaded by app/window_scene.h.
 #include "app/window.h"
 
+#include "app/command.h"
 #include "app/hair_session.h"
 #include "app/image_io.h"
 #include "app/settings_table.h"
@@ -343,9 +344,16 @@ void Window::followMouse(float viewportHeight)
 std::string Window::applyFromPanel(const SettingSpec& spec, const SettingValue& value)
 {
     SettingEdit edit = editSetting(pending_, spec, value);
-    if (edit.error.empty())
-        change_ = std::max(change_.value_or(SettingChange::Live), edit.change);
-    return edit.error;
+    if (!edit.error.empty())
+        return edit.error;
+    change_ = std::max(change_.value_or(SettingChange::Live), edit.change);
+    // Samples the device lacks: drawn with the most it has below them, said as at the start (the
+    // panel then shows what is drawn), never the asked number drawn as fewer without a word.
+    if (spec.name == "samples") {
+        if (std::string note = useDeviceSamples(pending_.render, ctx_.report()); !note.empty())
+            std::fprintf(stderr, "%s\n", note.c_str());
+    }
+    return "";
 }
 
 // The panel, built before the frame begins so that what it changes applies to this frame; a
