@@ -89,19 +89,4 @@ public:
     virtual void record(VkCommandBuffer cmd, FrameContext& frame) = 0;
 };
 
-// One stage of an owner that runs as several passes (StrandRaster, MeshRaster): the owner declares
-// and records each stage, `Owner::declare(Stage, PassIo&)` and `Owner::record(Stage, cmd, frame)`.
-template <typename Owner, typename Stage> class StagePass : public Pass {
-public:
-    StagePass(Owner& owner, Stage stage, const char* name) : owner_(owner), stage_(stage), name_(name) {}
-    const char* name() const override { return name_; }
-    void declare(PassIo& io) override { owner_.declare(stage_, io); }
-    void record(VkCommandBuffer cmd, FrameContext& frame) override { owner_.record(stage_, cmd, frame); }
-
-private:
-    Owner& owner_;
-    Stage stage_;
-    const char* name_;
-};
-
 } // namespace wisp

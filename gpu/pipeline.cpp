@@ -4,9 +4,11 @@
 #include "gpu/check.h"
 #include "gpu/context.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <stdexcept>
 #include <unistd.h>
 #include <vector>
@@ -54,7 +56,7 @@ VkShaderStageFlagBits stageOf(const std::string& fileName)
 
 } // namespace
 
-ShaderModule loadShader(const Context& ctx, const std::string& fileName)
+static std::vector<uint32_t> readSpirv(const std::string& fileName)
 {
     std::filesystem::path path = shaderDirectory() / fileName;
     std::ifstream in(path, std::ios::binary | std::ios::ate);
@@ -66,9 +68,56 @@ ShaderModule loadShader(const Context& ctx, const std::string& fileName)
     std::vector<uint32_t> code(static_cast<size_t>(bytes) / 4);
     in.seekg(0);
     in.read(reinterpret_cast<char*>(code.data()), bytes);
-    VkShaderModuleCreateInfo info{.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
-                                  .codeSize = static_cast<size_t>(bytes),
-                                  .pCode = code.data()};
+    return code;
+}
+
+std::vector<uint32_t> spirvBindings(std::span<const uint32_t> words)
+{
+    constexpr uint32_t kMagic = 0x07230203, kVersion14 = 0x00010400;
+    constexpr uint32_t kOpEntryPoint = 15, kOpDecorate = 71, kBinding = 33, kDescriptorSet = 34;
+    if (words.size() < 5 || words[0] != kMagic)
+        throw std::runtime_error("not SPIR-V");
+    if (words[1] < kVersion14) // (before 1.4 an entry point lists only its inputs and outputs)
+        throw std::runtime_error("SPIR-V older than 1.4: its entry point does not list the descriptors it uses");
+    std::vector<uint32_t> used;
+    std::map<uint32_t, uint32_t> binding, set;
+    for (size_t i = 5; i < words.size();) {
+        uint32_t count = words[i] >> 16, op = words[i] & 0xffffu;
+        if (count == 0 || i + count > words.size())
+            throw std::runtime_error("malformed SPIR-V");
+        if (op == kOpEntryPoint) { // model, function, name (nul-terminated), then the globals it uses
+            size_t j = i + 3;
+            auto ends = [](uint32_t w) {
+                return (w & 0xffu) == 0 || (w & 0xff00u) == 0 || (w & 0xff0000u) == 0 || (w & 0xff000000u) == 0;
+            };
+            while (j < i + count && !ends(words[j]))
+                ++j;
+            used.insert(used.end(), words.begin() + ptrdiff_t(j + 1), words.begin() + ptrdiff_t(i + count));
+        } else if (op == kOpDecorate && count >= 4 && (words[i + 2] == kBinding || words[i + 2] == kDescriptorSet)) {
+            (words[i + 2] == kBinding ? binding : set)[words[i + 1]] = words[i + 3];
+        }
+        i += count;
+    }
+    std::vector<uint32_t> out;
+    for (uint32_t id : used)
+        if (binding.count(id) && (!set.count(id) || set[id] == 0))
+            out.push_back(binding[id]);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
+
+std::vector<uint32_t> shaderBindings(const std::string& shader)
+{
+    return spirvBindings(readSpirv(shader + ".spv"));
+}
+
+ShaderModule loadShader(const Context& ctx, const std::string& fileName)
+{
+    std::vector<uint32_t> code = readSpirv(fileName);
+    size_t bytes = code.size() * 4;
+    VkShaderModuleCreateInfo info{
+        .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO, .codeSize = bytes, .pCode = code.data()};
     VkShaderModule module = VK_NULL_HANDLE;
     VK_CHECK(vkCreateShaderModule(ctx.device(), &info, nullptr, &module));
     ctx.setName(module, VK_OBJECT_TYPE_SHADER_MODULE, fileName.c_str());
@@ -268,6 +317,14 @@ Pipeline createComputePipeline(const Context& ctx, VkPipelineLayout layout, cons
     if (ctx.shaderStats())
         printShaderStats(ctx, pipeline, name);
     return Pipeline(ctx.device(), pipeline);
+}
+
+ComputeKernel createComputeKernel(const Context& ctx, VkPipelineLayout layout, const std::string& shader,
+                                  const char* name, const std::vector<uint32_t>& constants)
+{
+    return {.pipeline = createComputePipeline(ctx, layout, shader, name, constants),
+            .bindings = shaderBindings(shader),
+            .name = name};
 }
 
 Sampler createSampler(const Context& ctx, VkFilter filter, bool compare, const char* name)

@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -75,6 +76,22 @@ Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& 
 // `constants[i]` is the shader's specialization constant i, 32 bits each (a bool is 0 or 1).
 Pipeline createComputePipeline(const Context& ctx, VkPipelineLayout layout, const std::string& shader, const char* name,
                                const std::vector<uint32_t>& constants = {});
+
+// The set-0 bindings a shader's entry point uses, from its SPIR-V (1.4 or later, whose entry point
+// lists every global it uses: code a specialization constant turns off included), sorted.
+std::vector<uint32_t> spirvBindings(std::span<const uint32_t> words);
+std::vector<uint32_t> shaderBindings(const std::string& shader); // the compiled shader's, by name
+// A compute pipeline and the bindings its shader uses: a compute stage (gpu/compute_stage.h) that
+// dispatches it must list every one of them.
+struct ComputeKernel {
+    Pipeline pipeline;
+    std::vector<uint32_t> bindings;
+    const char* name = "";
+    VkPipeline get() const { return pipeline; }
+    explicit operator bool() const { return bool(pipeline); }
+};
+ComputeKernel createComputeKernel(const Context& ctx, VkPipelineLayout layout, const std::string& shader,
+                                  const char* name, const std::vector<uint32_t>& constants = {});
 
 // A clamp-to-edge sampler without mipmaps: `filter` for magnification and minification, and
 // with `compare` a depth comparison (LESS_OR_EQUAL: shadow maps).

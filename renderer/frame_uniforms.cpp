@@ -14,6 +14,8 @@ FrameUniforms::FrameUniforms(const vk::Context& ctx, uint32_t framesInFlight)
                                              .usage = vk::kUniform,
                                              .memory = vk::Memory::Upload,
                                              .name = "frame.params"}));
+    for (uint32_t i = 0; i < framesInFlight; ++i)
+        descriptors_.push_back(descriptor(i));
 }
 
 void FrameUniforms::write(uint32_t slot, const gpu::FrameParams& params)

@@ -5,6 +5,7 @@
 #include "gpu/resources.h"
 #include "shaders/shared/frame_params.h"
 
+#include <span>
 #include <vector>
 
 namespace wisp {
@@ -18,11 +19,14 @@ public:
     FrameUniforms(const vk::Context& ctx, uint32_t framesInFlight);
     void write(uint32_t slot, const gpu::FrameParams& params);
     VkDescriptorBufferInfo descriptor(uint32_t slot) const;
+    // Every slot's block, by slot (a compute stage's uniformBlock).
+    std::span<const VkDescriptorBufferInfo> descriptors() const { return descriptors_; }
     // Pushes this slot's block at kFrameParamsBinding of set 0 (a push-descriptor set).
     void push(const vk::Context& ctx, VkCommandBuffer cmd, VkPipelineLayout layout, uint32_t slot) const;
 
 private:
     std::vector<vk::Buffer> buffers_;
+    std::vector<VkDescriptorBufferInfo> descriptors_;
 };
 
 } // namespace wisp

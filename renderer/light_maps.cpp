@@ -91,6 +91,15 @@ std::array<VkWriteDescriptorSet, 4> LightMaps::descriptorWrites() const
             vk::imageWrite(gpu::kBindingOpacity, kSampler, &infos_[3])};
 }
 
+std::array<StageUse, 4> LightMaps::computeReads()
+{
+    TrackedImage& hairDepth = values_ ? valuesTrack_ : hairTrack_;
+    return {sampledImage(gpu::kBindingShadowHead, headTrack_, infos_[0].imageView, infos_[0].sampler),
+            sampledImage(gpu::kBindingShadowHair, hairTrack_, infos_[1].imageView, infos_[1].sampler),
+            sampledImage(gpu::kBindingHairDepth, hairDepth, infos_[2].imageView, infos_[2].sampler),
+            sampledImage(gpu::kBindingOpacity, opacityTrack_, infos_[3].imageView, infos_[3].sampler)};
+}
+
 VkWriteDescriptorSet LightMaps::hairDepthWrite() const
 {
     return vk::imageWrite(gpu::kBindingHairDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &infos_[2]);

@@ -7,6 +7,7 @@
 //                           depth falls in behind the texel's first hair depth (Yuksel & Keyser 2008)
 #pragma once
 
+#include "gpu/compute_stage.h"
 #include "gpu/handle.h"
 #include "gpu/pass.h"
 #include "gpu/resources.h"
@@ -86,6 +87,9 @@ public:
     // writes for bindings kBindingShadowHead..kBindingOpacity (valid while this object lives).
     void declareRead(PassIo& io, Access access = Access::GraphicsSampled);
     std::array<VkWriteDescriptorSet, 4> descriptorWrites() const;
+    // For a compute stage whose kernels read the maps: its entries for the same bindings, sampled
+    // in compute (the hair's depth under two bindings is declared once).
+    std::array<StageUse, 4> computeReads();
     // The hair depth alone, for the opacity pass (binding kBindingHairDepth).
     VkWriteDescriptorSet hairDepthWrite() const;
 

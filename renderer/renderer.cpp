@@ -253,9 +253,9 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
                             .fragmentBudgetBytes = uint64_t(settings_.fragmentBudgetMiB) << 20});
     if (computeMeshes()) {
         meshRaster_->setHair(&strandRaster_->color(), &strandRaster_->colorImage());
-        strandRaster_->setMeshSamples(&meshRaster_->depthSamples(), meshRaster_->depthBuffer().get());
+        strandRaster_->setMeshSamples(&meshRaster_->depthSamples());
     } else {
-        strandRaster_->setMeshSamples(nullptr, VK_NULL_HANDLE);
+        strandRaster_->setMeshSamples(nullptr);
     }
 }
 

@@ -1,5 +1,5 @@
-// renderer/compute/mesh_raster.cpp: the compute meshes' buffers, pipelines and passes (what each stage
-// declares and records; the kernels are shaders/mesh_raster.comp, mesh_shade.comp and
+// renderer/compute/mesh_raster.cpp: the compute meshes' buffers, pipelines and stages (each one list of
+// what it touches, and its commands; the kernels are shaders/mesh_raster.comp, mesh_shade.comp and
 // hair_compose.comp).
 #include "renderer/compute/mesh_raster.h"
 
@@ -13,15 +13,13 @@
 #include "shaders/shared/shadows.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace wisp {
 
 static_assert(sizeof(gpu::MeshRasterPush) == 96, "MeshRasterPush must fit the 128 bytes of push constants");
 
 namespace {
-
-constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-constexpr VkDescriptorType kImage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 
 constexpr uint32_t kMaxGroupsPerDimension = 65535;
 
@@ -50,35 +48,19 @@ MeshRaster::MeshRaster(const vk::Context& ctx, RenderTarget& target, FrameUnifor
                        MeshPass& meshes)
     : ctx_(ctx), target_(target), uniforms_(uniforms), maps_(maps), meshes_(meshes)
 {
-    constexpr VkShaderStageFlags kCompute = VK_SHADER_STAGE_COMPUTE_BIT;
-    constexpr VkDescriptorType kSampler = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    vk::PipelineLayoutBundle layout = vk::createPipelineLayout(
-        ctx, {.bindings = {{gpu::kMeshRasterBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCompute},
-                           {gpu::kMeshRasterBindingVertices, kStorage, kCompute},
-                           {gpu::kMeshRasterBindingIndices, kStorage, kCompute},
-                           {gpu::kMeshRasterBindingSphereVertices, kStorage, kCompute},
-                           {gpu::kBindingShadowHead, kSampler, kCompute},
-                           {gpu::kBindingShadowHair, kSampler, kCompute},
-                           {gpu::kBindingHairDepth, kSampler, kCompute},
-                           {gpu::kBindingOpacity, kSampler, kCompute},
-                           {gpu::kMeshRasterBindingSphereIndices, kStorage, kCompute},
-                           {gpu::kMeshRasterBindingDepth, kStorage, kCompute},
-                           {gpu::kMeshRasterBindingIds, kStorage, kCompute},
-                           {gpu::kMeshRasterBindingColor, kImage, kCompute},
-                           {gpu::kMeshRasterBindingHair, kImage, kCompute},
-                           {gpu::kMeshRasterBindingOut, kImage, kCompute}},
-              .pushConstantBytes = sizeof(gpu::MeshRasterPush),
-              .pushConstantStages = kCompute,
-              .name = "meshes.compute.layout"});
-    setLayout_ = std::move(layout.setLayout);
-    layout_ = std::move(layout.layout);
-    depthPipeline_ =
-        vk::createComputePipeline(ctx, layout_, "mesh_raster.comp", "meshes.raster.pipeline", {/*kPhase=*/0});
-    idPipeline_ = vk::createComputePipeline(ctx, layout_, "mesh_raster.comp", "meshes.ids.pipeline", {/*kPhase=*/1});
-    shadePipeline_ = vk::createComputePipeline(ctx, layout_, "mesh_shade.comp", "meshes.shade.pipeline");
-    composePipeline_ = vk::createComputePipeline(ctx, layout_, "hair_compose.comp", "hair.composite.pipeline");
+    // The layout holds every binding any stage lists (the lists only name the resources here).
+    std::vector<ComputeStage> stages;
     for (int s = 0; s <= int(Stage::Copy); ++s)
-        passes_.push_back(std::make_unique<StagePass<MeshRaster, Stage>>(*this, Stage(s), stageName(Stage(s))));
+        stages.push_back(stage(Stage(s)));
+    layout_ = StageLayout(ctx, stages, sizeof(gpu::MeshRasterPush), "meshes.compute.layout");
+    VkPipelineLayout layout = layout_.layout();
+    depthKernel_ = vk::createComputeKernel(ctx, layout, "mesh_raster.comp", "meshes.raster.pipeline", {/*kPhase=*/0});
+    idKernel_ = vk::createComputeKernel(ctx, layout, "mesh_raster.comp", "meshes.ids.pipeline", {/*kPhase=*/1});
+    shadeKernel_ = vk::createComputeKernel(ctx, layout, "mesh_shade.comp", "meshes.shade.pipeline");
+    composeKernel_ = vk::createComputeKernel(ctx, layout, "hair_compose.comp", "hair.composite.pipeline");
+    for (int s = 0; s <= int(Stage::Copy); ++s)
+        passes_.push_back(
+            std::make_unique<ComputeStagePass>(stageName(Stage(s)), layout_, [this, s] { return stage(Stage(s)); }));
     resize();
 }
 
@@ -133,132 +115,90 @@ gpu::MeshRasterPush MeshRaster::push() const
             .pad2 = 0};
 }
 
-void MeshRaster::declare(Stage stage, PassIo& io)
+ComputeStage MeshRaster::stage(Stage stage)
 {
-    switch (stage) {
-    case Stage::Clear:
-        io.use(depthTrack_, Access::TransferDst);
-        io.use(idTrack_, Access::TransferDst);
-        break;
-    case Stage::Raster:
-        io.use(depthTrack_, Access::ComputeWrite);
-        io.use(idTrack_, Access::ComputeRead); // (bound, not touched: one shader with meshes.ids)
-        break;
-    case Stage::Ids:
-        io.use(depthTrack_, Access::ComputeRead);
-        io.use(idTrack_, Access::ComputeWrite);
-        break;
-    case Stage::Shade:
-        maps_.declareRead(io, Access::ComputeSampled);
-        io.use(depthTrack_, Access::ComputeRead);
-        io.use(idTrack_, Access::ComputeRead);
-        io.use(colorTrack_, Access::ComputeWrite);
-        break;
-    case Stage::Compose:
-        io.use(colorTrack_, Access::ComputeRead);
-        if (hairTrack_)
-            io.use(*hairTrack_, Access::ComputeRead);
-        io.use(frameTrack_, Access::ComputeWrite);
-        break;
-    case Stage::Copy:
-        io.use(frameTrack_, Access::TransferSrc);
-        io.use(target_.result(), Access::TransferDst);
-        break;
-    }
-}
-
-void MeshRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame)
-{
-    VkExtent2D e = target_.extent();
-    gpu::MeshRasterPush p = push();
-    VkDescriptorBufferInfo frameInfo = uniforms_.descriptor(frame.slot);
-    VkDescriptorBufferInfo depth{depth_, 0, VK_WHOLE_SIZE}, ids{ids_, 0, VK_WHOLE_SIZE};
+    using enum Access;
+    using namespace gpu; // the bindings: shaders/shared/mesh_raster.h, shadows.h
     MeshPass::Buffers head = meshes_.headBuffers(), sphere = meshes_.sphereBuffers();
-    VkDescriptorBufferInfo headVertices{head.vertices, 0, VK_WHOLE_SIZE}, headIndices{head.indices, 0, VK_WHOLE_SIZE};
-    VkDescriptorBufferInfo sphereVertices{sphere.vertices, 0, VK_WHOLE_SIZE};
-    VkDescriptorBufferInfo sphereIndices{sphere.indices, 0, VK_WHOLE_SIZE};
-    auto bindAndPush = [&](VkPipeline pipeline, const std::vector<VkWriteDescriptorSet>& writes,
-                           const gpu::MeshRasterPush& push) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-        ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, uint32_t(writes.size()), writes.data());
-        vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    };
+    StageUse frame = uniformBlock(kMeshRasterBindingFrame, uniforms_.descriptors());
+    VkExtent2D e = target_.extent();
 
     switch (stage) {
     case Stage::Clear:
-        vkCmdFillBuffer(cmd, depth_, 0, VK_WHOLE_SIZE, gpu::kMeshDepthClear);
-        vkCmdFillBuffer(cmd, ids_, 0, VK_WHOLE_SIZE, gpu::kNoMesh);
-        break;
-    case Stage::Raster:
+        return {.uses = {commandUse(depthTrack_, TransferDst), commandUse(idTrack_, TransferDst)},
+                .record = [this](StageCommands& c) {
+                    c.fill(depthTrack_, kMeshDepthClear);
+                    c.fill(idTrack_, kNoMesh);
+                }};
+    case Stage::Raster: // (one shader with meshes.ids: meshes.raster binds, never touches, the triangles)
     case Stage::Ids: {
-        VkPipeline pipeline = stage == Stage::Raster ? depthPipeline_.get() : idPipeline_.get();
-        struct Draw {
-            uint32_t object;
-            MeshPass::Buffers buffers;
-            bool shown;
-        };
-        const Draw draws[] = {{gpu::kMeshObjectHead, head, head.triangles > 0},
-                              {gpu::kMeshObjectSphere, sphere, p.sphere.w > 0.0f},
-                              {gpu::kMeshObjectMarker, sphere, p.marker.w > 0.0f}};
-        for (const Draw& d : draws) {
-            if (!d.shown || d.buffers.triangles == 0)
-                continue;
-            VkDescriptorBufferInfo vertices{d.buffers.vertices, 0, VK_WHOLE_SIZE};
-            VkDescriptorBufferInfo indices{d.buffers.indices, 0, VK_WHOLE_SIZE};
-            std::vector<VkWriteDescriptorSet> writes = {
-                vk::bufferWrite(gpu::kMeshRasterBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frameInfo),
-                vk::bufferWrite(gpu::kMeshRasterBindingVertices, kStorage, &vertices),
-                vk::bufferWrite(gpu::kMeshRasterBindingIndices, kStorage, &indices),
-                vk::bufferWrite(gpu::kMeshRasterBindingDepth, kStorage, &depth),
-                vk::bufferWrite(gpu::kMeshRasterBindingIds, kStorage, &ids)};
-            gpu::MeshRasterPush drawPush = p;
-            drawPush.object = d.object;
-            drawPush.triangles = d.buffers.triangles;
-            bindAndPush(pipeline, writes, drawPush);
-            // One workgroup per triangle, in rows of at most 65535.
-            uint32_t x = std::min(d.buffers.triangles, kMaxGroupsPerDimension);
-            vkCmdDispatch(cmd, x, (d.buffers.triangles + x - 1) / x, 1);
-        }
-        break;
+        bool ids = stage == Stage::Ids;
+        return {.uses = {frame, constantBuffer(kMeshRasterBindingVertices, head.vertices),
+                         constantBuffer(kMeshRasterBindingIndices, head.indices),
+                         storageBuffer(kMeshRasterBindingDepth, depthTrack_, ids ? ComputeRead : ComputeWrite),
+                         storageBuffer(kMeshRasterBindingIds, idTrack_, ids ? ComputeWrite : ComputeRead)},
+                .record = [this, ids](StageCommands& c) { rasterize(c, ids ? idKernel_ : depthKernel_); }};
     }
     case Stage::Shade: {
-        VkDescriptorImageInfo color{VK_NULL_HANDLE, color_.view(), VK_IMAGE_LAYOUT_GENERAL};
-        std::vector<VkWriteDescriptorSet> writes = {
-            vk::bufferWrite(gpu::kMeshRasterBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frameInfo),
-            vk::bufferWrite(gpu::kMeshRasterBindingVertices, kStorage, &headVertices),
-            vk::bufferWrite(gpu::kMeshRasterBindingIndices, kStorage, &headIndices),
-            vk::bufferWrite(gpu::kMeshRasterBindingSphereVertices, kStorage, &sphereVertices),
-            vk::bufferWrite(gpu::kMeshRasterBindingSphereIndices, kStorage, &sphereIndices),
-            vk::bufferWrite(gpu::kMeshRasterBindingDepth, kStorage, &depth),
-            vk::bufferWrite(gpu::kMeshRasterBindingIds, kStorage, &ids),
-            vk::imageWrite(gpu::kMeshRasterBindingColor, kImage, &color)};
-        for (const VkWriteDescriptorSet& w : maps_.descriptorWrites())
-            writes.push_back(w);
-        bindAndPush(shadePipeline_, writes, p);
-        vkCmdDispatch(cmd, vk::groupCount(e.width, 8), vk::groupCount(e.height, 8), 1);
-        break;
+        ComputeStage s{.uses = {frame, constantBuffer(kMeshRasterBindingVertices, head.vertices),
+                                constantBuffer(kMeshRasterBindingIndices, head.indices),
+                                constantBuffer(kMeshRasterBindingSphereVertices, sphere.vertices),
+                                constantBuffer(kMeshRasterBindingSphereIndices, sphere.indices),
+                                storageBuffer(kMeshRasterBindingDepth, depthTrack_, ComputeRead),
+                                storageBuffer(kMeshRasterBindingIds, idTrack_, ComputeRead),
+                                storageImage(kMeshRasterBindingColor, colorTrack_, color_.view(), ComputeWrite)},
+                       .record = [this, e](StageCommands& c) {
+                           c.dispatch(shadeKernel_, push(), vk::groupCount(e.width, 8), vk::groupCount(e.height, 8));
+                       }};
+        for (const StageUse& u : maps_.computeReads())
+            s.uses.push_back(u);
+        return s;
     }
-    case Stage::Compose: {
-        VkDescriptorImageInfo color{VK_NULL_HANDLE, color_.view(), VK_IMAGE_LAYOUT_GENERAL};
-        VkDescriptorImageInfo hair{VK_NULL_HANDLE, hairImage_ ? hairImage_->view() : color_.view(),
-                                   VK_IMAGE_LAYOUT_GENERAL}; // (no hair: bound, not read)
-        VkDescriptorImageInfo out{VK_NULL_HANDLE, frame_.view(), VK_IMAGE_LAYOUT_GENERAL};
-        std::vector<VkWriteDescriptorSet> writes = {vk::imageWrite(gpu::kMeshRasterBindingColor, kImage, &color),
-                                                    vk::imageWrite(gpu::kMeshRasterBindingHair, kImage, &hair),
-                                                    vk::imageWrite(gpu::kMeshRasterBindingOut, kImage, &out)};
-        p.object = hairTrack_ ? 1u : 0u;
-        bindAndPush(composePipeline_, writes, p);
-        vkCmdDispatch(cmd, vk::groupCount(e.width, 8), vk::groupCount(e.height, 8), 1);
-        break;
+    case Stage::Compose: // (no hair: the meshes' colour is bound in its place, not read)
+        return {.uses = {storageImage(kMeshRasterBindingColor, colorTrack_, color_.view(), ComputeRead),
+                         storageImage(kMeshRasterBindingHair, hairTrack_ ? *hairTrack_ : colorTrack_,
+                                      hairImage_ ? hairImage_->view() : color_.view(), ComputeRead),
+                         storageImage(kMeshRasterBindingOut, frameTrack_, frame_.view(), ComputeWrite)},
+                .record = [this, e](StageCommands& c) {
+                    MeshRasterPush p = push();
+                    p.object = hairTrack_ ? 1u : 0u;
+                    c.dispatch(composeKernel_, p, vk::groupCount(e.width, 8), vk::groupCount(e.height, 8));
+                }};
+    case Stage::Copy:
+        return {.uses = {commandUse(frameTrack_, TransferSrc), commandUse(target_.result(), TransferDst)},
+                .record = [this, e](StageCommands& c) {
+                    VkImageCopy region{.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                                       .dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                                       .extent = {e.width, e.height, 1}};
+                    c.copyImage(frameTrack_, target_.result(), region);
+                }};
     }
-    case Stage::Copy: {
-        VkImageCopy region{.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-                           .dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-                           .extent = {e.width, e.height, 1}};
-        vkCmdCopyImage(cmd, frame_.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target_.resultImage().get(),
-                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-        break;
-    }
+    throw std::logic_error("no such meshes stage");
+}
+
+void MeshRaster::rasterize(StageCommands& c, const vk::ComputeKernel& kernel)
+{
+    gpu::MeshRasterPush p = push();
+    MeshPass::Buffers head = meshes_.headBuffers(), sphere = meshes_.sphereBuffers();
+    struct Draw {
+        uint32_t object;
+        MeshPass::Buffers buffers;
+        bool shown;
+    };
+    const Draw draws[] = {{gpu::kMeshObjectHead, head, head.triangles > 0},
+                          {gpu::kMeshObjectSphere, sphere, p.sphere.w > 0.0f},
+                          {gpu::kMeshObjectMarker, sphere, p.marker.w > 0.0f}};
+    for (const Draw& d : draws) {
+        if (!d.shown || d.buffers.triangles == 0)
+            continue;
+        c.setConstantBuffer(gpu::kMeshRasterBindingVertices, d.buffers.vertices);
+        c.setConstantBuffer(gpu::kMeshRasterBindingIndices, d.buffers.indices);
+        gpu::MeshRasterPush drawPush = p;
+        drawPush.object = d.object;
+        drawPush.triangles = d.buffers.triangles;
+        // One workgroup per triangle, in rows of at most 65535.
+        uint32_t x = std::min(d.buffers.triangles, kMaxGroupsPerDimension);
+        c.dispatch(kernel, drawPush, x, (d.buffers.triangles + x - 1) / x);
     }
 }
 

@@ -3,7 +3,8 @@
 // stages on a few units (the H100), the meshes' 4x MSAA depth, shading and the hair's composite
 // cost more than all the hair's kernels together. Same sample positions, same shading
 // (shared/mesh_raster.h's meshSurfaceColor, which mesh.frag calls too), same shadows as the
-// graphics meshes (MeshPass). Its passes:
+// graphics meshes (MeshPass). Its passes, each a stage written once as the list of what it touches
+// (gpu/compute_stage.h, stage() below):
 //   meshes.clear    transfer: every sample's depth to 1, its triangle to none
 //   meshes.raster   each sample's nearest depth (mesh_raster.comp, kPhase 0)
 //   meshes.ids      the triangle holding it (kPhase 1)
@@ -14,6 +15,7 @@
 // Its C++ twin is renderer/compute/mesh_raster_reference.h (tests/test_strand_raster.cpp compares them).
 #pragma once
 
+#include "gpu/compute_stage.h"
 #include "gpu/handle.h"
 #include "gpu/pass.h"
 #include "gpu/resources.h"
@@ -74,25 +76,29 @@ public:
     // The push constants this frame's kernels get (object and triangles per draw).
     gpu::MeshRasterPush push() const;
 
-    void declare(Stage stage, PassIo& io);
-    void record(Stage stage, VkCommandBuffer cmd, FrameContext& frame);
+    // Each stage as the one list of what it touches (binding, resource, access) and its commands:
+    // its pass declares and records from it, and the layout holds every binding the stages list.
+    ComputeStage stage(Stage stage);
+    const StageLayout& layout() const { return layout_; }
 
 private:
+    // meshes.raster or meshes.ids: a dispatch per mesh shown, its buffers bound in turn.
+    void rasterize(StageCommands& commands, const vk::ComputeKernel& kernel);
+
     const vk::Context& ctx_;
     RenderTarget& target_;
     FrameUniforms& uniforms_;
     LightMaps& maps_;
     MeshPass& meshes_;
-    vk::DescriptorSetLayout setLayout_;
-    vk::PipelineLayout layout_;
-    vk::Pipeline depthPipeline_, idPipeline_, shadePipeline_, composePipeline_;
+    StageLayout layout_;
+    vk::ComputeKernel depthKernel_, idKernel_, shadeKernel_, composeKernel_;
     vk::Buffer depth_, ids_;
     TrackedBuffer depthTrack_, idTrack_;
     vk::Image color_, frame_;
     TrackedImage colorTrack_, frameTrack_;
     TrackedImage* hairTrack_ = nullptr;
     const vk::Image* hairImage_ = nullptr;
-    std::vector<std::unique_ptr<Pass>> passes_;
+    std::vector<std::unique_ptr<ComputeStagePass>> passes_;
 };
 
 } // namespace wisp

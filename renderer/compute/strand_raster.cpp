@@ -1,8 +1,9 @@
-// renderer/compute/strand_raster.cpp: the compute path's buffers, pipelines and passes (what each stage
-// declares and records; the kernels are shaders/strands_*.comp).
+// renderer/compute/strand_raster.cpp: the compute path's buffers, pipelines and stages (StrandRaster::stage:
+// each stage one list of what it touches, and its commands; the kernels are shaders/strands_*.comp).
 #include "renderer/compute/strand_raster.h"
 
 #include "gpu/check.h"
+#include "gpu/compute_stage.h"
 #include "gpu/context.h"
 #include "gpu/frame.h"
 #include "gpu/pipeline.h"
@@ -13,6 +14,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
 
 namespace wisp {
 
@@ -68,25 +70,6 @@ const char* stageName(StrandRaster::Stage stage)
 constexpr uint32_t kScanBlockThreads = 256; // strands_scan.comp's blocks: 4 counts a thread
 constexpr VkBufferUsageFlags kIndirect = VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
 
-// strands.write or strands.resolve of one recorded piece.
-class PiecePass : public Pass {
-public:
-    PiecePass(StrandRaster& owner, StrandRaster::Stage stage, uint32_t piece)
-        : owner_(owner), stage_(stage), piece_(piece),
-          name_(std::string(stageName(stage)) + (piece > 0 ? " " + std::to_string(piece) : ""))
-    {
-    }
-    const char* name() const override { return name_.c_str(); }
-    void declare(PassIo& io) override { owner_.declare(stage_, io); }
-    void record(VkCommandBuffer cmd, FrameContext& frame) override { owner_.record(stage_, cmd, frame, piece_); }
-
-private:
-    StrandRaster& owner_;
-    StrandRaster::Stage stage_;
-    uint32_t piece_;
-    std::string name_;
-};
-
 } // namespace
 
 std::string describeRasterStats(const RasterStats& s)
@@ -106,67 +89,34 @@ StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUn
                            GpuSolver& solver, const std::vector<glm::uvec4>& triangles, uint32_t framesInFlight)
     : ctx_(ctx), target_(target), uniforms_(uniforms), maps_(maps), solver_(solver)
 {
-    constexpr VkShaderStageFlags kCompute = VK_SHADER_STAGE_COMPUTE_BIT;
-    constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    constexpr VkDescriptorType kSampler = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    constexpr VkDescriptorType kImage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-    vk::PipelineLayoutBundle layout = vk::createPipelineLayout(
-        ctx, {.bindings = {{gpu::kRasterBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCompute},
-                           {gpu::kRasterBindingSim, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCompute},
-                           {gpu::kRasterBindingPositions, kStorage, kCompute},
-                           {gpu::kRasterBindingTriangles, kStorage, kCompute},
-                           {gpu::kBindingShadowHead, kSampler, kCompute},
-                           {gpu::kBindingShadowHair, kSampler, kCompute},
-                           {gpu::kBindingHairDepth, kSampler, kCompute},
-                           {gpu::kBindingOpacity, kSampler, kCompute},
-                           {gpu::kRasterBindingLut, kSampler, kCompute},
-                           {gpu::kRasterBindingVertices, kStorage, kCompute},
-                           {gpu::kRasterBindingColors, kStorage, kCompute},
-                           {gpu::kRasterBindingCounts, kStorage, kCompute},
-                           {gpu::kRasterBindingOffsets, kStorage, kCompute},
-                           {gpu::kRasterBindingFragments, kStorage, kCompute},
-                           {gpu::kRasterBindingCounters, kStorage, kCompute},
-                           {gpu::kRasterBindingMeshDepth, kSampler, kCompute},
-                           {gpu::kRasterBindingHairColor, kImage, kCompute},
-                           {gpu::kRasterBindingLightDepth, kStorage, kCompute},
-                           {gpu::kRasterBindingLightOpacity, kStorage, kCompute},
-                           {gpu::kRasterBindingOpacityImage, kImage, kCompute},
-                           {gpu::kRasterBindingDepthRange, kStorage, kCompute},
-                           {gpu::kRasterBindingBlockSums, kStorage, kCompute},
-                           {gpu::kRasterBindingMeshSamples, kStorage, kCompute},
-                           {gpu::kRasterBindingLightDepthImage, kImage, kCompute},
-                           {gpu::kRasterBindingTileDepth, kStorage, kCompute},
-                           {gpu::kRasterBindingCurves, kStorage, kCompute},
-                           {gpu::kRasterBindingPieces, kStorage, kCompute}},
-              .pushConstantBytes = sizeof(gpu::StrandRasterPush),
-              .pushConstantStages = kCompute,
-              .name = "strands.layout"});
-    setLayout_ = std::move(layout.setLayout);
-    layout_ = std::move(layout.layout);
-    curvesPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_curves.comp", "strands.curves.pipeline");
-    generatePipeline_ = vk::createComputePipeline(ctx, layout_, "strands_generate.comp", "strands.generate.pipeline");
-    generateLightPipeline_ =
-        vk::createComputePipeline(ctx, layout_, "strands_generate_light.comp", "strands.light.pipeline");
+    // The layout holds every binding any stage lists (the lists only name the resources here).
+    std::vector<ComputeStage> stages;
+    for (int s = 0; s <= int(Stage::Stats); ++s)
+        stages.push_back(stage(Stage(s)));
+    layout_ = StageLayout(ctx, stages, sizeof(gpu::StrandRasterPush), "strands.layout");
+    VkPipelineLayout layout = layout_.layout();
+    curvesKernel_ = vk::createComputeKernel(ctx, layout, "strands_curves.comp", "strands.curves.pipeline");
+    generateKernel_ = vk::createComputeKernel(ctx, layout, "strands_generate.comp", "strands.generate.pipeline");
+    generateLightKernel_ =
+        vk::createComputeKernel(ctx, layout, "strands_generate_light.comp", "strands.light.pipeline");
     const char* single = target.multisampled() ? "" : "_single";
-    depthPipeline_ = vk::createComputePipeline(ctx, layout_, std::string("strands_depth") + single + ".comp",
-                                               "strands.depth.pipeline");
-    depthBufferPipeline_ =
-        vk::createComputePipeline(ctx, layout_, "strands_depth_buffer.comp", "strands.depth.pipeline");
-    countPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_fragments.comp", "strands.count.pipeline");
-    writePipeline_ = vk::createComputePipeline(ctx, layout_, "strands_fragments_write.comp", "strands.write.pipeline");
-    scanBlocksPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_scan.comp", "strands.scan.blocks.pipeline",
-                                                    {/*kPhase=*/0, kScanBlockThreads});
-    scanTotalsPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_scan.comp", "strands.scan.totals.pipeline",
-                                                    {/*kPhase=*/1, gpu::kRasterScanGroupSize});
-    scanOffsetsPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_scan.comp", "strands.scan.offsets.pipeline",
-                                                     {/*kPhase=*/2, kScanBlockThreads});
-    piecesPipeline_ = vk::createComputePipeline(ctx, layout_, "strands_pieces.comp", "strands.pieces.pipeline");
-    lightDepthPipeline_ =
-        vk::createComputePipeline(ctx, layout_, "strands_light.comp", "light.depth.pipeline", {/*kOpacity=*/0});
-    lightOpacityPipeline_ =
-        vk::createComputePipeline(ctx, layout_, "strands_light.comp", "light.opacity.pipeline", {/*kOpacity=*/1});
-    lightResolvePipeline_ =
-        vk::createComputePipeline(ctx, layout_, "strands_light_resolve.comp", "light.resolve.pipeline");
+    depthKernel_ =
+        vk::createComputeKernel(ctx, layout, std::string("strands_depth") + single + ".comp", "strands.depth.pipeline");
+    depthBufferKernel_ = vk::createComputeKernel(ctx, layout, "strands_depth_buffer.comp", "strands.depth.pipeline");
+    countKernel_ = vk::createComputeKernel(ctx, layout, "strands_fragments.comp", "strands.count.pipeline");
+    writeKernel_ = vk::createComputeKernel(ctx, layout, "strands_fragments_write.comp", "strands.write.pipeline");
+    scanBlocksKernel_ = vk::createComputeKernel(ctx, layout, "strands_scan.comp", "strands.scan.blocks.pipeline",
+                                                {/*kPhase=*/0, kScanBlockThreads});
+    scanTotalsKernel_ = vk::createComputeKernel(ctx, layout, "strands_scan.comp", "strands.scan.totals.pipeline",
+                                                {/*kPhase=*/1, gpu::kRasterScanGroupSize});
+    scanOffsetsKernel_ = vk::createComputeKernel(ctx, layout, "strands_scan.comp", "strands.scan.offsets.pipeline",
+                                                 {/*kPhase=*/2, kScanBlockThreads});
+    piecesKernel_ = vk::createComputeKernel(ctx, layout, "strands_pieces.comp", "strands.pieces.pipeline");
+    lightDepthKernel_ =
+        vk::createComputeKernel(ctx, layout, "strands_light.comp", "light.depth.pipeline", {/*kOpacity=*/0});
+    lightOpacityKernel_ =
+        vk::createComputeKernel(ctx, layout, "strands_light.comp", "light.opacity.pipeline", {/*kOpacity=*/1});
+    lightResolveKernel_ = vk::createComputeKernel(ctx, layout, "strands_light_resolve.comp", "light.resolve.pipeline");
     depthSampler_ = vk::createSampler(ctx, VK_FILTER_NEAREST, false, "strands.depth.sampler");
 
     triangles_ = ctx.createBufferWithData(
@@ -184,11 +134,13 @@ StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUn
         std::memset(readback_.back().mapped(), 0, sizeof(gpu::RasterCounters));
     }
     for (int s = 0; s <= int(Stage::Stats); ++s)
-        passes_.push_back(std::make_unique<StagePass<StrandRaster, Stage>>(*this, Stage(s), stageName(Stage(s))));
-    for (uint32_t piece = 0; piece < gpu::kRasterMaxPieces; ++piece) {
-        piecePasses_.push_back(std::make_unique<PiecePass>(*this, Stage::Write, piece));
-        piecePasses_.push_back(std::make_unique<PiecePass>(*this, Stage::Resolve, piece));
-    }
+        passes_.push_back(
+            std::make_unique<ComputeStagePass>(stageName(Stage(s)), layout_, [this, s] { return stage(Stage(s)); }));
+    for (uint32_t piece = 0; piece < gpu::kRasterMaxPieces; ++piece) // strands.write N, strands.resolve N
+        for (Stage s : {Stage::Write, Stage::Resolve})
+            piecePasses_.push_back(std::make_unique<ComputeStagePass>(
+                std::string(stageName(s)) + (piece > 0 ? " " + std::to_string(piece) : ""), layout_,
+                [this, s, piece] { return stage(s, piece); }));
     resize();
 }
 
@@ -369,10 +321,10 @@ void StrandRaster::prepare(FrameContext& frame, const StrandDraw& cameraDraw, co
     // oit_k is the resolve's specialization constant.
     uint32_t k = std::clamp(camera.oitK, 1u, gpu::kMaxOitK);
     if (k != pipelineK_) {
-        if (resolvePipeline_)
-            frame.retire(std::move(resolvePipeline_));
-        resolvePipeline_ =
-            vk::createComputePipeline(ctx_, layout_, "strands_resolve.comp", "strands.resolve.pipeline", {k});
+        if (resolveKernel_)
+            frame.retire(std::move(resolveKernel_.pipeline));
+        resolveKernel_ =
+            vk::createComputeKernel(ctx_, layout_.layout(), "strands_resolve.comp", "strands.resolve.pipeline", {k});
         pipelineK_ = k;
     }
 
@@ -393,300 +345,179 @@ void StrandRaster::prepare(FrameContext& frame, const StrandDraw& cameraDraw, co
     light_ = light;
 }
 
-void StrandRaster::declare(Stage stage, PassIo& io)
+namespace {
+
+// Groups of `groupSize` for `items` items, in rows of at most 65535 workgroups; the kernels number
+// their items x + y * (groups per row * group size) and skip those past the end (the same rows
+// strands.pieces dispatches the walk in).
+void dispatchLinear(StageCommands& c, const vk::ComputeKernel& kernel, const gpu::StrandRasterPush& push,
+                    uint64_t items, uint32_t groupSize)
 {
+    glm::uvec2 groups = gpu::rasterLinearGroups(uint32_t(items), groupSize);
+    c.dispatch(kernel, push, groups.x, groups.y);
+}
+
+} // namespace
+
+ComputeStage StrandRaster::stage(Stage stage, uint32_t piece)
+{
+    using enum Access;
+    using namespace gpu; // the bindings: shaders/shared/strand_raster.h, shadows.h
+    StageUse frame = uniformBlock(kRasterBindingFrame, uniforms_.descriptors());
+    // The meshes' depth samples: the compute meshes' buffer, or the depth image's (strands.depth
+    // copies them into a buffer of its own).
+    TrackedBuffer& samples = externalSamples_ ? *externalSamples_ : meshSamples_.track;
+
     switch (stage) {
     case Stage::Clear:
-        io.use(lightDepth_.track, Access::TransferDst);
-        io.use(lightOpacity_.track, Access::TransferDst);
-        io.use(counters_.track, Access::TransferDst);
-        break;
+        return {.uses = {commandUse(lightDepth_.track, TransferDst), commandUse(lightOpacity_.track, TransferDst),
+                         commandUse(counters_.track, TransferDst)},
+                .record = [this](StageCommands& c) {
+                    c.fill(lightDepth_.track, 0x3f800000u); // 1.0f: nothing in front
+                    c.fill(lightOpacity_.track, 0);
+                    c.fill(counters_.track, 0);
+                }};
     case Stage::Curves:
-        io.use(solver_.positionsTrack(), Access::ComputeRead);
-        io.use(curves_.track, Access::ComputeWrite);
-        break;
-    case Stage::LightGenerate:
-        io.use(curves_.track, Access::ComputeRead);
-        io.use(lightVertices_.track, Access::ComputeWrite);
-        io.use(lightColors_.track, Access::ComputeWrite);
-        break;
-    case Stage::LightDepth: // (one shader with light.opacity: it binds, never touches, the opacity)
-        io.use(lightVertices_.track, Access::ComputeRead);
-        io.use(lightColors_.track, Access::ComputeRead);
-        io.use(lightDepth_.track, Access::ComputeWrite);
-        io.use(lightOpacity_.track, Access::ComputeRead);
-        break;
-    case Stage::LightOpacity:
-        io.use(lightVertices_.track, Access::ComputeRead);
-        io.use(lightColors_.track, Access::ComputeRead);
-        io.use(lightDepth_.track, Access::ComputeRead);
-        io.use(lightOpacity_.track, Access::ComputeWrite);
-        break;
-    case Stage::LightResolve:
-        io.use(lightOpacity_.track, Access::ComputeRead);
-        io.use(lightDepth_.track, Access::ComputeRead);
-        io.use(maps_.opacity(), Access::ComputeWrite);
-        io.use(maps_.hairDepthValues(), Access::ComputeWrite);
-        break;
-    case Stage::LightCopy:
-        io.use(lightDepth_.track, Access::TransferSrc);
-        io.use(maps_.hairDepth(), Access::TransferDst);
-        break;
-    case Stage::Generate:
-        io.use(curves_.track, Access::ComputeRead);
-        maps_.declareRead(io, Access::ComputeSampled);
-        io.use(vertices_.track, Access::ComputeWrite);
-        io.use(colors_.track, Access::ComputeWrite);
-        break;
-    case Stage::Depth:
-        if (externalSamples_) {
-            io.use(*externalSamples_, Access::ComputeRead);
-        } else {
-            io.use(target_.depth(), Access::DepthSampled);
-            io.use(meshSamples_.track, Access::ComputeWrite);
-        }
-        io.use(depthRange_.track, Access::ComputeWrite);
-        io.use(tileDepth_.track, Access::ComputeWrite);
-        io.use(counts_.track, Access::ComputeWrite);
-        break;
-    case Stage::Count: // (the walk of strands.write: it binds, never touches, the fragments)
-    case Stage::Write:
-        io.use(vertices_.track, Access::ComputeRead);
-        io.use(colors_.track, Access::ComputeRead);
-        io.use(depthRange_.track, Access::ComputeRead);
-        io.use(tileDepth_.track, Access::ComputeRead);
-        io.use(externalSamples_ ? *externalSamples_ : meshSamples_.track, Access::ComputeRead);
-        io.use(counts_.track, Access::ComputeWrite); // counts, then (strands.write) cursors
-        io.use(fragments_.track, Access::ComputeWrite);
-        io.use(counters_.track, Access::ComputeWrite);
-        if (stage == Stage::Write) {
-            io.use(offsets_.track, Access::ComputeRead);
-            io.use(pieces_.track, Access::ComputeRead);
-            io.use(pieces_.track, Access::IndirectRead);
-        }
-        break;
-    case Stage::Pieces:
-        io.use(offsets_.track, Access::ComputeRead);
-        io.use(counters_.track, Access::ComputeWrite);
-        io.use(pieces_.track, Access::ComputeWrite);
-        break;
-    case Stage::ScanBlocks:
-    case Stage::ScanTotals:
-    case Stage::ScanOffsets:
-        io.use(counts_.track, Access::ComputeWrite);
-        io.use(offsets_.track, Access::ComputeWrite);
-        io.use(blockSums_.track, Access::ComputeWrite);
-        io.use(counters_.track, Access::ComputeWrite);
-        break;
-    case Stage::Resolve:
-        io.use(offsets_.track, Access::ComputeRead);
-        io.use(fragments_.track, Access::ComputeRead);
-        io.use(counters_.track, Access::ComputeRead);
-        io.use(pieces_.track, Access::ComputeRead);
-        io.use(pieces_.track, Access::IndirectRead);
-        io.use(colorTrack_, Access::ComputeWrite);
-        break;
-    case Stage::Stats:
-        io.use(counters_.track, Access::TransferSrc);
-        break;
-    }
-}
-
-void StrandRaster::dispatch(VkCommandBuffer cmd, VkPipeline pipeline, const gpu::StrandRasterPush& push,
-                            const std::vector<VkWriteDescriptorSet>& writes, uint32_t x, uint32_t y)
-{
-    if (x == 0 || y == 0)
-        return;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-    ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, uint32_t(writes.size()), writes.data());
-    vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatch(cmd, x, y, 1);
-}
-
-void StrandRaster::dispatchIndirect(VkCommandBuffer cmd, VkPipeline pipeline, const gpu::StrandRasterPush& push,
-                                    const std::vector<VkWriteDescriptorSet>& writes, VkDeviceSize offset)
-{
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-    ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, uint32_t(writes.size()), writes.data());
-    vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatchIndirect(cmd, pieces_.buffer, offset);
-}
-
-void StrandRaster::dispatchLinear(VkCommandBuffer cmd, VkPipeline pipeline, const gpu::StrandRasterPush& push,
-                                  const std::vector<VkWriteDescriptorSet>& writes, uint64_t items, uint32_t groupSize)
-{
-    // Rows of at most 65535 groups; the kernels number their items x + y * (groups per row *
-    // group size) and skip those past the end (the same rows strands.pieces dispatches the walk in).
-    glm::uvec2 groups = gpu::rasterLinearGroups(uint32_t(items), groupSize);
-    dispatch(cmd, pipeline, push, writes, groups.x, groups.y);
-}
-
-void StrandRaster::record(Stage stage, VkCommandBuffer cmd, FrameContext& frame, uint32_t piece)
-{
-    constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    auto whole = [](const Storage& s) { return VkDescriptorBufferInfo{s.buffer, 0, VK_WHOLE_SIZE}; };
-    VkDescriptorBufferInfo frameInfo = uniforms_.descriptor(frame.slot);
-    VkDescriptorBufferInfo simInfo{solver_.params(), 0, VK_WHOLE_SIZE};
-    VkDescriptorBufferInfo positions{solver_.positions(), 0, VK_WHOLE_SIZE};
-    VkDescriptorBufferInfo triangles{triangles_, 0, VK_WHOLE_SIZE};
-    VkDescriptorBufferInfo curves = whole(curves_), vertices = whole(vertices_), colors = whole(colors_);
-    VkDescriptorBufferInfo lightVertices = whole(lightVertices_), lightColors = whole(lightColors_);
-    VkDescriptorBufferInfo counts = whole(counts_), offsets = whole(offsets_), fragments = whole(fragments_);
-    VkDescriptorBufferInfo counters = whole(counters_), depthRange = whole(depthRange_), blockSums = whole(blockSums_);
-    VkDescriptorBufferInfo tileDepth = whole(tileDepth_), pieces = whole(pieces_);
-    VkDescriptorBufferInfo lightDepth = whole(lightDepth_), lightOpacity = whole(lightOpacity_);
-    VkDescriptorImageInfo meshDepth{depthSampler_, target_.depthImage().view(),
-                                    VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL};
-    VkDescriptorBufferInfo meshSamples{externalSamples_ ? externalSamplesBuffer_ : meshSamples_.buffer.get(), 0,
-                                       VK_WHOLE_SIZE};
-    auto frameWrite = vk::bufferWrite(gpu::kRasterBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frameInfo);
-    uint64_t cameraVertices = uint64_t(camera_.guideCount) * camera_.drawnPerGuide * (camera_.divisions + 1);
-    uint64_t lightVertexCount = uint64_t(light_.guideCount) * light_.drawnPerGuide * (light_.divisions + 1);
-
-    switch (stage) {
-    case Stage::Clear: {
-        vkCmdFillBuffer(cmd, lightDepth_.buffer, 0, VK_WHOLE_SIZE, 0x3f800000u); // 1.0f: nothing in front
-        vkCmdFillBuffer(cmd, lightOpacity_.buffer, 0, VK_WHOLE_SIZE, 0);
-        vkCmdFillBuffer(cmd, counters_.buffer, 0, VK_WHOLE_SIZE, 0);
-        break;
-    }
-    case Stage::Curves: {
-        std::vector<VkWriteDescriptorSet> writes = {vk::bufferWrite(gpu::kRasterBindingPositions, kStorage, &positions),
-                                                    vk::bufferWrite(gpu::kRasterBindingCurves, kStorage, &curves)};
-        dispatchLinear(cmd, curvesPipeline_, camera_, writes, uint64_t(camera_.guideCount) * (camera_.divisions + 1),
-                       gpu::kRasterGroupSize);
-        break;
-    }
+        return {.uses = {storageBuffer(kRasterBindingPositions, solver_.positionsTrack(), ComputeRead),
+                         storageBuffer(kRasterBindingCurves, curves_.track, ComputeWrite)},
+                .record = [this](StageCommands& c) {
+                    uint64_t points = uint64_t(camera_.guideCount) * (camera_.divisions + 1);
+                    dispatchLinear(c, curvesKernel_, camera_, points, kRasterGroupSize);
+                }};
     case Stage::LightGenerate:
     case Stage::Generate: {
         bool fromLight = stage == Stage::LightGenerate;
-        std::vector<VkWriteDescriptorSet> writes = {
-            frameWrite,
-            vk::bufferWrite(gpu::kRasterBindingSim, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &simInfo),
-            vk::bufferWrite(gpu::kRasterBindingCurves, kStorage, &curves),
-            vk::bufferWrite(gpu::kRasterBindingTriangles, kStorage, &triangles),
-            vk::bufferWrite(gpu::kRasterBindingVertices, kStorage, fromLight ? &lightVertices : &vertices),
-            vk::bufferWrite(gpu::kRasterBindingColors, kStorage, fromLight ? &lightColors : &colors)};
-        if (!fromLight) {
-            for (const VkWriteDescriptorSet& w : maps_.descriptorWrites())
-                writes.push_back(w);
-            writes.push_back(vk::imageWrite(gpu::kRasterBindingLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, lut_));
+        ComputeStage s{
+            .uses = {frame, uniformBlock(kRasterBindingSim, solver_.params()),
+                     storageBuffer(kRasterBindingCurves, curves_.track, ComputeRead),
+                     constantBuffer(kRasterBindingTriangles, triangles_),
+                     storageBuffer(kRasterBindingVertices, (fromLight ? lightVertices_ : vertices_).track,
+                                   ComputeWrite),
+                     storageBuffer(kRasterBindingColors, (fromLight ? lightColors_ : colors_).track, ComputeWrite)},
+            .record = [this, fromLight](StageCommands& c) {
+                const StrandRasterPush& push = fromLight ? light_ : camera_;
+                uint64_t vertices = uint64_t(push.guideCount) * push.drawnPerGuide * (push.divisions + 1);
+                dispatchLinear(c, fromLight ? generateLightKernel_ : generateKernel_, push, vertices, kRasterGroupSize);
+            }};
+        if (!fromLight) { // the camera's strands are shaded: the light's maps and the lookup tables
+            for (const StageUse& u : maps_.computeReads())
+                s.uses.push_back(u);
+            s.uses.push_back(
+                constantImage(kRasterBindingLut, lut_ ? *lut_ : VkDescriptorImageInfo{}).when(lut_ != nullptr));
         }
-        dispatchLinear(cmd, fromLight ? generateLightPipeline_.get() : generatePipeline_.get(),
-                       fromLight ? light_ : camera_, writes, fromLight ? lightVertexCount : cameraVertices,
-                       gpu::kRasterGroupSize);
-        break;
+        return s;
     }
-    case Stage::LightDepth:
+    case Stage::LightDepth: // (one shader with light.opacity: light.depth binds, never touches, the opacity)
     case Stage::LightOpacity: {
-        std::vector<VkWriteDescriptorSet> writes = {
-            frameWrite, vk::bufferWrite(gpu::kRasterBindingVertices, kStorage, &lightVertices),
-            vk::bufferWrite(gpu::kRasterBindingColors, kStorage, &lightColors),
-            vk::bufferWrite(gpu::kRasterBindingLightDepth, kStorage, &lightDepth),
-            vk::bufferWrite(gpu::kRasterBindingLightOpacity, kStorage, &lightOpacity)};
-        dispatchLinear(cmd, stage == Stage::LightDepth ? lightDepthPipeline_.get() : lightOpacityPipeline_.get(),
-                       light_, writes, light_.segmentCount, gpu::kRasterGroupSize);
-        break;
+        bool depth = stage == Stage::LightDepth;
+        return {.uses = {frame, storageBuffer(kRasterBindingVertices, lightVertices_.track, ComputeRead),
+                         storageBuffer(kRasterBindingColors, lightColors_.track, ComputeRead),
+                         storageBuffer(kRasterBindingLightDepth, lightDepth_.track, depth ? ComputeWrite : ComputeRead),
+                         storageBuffer(kRasterBindingLightOpacity, lightOpacity_.track,
+                                       depth ? ComputeRead : ComputeWrite)},
+                .record = [this, depth](StageCommands& c) {
+                    dispatchLinear(c, depth ? lightDepthKernel_ : lightOpacityKernel_, light_, light_.segmentCount,
+                                   kRasterGroupSize);
+                }};
     }
-    case Stage::LightResolve: {
-        VkDescriptorImageInfo opacityImage{VK_NULL_HANDLE, maps_.opacityImage().view(), VK_IMAGE_LAYOUT_GENERAL};
-        VkDescriptorImageInfo depthImage{VK_NULL_HANDLE, maps_.hairDepthValuesImage().view(), VK_IMAGE_LAYOUT_GENERAL};
-        std::vector<VkWriteDescriptorSet> writes = {
-            vk::bufferWrite(gpu::kRasterBindingLightOpacity, kStorage, &lightOpacity),
-            vk::bufferWrite(gpu::kRasterBindingLightDepth, kStorage, &lightDepth),
-            vk::imageWrite(gpu::kRasterBindingOpacityImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &opacityImage),
-            vk::imageWrite(gpu::kRasterBindingLightDepthImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &depthImage)};
-        dispatch(cmd, lightResolvePipeline_, light_, writes, vk::groupCount(lightSize_, 8),
-                 vk::groupCount(lightSize_, 8));
-        break;
-    }
-    case Stage::LightCopy: {
-        VkBufferImageCopy region{.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1},
-                                 .imageExtent = {lightSize_, lightSize_, 1}};
-        vkCmdCopyBufferToImage(cmd, lightDepth_.buffer, maps_.hairDepthImage().get(),
-                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-        break;
-    }
-    case Stage::Depth: {
-        std::vector<VkWriteDescriptorSet> writes = {
-            vk::bufferWrite(gpu::kRasterBindingMeshSamples, kStorage, &meshSamples),
-            vk::bufferWrite(gpu::kRasterBindingDepthRange, kStorage, &depthRange),
-            vk::bufferWrite(gpu::kRasterBindingTileDepth, kStorage, &tileDepth),
-            vk::bufferWrite(gpu::kRasterBindingCounts, kStorage, &counts)};
-        if (!externalSamples_)
-            writes.push_back(
-                vk::imageWrite(gpu::kRasterBindingMeshDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &meshDepth));
-        dispatch(cmd, externalSamples_ ? depthBufferPipeline_.get() : depthPipeline_.get(), camera_, writes,
-                 vk::groupCount(camera_.targetWidth, 8), vk::groupCount(camera_.targetHeight, 8));
-        break;
-    }
-    case Stage::Count:
+    case Stage::LightResolve:
+        return {.uses = {storageBuffer(kRasterBindingLightOpacity, lightOpacity_.track, ComputeRead),
+                         storageBuffer(kRasterBindingLightDepth, lightDepth_.track, ComputeRead),
+                         storageImage(kRasterBindingOpacityImage, maps_.opacity(), maps_.opacityImage().view(),
+                                      ComputeWrite),
+                         storageImage(kRasterBindingLightDepthImage, maps_.hairDepthValues(),
+                                      maps_.hairDepthValuesImage().view(), ComputeWrite)},
+                .record = [this](StageCommands& c) {
+                    c.dispatch(lightResolveKernel_, light_, vk::groupCount(lightSize_, 8),
+                               vk::groupCount(lightSize_, 8));
+                }};
+    case Stage::LightCopy:
+        return {.uses = {commandUse(lightDepth_.track, TransferSrc), commandUse(maps_.hairDepth(), TransferDst)},
+                .record = [this](StageCommands& c) {
+                    VkBufferImageCopy region{.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1},
+                                             .imageExtent = {lightSize_, lightSize_, 1}};
+                    c.copyBufferToImage(lightDepth_.track, maps_.hairDepth(), region);
+                }};
+    case Stage::Depth:
+        return {
+            .uses = {storageBuffer(kRasterBindingMeshSamples, samples, externalSamples_ ? ComputeRead : ComputeWrite),
+                     sampledImage(kRasterBindingMeshDepth, target_.depth(), target_.depthImage().view(), depthSampler_,
+                                  DepthSampled)
+                         .when(!externalSamples_),
+                     storageBuffer(kRasterBindingDepthRange, depthRange_.track, ComputeWrite),
+                     storageBuffer(kRasterBindingTileDepth, tileDepth_.track, ComputeWrite),
+                     storageBuffer(kRasterBindingCounts, counts_.track, ComputeWrite)},
+            .record = [this](StageCommands& c) {
+                c.dispatch(externalSamples_ ? depthBufferKernel_ : depthKernel_, camera_,
+                           vk::groupCount(camera_.targetWidth, 8), vk::groupCount(camera_.targetHeight, 8));
+            }};
+    case Stage::Count: // (the walk of strands.write: it binds, never touches, the fragments)
     case Stage::Write: {
-        std::vector<VkWriteDescriptorSet> writes = {
-            vk::bufferWrite(gpu::kRasterBindingVertices, kStorage, &vertices),
-            vk::bufferWrite(gpu::kRasterBindingColors, kStorage, &colors),
-            vk::bufferWrite(gpu::kRasterBindingCounts, kStorage, &counts),
-            vk::bufferWrite(gpu::kRasterBindingFragments, kStorage, &fragments),
-            vk::bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters),
-            vk::bufferWrite(gpu::kRasterBindingDepthRange, kStorage, &depthRange),
-            vk::bufferWrite(gpu::kRasterBindingTileDepth, kStorage, &tileDepth),
-            vk::bufferWrite(gpu::kRasterBindingMeshSamples, kStorage, &meshSamples)};
-        if (stage == Stage::Count) {
-            dispatchLinear(cmd, countPipeline_, camera_, writes, camera_.segmentCount, gpu::kRasterGroupSize);
-        } else {
-            writes.push_back(vk::bufferWrite(gpu::kRasterBindingOffsets, kStorage, &offsets));
-            writes.push_back(vk::bufferWrite(gpu::kRasterBindingPieces, kStorage, &pieces));
-            gpu::StrandRasterPush push = camera_;
-            push.piece = piece;
-            dispatchIndirect(cmd, writePipeline_, push, writes,
-                             piece * kPieceBytes + offsetof(gpu::RasterPiece, walkGroups));
-        }
-        break;
-    }
-    case Stage::Pieces: {
-        std::vector<VkWriteDescriptorSet> writes = {vk::bufferWrite(gpu::kRasterBindingOffsets, kStorage, &offsets),
-                                                    vk::bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters),
-                                                    vk::bufferWrite(gpu::kRasterBindingPieces, kStorage, &pieces)};
-        gpu::StrandRasterPush push = camera_;
-        push.piece = recordedPieces_;
-        dispatch(cmd, piecesPipeline_, push, writes, 1);
-        break;
+        bool write = stage == Stage::Write;
+        return {.uses = {storageBuffer(kRasterBindingVertices, vertices_.track, ComputeRead),
+                         storageBuffer(kRasterBindingColors, colors_.track, ComputeRead),
+                         storageBuffer(kRasterBindingDepthRange, depthRange_.track, ComputeRead),
+                         storageBuffer(kRasterBindingTileDepth, tileDepth_.track, ComputeRead),
+                         storageBuffer(kRasterBindingMeshSamples, samples, ComputeRead),
+                         storageBuffer(kRasterBindingCounts, counts_.track, ComputeWrite), // counts, then cursors
+                         storageBuffer(kRasterBindingFragments, fragments_.track, ComputeWrite),
+                         storageBuffer(kRasterBindingCounters, counters_.track, ComputeWrite),
+                         storageBuffer(kRasterBindingOffsets, offsets_.track, ComputeRead).when(write),
+                         storageBuffer(kRasterBindingPieces, pieces_.track, ComputeRead).when(write),
+                         commandUse(pieces_.track, IndirectRead).when(write)},
+                .record = [this, write, piece](StageCommands& c) {
+                    if (!write) {
+                        dispatchLinear(c, countKernel_, camera_, camera_.segmentCount, kRasterGroupSize);
+                        return;
+                    }
+                    StrandRasterPush push = camera_;
+                    push.piece = piece;
+                    c.dispatchIndirect(writeKernel_, push, pieces_.track,
+                                       piece * kPieceBytes + offsetof(RasterPiece, walkGroups));
+                }};
     }
     case Stage::ScanBlocks:
     case Stage::ScanTotals:
-    case Stage::ScanOffsets: {
-        std::vector<VkWriteDescriptorSet> writes = {vk::bufferWrite(gpu::kRasterBindingCounts, kStorage, &counts),
-                                                    vk::bufferWrite(gpu::kRasterBindingOffsets, kStorage, &offsets),
-                                                    vk::bufferWrite(gpu::kRasterBindingBlockSums, kStorage, &blockSums),
-                                                    vk::bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters)};
-        if (stage == Stage::ScanTotals)
-            dispatch(cmd, scanTotalsPipeline_, camera_, writes, 1);
-        else
-            dispatchLinear(cmd, stage == Stage::ScanBlocks ? scanBlocksPipeline_.get() : scanOffsetsPipeline_.get(),
-                           camera_, writes, camera_.scanBlocks, 1);
-        break;
+    case Stage::ScanOffsets:
+        return {.uses = {storageBuffer(kRasterBindingCounts, counts_.track, ComputeWrite),
+                         storageBuffer(kRasterBindingOffsets, offsets_.track, ComputeWrite),
+                         storageBuffer(kRasterBindingBlockSums, blockSums_.track, ComputeWrite),
+                         storageBuffer(kRasterBindingCounters, counters_.track, ComputeWrite)},
+                .record = [this, stage](StageCommands& c) {
+                    if (stage == Stage::ScanTotals)
+                        c.dispatch(scanTotalsKernel_, camera_, 1);
+                    else
+                        dispatchLinear(c, stage == Stage::ScanBlocks ? scanBlocksKernel_ : scanOffsetsKernel_, camera_,
+                                       camera_.scanBlocks, 1);
+                }};
+    case Stage::Pieces:
+        return {.uses = {storageBuffer(kRasterBindingOffsets, offsets_.track, ComputeRead),
+                         storageBuffer(kRasterBindingCounters, counters_.track, ComputeWrite),
+                         storageBuffer(kRasterBindingPieces, pieces_.track, ComputeWrite)},
+                .record = [this](StageCommands& c) {
+                    StrandRasterPush push = camera_;
+                    push.piece = recordedPieces_;
+                    c.dispatch(piecesKernel_, push, 1);
+                }};
+    case Stage::Resolve:
+        return {.uses = {storageBuffer(kRasterBindingOffsets, offsets_.track, ComputeRead),
+                         storageBuffer(kRasterBindingFragments, fragments_.track, ComputeRead),
+                         storageBuffer(kRasterBindingCounters, counters_.track, ComputeRead),
+                         storageBuffer(kRasterBindingPieces, pieces_.track, ComputeRead),
+                         commandUse(pieces_.track, IndirectRead),
+                         storageImage(kRasterBindingHairColor, colorTrack_, color_.view(), ComputeWrite)},
+                .record = [this, piece](StageCommands& c) {
+                    StrandRasterPush push = camera_;
+                    push.piece = piece;
+                    c.dispatchIndirect(resolveKernel_, push, pieces_.track,
+                                       piece * kPieceBytes + offsetof(RasterPiece, resolveGroups));
+                }};
+    case Stage::Stats:
+        return {.uses = {commandUse(counters_.track, TransferSrc)}, .record = [this](StageCommands& c) {
+                    c.copyToHost(counters_.track, readback_.at(c.slot()), sizeof(RasterCounters));
+                }};
     }
-    case Stage::Resolve: {
-        VkDescriptorImageInfo color{VK_NULL_HANDLE, color_.view(), VK_IMAGE_LAYOUT_GENERAL};
-        std::vector<VkWriteDescriptorSet> writes = {
-            vk::bufferWrite(gpu::kRasterBindingOffsets, kStorage, &offsets),
-            vk::bufferWrite(gpu::kRasterBindingFragments, kStorage, &fragments),
-            vk::bufferWrite(gpu::kRasterBindingCounters, kStorage, &counters),
-            vk::bufferWrite(gpu::kRasterBindingPieces, kStorage, &pieces),
-            vk::imageWrite(gpu::kRasterBindingHairColor, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &color)};
-        gpu::StrandRasterPush push = camera_;
-        push.piece = piece;
-        dispatchIndirect(cmd, resolvePipeline_, push, writes,
-                         piece * kPieceBytes + offsetof(gpu::RasterPiece, resolveGroups));
-        break;
-    }
-    case Stage::Stats: {
-        VkBufferCopy region{0, 0, sizeof(gpu::RasterCounters)};
-        vkCmdCopyBuffer(cmd, counters_.buffer, readback_.at(frame.slot), 1, &region);
-        vk::transferToHostBarrier(cmd);
-        break;
-    }
-    }
+    throw std::logic_error("no such strands stage");
 }
 
 } // namespace wisp

@@ -1,8 +1,9 @@
 // renderer/compute/strand_raster.h: the hair drawn entirely in compute (hair_raster=compute), beside the
 // tessellation path (hair_pass.h), from the same guides and the same strand functions. It owns the
 // strand vertices, the pixels' fragment buffer, the light's accumulation buffers and the hair
-// image, and runs as a list of passes (each declares what it touches, so the frame derives every
-// barrier):
+// image, and runs as a list of passes, one per stage, each stage written once as the list of what
+// it touches (binding, resource, access: gpu/compute_stage.h), from which the frame derives its
+// barriers and the stage's descriptors are pushed (stage() below):
 //   strands.clear         transfer: the light's depth to 1 and opacity to 0, the counters
 //   strands.light         the light's strands (fewer, wider: shadow_strands), projected into its map
 //   light.depth           the hair's first depth from the light (atomicMin per texel)
@@ -34,6 +35,7 @@
 // headless pictures render again.
 #pragma once
 
+#include "gpu/compute_stage.h"
 #include "gpu/handle.h"
 #include "gpu/pass.h"
 #include "gpu/resources.h"
@@ -240,14 +242,10 @@ public:
     // Recreates what depends on the target's size; the device must be idle.
     void resize();
 
-    // Where the meshes' depth samples come from: the target's depth image (the graphics meshes;
+    // Where the meshes' depth samples come from: the target's depth image (null: the graphics meshes;
     // strands.depth copies it into a buffer of its own), or the compute meshes' buffer (float bits,
     // pixel * samples + s). Set before each frame it changes.
-    void setMeshSamples(TrackedBuffer* track, VkBuffer buffer)
-    {
-        externalSamples_ = track;
-        externalSamplesBuffer_ = buffer;
-    }
+    void setMeshSamples(TrackedBuffer* samples) { externalSamples_ = samples; }
 
     Pass* pass(Stage stage);
     // strands.write or strands.resolve of recorded piece `piece` (< recordedPieces()).
@@ -287,8 +285,11 @@ public:
     // must be idle.
     void setFragmentCapacity(uint64_t fragments);
 
-    void declare(Stage stage, PassIo& io);
-    void record(Stage stage, VkCommandBuffer cmd, FrameContext& frame, uint32_t piece = 0);
+    // Each stage as the one list of what it touches (binding, resource, access) and its commands
+    // (`piece`: which recorded piece strands.write or strands.resolve draws): its pass declares
+    // and records from it, and the layout holds every binding the stages list.
+    ComputeStage stage(Stage stage, uint32_t piece = 0);
+    const StageLayout& layout() const { return layout_; }
 
 private:
     struct Storage {
@@ -297,26 +298,17 @@ private:
     };
     Storage& storage(Buffer which);
     void allocate(Storage& storage, uint64_t bytes, VkBufferUsageFlags usage, const char* name, FrameContext* frame);
-    void dispatch(VkCommandBuffer cmd, VkPipeline pipeline, const gpu::StrandRasterPush& push,
-                  const std::vector<VkWriteDescriptorSet>& writes, uint32_t x, uint32_t y = 1);
-    // The dispatch a recorded piece's indirect arguments hold (`offset` into the pieces' buffer).
-    void dispatchIndirect(VkCommandBuffer cmd, VkPipeline pipeline, const gpu::StrandRasterPush& push,
-                          const std::vector<VkWriteDescriptorSet>& writes, VkDeviceSize offset);
-    // Groups of `groupSize` for `items` items, in rows of at most 65535 workgroups.
-    void dispatchLinear(VkCommandBuffer cmd, VkPipeline pipeline, const gpu::StrandRasterPush& push,
-                        const std::vector<VkWriteDescriptorSet>& writes, uint64_t items, uint32_t groupSize);
 
     const vk::Context& ctx_;
     RenderTarget& target_;
     FrameUniforms& uniforms_;
     LightMaps& maps_;
     GpuSolver& solver_;
-    vk::DescriptorSetLayout setLayout_;
-    vk::PipelineLayout layout_;
-    vk::Pipeline generatePipeline_, generateLightPipeline_, depthPipeline_, depthBufferPipeline_, countPipeline_,
-        writePipeline_;
-    vk::Pipeline scanBlocksPipeline_, scanTotalsPipeline_, scanOffsetsPipeline_, piecesPipeline_, resolvePipeline_;
-    vk::Pipeline lightDepthPipeline_, lightOpacityPipeline_, lightResolvePipeline_, curvesPipeline_;
+    StageLayout layout_;
+    vk::ComputeKernel generateKernel_, generateLightKernel_, depthKernel_, depthBufferKernel_, countKernel_,
+        writeKernel_;
+    vk::ComputeKernel scanBlocksKernel_, scanTotalsKernel_, scanOffsetsKernel_, piecesKernel_, resolveKernel_;
+    vk::ComputeKernel lightDepthKernel_, lightOpacityKernel_, lightResolveKernel_, curvesKernel_;
     uint32_t pipelineK_ = 0;   // the oit_k the resolve pipeline was built for
     vk::Sampler depthSampler_; // the meshes' depth, fetched by texel
     vk::Buffer triangles_;
@@ -326,7 +318,6 @@ private:
     Storage counts_, offsets_, fragments_, counters_, depthRange_, tileDepth_, blockSums_, pieces_;
     Storage meshSamples_; // the depth image's samples, when the meshes are drawn by graphics
     TrackedBuffer* externalSamples_ = nullptr;
-    VkBuffer externalSamplesBuffer_ = VK_NULL_HANDLE;
     Storage lightDepth_, lightOpacity_;
     std::vector<vk::Buffer> readback_; // counters, one per frame in flight
     vk::Image color_;
@@ -339,8 +330,8 @@ private:
     gpu::StrandRasterPush camera_{};
     gpu::StrandRasterPush light_{};
     const VkDescriptorImageInfo* lut_ = nullptr;
-    std::vector<std::unique_ptr<Pass>> passes_;      // one per Stage
-    std::vector<std::unique_ptr<Pass>> piecePasses_; // strands.write N, strands.resolve N, pair by pair
+    std::vector<std::unique_ptr<ComputeStagePass>> passes_;      // one per Stage
+    std::vector<std::unique_ptr<ComputeStagePass>> piecePasses_; // strands.write N, strands.resolve N, pair by pair
 };
 
 } // namespace wisp
