@@ -1,9 +1,8 @@
 // tests/test_scene.cpp: scene files without a GPU: save and load (or parse) give the same scene, the
 // timeline's values by hand (linear and smoothstep, held before the first and after the last key,
-// each channel between its own keys), the head's turn and the posed camera, the shipped scenes,
+// each channel between its own keys), the posed camera, the shipped scenes,
 // and every validation error naming the file and the value's JSON pointer.
 #include "app/scene.h"
-#include "app/viewer.h"
 #include "assets/text.h"
 #include "core/error.h"
 #include "test_support.h"
@@ -289,28 +288,6 @@ TEST(SceneTimeline, EachChannelMovesBetweenItsOwnKeys)
     EXPECT_FLOAT_EQ(*s.camera.distance, 1.5f);
     EXPECT_EQ(t.at(0.0).wind, glm::vec3(5.0f, 0.0f, 0.0f)); // its only key, held both ways
     EXPECT_EQ(t.at(2.0).wind, glm::vec3(5.0f, 0.0f, 0.0f));
-}
-
-TEST(Scene, HeadTurnIsTheWindowsConvention)
-{
-    Bounds head{glm::vec3(-0.2f, -0.1f, -0.1f), glm::vec3(0.2f, 0.3f, 0.1f)};
-    Viewer viewer(OrbitCamera::framing(head, 1.5f), head, glm::vec4(0.0f), LightSettings{}, glm::vec3(0.0f));
-    viewer.press(ViewerKey::HeadLeft);
-    viewer.release(ViewerKey::HeadLeft);
-    for (int i = 0; i < 30; ++i)
-        viewer.update(1.0f / 60.0f);
-    ASSERT_NE(viewer.headYawDeg(), 0.0f);
-    glm::mat4 a = headYawTransform(head, viewer.headYawDeg()), b = viewer.headTransform();
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r)
-            EXPECT_NEAR(a[c][r], b[c][r], 1e-6f);
-    // The centre stays put; a point in front of it turns about the vertical axis.
-    glm::vec3 centre = head.center();
-    glm::mat4 quarter = headYawTransform(head, 90.0f);
-    glm::vec3 moved = glm::vec3(quarter * glm::vec4(centre + glm::vec3(0.0f, 0.0f, 0.1f), 1.0f));
-    EXPECT_NEAR(glm::length(glm::vec3(quarter * glm::vec4(centre, 1.0f)) - centre), 0.0f, 1e-6f);
-    EXPECT_NEAR(moved.x - centre.x, 0.1f, 1e-6f);
-    EXPECT_NEAR(moved.y - centre.y, 0.0f, 1e-6f);
 }
 
 TEST(Scene, PosedCameraMovesTheFraming)

@@ -1,6 +1,7 @@
 // tests/test_viewer.cpp: the window's interactive state without a window: keys move the sphere
 // relative to the camera and the light around the head, the head's turn settles on its target,
-// wind and one-shot requests behave, scripts parse.
+// wind and one-shot requests behave, scripts parse; its head turn is the scene files' (headYawTransform).
+#include "app/scene.h"
 #include "app/settings_table.h"
 #include "app/viewer.h"
 #include "core/error.h"
@@ -93,4 +94,27 @@ TEST(Viewer, ScriptsParseAndPlayByFrame)
     EXPECT_NEAR(v.light().azimuthDeg, azimuth - 2.0f + 4.0f, 1e-3f); // 2 frames held J, then a 10 px drag
     EXPECT_GT(glm::length(v.wind()), 0.0f);
     EXPECT_THROW(loadScript(dir / "missing.txt"), UserError);
+}
+
+TEST(Viewer, HeadTurnIsTheScenesConvention)
+{
+    // The window turns the head as a scene's head_yaw does (app/scene.h headYawTransform).
+    Bounds head{glm::vec3(-0.2f, -0.1f, -0.1f), glm::vec3(0.2f, 0.3f, 0.1f)};
+    Viewer viewer(OrbitCamera::framing(head, 1.5f), head, glm::vec4(0.0f), LightSettings{}, glm::vec3(0.0f));
+    viewer.press(ViewerKey::HeadLeft);
+    viewer.release(ViewerKey::HeadLeft);
+    for (int i = 0; i < 30; ++i)
+        viewer.update(1.0f / 60.0f);
+    ASSERT_NE(viewer.headYawDeg(), 0.0f);
+    glm::mat4 a = headYawTransform(head, viewer.headYawDeg()), b = viewer.headTransform();
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            EXPECT_NEAR(a[c][r], b[c][r], 1e-6f);
+    // The centre stays put; a point in front of it turns about the vertical axis.
+    glm::vec3 centre = head.center();
+    glm::mat4 quarter = headYawTransform(head, 90.0f);
+    glm::vec3 moved = glm::vec3(quarter * glm::vec4(centre + glm::vec3(0.0f, 0.0f, 0.1f), 1.0f));
+    EXPECT_NEAR(glm::length(glm::vec3(quarter * glm::vec4(centre, 1.0f)) - centre), 0.0f, 1e-6f);
+    EXPECT_NEAR(moved.x - centre.x, 0.1f, 1e-6f);
+    EXPECT_NEAR(moved.y - centre.y, 0.0f, 1e-6f);
 }
