@@ -1,6 +1,7 @@
 // renderer/graphics/hair_pass.h: the simulated guides drawn as a full head of hair: tessellation (Bezier,
-// more strands per guide, deviations) -> geometry shader (camera-facing ribbons) -> Kajiya-Kay
-// fragments, reading the guides straight from the solver's buffers in the same frame.
+// more strands per guide, deviations) -> geometry shader (camera-facing ribbons) -> fragments shaded
+// with the model the `shading` setting names (Karis by default, Kajiya-Kay or the lookup tables:
+// shaders/shared/hair_shading.h), reading the guides straight from the solver's buffers in the same frame.
 #pragma once
 
 #include "gpu/handle.h"

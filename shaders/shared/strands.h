@@ -15,10 +15,11 @@ GPU_NAMESPACE_BEGIN
 // Tessellation limits of every device here (and Vulkan's guaranteed minimum is 64 too): more
 // strands or divisions than this come from more patches, never from a silently capped level.
 GPU_CONST uint kMaxTessLevel = 64u;
-// By default a patch emits at most this many vertices (its lines x (divisions + 1); the setting
-// max_patch_vertices changes it). Bigger patches hardly help on the H100 (README); on lavapipe
-// they draw the same picture once draws keep within kMaxTessVerticesPerDraw (the strands once
-// lost from bigger patches were that limit, not the patch's size).
+// By default a patch emits at most this many vertices (its lines x (divisions + 1); the tests' knob
+// StrandSettings::maxPatchVertices changes it, no setting does). Bigger patches hardly help on the
+// H100 (docs/drawing.md); on lavapipe they draw the same picture once draws keep within
+// kMaxTessVerticesPerDraw (the strands once lost from bigger patches were that limit, not the
+// patch's size).
 GPU_CONST uint kMaxPatchVertices = 128u;
 // The tessellated vertices one instance of one draw may produce. Mesa's draw module (lavapipe)
 // indexes a draw's tessellation output with 16 bits: past 65,535 vertices per instance it
