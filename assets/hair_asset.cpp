@@ -6,6 +6,7 @@
 
 #include "assets/text.h"
 #include "core/error.h"
+#include "core/rotation.h"
 
 #include <nlohmann/json.hpp>
 
@@ -60,19 +61,6 @@ std::string str(uint64_t n)
 bool isTfx2Key(std::string_view word)
 {
     return std::find(std::begin(kTfx2Keys), std::end(kTfx2Keys), word) != std::end(kTfx2Keys);
-}
-
-// R = Rz * Ry * Rx from XYZ Euler angles in degrees (the convention of head.h's ellipsoids).
-glm::mat3 rotationXyzDegrees(glm::vec3 degrees)
-{
-    glm::vec3 r = glm::radians(degrees);
-    float cx = std::cos(r.x), sx = std::sin(r.x);
-    float cy = std::cos(r.y), sy = std::sin(r.y);
-    float cz = std::cos(r.z), sz = std::sin(r.z);
-    glm::mat3 rx(1, 0, 0, 0, cx, sx, 0, -sx, cx); // column-major
-    glm::mat3 ry(cy, 0, -sy, 0, 1, 0, sy, 0, cy);
-    glm::mat3 rz(cz, sz, 0, -sz, cz, 0, 0, 0, 1);
-    return rz * ry * rx;
 }
 
 // ---- binary files -------------------------------------------------------------------------------

@@ -2,25 +2,17 @@
 #include "physics/colliders.h"
 
 #include "assets/placement.h"
+#include "core/rotation.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace wisp {
 
-glm::mat3 rotationFromDegrees(const glm::vec3& xyzDegrees)
-{
-    glm::vec3 r = glm::radians(xyzDegrees);
-    glm::mat3 rx(1, 0, 0, 0, std::cos(r.x), std::sin(r.x), 0, -std::sin(r.x), std::cos(r.x));
-    glm::mat3 ry(std::cos(r.y), 0, -std::sin(r.y), 0, 1, 0, std::sin(r.y), 0, std::cos(r.y));
-    glm::mat3 rz(std::cos(r.z), std::sin(r.z), 0, -std::sin(r.z), std::cos(r.z), 0, 0, 0, 1);
-    return rz * ry * rx;
-}
-
 gpu::Ellipsoid toGpu(const Ellipsoid& e)
 {
     gpu::Ellipsoid g{};
-    g.rotation = glm::mat4(rotationFromDegrees(e.rotationDeg));
+    g.rotation = glm::mat4(rotationXyzDegrees(e.rotationDeg));
     g.center = e.center;
     g.radii = e.radii;
     return g;
@@ -107,7 +99,7 @@ void inscribeColliders(std::vector<Ellipsoid>& colliders, const Mesh& mesh, cons
         for (int c = 0; c < 3; ++c)
             onScalp[mesh.indices[3 * t + c]] = 1;
     for (Ellipsoid& e : colliders) {
-        glm::mat3 R = rotationFromDegrees(e.rotationDeg);
+        glm::mat3 R = rotationXyzDegrees(e.rotationDeg);
         float scale = 1.0f;
         for (size_t v = 0; v < mesh.positions.size(); ++v) {
             if (!onScalp[v])
@@ -126,7 +118,7 @@ void shrinkCollidersToRestPose(std::vector<Ellipsoid>& colliders, const StrandSe
 {
     uint32_t V = strands.verticesPerStrand;
     for (Ellipsoid& e : colliders) {
-        glm::mat3 R = rotationFromDegrees(e.rotationDeg);
+        glm::mat3 R = rotationXyzDegrees(e.rotationDeg);
         std::vector<float> inside; // normalized radii of the free vertices inside this collider
         size_t free = 0;
         for (size_t s = 0; s < strands.strandCount(); ++s)

@@ -11,7 +11,6 @@
 namespace wisp {
 
 gpu::Ellipsoid toGpu(const Ellipsoid& e);
-glm::mat3 rotationFromDegrees(const glm::vec3& xyzDegrees); // R = Rz * Ry * Rx
 
 // How far `p` (head space) lies inside the deepest collider; 0 when outside all.
 float penetrationDepth(const std::vector<gpu::Ellipsoid>& colliders, const glm::vec3& p);

@@ -3,6 +3,7 @@
 // the generator rebuilds the committed files byte for byte; bad descriptions are reported.
 #include "assets/head.h"
 #include "core/error.h"
+#include "core/rotation.h"
 #include "physics/colliders.h"
 #include "test_support.h"
 
@@ -90,7 +91,7 @@ TEST(DefaultHead, CollidersCoverTheCraniumFromOutside)
         glm::vec3 p = head.mesh.positions[head.mesh.indices[3 * t]];
         ++checked;
         for (const Ellipsoid& e : head.description.colliders) {
-            glm::vec3 local = glm::transpose(rotationFromDegrees(e.rotationDeg)) * (p - e.center);
+            glm::vec3 local = glm::transpose(rotationXyzDegrees(e.rotationDeg)) * (p - e.center);
             glm::vec3 u = local / (e.radii + glm::vec3(0.005f));
             if (glm::dot(u, u) <= 1.0f) {
                 ++covered;

@@ -27,6 +27,7 @@
 #include <stb/stb_image_write.h>
 
 #include "core/atomic_file.h"
+#include "core/rotation.h"
 
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
@@ -46,6 +47,7 @@
 
 namespace fs = std::filesystem;
 using glm::dvec3;
+using wisp::rotationXyzDegrees;
 using wisp::writeFileAtomically;
 
 namespace {
@@ -69,18 +71,6 @@ double sdEllipsoid(dvec3 p, dvec3 c, dvec3 r)
     if (k1 < 1e-12)
         return -glm::min(r.x, glm::min(r.y, r.z));
     return k0 * (k0 - 1.0) / k1;
-}
-
-// R = Rz * Ry * Rx for angles in degrees (x, y, z): the orientation convention of head.json.
-glm::dmat3 rotationXYZ(dvec3 deg)
-{
-    dvec3 a = glm::radians(deg);
-    double cx = std::cos(a.x), sx = std::sin(a.x), cy = std::cos(a.y), sy = std::sin(a.y);
-    double cz = std::cos(a.z), sz = std::sin(a.z);
-    glm::dmat3 rx(1, 0, 0, 0, cx, sx, 0, -sx, cx); // column major
-    glm::dmat3 ry(cy, 0, -sy, 0, 1, 0, sy, 0, cy);
-    glm::dmat3 rz(cz, sz, 0, -sz, cz, 0, 0, 0, 1);
-    return rz * ry * rx;
 }
 
 // Ellipsoid with centre c and radii r along the columns of the rotation whose transpose is rt.
@@ -156,12 +146,12 @@ double headSdf(dvec3 p)
     d = smin(d, sdEllipsoid(m, {0.074, 0.112, -0.012}, {0.011, 0.028, 0.018}), 0.012);
 
     // Neck: a long ellipsoid leaning slightly forward as it rises.
-    static const glm::dmat3 neckTilt = glm::transpose(rotationXYZ({7.0, 0.0, 0.0}));
+    static const glm::dmat3 neckTilt = glm::transpose(rotationXyzDegrees(dvec3(7.0, 0.0, 0.0)));
     d = smin(d, sdOrientedEllipsoid(p, {0.0, 0.005, -0.020}, {0.050, 0.120, 0.053}, neckTilt), 0.022);
 
     // Shoulders and upper chest: two overlapping ellipsoids, each tilted so its outer end drops
     // toward the shoulder; the neck blend forms the trapezius slope.
-    static const glm::dmat3 shoulderTilt = glm::transpose(rotationXYZ({0.0, 0.0, -7.0}));
+    static const glm::dmat3 shoulderTilt = glm::transpose(rotationXyzDegrees(dvec3(0.0, 0.0, -7.0)));
     auto shoulder = [](dvec3 q) {
         return sdOrientedEllipsoid(q, {0.065, -0.118, -0.006}, {0.140, 0.075, 0.098}, shoulderTilt);
     };
@@ -426,7 +416,7 @@ struct LocalFrame {
     glm::dmat3 rt;
     dvec3 center, radii;
     explicit LocalFrame(const Collider& c)
-        : rt(glm::transpose(rotationXYZ(c.rotationDeg))), center(c.center), radii(c.radii)
+        : rt(glm::transpose(rotationXyzDegrees(c.rotationDeg))), center(c.center), radii(c.radii)
     {
     }
     // How deep p lies inside the ellipsoid (negative outside), from the scaled-sphere bound.
