@@ -12,13 +12,6 @@
 
 namespace wisp {
 
-static_assert(sizeof(gpu::SimParams) == 1744, "SimParams must match its std140 layout");
-static_assert(sizeof(gpu::SimStep) == 112 && sizeof(gpu::SimStep) <= 128,
-              "SimStep must match its push-constant layout");
-static_assert(offsetof(gpu::SimStep, wind) == 96);
-static_assert(sizeof(gpu::RestVertex) == 16 && sizeof(gpu::StrandInfo) == 16 && sizeof(gpu::GridNode) == 16);
-static_assert(offsetof(gpu::SimParams, parts) == 80 && offsetof(gpu::SimParams, colliders) == 208);
-
 namespace {
 
 uint64_t mebibytes(uint64_t bytes)

@@ -21,8 +21,6 @@
 
 namespace wisp {
 
-static_assert(sizeof(gpu::MeshPush) == 96, "MeshPush: mat4 + vec3 + float + vec3 + float");
-
 namespace {
 
 struct MeshVertex {
@@ -31,7 +29,6 @@ struct MeshVertex {
     float scalp; // 0..1, kMeshLocationScalp
 };
 static_assert(sizeof(MeshVertex) == 28);
-static_assert(sizeof(gpu::MeshShadowPush) == 80);
 
 // One of the passes before the shading (MeshPass::depthPass, shadowMaskPass).
 class MeshStagePass : public Pass {

@@ -7,12 +7,6 @@
 #include <cstddef>
 #include <numbers>
 
-static_assert(sizeof(gpu::HairMaterial) == 80, "HairMaterial is five vec4s: its std140 size");
-static_assert(offsetof(gpu::HairMaterial, roughness) == 16);
-static_assert(offsetof(gpu::HairMaterial, baseColor) == 32);
-static_assert(offsetof(gpu::HairMaterial, kajiya) == 48);
-static_assert(offsetof(gpu::HairMaterial, kajiyaWeights) == 64);
-
 namespace wisp::shading {
 
 const char* modelName(HairModel m)

@@ -17,8 +17,6 @@
 
 namespace wisp {
 
-static_assert(sizeof(gpu::MeshRasterPush) == 96, "MeshRasterPush must fit the 128 bytes of push constants");
-
 namespace {
 
 constexpr uint32_t kMaxGroupsPerDimension = 65535;

@@ -18,12 +18,6 @@
 
 namespace wisp {
 
-static_assert(sizeof(gpu::StrandRasterPush) == 80, "StrandRasterPush must fit the 128 bytes of push constants");
-static_assert(sizeof(gpu::RasterCounters) == 32);
-static_assert(sizeof(gpu::RasterPiece) == 48 && offsetof(gpu::RasterPiece, walkGroups) == 16 &&
-                  offsetof(gpu::RasterPiece, resolveGroups) == 32,
-              "RasterPiece must match its std430 layout (its dispatches are read at these offsets)");
-
 namespace {
 
 const char* stageName(StrandRaster::Stage stage)

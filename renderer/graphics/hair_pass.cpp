@@ -28,8 +28,6 @@ constexpr VkQueryPipelineStatisticFlags kStatistics =
     VK_QUERY_PIPELINE_STATISTIC_TESSELLATION_EVALUATION_SHADER_INVOCATIONS_BIT;
 } // namespace
 
-static_assert(sizeof(gpu::HairPush) == 96, "HairPush must fit the 128 bytes of push constants every device has");
-
 HairDrawCounts hairDrawCounts(uint32_t guides, const StrandSettings& s)
 {
     HairDrawCounts c;

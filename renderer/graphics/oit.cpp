@@ -16,8 +16,6 @@
 
 namespace wisp {
 
-static_assert(sizeof(gpu::OitNode) == 12 && sizeof(gpu::OitCounters) == 16);
-
 namespace {
 
 struct ResolvePush {

@@ -96,4 +96,19 @@ GPU_FN vec3 frameBackground(FrameParams frame, float y)
 
 GPU_NAMESPACE_END
 
+#ifdef __cplusplus
+// The layouts GLSL gives these blocks, checked where they are defined (C++ only).
+static_assert(sizeof(gpu::FrameLight) == 32);
+static_assert(sizeof(gpu::FrameParams) == 3 * 64 + 6 * 16 + 64 + 64 + 48 + 16 + 80 + 2 * 32 + 16 + 16,
+              "FrameParams must match its std140 layout");
+static_assert(offsetof(gpu::FrameParams, unshadowed) == 560);
+static_assert(offsetof(gpu::FrameParams, hair) == 480);
+static_assert(offsetof(gpu::FrameParams, lightViewProjection) == 352);
+static_assert(offsetof(gpu::FrameParams, shadowsEnabled) == 460);
+static_assert(offsetof(gpu::FrameParams, headTransform) == 288);
+static_assert(offsetof(gpu::FrameParams, cameraPosition) == 192);
+static_assert(offsetof(gpu::FrameParams, lightDirection) == 208);
+static_assert(offsetof(gpu::FrameParams, viewportHeight) == 284);
+#endif
+
 #endif

@@ -17,4 +17,9 @@ struct GuidePush {
 
 GPU_NAMESPACE_END
 
+#ifdef __cplusplus
+// The layouts GLSL gives these blocks, checked where they are defined (C++ only).
+static_assert(sizeof(gpu::GuidePush) == 32, "GuidePush: two vec3s, each with a scalar");
+#endif
+
 #endif

@@ -248,4 +248,13 @@ vec3 hairShadeLut(sampler2DArray lut, vec3 t, vec3 wi, vec3 wo)
 
 GPU_NAMESPACE_END
 
+#ifdef __cplusplus
+// The layouts GLSL gives these blocks, checked where they are defined (C++ only).
+static_assert(sizeof(gpu::HairMaterial) == 80, "HairMaterial is five vec4s: its std140 size");
+static_assert(offsetof(gpu::HairMaterial, roughness) == 16);
+static_assert(offsetof(gpu::HairMaterial, baseColor) == 32);
+static_assert(offsetof(gpu::HairMaterial, kajiya) == 48);
+static_assert(offsetof(gpu::HairMaterial, kajiyaWeights) == 64);
+#endif
+
 #endif

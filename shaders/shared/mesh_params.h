@@ -36,4 +36,10 @@ struct MeshPush {
 
 GPU_NAMESPACE_END
 
+#ifdef __cplusplus
+// The layouts GLSL gives these blocks, checked where they are defined (C++ only).
+static_assert(sizeof(gpu::MeshPush) == 96, "MeshPush: mat4 + vec3 + float + vec3 + float");
+static_assert(sizeof(gpu::MeshShadowPush) == 80);
+#endif
+
 #endif

@@ -224,4 +224,9 @@ GPU_FN float encodeSrgb(float x)
 
 GPU_NAMESPACE_END
 
+#ifdef __cplusplus
+// The layouts GLSL gives these blocks, checked where they are defined (C++ only).
+static_assert(sizeof(gpu::MeshRasterPush) == 96, "MeshRasterPush must fit the 128 bytes of push constants");
+#endif
+
 #endif

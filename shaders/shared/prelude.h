@@ -5,6 +5,7 @@
 #define WISP_SHARED_PRELUDE_H
 
 #ifdef __cplusplus
+#include <cstddef> // offsetof, in the headers' layout checks
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <glm/gtc/packing.hpp>

@@ -93,4 +93,9 @@ struct OitCounters {
 
 GPU_NAMESPACE_END
 
+#ifdef __cplusplus
+// The layouts GLSL gives these blocks, checked where they are defined (C++ only).
+static_assert(sizeof(gpu::OitNode) == 12 && sizeof(gpu::OitCounters) == 16);
+#endif
+
 #endif

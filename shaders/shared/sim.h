@@ -533,4 +533,14 @@ GPU_FN vec3 withoutPartInto(vec3 dv, Contact c)
 
 GPU_NAMESPACE_END
 
+#ifdef __cplusplus
+// The layouts GLSL gives these blocks, checked where they are defined (C++ only).
+static_assert(sizeof(gpu::SimParams) == 1744, "SimParams must match its std140 layout");
+static_assert(offsetof(gpu::SimParams, parts) == 80 && offsetof(gpu::SimParams, colliders) == 208);
+static_assert(sizeof(gpu::SimStep) == 112 && sizeof(gpu::SimStep) <= 128,
+              "SimStep must match its push-constant layout");
+static_assert(offsetof(gpu::SimStep, wind) == 96);
+static_assert(sizeof(gpu::RestVertex) == 16 && sizeof(gpu::StrandInfo) == 16 && sizeof(gpu::GridNode) == 16);
+#endif
+
 #endif

@@ -575,4 +575,13 @@ GPU_FN vec4 resolveFragments(PixelFragments f, uint k)
 
 GPU_NAMESPACE_END
 
+#ifdef __cplusplus
+// The layouts GLSL gives these blocks, checked where they are defined (C++ only).
+static_assert(sizeof(gpu::StrandRasterPush) == 80, "StrandRasterPush must fit the 128 bytes of push constants");
+static_assert(sizeof(gpu::RasterCounters) == 32);
+static_assert(sizeof(gpu::RasterPiece) == 48 && offsetof(gpu::RasterPiece, walkGroups) == 16 &&
+                  offsetof(gpu::RasterPiece, resolveGroups) == 32,
+              "RasterPiece must match its std430 layout (its dispatches are read at these offsets)");
+#endif
+
 #endif

@@ -291,4 +291,9 @@ GPU_FN uint coverageMask(float coverage, uint samples, uint strand, uint pixelHa
 
 GPU_NAMESPACE_END
 
+#ifdef __cplusplus
+// The layouts GLSL gives these blocks, checked where they are defined (C++ only).
+static_assert(sizeof(gpu::HairPush) == 96, "HairPush must fit the 128 bytes of push constants every device has");
+#endif
+
 #endif
