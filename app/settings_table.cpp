@@ -320,6 +320,10 @@ std::vector<SettingSpec> buildSpecs()
                "the length of a hair at the very hairline, as a share of the length"),
         [](Settings & x) -> auto& { return x.growth.hairlineLength; });
     grown(
+        number("hairline_width", "", {0.1, 1.0}, kRestart, "",
+               "the drawn width of a hair at the very hairline, as a share of `width` (finer hairs there)"),
+        [](Settings & x) -> auto& { return x.growth.hairlineWidth; });
+    grown(
         number("clump_size", "m", {0.0, 0.05}, kRestart, "", "spacing of the grown clumps' centres (0: no clumps)"),
         [](Settings & x) -> auto& { return x.growth.clumpSizeMetres; });
     grown(

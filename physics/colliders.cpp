@@ -141,9 +141,9 @@ ScalpRule defaultScalpRule(const Ellipsoid& cranium)
 {
     ScalpRule rule;
     rule.planePoint = cranium.center - glm::vec3(0.0f, 0.15f * cranium.radii.y, 0.0f);
-    rule.planeNormal = glm::normalize(glm::vec3(0.0f, 1.0f, -0.45f));
+    rule.planeNormal = glm::normalize(glm::vec3(0.0f, 1.0f, -0.7f));
     rule.faceDirection = glm::vec3(0.0f, 0.0f, 1.0f);
-    rule.faceMaxDot = 0.35f;
+    rule.faceMaxDot = 0.8f;
     return rule;
 }
 

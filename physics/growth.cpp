@@ -110,12 +110,19 @@ float partingReach(const HeadFrame& head, const glm::vec3& p)
            smoothstep(head.centre.y + 0.2f * R, head.centre.y + 0.6f * R, p.y);
 }
 
+float bangsEdgeDistance(const HeadFrame& head, const glm::vec3& p)
+{
+    // The edge's cone: 51 degrees about the axis (its cosine 0.63, as the first bangs' blend's middle).
+    const float edge = std::acos(0.63f);
+    glm::vec3 dir = safeNormalize(p - head.centre, glm::vec3(0.0f, 0.0f, 1.0f));
+    float angle = std::acos(std::clamp(glm::dot(dir, glm::normalize(glm::vec3(0.0f, 0.45f, 1.0f))), -1.0f, 1.0f));
+    return (edge - angle) * head.skullRadius;
+}
+
 float bangsWeight(const GrowthSettings& s, const HeadFrame& head, const glm::vec3& p)
 {
-    glm::vec3 dir = safeNormalize(p - head.centre, glm::vec3(0.0f, 0.0f, 1.0f));
-    float frontness = glm::dot(dir, glm::normalize(glm::vec3(0.0f, 0.45f, 1.0f)));
-    // A narrow transition: a strand half combed forward at full length would hang over the face.
-    return s.bangs * smoothstep(0.58f, 0.68f, frontness);
+    float half = 0.003f * head.unitsPerMetre;
+    return s.bangs * smoothstep(-half, half, bangsEdgeDistance(head, p));
 }
 
 glm::vec3 flowDirection(const GrowthSettings& s, const HeadFrame& head, const glm::vec3& p, const glm::vec3& n)
@@ -407,14 +414,27 @@ StrandSet growGuides(const Mesh& mesh, const ScalpRule& scalp, const std::vector
     // A parting's edges are rows of roots a little either side of its line, so the scalp shows
     // there as a thin straight line, not as the ragged gap blue noise leaves between two sides.
     std::vector<RootRow> rows;
+    const float offset = 0.35f * rootSpacing(scalpArea(mesh, field), s.guides);
     if (s.parting != Parting::None && s.poissonDisk) {
-        float offset = 0.35f * rootSpacing(scalpArea(mesh, field), s.guides);
+        for (float sign : {-1.0f, 1.0f})
+            rows.push_back(planeRow(glm::vec3(partingX(s, head) + sign * offset, 0.0f, 0.0f),
+                                    glm::vec3(1.0f, 0.0f, 0.0f), [&s, &head](const glm::vec3& p) {
+                                        return groom::partingReach(head, p) > 0.5f &&
+                                               groom::bangsWeight(s, head, p) < 0.5f * s.bangs + 1e-3f;
+                                    }));
+    }
+    // The bangs' edge likewise: a row just in front of it (combed forward) and one just behind
+    // (combed back), the one behind leaving the parting's rows where they meet it.
+    if (s.bangs > 0.0f && s.poissonDisk) {
+        float line = s.parting != Parting::None ? partingX(s, head) : 1e30f;
         for (float sign : {-1.0f, 1.0f}) {
             RootRow row;
-            row.point = glm::vec3(partingX(s, head) + sign * offset, 0.0f, 0.0f);
-            row.normal = glm::vec3(1.0f, 0.0f, 0.0f);
-            row.keep = [&s, &head](const glm::vec3& p) {
-                return groom::partingReach(head, p) > 0.5f && groom::bangsWeight(s, head, p) < 0.5f * s.bangs + 1e-3f;
+            row.level = [&head, sign, offset](const glm::vec3& p) {
+                return groom::bangsEdgeDistance(head, p) - sign * offset;
+            };
+            row.axis = glm::normalize(glm::vec3(0.0f, 0.45f, 1.0f));
+            row.keep = [sign, line, offset](const glm::vec3& p) {
+                return sign > 0.0f || std::abs(p.x - line) > 1.5f * offset;
             };
             rows.push_back(std::move(row));
         }
@@ -516,6 +536,9 @@ StrandSet growGuides(const Mesh& mesh, const ScalpRule& scalp, const std::vector
         float rigidBelow = kRigidStrandMetres * upm;
         set.add(groom::resample(line, s.verticesPerStrand), 0,
                 groom::polylineLength(line) < rigidBelow ? s.verticesPerStrand : 2u, false);
+        // Vellus-like at the edge: the hairline's hairs are finer as well as shorter, so the
+        // hair's border fades instead of ending in a line of full-width strands.
+        set.widthScale.push_back(s.hairlineWidth + (1.0f - s.hairlineWidth) * roots[k].density);
     }
     set.scalpPaint = scalpPaint(mesh, field);
     return set;

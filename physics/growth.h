@@ -51,6 +51,7 @@ struct GrowthSettings {
     float trimLevelMetres = 0.19f; // strands are cut this far below the head's top (0: no trim)
     float trimSlope = 0.35f;       // the trim line drops this much per unit toward the face (an A-line bob)
     float hairlineLength = 0.5f;   // a hair at the very hairline is this share of the length
+    float hairlineWidth = 0.4f;    // and is drawn this share of the `width` setting wide (finer)
     // 4. Clumps
     float clumpSizeMetres = 0.012f; // spacing of the clump centres (0: no clumps)
     float clumpStrength = 0.45f;    // how far a strand's tip gathers to its clump's centre, 0..1
@@ -90,7 +91,14 @@ float partingX(const GrowthSettings& s, const HeadFrame& head);
 // on the top of the head.
 float partingReach(const HeadFrame& head, const glm::vec3& p);
 
-// How much of the front a point is, for bangs (0..1, times GrowthSettings::bangs).
+// The bangs' edge: where the front of the scalp combed forward meets the rest. A point's side of
+// it: roughly its distance on the head from the edge (head units, > 0 in front): the angle about
+// the skull's centre from the cone whose axis points forward and a little up, times the skull's
+// radius. Hair within a few millimetres of the edge is combed half one way, half the other.
+float bangsEdgeDistance(const HeadFrame& head, const glm::vec3& p);
+// How much a point is combed forward for bangs (0..1, times GrowthSettings::bangs): a smoothstep
+// over 3 mm either side of the edge (a strand half combed forward at full length would hang over
+// the face, and a wide blend lays strands sideways along the edge).
 float bangsWeight(const GrowthSettings& s, const HeadFrame& head, const glm::vec3& p);
 
 // The combing direction at a root: a unit vector in the tangent plane of `n`.

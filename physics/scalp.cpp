@@ -157,14 +157,15 @@ ScalpTriangles scalpTriangles(const Mesh& mesh, const ScalpField& field)
     return out;
 }
 
-// A row's roots: points where its plane cuts the scalp's triangles (every spacing / 8 along each
-// cut), inside the hairline (density above one half) where the row keeps them, ordered along the
-// cut by their angle about the head's centre in the plane (from the head's up, so a row over the top
-// has no seam), then taken one `spacing` on from the last.
+// A row's roots: points where its level crosses zero in the scalp's triangles (found on the edges
+// by linear interpolation of the level, exact for a plane; then every spacing / 8 along each cut),
+// inside the hairline (density above one half) where the row keeps them, ordered along the cut by
+// their angle about the row's axis through the head's centre (from the head's up, so a row over the
+// top has no seam), then taken one `spacing` on from the last.
 std::vector<RootSample> rowRoots(const Mesh& mesh, const ScalpField& field, const std::vector<uint32_t>& triangles,
                                  const RootRow& row, float spacing)
 {
-    glm::vec3 n = glm::normalize(row.normal);
+    glm::vec3 n = glm::normalize(row.axis);
     glm::vec3 up = glm::vec3(0.0f, 1.0f, 0.0f) - n.y * n;
     glm::vec3 e1 = glm::length(up) > 1e-3f ? glm::normalize(up) : glm::normalize(glm::cross(n, glm::vec3(1, 0, 0)));
     glm::vec3 e2 = glm::cross(n, e1);
@@ -174,7 +175,7 @@ std::vector<RootSample> rowRoots(const Mesh& mesh, const ScalpField& field, cons
         uint32_t idx[3] = {mesh.indices[3 * t], mesh.indices[3 * t + 1], mesh.indices[3 * t + 2]};
         float d[3];
         for (int k = 0; k < 3; ++k)
-            d[k] = glm::dot(mesh.positions[idx[k]] - row.point, n);
+            d[k] = row.level(mesh.positions[idx[k]]);
         // The cut's ends as barycentric coordinates on the edges the plane crosses.
         glm::vec3 ends[2];
         int found = 0;
@@ -279,6 +280,15 @@ float rootSpacing(double area, uint32_t count)
 double scalpArea(const Mesh& mesh, const ScalpField& field)
 {
     return scalpTriangles(mesh, field).weighted;
+}
+
+RootRow planeRow(const glm::vec3& point, const glm::vec3& normal, std::function<bool(const glm::vec3&)> keep)
+{
+    RootRow row;
+    row.level = [point, normal](const glm::vec3& p) { return glm::dot(p - point, normal); };
+    row.axis = normal;
+    row.keep = std::move(keep);
+    return row;
 }
 
 std::vector<RootSample> sampleScalpRoots(const Mesh& mesh, const ScalpField& field, uint32_t count, bool poissonDisk,

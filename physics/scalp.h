@@ -46,14 +46,19 @@ struct RootSample {
 std::vector<RootSample> sampleRoots(const Mesh& mesh, const std::vector<uint32_t>& triangles, uint32_t count,
                                     bool poissonDisk, uint32_t seed);
 
-// A row of roots along a curve on the scalp: where the plane through `point` with normal `normal`
-// cuts the head, where `keep` holds. A parting's two edges are rows a little apart, so the scalp
-// shows as a thin line between them rather than as the gap blue noise leaves between its sides.
+// A row of roots along a curve on the scalp: where `level` (a signed function of the position, in
+// head units) is zero on the head, where `keep` holds; its roots are ordered along the curve by
+// their angle about `axis` through the head's centre. A parting's two edges are rows a little
+// apart (planes), and so are the bangs' (cones about the bangs' axis), so the scalp shows as a thin
+// line between them rather than as the gap blue noise leaves between two sides combed apart.
 struct RootRow {
-    glm::vec3 point{0.0f};
-    glm::vec3 normal{1.0f, 0.0f, 0.0f};
+    std::function<float(const glm::vec3&)> level;
+    glm::vec3 axis{1.0f, 0.0f, 0.0f};
     std::function<bool(const glm::vec3&)> keep;
 };
+
+// The row where the plane through `point` with unit normal `normal` cuts the head.
+RootRow planeRow(const glm::vec3& point, const glm::vec3& normal, std::function<bool(const glm::vec3&)> keep = {});
 
 // The smallest distance blue-noise roots keep between them (the dart radius, head units) when
 // `count` of them cover `area` (head units squared).

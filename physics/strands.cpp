@@ -2,6 +2,7 @@
 #include "physics/strands.h"
 
 #include "core/error.h"
+#include "shaders/shared/strands.h"
 
 #include <algorithm>
 #include <cmath>
@@ -141,7 +142,7 @@ std::vector<glm::uvec4> guideTriangles(const StrandSet& strands)
                 break;
         }
         out[s] = glm::uvec4(s, bestD[0] < 1e29f ? best[0] : s, bestD[1] < 1e29f ? best[1] : s,
-                            glm::floatBitsToUint(lengths[s]));
+                            gpu::packGuideShape(lengths[s], strands.widthScale.empty() ? 1.0f : strands.widthScale[s]));
     }
     return out;
 }

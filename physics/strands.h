@@ -30,6 +30,9 @@ struct StrandSet {
     // Grown hair: how strongly each vertex of the head is painted under it (physics/scalp.h), from
     // the field its roots were grown at; empty for loaded hair (the renderer paints around the roots).
     std::vector<float> scalpPaint;
+    // Each strand's drawn width as a share of the `width` setting (grown hair: finer toward the
+    // hairline, GrowthSettings::hairlineWidth); empty: 1 for every strand.
+    std::vector<float> widthScale;
 
     size_t strandCount() const { return strands.size(); }
     size_t vertexCount() const { return rest.size(); }
@@ -40,11 +43,12 @@ struct StrandSet {
 };
 
 // For multi-strand interpolation: each guide with its two nearest neighbours by root distance
-// (x: the guide, y, z: the neighbours, w: the guide's rest length as float bits, which limits the
-// render-time spread of its strands: placeStrandPoint in shaders/shared/strands.h), found through a uniform grid over
-// the roots, leaving out neighbours whose strands part from the guide's (a third of the way along, farther apart than
-// three times the roots' distance plus a tenth of the length: across a parting). A lone guide is its
-// own neighbour.
+// (x: the guide, y, z: the neighbours, w: two halves, packHalf2x16(rest length, width scale): the
+// length limits the render-time spread of its strands (placeStrandPoint in shaders/shared/strands.h),
+// the width scale is StrandSet::widthScale, read by guideLength and guideWidthScale there), found through a uniform
+// grid over the roots, leaving out neighbours whose strands part from the guide's (a third of the way along, farther
+// apart than three times the roots' distance plus a tenth of the length: across a parting). A lone guide is its own
+// neighbour.
 std::vector<glm::uvec4> guideTriangles(const StrandSet& strands);
 
 } // namespace wisp

@@ -19,6 +19,7 @@ layout(location = 2) in float inT[];
 layout(location = 3) flat in uint inStrand[];
 layout(location = 4) in float inLodAlpha[];
 layout(location = 5) in vec2 inVisibility[];
+layout(location = 6) in float inWidthScale[];
 
 layout(location = 0) out vec3 outWorld;
 layout(location = 1) out vec3 outTangent;
@@ -49,7 +50,7 @@ void main()
 
     for (int i = 0; i < 2; ++i) {
         vec4 c = i == 0 ? c0 : c1;
-        float worldWidth = strandWidthAt(push.width * push.lodWidthScale, inT[i]);
+        float worldWidth = strandWidthAt(push.width * push.lodWidthScale * inWidthScale[i], inT[i]);
         float pixels = worldWidth * pixelsPerUnit / c.w;
         float drawn = max(pixels, push.minPixelWidth);
         float coverage = pixels / drawn;

@@ -26,6 +26,7 @@ layout(location = 2) out float outT;
 layout(location = 3) flat out uint outStrand;  // guide * strandsPerGuide + s
 layout(location = 4) out float outLodAlpha;
 layout(location = 5) out vec2 outVisibility;  // the light's visibility here (light_visibility.glsl)
+layout(location = 6) out float outWidthScale;  // the guide's (guideWidthScale): finer at the hairline
 
 #ifndef HAIR_FROM_LIGHT
 // The light's visibility is evaluated per tessellated vertex and interpolated along the ribbon:
@@ -62,7 +63,7 @@ void main()
         g2 = evaluateGuide(tri.z, t);
     }
     CurvePoint point = placeStrandPoint(g, g1, g2, guide, s, t, push.interpolation, push.clumpRadius, push.deviation,
-                                          uintBitsToFloat(tri.w));
+                                          guideLength(tri.w));
     vec3 p = point.position;
     // Every generated strand is kept out of the head's colliders: blends of two outside points,
     // and offsets across a guide lying on the scalp, would otherwise fall inside the head.
@@ -75,6 +76,7 @@ void main()
     outT = t;
     outStrand = guide * push.strandsPerGuide + s;
     outLodAlpha = lodAlpha(s, push.lodStrands);
+    outWidthScale = guideWidthScale(tri.w);
 #ifdef HAIR_FROM_LIGHT
     gl_Position = frame.lightViewProjection * vec4(p, 1.0);  // shadow and deep opacity passes
     outVisibility = vec2(1.0);

@@ -53,7 +53,7 @@ void main()
         g2 = guideCurve(tri.z, i);
     }
     CurvePoint point = placeStrandPoint(g, g1, g2, guide, s, t, push.interpolation, push.clumpRadius, push.deviation,
-                                          uintBitsToFloat(tri.w));
+                                          guideLength(tri.w));
     vec3 p = point.position;
     if (s != 0u)
         for (uint c = 0u; c < sim.colliderCount; ++c)
@@ -61,7 +61,7 @@ void main()
 
     uint strand = guide * push.strandsPerGuide + s;
     float alpha = frame.hairOpacity * lodAlpha(s, push.lodStrands);
-    float worldWidth = strandWidthAt(push.width, t);
+    float worldWidth = strandWidthAt(push.width * guideWidthScale(tri.w), t);
 #ifdef STRANDS_FROM_LIGHT
     vertices[id] = projectStrandVertex(frame.lightViewProjection, vec2(frame.shadowMapSize), p, worldWidth,
                                        frame.lightTexelsPerUnit);

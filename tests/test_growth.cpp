@@ -8,6 +8,7 @@
 #include "physics/growth.h"
 #include "physics/hair_scene.h"
 #include "physics/hair_style.h"
+#include "shaders/shared/strands.h"
 
 #include <gtest/gtest.h>
 
@@ -158,6 +159,32 @@ TEST(ScalpField, AHeadWithNoScalpSaysSo)
     }
 }
 
+TEST(ScalpField, ABareMeshsAutomaticHairlineCoversTheHeadAsItsDescriptionDoes)
+{
+    // The default head's mesh given alone gets a rule from its fitted cranium
+    // (defaultScalpRule): its scalp should be about the hand-written rule's, reaching as far over
+    // the forehead (the first automatic rule left the front third of the top bald: its face rule
+    // took in every normal within 70 degrees of the front).
+    GrowthSettings g;
+    g.guides = 400;
+    HairScene described = buildGrownScene(defaultHeadPath(), g);
+    HairScene bare = buildGrownScene(defaultHeadPath().parent_path() / "head.obj", g);
+    ASSERT_TRUE(bare.collidersFitted);
+    auto area = [](const HairScene& s) {
+        return scalpArea(s.head.mesh, makeScalpField(s.scalp, s.unitsPerMetre, 0.012f, 0.09f));
+    };
+    double ratio = area(bare) / area(described);
+    EXPECT_GT(ratio, 0.8) << "the automatic scalp is much smaller than the described one";
+    EXPECT_LT(ratio, 1.25) << "the automatic scalp reaches over the face or the neck";
+    auto frontmost = [](const HairScene& s) {
+        float z = -1e30f;
+        for (size_t k = 0; k < s.strands.strandCount(); ++k)
+            z = std::max(z, s.strands.rest[k * s.strands.verticesPerStrand].z);
+        return z;
+    };
+    EXPECT_NEAR(frontmost(bare), frontmost(described), 0.015f) << "the roots reach the forehead";
+}
+
 // ---- 2. Flow ----------------------------------------------------------------------------------
 
 TEST(GroomFlow, HairIsCombedAwayFromTheSideParting)
@@ -211,8 +238,8 @@ TEST(GroomFlow, ThePartingsEdgesAreRowsOfRootsCloseToItsLine)
     float line = groom::partingX(s, head);
     std::vector<RootRow> rows;
     for (float sign : {-1.0f, 1.0f})
-        rows.push_back({glm::vec3(line + sign * offset, 0.0f, 0.0f), glm::vec3(1.0f, 0.0f, 0.0f),
-                        [&](const glm::vec3& p) { return groom::partingReach(head, p) > 0.5f; }});
+        rows.push_back(planeRow(glm::vec3(line + sign * offset, 0.0f, 0.0f), glm::vec3(1.0f, 0.0f, 0.0f),
+                                [&](const glm::vec3& p) { return groom::partingReach(head, p) > 0.5f; }));
     // The widest gap between the line and its nearest root on either side, over the slices.
     auto widestGap = [&](const std::vector<RootSample>& roots) {
         float widest = 0.0f;
@@ -246,6 +273,77 @@ TEST(GroomFlow, ThePartingsEdgesAreRowsOfRootsCloseToItsLine)
         onRows += std::abs(std::abs(r.position.x - line) - offset) < 1e-5f ? 1 : 0;
     EXPECT_GT(onRows, 40u);
     EXPECT_LT(onRows, count / 4);
+}
+
+// The bangs' edge, where the front combed forward meets the rest combed back: a row of roots each
+// side of it leaves a thin line there too (blue noise alone left a bald band across the head, the
+// two sides' strands leaving it in opposite directions). Around the edge, in slices of its angle
+// about the bangs' axis, the nearest root on each side is within 1.5 mm of it (blue noise alone:
+// farther in most slices).
+TEST(GroomFlow, TheBangsEdgeIsRowsOfRootsCloseToIt)
+{
+    const HairScene& scene = defaultHeadOnly();
+    groom::HeadFrame head;
+    head.centre = scene.gpuColliders.front().center;
+    head.skullRadius = 0.09f;
+    ScalpField f = defaultField();
+    const uint32_t count = 2200;
+    float offset = 0.35f * rootSpacing(scalpArea(scene.head.mesh, f), count);
+    glm::vec3 axis = glm::normalize(glm::vec3(0.0f, 0.45f, 1.0f));
+    std::vector<RootRow> rows;
+    for (float sign : {-1.0f, 1.0f}) {
+        RootRow row;
+        row.level = [&, sign](const glm::vec3& p) { return groom::bangsEdgeDistance(head, p) - sign * offset; };
+        row.axis = axis;
+        rows.push_back(std::move(row));
+    }
+    glm::vec3 e1 = glm::normalize(glm::vec3(0.0f, 1.0f, 0.0f) - axis.y * axis);
+    glm::vec3 e2 = glm::cross(axis, e1);
+    // Each slice's gap: the farther of the nearest roots either side of the edge.
+    auto gaps = [&](const std::vector<RootSample>& roots) {
+        std::vector<float> out;
+        for (float a = -1.5f; a < 1.5f; a += 0.1f) {
+            float nearest[2] = {1e30f, 1e30f};
+            for (const RootSample& r : roots) {
+                glm::vec3 d = r.position - head.centre;
+                float angle = std::atan2(glm::dot(d, e2), glm::dot(d, e1));
+                float edge = groom::bangsEdgeDistance(head, r.position);
+                if (angle < a || angle >= a + 0.1f || std::abs(edge) > 0.02f || r.density < 0.9f)
+                    continue;
+                nearest[edge >= 0.0f] = std::min(nearest[edge >= 0.0f], std::abs(edge));
+            }
+            if (nearest[0] <= 0.02f && nearest[1] <= 0.02f) // else past the scalp's edge
+                out.push_back(std::max(nearest[0], nearest[1]));
+        }
+        EXPECT_GT(out.size(), 8u) << "the edge runs across the top of the head";
+        return out;
+    };
+    auto wide = [](const std::vector<float>& g) {
+        return std::count_if(g.begin(), g.end(), [](float x) { return x > 0.0015f; });
+    };
+    std::vector<float> withRows = gaps(sampleScalpRoots(scene.head.mesh, f, count, true, 4, rows));
+    std::vector<float> without = gaps(sampleScalpRoots(scene.head.mesh, f, count, true, 4));
+    // (At most the two slices where the edge meets the hairline, and the rows thin out with the density.)
+    EXPECT_LE(wide(withRows), 2);
+    EXPECT_GT(wide(without), long(without.size() / 2));
+    // And the grown bangs style combs the two sides apart: forward in front of the edge, back behind.
+    GrowthSettings s;
+    applyHairStyle(s, *findHairStyle("bangs"));
+    int forward = 0, back = 0, front = 0, behind = 0;
+    for (const RootSample& r : sampleScalpRoots(scene.head.mesh, f, count, true, 4, rows)) {
+        float edge = groom::bangsEdgeDistance(head, r.position);
+        if (std::abs(edge) > 0.004f || std::abs(edge) < 0.002f)
+            continue;
+        head.crown = head.centre + glm::vec3(0.0f, 0.08f, -0.06f);
+        head.top = scene.head.mesh.bounds().max.y;
+        float z = groom::flowDirection(s, head, r.position, r.normal).z;
+        (edge > 0.0f ? front : behind) += 1;
+        (edge > 0.0f ? forward : back) += (edge > 0.0f ? z > 0.3f : z < 0.3f) ? 1 : 0;
+    }
+    EXPECT_GT(front, 5);
+    EXPECT_GT(behind, 5);
+    EXPECT_EQ(forward, front) << "every strand just in front of the edge is combed forward";
+    EXPECT_EQ(back, behind) << "no strand just behind it is";
 }
 
 TEST(GroomFlow, StrandsLeaveTheScalpNearTangentAtTheRootLiftLowerAtTheHairline)
@@ -422,6 +520,35 @@ TEST(Groom, GrownStrandsStayOutsideTheCollidersAndThePaintFollowsTheField)
         full += p >= 0.95f ? 1 : 0;
     }
     EXPECT_GT(soft, full / 20) << "a gradient at the hairline, not a hard border";
+}
+
+TEST(Groom, HairlineHairsAreFinerAsTheyAreShorter)
+{
+    // Each grown strand's width share is hairline_width at the field's zero and 1 inside the band:
+    // the share follows the root's density (read back from the field at the root), and the roots
+    // across the band make a spread of widths, not two values.
+    GrowthSettings g;
+    g.guides = 600;
+    g.hairlineWidth = 0.3f;
+    HairScene scene = buildGrownScene(defaultHeadPath(), g);
+    const StrandSet& s = scene.strands;
+    ASSERT_EQ(s.widthScale.size(), s.strandCount());
+    ScalpField field = defaultField(g.hairlineBandMetres);
+    size_t fine = 0;
+    for (size_t k = 0; k < s.strandCount(); ++k) {
+        glm::vec3 root = s.rest[k * s.verticesPerStrand];
+        float density = field.density(root, glm::normalize(root - scene.gpuColliders.front().center));
+        EXPECT_GE(s.widthScale[k], 0.3f - 1e-6f) << k;
+        EXPECT_LE(s.widthScale[k], 1.0f) << k;
+        EXPECT_NEAR(s.widthScale[k], 0.3f + 0.7f * density, 0.12f) << k;
+        fine += s.widthScale[k] < 0.8f ? 1 : 0;
+    }
+    EXPECT_GT(fine, s.strandCount() / 100) << "some hairs at the hairline are finer";
+    EXPECT_LT(fine, s.strandCount() / 4) << "most hairs are of full width";
+    // The renderer reads the share from the guide's triangle, beside its length.
+    std::vector<glm::uvec4> tri = guideTriangles(s);
+    for (size_t k = 0; k < s.strandCount(); k += 37)
+        EXPECT_NEAR(gpu::guideWidthScale(tri[k].w), s.widthScale[k], 1e-3f) << k;
 }
 
 TEST(Groom, StylesAreSettingsAndTheDefaultIsTheBob)

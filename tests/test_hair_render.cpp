@@ -175,8 +175,10 @@ TEST(StrandMath, GuideNeighboursOfFewGuidesOnALine)
     set.parts.push_back({});
     std::vector<glm::uvec4> tri = guideTriangles(set);
     ASSERT_EQ(tri.size(), 2u);
-    EXPECT_EQ(tri[0], glm::uvec4(0, 1, 0, glm::floatBitsToUint(1.5f)));
-    EXPECT_EQ(tri[1], glm::uvec4(1, 0, 1, glm::floatBitsToUint(1.5f)));
+    EXPECT_EQ(tri[0], glm::uvec4(0, 1, 0, gpu::packGuideShape(1.5f, 1.0f)));
+    EXPECT_EQ(tri[1], glm::uvec4(1, 0, 1, gpu::packGuideShape(1.5f, 1.0f)));
+    EXPECT_EQ(gpu::guideLength(tri[0].w), 1.5f);
+    EXPECT_EQ(gpu::guideWidthScale(tri[0].w), 1.0f);
     for (uint32_t s = 2; s < 7; ++s) // and a few more on the line: the two nearest
         set.add({glm::vec3(0.2f * float(s), 1.5f, -1.0f), glm::vec3(0.2f * float(s), 1.0f, -1.0f),
                  glm::vec3(0.2f * float(s), 0.5f, -1.0f), glm::vec3(0.2f * float(s), 0.0f, -1.0f)},

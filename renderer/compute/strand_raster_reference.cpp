@@ -63,7 +63,7 @@ StrandVertices generateStrands(const gpu::StrandRasterPush& push, const gpu::Fra
             g2 = curves[size_t(triangles[guide].z) * perStrand + i];
         }
         gpu::CurvePoint point = gpu::placeStrandPoint(g, g1, g2, guide, s, t, push.interpolation, push.clumpRadius,
-                                                      push.deviation, glm::uintBitsToFloat(triangles[guide].w));
+                                                      push.deviation, gpu::guideLength(triangles[guide].w));
         glm::vec3 p = point.position;
         if (s != 0)
             for (uint32_t c = 0; c < sim.colliderCount; ++c)
@@ -71,7 +71,7 @@ StrandVertices generateStrands(const gpu::StrandRasterPush& push, const gpu::Fra
 
         uint32_t strand = guide * push.strandsPerGuide + s;
         float alpha = frame.hairOpacity * gpu::lodAlpha(s, push.lodStrands);
-        float worldWidth = gpu::strandWidthAt(push.width, t);
+        float worldWidth = gpu::strandWidthAt(push.width * gpu::guideWidthScale(triangles[guide].w), t);
         if (push.fromLight != 0) {
             out.positions[id] = gpu::projectStrandVertex(frame.lightViewProjection, glm::vec2(frame.shadowMapSize), p,
                                                          worldWidth, frame.lightTexelsPerUnit);

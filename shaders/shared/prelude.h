@@ -45,11 +45,13 @@ using glm::max;
 using glm::min;
 using glm::mix;
 using glm::normalize;
+using glm::packHalf2x16;
 using glm::packUnorm4x8;
 using glm::pow;
 using glm::sin;
 using glm::sqrt;
 using glm::transpose;
+using glm::unpackHalf2x16;
 using glm::unpackUnorm4x8;
 GPU_NAMESPACE_END
 #define GPU_UNROLL

@@ -259,6 +259,22 @@ GPU_FN float strandWidthAt(float rootWidth, float t)
     return rootWidth * (1.0f - 0.85f * t);
 }
 
+// A guide's shape as its neighbour triangle's w carries it (physics/strands.h guideTriangles): its
+// rest length and the width its strands are drawn at, as a share of the `width` setting (finer at
+// the hairline), in two halves (11 bits of mantissa: a length within 0.05%).
+GPU_FN uint packGuideShape(float restLength, float widthScale)
+{
+    return packHalf2x16(vec2(restLength, widthScale));
+}
+GPU_FN float guideLength(uint shape)
+{
+    return unpackHalf2x16(shape).x;
+}
+GPU_FN float guideWidthScale(uint shape)
+{
+    return unpackHalf2x16(shape).y;
+}
+
 // ---- Level of detail ----------------------------------------------------------------------------
 
 // How much of strand s is drawn when lodStrands strands per guide are wanted: whole strands below
