@@ -1,6 +1,6 @@
 // app/cli.cpp: `wisp`'s command line: the global options (--gpu, --validation, --sync-validation),
 // every command registered (app/commands.h: render, view, simulate, groom, record, sweep, bsdf,
-// settings, info, inspect), and the error-to-exit-status policy (core/error.h: bad input 2, a
+// compare, settings, info, inspect), and the error-to-exit-status policy (core/error.h: bad input 2, a
 // lost device 3, anything else 1).
 #include "app/cli.h"
 
@@ -34,8 +34,8 @@ int runCli(int argc, char** argv)
 
     std::vector<CommandRun> commands = {addRenderCommand(app, g), addViewCommand(app, g),   addSimulateCommand(app, g),
                                         addGroomCommand(app, g),  addRecordCommand(app, g), addSweepCommand(app, g),
-                                        addBsdfCommand(app),      addSettingsCommand(app),  addInfoCommand(app),
-                                        addInspectCommand(app)};
+                                        addBsdfCommand(app),      addCompareCommand(app),   addSettingsCommand(app),
+                                        addInfoCommand(app),      addInspectCommand(app)};
 
     // CLI11 reports a mistyped command only as "a subcommand is required": name it instead.
     for (int i = 1; i < argc; ++i) {

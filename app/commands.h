@@ -1,6 +1,7 @@
 // app/commands.h: every command of `wisp`, each registering itself on the command line as
 // app/command.h says (`bsdf`, which needs no device, is app/bsdf_command.h; `inspect` is
-// app/inspect.h). runCli (app/cli.cpp) adds them in this order, which `wisp --help` lists.
+// app/inspect.h; `compare` needs no device either). runCli (app/cli.cpp) adds them in this order, which `wisp --help`
+// lists.
 #pragma once
 
 #include "app/bsdf_command.h"
@@ -17,5 +18,6 @@ CommandRun addRecordCommand(CLI::App& app, const GlobalOptions& global);   // re
 CommandRun addSweepCommand(CLI::App& app, const GlobalOptions& global);    // sweep_command.cpp
 CommandRun addSettingsCommand(CLI::App& app);                              // settings_command.cpp
 CommandRun addInfoCommand(CLI::App& app);                                  // info_command.cpp
+CommandRun addCompareCommand(CLI::App& app);                               // compare_command.cpp
 
 } // namespace wisp
