@@ -93,8 +93,6 @@ void HairSource::applyPartOverride(std::vector<PartSettings>& parts, const std::
     if (colon + 1 == spec.size())
         bad("no key=value after '" + which + ":' (keys global, local, damping, drag)");
     // Each key is the every-part setting of the same meaning, with its range.
-    const std::pair<const char*, const char*> keys[] = {
-        {"global", "global_stiffness"}, {"local", "local_stiffness"}, {"damping", "damping"}, {"drag", "drag"}};
     std::vector<std::string> given;
     for (size_t at = colon + 1;;) {
         size_t comma = spec.find(',', at);
@@ -110,7 +108,7 @@ void HairSource::applyPartOverride(std::vector<PartSettings>& parts, const std::
             bad(key + " is given twice");
         given.push_back(key);
         const char* setting = nullptr;
-        for (const auto& [name, settingName] : keys)
+        for (const auto& [name, settingName] : kPartKeys)
             if (key == name)
                 setting = settingName;
         if (!setting)

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace wisp {
@@ -20,6 +21,11 @@ namespace wisp {
 inline constexpr Range kHairScaleRange{1e-6, 1e6};
 inline constexpr Range kPositionRange{-1e4, 1e4}; // every coordinate
 inline constexpr Range kRadiusRange{0.0, 1e4};    // 0: no sphere
+
+// The keys of a per-part override ("PART:global=0.2,drag=3") and the every-part setting each
+// stands for, whose range it takes (scene files name a part's own values by the settings' names).
+inline constexpr std::pair<const char*, const char*> kPartKeys[] = {
+    {"global", "global_stiffness"}, {"local", "local_stiffness"}, {"damping", "damping"}, {"drag", "drag"}};
 
 struct HairSource {
     std::filesystem::path headFile;      // empty: the default head (models/head.json)

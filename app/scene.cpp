@@ -3,6 +3,7 @@
 // timeline.
 #include "app/scene.h"
 
+#include "app/value_text.h"
 #include "assets/text.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -12,14 +13,11 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <initializer_list>
-#include <iomanip>
 #include <memory>
-#include <sstream>
 
 #ifndef WISP_SOURCE_DIR
 #error "WISP_SOURCE_DIR must name the source tree (the shared data folder is beside it)"
@@ -35,18 +33,6 @@ using Json = nlohmann::ordered_json;
 constexpr int kSceneVersion = 1;
 constexpr const char* kSharedPrefix = "shared:";
 
-std::string text(double v)
-{
-    std::ostringstream s;
-    s << std::setprecision(10) << v;
-    return s.str();
-}
-
-std::string rangeText(const Range& r, const std::string& unit)
-{
-    return text(r.min) + " .. " + text(r.max) + (unit.empty() ? "" : " " + unit);
-}
-
 // RFC 6901: '~' and '/' in a key are escaped.
 std::string pointerTo(const std::string& parent, const std::string& key)
 {
@@ -61,24 +47,6 @@ std::string pointerTo(const std::string& parent, size_t index)
     return parent + "/" + std::to_string(index);
 }
 
-std::string typeName(const Json& v)
-{
-    switch (v.type()) {
-    case Json::value_t::object:
-        return "an object";
-    case Json::value_t::array:
-        return "an array";
-    case Json::value_t::string:
-        return "a string";
-    case Json::value_t::boolean:
-        return "true or false";
-    case Json::value_t::null:
-        return "null";
-    default:
-        return "a number";
-    }
-}
-
 // Reads values of one file; every failure names the file and the value's JSON pointer.
 struct Reader {
     std::filesystem::path file;
@@ -90,19 +58,18 @@ struct Reader {
     void expect(const Json& v, const std::string& pointer, bool ok, const std::string& wanted) const
     {
         if (!ok)
-            fail(pointer, "must be " + wanted + ", got " + typeName(v));
+            fail(pointer, "must be " + wanted + ", got " + jsonTypeName(v));
     }
     // An object whose keys are all among `known`.
-    void object(const Json& v, const std::string& pointer, std::initializer_list<const char*> known) const
+    void object(const Json& v, const std::string& pointer, const std::vector<std::string>& known) const
     {
         expect(v, pointer, v.is_object(), "an object");
         for (const auto& item : v.items()) {
             const std::string& key = item.key(); // clang 14 lambdas cannot capture a structured binding
-            bool found = std::any_of(known.begin(), known.end(), [&](const char* k) { return key == k; });
-            if (!found) {
+            if (std::find(known.begin(), known.end(), key) == known.end()) {
                 std::string names;
-                for (const char* k : known)
-                    names += (names.empty() ? "" : ", ") + std::string(k);
+                for (const std::string& k : known)
+                    names += (names.empty() ? "" : ", ") + k;
                 fail(pointerTo(pointer, key), "unknown key (known: " + names + ")");
             }
         }
@@ -114,19 +81,12 @@ struct Reader {
         if (!std::isfinite(d))
             fail(pointer, "must be a finite number");
         if (!range.contains(d))
-            fail(pointer, text(d) + " is out of range: allowed " + rangeText(range, unit));
+            fail(pointer, numberText(d) + " is out of range: allowed " + rangeText(range, unit));
         return d;
     }
     float real(const Json& v, const std::string& pointer, const Range& range, const std::string& unit = "") const
     {
         return float(number(v, pointer, range, unit));
-    }
-    uint32_t whole(const Json& v, const std::string& pointer, const Range& range) const
-    {
-        double d = number(v, pointer, range);
-        if (d != std::floor(d))
-            fail(pointer, text(d) + " is not a whole number");
-        return uint32_t(d);
     }
     bool boolean(const Json& v, const std::string& pointer) const
     {
@@ -173,39 +133,55 @@ struct Reader {
     {
         return float(setting(v, pointer, name).number);
     }
-    uint32_t settingWhole(const Json& v, const std::string& pointer, const char* name) const
-    {
-        return uint32_t(setting(v, pointer, name).number);
-    }
     glm::vec3 settingVector(const Json& v, const std::string& pointer, const char* name) const
     {
         return glm::vec3(setting(v, pointer, name).vector);
     }
 };
 
+// The keys of `section`'s own (not settings), then its settings' names: what the section takes.
+std::vector<std::string> sectionKnown(SceneSection section, std::initializer_list<const char*> own)
+{
+    std::vector<std::string> known(own.begin(), own.end());
+    for (const SceneSectionKey& k : sceneSectionKeys(section)) {
+        known.push_back(k.name);
+        if (!k.alias.empty())
+            known.push_back(k.alias);
+    }
+    return known;
+}
+
+// The settings of `section` that `v` holds (under their names or older aliases), checked by the
+// settings table, as NAME=VALUE in the file's order. Part settings take numbers only here: leaving
+// the key out is what their unset word ("part": each part's own) says.
+SceneSettings readSectionSettings(const Reader& r, const Json& v, const std::string& at, SceneSection section)
+{
+    SceneSettings out;
+    for (const auto& item : v.items()) {
+        const std::string& key = item.key();
+        const std::vector<SceneSectionKey>& keys = sceneSectionKeys(section);
+        auto k = std::find_if(keys.begin(), keys.end(),
+                              [&](const SceneSectionKey& s) { return key == s.name || key == s.alias; });
+        if (k == keys.end())
+            continue;
+        std::string pointer = pointerTo(at, key);
+        if (std::any_of(out.begin(), out.end(), [&](const auto& done) { return done.first == k->name; }))
+            r.fail(pointer, "gives " + k->name + " again (as " + k->name + " and " + k->alias + "): give it once");
+        const SettingSpec& spec = settingSpec(k->name);
+        if (spec.optional())
+            r.expect(item.value(), pointer, item.value().is_number(), "a number");
+        out.emplace_back(spec.name, settingText(spec, r.setting(item.value(), pointer, spec.name.c_str())));
+    }
+    return out;
+}
+
 void readHair(const Reader& r, const Json& v, SceneHair& hair)
 {
     const std::string at = "/hair";
-    r.object(v, at,
-             {"guides", "vertices", "hair_length", "length_variation", "curl", "poisson", "seed", "files", "scale",
-              "offset", "z_up", "mirror_z", "half_turn", "global_stiffness", "local_stiffness", "damping", "drag"});
+    r.object(v, at, sectionKnown(SceneSection::Hair, {"files", "scale", "offset", "z_up", "mirror_z", "half_turn"}));
     auto has = [&](const char* key) { return v.contains(key); };
     auto p = [&](const char* key) { return pointerTo(at, key); };
-    // The growth keys are the growth settings' ("vertices" is vertices_per_strand).
-    if (has("guides"))
-        hair.guides = r.settingWhole(v["guides"], p("guides"), "guides");
-    if (has("vertices"))
-        hair.vertices = r.settingWhole(v["vertices"], p("vertices"), "vertices_per_strand");
-    if (has("hair_length"))
-        hair.hairLength = r.settingReal(v["hair_length"], p("hair_length"), "hair_length");
-    if (has("length_variation"))
-        hair.lengthVariation = r.settingReal(v["length_variation"], p("length_variation"), "length_variation");
-    if (has("curl"))
-        hair.curl = r.settingReal(v["curl"], p("curl"), "curl");
-    if (has("poisson"))
-        hair.poisson = r.boolean(v["poisson"], p("poisson"));
-    if (has("seed"))
-        hair.seed = r.settingWhole(v["seed"], p("seed"), "seed");
+    hair.settings = readSectionSettings(r, v, at, SceneSection::Hair);
     if (has("scale"))
         hair.scale = r.real(v["scale"], p("scale"), kHairScaleRange);
     if (has("offset"))
@@ -216,21 +192,6 @@ void readHair(const Reader& r, const Json& v, SceneHair& hair)
         hair.mirrorZ = r.boolean(v["mirror_z"], p("mirror_z"));
     if (has("half_turn"))
         hair.halfTurn = r.boolean(v["half_turn"], p("half_turn"));
-    auto partValues = [&](const Json& o, const std::string& where, std::optional<float>& global,
-                          std::optional<float>& local, std::optional<float>& damping, std::optional<float>& drag) {
-        // Numbers only: "part" (each part's own) is what leaving the key out says.
-        auto value = [&](const char* key, std::optional<float>& out) {
-            if (!o.contains(key))
-                return;
-            r.expect(o[key], pointerTo(where, key), o[key].is_number(), "a number");
-            out = r.settingReal(o[key], pointerTo(where, key), key);
-        };
-        value("global_stiffness", global);
-        value("local_stiffness", local);
-        value("damping", damping);
-        value("drag", drag);
-    };
-    partValues(v, at, hair.globalStiffness, hair.localStiffness, hair.damping, hair.drag);
     if (has("files")) {
         const Json& files = v["files"];
         r.expect(files, p("files"), files.is_array(), "an array of file names (or objects with \"file\")");
@@ -244,19 +205,20 @@ void readHair(const Reader& r, const Json& v, SceneHair& hair)
                 f.path = files[i].get<std::string>();
             } else {
                 r.expect(files[i], where, files[i].is_object(), "a file name or an object with \"file\"");
-                r.object(files[i], where, {"file", "global_stiffness", "local_stiffness", "damping", "drag"});
+                r.object(files[i], where, sectionKnown(SceneSection::HairFile, {"file"}));
                 if (!files[i].contains("file"))
                     r.fail(pointerTo(where, "file"), "is missing");
                 f.path = r.string(files[i]["file"], pointerTo(where, "file"));
-                partValues(files[i], where, f.globalStiffness, f.localStiffness, f.damping, f.drag);
+                f.settings = readSectionSettings(r, files[i], where, SceneSection::HairFile);
             }
             if (f.path.empty())
                 r.fail(where, "must not be empty");
             hair.files.push_back(f);
         }
-        for (const char* grown : {"guides", "hair_length", "length_variation", "curl", "poisson", "seed"})
-            if (has(grown))
-                r.fail(p(grown), "applies to grown hair, but this hair is loaded from /hair/files");
+        for (const SceneSectionKey& k : sceneSectionKeys(SceneSection::Hair))
+            for (const std::string& key : {k.name, k.alias})
+                if (k.grownOnly && !key.empty() && has(key.c_str()))
+                    r.fail(p(key.c_str()), "applies to grown hair, but this hair is loaded from /hair/files");
     } else {
         for (const char* placed : {"scale", "offset", "z_up", "mirror_z", "half_turn"})
             if (has(placed))
@@ -296,25 +258,14 @@ void readPhysics(const Reader& r, const Json& v, Scene& scene)
 {
     const std::string at = "/physics";
     r.expect(v, at, v.is_object(), "an object");
-    for (const char* setting : {"step_hz", "substeps", "grid", "friction"})
-        if (v.contains(setting))
-            r.fail(pointerTo(at, setting), "is a setting: put it under /settings");
-    r.object(v, at, {"wind", "sphere", "repulsion", "grid_atomics"});
-    if (v.contains("wind")) {
-        r.expect(v["wind"], pointerTo(at, "wind"), v["wind"].is_array(), "an array of 3 numbers");
-        scene.wind = r.settingVector(v["wind"], pointerTo(at, "wind"), "wind");
-    }
+    std::vector<std::string> known = sectionKnown(SceneSection::Physics, {"sphere"});
+    for (const auto& item : v.items())
+        if (std::find(known.begin(), known.end(), item.key()) == known.end() && findSetting(item.key()))
+            r.fail(pointerTo(at, item.key()), "is a setting: put it under /settings");
+    r.object(v, at, known);
+    scene.physics = readSectionSettings(r, v, at, SceneSection::Physics);
     if (v.contains("sphere"))
         scene.sphere = r.sphere(v["sphere"], pointerTo(at, "sphere"));
-    if (v.contains("repulsion")) {
-        r.expect(v["repulsion"], pointerTo(at, "repulsion"), v["repulsion"].is_number(), "a number");
-        scene.repulsion = r.settingReal(v["repulsion"], pointerTo(at, "repulsion"), "repulsion");
-    }
-    if (v.contains("grid_atomics")) {
-        r.expect(v["grid_atomics"], pointerTo(at, "grid_atomics"), v["grid_atomics"].is_string(), "a string");
-        scene.gridAtomics = SimSettings::GridAtomics(
-            int(r.setting(v["grid_atomics"], pointerTo(at, "grid_atomics"), "grid_atomics").number));
-    }
 }
 
 SceneKey readKey(const Reader& r, const Json& v, const std::string& at)
@@ -378,9 +329,16 @@ std::pair<size_t, size_t> lineAndColumn(std::string_view text, size_t offset)
 // 0.30000001192092896).
 Json num(float v)
 {
-    char buffer[32];
-    auto [end, ec] = std::to_chars(buffer, buffer + sizeof(buffer), v);
-    return ec == std::errc() ? Json(std::strtod(std::string(buffer, end).c_str(), nullptr)) : Json(double(v));
+    return Json(shortest(v));
+}
+
+// Settings as the settings table writes them into JSON, under their names.
+void writeSettings(Json& object, const SceneSettings& settings, const std::string& at)
+{
+    for (const auto& [name, value] : settings) {
+        const SettingSpec& spec = settingSpec(name, at);
+        object[name] = settingJson(spec, parseSetting(spec, value, pointerTo(at, name)));
+    }
 }
 
 Json vecJson(const float* v, size_t n)
@@ -392,6 +350,41 @@ Json vecJson(const float* v, size_t n)
 }
 
 } // namespace
+
+const std::vector<SceneSectionKey>& sceneSectionKeys(SceneSection section)
+{
+    static const std::vector<SceneSectionKey> partKeys = [] {
+        std::vector<SceneSectionKey> keys;
+        for (const auto& [key, setting] : kPartKeys)
+            keys.push_back({.name = settingSpec(setting).name, .alias = "", .grownOnly = false});
+        return keys;
+    }();
+    // Every saved growth setting (what shapes the hair as it is grown; vertices_per_strand resamples
+    // loaded hair too), then every part's values.
+    static const std::vector<SceneSectionKey> hairKeys = [] {
+        std::vector<SceneSectionKey> keys;
+        for (const SettingSpec& spec : settingSpecs())
+            if (spec.group == SettingGroup::Growth && spec.saved) {
+                bool vertices = spec.name == "vertices_per_strand";
+                keys.push_back({.name = spec.name, .alias = vertices ? "vertices" : "", .grownOnly = !vertices});
+            }
+        keys.insert(keys.end(), partKeys.begin(), partKeys.end());
+        return keys;
+    }();
+    static const std::vector<SceneSectionKey> physicsKeys = {
+        {.name = settingSpec("wind").name, .alias = "", .grownOnly = false},
+        {.name = settingSpec("repulsion").name, .alias = "", .grownOnly = false},
+        {.name = settingSpec("grid_atomics").name, .alias = "", .grownOnly = false}};
+    switch (section) {
+    case SceneSection::Hair:
+        return hairKeys;
+    case SceneSection::HairFile:
+        return partKeys;
+    case SceneSection::Physics:
+        break;
+    }
+    return physicsKeys;
+}
 
 double Scene::length() const
 {
@@ -504,7 +497,7 @@ Scene parseScene(const std::string& content, const std::filesystem::path& path)
     if (doc.contains("version")) {
         double version = r.number(doc["version"], "/version", Range{0.0, 1e9});
         if (version != kSceneVersion)
-            r.fail("/version", text(version) + " is not a version this Wisp reads (it reads " +
+            r.fail("/version", numberText(version) + " is not a version this Wisp reads (it reads " +
                                    std::to_string(kSceneVersion) + ")");
     }
     if (doc.contains("description"))
@@ -550,9 +543,9 @@ Scene parseScene(const std::string& content, const std::filesystem::path& path)
         for (size_t i = 0; i < keys.size(); ++i) {
             SceneKey k = readKey(r, keys[i], pointerTo("/keys", i));
             if (!scene.keys.empty() && !(k.time > scene.keys.back().time))
-                r.fail(pointerTo(pointerTo("/keys", i), "time"), text(k.time) + " is not after the previous key's " +
-                                                                     text(scene.keys.back().time) +
-                                                                     " (times must increase)");
+                r.fail(pointerTo(pointerTo("/keys", i), "time"),
+                       numberText(k.time) + " is not after the previous key's " + numberText(scene.keys.back().time) +
+                           " (times must increase)");
             scene.keys.push_back(k);
         }
     }
@@ -574,40 +567,16 @@ std::string sceneJson(const Scene& scene)
         doc["head"] = scene.head;
     const SceneHair& h = scene.hair;
     Json hair = Json::object();
-    if (h.guides)
-        hair["guides"] = *h.guides;
-    if (h.vertices)
-        hair["vertices"] = *h.vertices;
-    if (h.hairLength)
-        hair["hair_length"] = num(*h.hairLength);
-    if (h.lengthVariation)
-        hair["length_variation"] = num(*h.lengthVariation);
-    if (h.curl)
-        hair["curl"] = num(*h.curl);
-    if (h.poisson)
-        hair["poisson"] = *h.poisson;
-    if (h.seed)
-        hair["seed"] = *h.seed;
-    auto partValues = [](Json& o, const std::optional<float>& global, const std::optional<float>& local,
-                         const std::optional<float>& damping, const std::optional<float>& drag) {
-        if (global)
-            o["global_stiffness"] = num(*global);
-        if (local)
-            o["local_stiffness"] = num(*local);
-        if (damping)
-            o["damping"] = num(*damping);
-        if (drag)
-            o["drag"] = num(*drag);
-    };
+    writeSettings(hair, h.settings, "/hair");
     if (!h.files.empty()) {
         Json files = Json::array();
         for (const SceneHairFile& f : h.files) {
-            if (!f.globalStiffness && !f.localStiffness && !f.damping && !f.drag) {
+            if (f.settings.empty()) {
                 files.push_back(f.path);
                 continue;
             }
             Json o = {{"file", f.path}};
-            partValues(o, f.globalStiffness, f.localStiffness, f.damping, f.drag);
+            writeSettings(o, f.settings, "/hair/files");
             files.push_back(o);
         }
         hair["files"] = files;
@@ -622,7 +591,6 @@ std::string sceneJson(const Scene& scene)
         hair["mirror_z"] = *h.mirrorZ;
     if (h.halfTurn)
         hair["half_turn"] = *h.halfTurn;
-    partValues(hair, h.globalStiffness, h.localStiffness, h.damping, h.drag);
     if (!hair.empty())
         doc["hair"] = hair;
     if (scene.colliders) {
@@ -635,22 +603,14 @@ std::string sceneJson(const Scene& scene)
         doc["colliders"] = list;
     }
     Json physics = Json::object();
-    if (scene.wind)
-        physics["wind"] = vecJson(&scene.wind->x, 3);
+    writeSettings(physics, scene.physics, "/physics");
     if (scene.sphere)
         physics["sphere"] = vecJson(&scene.sphere->x, 4);
-    if (scene.repulsion)
-        physics["repulsion"] = num(*scene.repulsion);
-    if (scene.gridAtomics)
-        physics["grid_atomics"] = *scene.gridAtomics == SimSettings::GridAtomics::Fixed ? "fixed" : "float";
     if (!physics.empty())
         doc["physics"] = physics;
     if (!scene.settings.empty()) {
         Json settings = Json::object();
-        for (const auto& [name, value] : scene.settings) {
-            const SettingSpec& spec = settingSpec(name);
-            settings[name] = settingJson(spec, parseSetting(spec, value, "/settings/" + name));
-        }
+        writeSettings(settings, scene.settings, "/settings");
         doc["settings"] = settings;
     }
     doc["interpolation"] = scene.interpolation == SceneInterpolation::Linear ? "linear" : "smooth";
@@ -747,43 +707,29 @@ std::string scenePathText(const std::filesystem::path& sceneFile, const std::fil
 
 void applyScene(const Scene& scene, const std::filesystem::path& sceneFile, Settings& settings, HairSource& source)
 {
+    auto apply = [&](const SceneSettings& values, const std::string& at) {
+        for (const auto& [name, value] : values) {
+            std::string where = sceneFile.string() + ": " + pointerTo(at, name);
+            const SettingSpec& spec = settingSpec(name, where);
+            setSetting(settings, spec, parseSetting(spec, value, where), where);
+        }
+    };
     if (!scene.head.empty())
         source.headFile = resolveScenePath(sceneFile, scene.head, "/head");
     const SceneHair& h = scene.hair;
-    auto set = [&](const char* name, const SettingValue& v, const std::string& pointer) {
-        setSetting(settings, settingSpec(name), v, sceneFile.string() + ": " + pointer);
-    };
-    auto number = [](double v) { return SettingValue{.number = v}; };
-    auto optionalNumber = [&](const char* name, const std::optional<float>& v, const std::string& pointer) {
-        if (v)
-            set(name, number(double(*v)), pointer);
-    };
-    if (h.guides)
-        set("guides", number(*h.guides), "/hair/guides");
-    if (h.vertices)
-        set("vertices_per_strand", number(*h.vertices), "/hair/vertices");
-    optionalNumber("hair_length", h.hairLength, "/hair/hair_length");
-    optionalNumber("length_variation", h.lengthVariation, "/hair/length_variation");
-    optionalNumber("curl", h.curl, "/hair/curl");
-    if (h.poisson)
-        set("poisson", number(*h.poisson ? 1.0 : 0.0), "/hair/poisson");
-    if (h.seed)
-        set("seed", number(*h.seed), "/hair/seed");
+    apply(h.settings, "/hair");
     source.hairFiles.clear();
     source.scenePartOverrides.clear();
     for (size_t i = 0; i < h.files.size(); ++i) {
         const SceneHairFile& f = h.files[i];
         std::string pointer = "/hair/files/" + std::to_string(i);
         source.hairFiles.push_back(resolveScenePath(sceneFile, f.path, pointer).string());
+        // As --part PART:key=value,... (kPartKeys), in the override keys' order.
         std::string values;
-        auto add = [&](const char* key, const std::optional<float>& v) {
-            if (v)
-                values += (values.empty() ? "" : ",") + std::string(key) + "=" + text(double(*v));
-        };
-        add("global", f.globalStiffness);
-        add("local", f.localStiffness);
-        add("damping", f.damping);
-        add("drag", f.drag);
+        for (const auto& [key, setting] : kPartKeys)
+            for (const auto& [name, value] : f.settings)
+                if (name == setting)
+                    values += (values.empty() ? "" : ",") + std::string(key) + "=" + value;
         if (!values.empty())
             source.scenePartOverrides.push_back(std::to_string(i) + ":" + values);
     }
@@ -797,24 +743,12 @@ void applyScene(const Scene& scene, const std::filesystem::path& sceneFile, Sett
         source.mirrorZ = h.mirrorZ;
     if (h.halfTurn)
         source.halfTurn = h.halfTurn;
-    optionalNumber("global_stiffness", h.globalStiffness, "/hair/global_stiffness");
-    optionalNumber("local_stiffness", h.localStiffness, "/hair/local_stiffness");
-    optionalNumber("damping", h.damping, "/hair/damping");
-    optionalNumber("drag", h.drag, "/hair/drag");
     if (scene.colliders)
         source.colliders = scene.colliders;
-    if (scene.wind)
-        set("wind", SettingValue{.vector = glm::dvec3(*scene.wind)}, "/physics/wind");
+    apply(scene.physics, "/physics");
     if (scene.sphere && scene.sphere->w > 0.0f)
         source.sphere = *scene.sphere;
-    optionalNumber("repulsion", scene.repulsion, "/physics/repulsion");
-    if (scene.gridAtomics)
-        set("grid_atomics", number(double(int(*scene.gridAtomics))), "/physics/grid_atomics");
-    for (const auto& [name, value] : scene.settings) {
-        std::string where = sceneFile.string() + ": " + pointerTo("/settings", name);
-        const SettingSpec& spec = settingSpec(name, where);
-        setSetting(settings, spec, parseSetting(spec, value, where), where);
-    }
+    apply(scene.settings, "/settings");
 }
 
 OrbitCamera poseCamera(const OrbitCamera& framing, const CameraPose& pose)

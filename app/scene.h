@@ -1,6 +1,7 @@
 // app/scene.h: scene files: one JSON file naming the head, the hair (grown or loaded in parts),
 // the colliders, any settings from `wisp settings`, the physics options, and keyframes over time
-// for the camera, the sphere, the light, the wind and the head's turn. loadScene() (parseScene()
+// for the camera, the sphere, the light, the wind and the head's turn. The keys that are settings
+// (/hair/guides, /physics/wind, ...) are the settings table's names. loadScene() (parseScene()
 // for text in memory) checks every value (errors name the file and a JSON pointer), saveScene()
 // writes one atomically, and SceneTimeline evaluates the keys at any time. `render`, `record` and
 // `view` take `--scene`.
@@ -51,24 +52,29 @@ struct SceneKey {
     bool operator==(const SceneKey&) const = default;
 };
 
-// A hair file of a loaded groom, with its own parameters (absent: the groom's or the default).
+// Settings as NAME=VALUE (the text --set takes), by the settings' own names, in the file's order
+// (a later one wins).
+using SceneSettings = std::vector<std::pair<std::string, std::string>>;
+
+// A hair file of a loaded groom, with its part's own values of the part settings (kPartKeys of
+// app/hair_source.h: global_stiffness, local_stiffness, damping, drag; absent: the groom's or the
+// default).
 struct SceneHairFile {
     std::string path; // as written: relative to the scene file, absolute, or "shared:REL"
-    std::optional<float> globalStiffness, localStiffness, damping, drag;
+    SceneSettings settings;
     bool operator==(const SceneHairFile&) const = default;
 };
 
 // The hair: grown (files empty) or loaded. Absent values keep the defaults (or the command
-// line's). Names follow the command line's options (--hair-length is "hair_length").
+// line's). Its settings are the growth settings (guides, vertices_per_strand, hair_length, ...:
+// group growth of `wisp settings`) and the part settings for every part, each under its setting's
+// name (sceneSectionKeys).
 struct SceneHair {
-    std::optional<uint32_t> guides, vertices, seed;
-    std::optional<float> hairLength, lengthVariation, curl; // metres, fraction, metres
-    std::optional<bool> poisson;
+    SceneSettings settings;
     std::vector<SceneHairFile> files;
     std::optional<float> scale; // placement of loaded hair (as --hair-scale, ...)
     std::optional<glm::vec3> offset;
     std::optional<bool> zUp, mirrorZ, halfTurn;
-    std::optional<float> globalStiffness, localStiffness, damping, drag; // every part
     bool operator==(const SceneHair&) const = default;
 };
 
@@ -77,15 +83,12 @@ struct Scene {
     std::string head; // as written; empty: the default head
     SceneHair hair;
     std::optional<std::vector<Ellipsoid>> colliders; // head space; absent: the head's (or fitted)
-    // "physics": the sphere, and three settings written here by older scenes (as "settings" would
-    // hold them). wind and sphere are the values while no key sets those channels (as --wind and
-    // --sphere).
-    std::optional<glm::vec3> wind;   // m/s²
+    // "physics": the sphere, and three settings older scenes wrote here (wind, repulsion,
+    // grid_atomics, as "settings" would hold them). The wind and the sphere are the values while no
+    // key sets those channels (as --wind and --sphere).
+    SceneSettings physics;
     std::optional<glm::vec4> sphere; // head units
-    std::optional<float> repulsion;
-    std::optional<SimSettings::GridAtomics> gridAtomics;
-    // Settings as NAME=VALUE (the text --set takes), in the file's order (a later one wins).
-    std::vector<std::pair<std::string, std::string>> settings;
+    SceneSettings settings;          // "settings": any setting
     SceneInterpolation interpolation = SceneInterpolation::Smooth;
     std::optional<double> duration; // seconds; absent: the last key's time
     bool loop = false;              // the keys repeat every length() seconds (a soak runs for hours)
@@ -95,6 +98,17 @@ struct Scene {
     // The length of the animation: `duration`, else the last key's time (0 without keys).
     double length() const;
 };
+
+// The settings a section of a scene file holds under their own names: /hair (every growth setting
+// and part setting), /hair/files/N (the part settings), /physics (wind, repulsion, grid_atomics).
+// `alias`: the name older scenes used, still read ("vertices" for vertices_per_strand).
+struct SceneSectionKey {
+    std::string name;
+    std::string alias;
+    bool grownOnly = false; // shapes grown hair only: refused beside /hair/files
+};
+enum class SceneSection { Hair, HairFile, Physics };
+const std::vector<SceneSectionKey>& sceneSectionKeys(SceneSection section);
 
 // Reads and checks a scene. Throws UserError naming the file and what is wrong: the JSON pointer
 // of the value (/keys/2/sphere/3), the allowed range or type, unknown keys with the known ones,

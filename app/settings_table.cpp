@@ -3,6 +3,7 @@
 // are read, checked, written and shown.
 #include "app/settings_table.h"
 
+#include "app/value_text.h"
 #include "core/error.h"
 #include "physics/hair_style.h"
 #include "shaders/shared/shadows.h"
@@ -22,60 +23,12 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-// A float as the double of its shortest decimal (0.3f is 0.3, not 0.30000001192092896).
-double shortest(float f)
-{
-    char buffer[32];
-    auto [end, ec] = std::to_chars(buffer, buffer + sizeof(buffer), f);
-    return ec == std::errc() ? std::strtod(std::string(buffer, end).c_str(), nullptr) : double(f);
-}
-
-// A double as the shortest text that reads back as it; whole numbers below 1e15 in full (2000000,
-// not 2e+06).
-std::string numberText(double v)
-{
-    char buffer[40];
-    if (v == std::floor(v) && std::abs(v) < 1e15) {
-        std::snprintf(buffer, sizeof(buffer), "%.0f", v == 0.0 ? 0.0 : v);
-        return buffer;
-    }
-    for (int precision = 1; precision <= 17; ++precision) {
-        std::snprintf(buffer, sizeof(buffer), "%.*g", precision, v);
-        if (std::strtod(buffer, nullptr) == v)
-            break;
-    }
-    return buffer;
-}
-
-std::string rangeText(const Range& r, const std::string& unit)
-{
-    return numberText(r.min) + " .. " + numberText(r.max) + (unit.empty() ? "" : " " + unit);
-}
-
 std::string joined(const std::vector<std::string>& words, const char* separator)
 {
     std::string out;
     for (const std::string& w : words)
         out += (out.empty() ? "" : separator) + w;
     return out;
-}
-
-std::string jsonTypeName(const Json& v)
-{
-    switch (v.type()) {
-    case Json::value_t::object:
-        return "an object";
-    case Json::value_t::array:
-        return "an array";
-    case Json::value_t::string:
-        return "a string";
-    case Json::value_t::boolean:
-        return "true or false";
-    case Json::value_t::null:
-        return "null";
-    default:
-        return "a number";
-    }
 }
 
 [[noreturn]] void fail(const std::string& where, const std::string& why)

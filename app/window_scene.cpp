@@ -13,15 +13,13 @@ Scene windowScene(const std::filesystem::path& path, const HairSource& source, c
     saved.description = "saved by wisp view";
     if (!source.headFile.empty())
         saved.head = scenePathText(path, std::filesystem::absolute(source.headFile));
-    const GrowthSettings& growth = settings.growth;
     if (source.hairFiles.empty()) {
-        saved.hair.guides = growth.guides;
-        saved.hair.vertices = growth.verticesPerStrand;
-        saved.hair.seed = growth.seed;
-        saved.hair.hairLength = growth.lengthMetres;
-        saved.hair.lengthVariation = growth.lengthVariation;
-        saved.hair.curl = growth.curlRadiusMetres;
-        saved.hair.poisson = growth.poissonDisk;
+        // The grown hair's count, resolution, seed and shape, under the settings' names.
+        for (const char* name :
+             {"guides", "vertices_per_strand", "seed", "hair_length", "length_variation", "curl", "poisson"}) {
+            const SettingSpec& spec = settingSpec(name);
+            saved.hair.settings.emplace_back(spec.name, settingText(spec, spec.get(settings)));
+        }
     } else {
         for (const std::string& f : source.hairFiles)
             saved.hair.files.push_back({.path = scenePathText(path, std::filesystem::absolute(f))});

@@ -6,12 +6,14 @@
 
 #include "app/scene.h"
 #include "app/settings_table.h"
+#include "core/error.h"
 #include "physics/strands.h"
 
 #include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -59,31 +61,40 @@ void checkSphere(const glm::vec4& s, const std::string& what)
     inRange(s.w, wisp::kRadiusRange, what + ".radius");
 }
 
+// Each setting a section holds is a setting of the table, and its value reads back through it
+// (its range, its words).
+void checkSettings(const wisp::SceneSettings& settings, const std::string& what)
+{
+    for (const auto& [name, value] : settings) {
+        const wisp::SettingSpec* spec = wisp::findSetting(name);
+        if (!spec)
+            broken(what + " holds '" + name + "', which is no setting");
+        try {
+            wisp::parseSetting(*spec, value, what + "." + name);
+        } catch (const wisp::UserError& e) {
+            broken(what + "." + name + " = " + value + " does not read back: " + e.what());
+        }
+    }
+}
+
 void checkHair(const wisp::SceneHair& h)
 {
-    inRange(h.guides, range("guides"), "hair.guides");
-    inRange(h.vertices, range("vertices_per_strand"), "hair.vertices");
-    inRange(h.hairLength, range("hair_length"), "hair.hair_length");
-    inRange(h.lengthVariation, range("length_variation"), "hair.length_variation");
-    inRange(h.curl, range("curl"), "hair.curl");
+    checkSettings(h.settings, "hair");
     inRange(h.scale, wisp::kHairScaleRange, "hair.scale");
     inRange(h.offset, wisp::kPositionRange, "hair.offset");
-    inRange(h.globalStiffness, range("global_stiffness"), "hair.global_stiffness");
-    inRange(h.localStiffness, range("global_stiffness"), "hair.local_stiffness");
-    inRange(h.damping, range("global_stiffness"), "hair.damping");
-    inRange(h.drag, range("drag"), "hair.drag");
     if (h.files.size() > gpu::kSimMaxParts)
         broken(std::to_string(h.files.size()) + " hair files");
     for (const wisp::SceneHairFile& f : h.files) {
         if (f.path.empty())
             broken("an empty hair file name");
-        inRange(f.globalStiffness, range("global_stiffness"), "hair file global_stiffness");
-        inRange(f.localStiffness, range("global_stiffness"), "hair file local_stiffness");
-        inRange(f.damping, range("global_stiffness"), "hair file damping");
-        inRange(f.drag, range("drag"), "hair file drag");
+        checkSettings(f.settings, "hair file");
     }
-    bool grown = h.guides || h.hairLength || h.lengthVariation || h.curl || h.poisson || h.seed;
-    bool placed = h.scale || h.offset || h.zUp || h.mirrorZ;
+    const std::vector<wisp::SceneSectionKey>& keys = wisp::sceneSectionKeys(wisp::SceneSection::Hair);
+    bool grown = false;
+    for (const auto& [name, value] : h.settings)
+        for (const wisp::SceneSectionKey& k : keys)
+            grown = grown || (k.grownOnly && k.name == name);
+    bool placed = h.scale || h.offset || h.zUp || h.mirrorZ || h.halfTurn;
     if (!h.files.empty() && grown)
         broken("loaded hair with growth values");
     if (h.files.empty() && placed)
@@ -133,10 +144,9 @@ void checkScene(const wisp::Scene& s)
             inRange(e.rotationDeg, Range{-360.0, 360.0}, "collider rotation");
         }
     }
-    inRange(s.wind, range("wind"), "physics.wind");
+    checkSettings(s.physics, "physics");
     if (s.sphere)
         checkSphere(*s.sphere, "physics.sphere");
-    inRange(s.repulsion, range("repulsion"), "physics.repulsion");
     inRange(s.duration, wisp::kSceneTimeRange, "duration");
     for (size_t i = 0; i < s.keys.size(); ++i) {
         checkKey(s.keys[i], "keys[" + std::to_string(i) + "]");

@@ -128,13 +128,13 @@ SEEDS = {
 }
 
 SCENE_NAMES = ["version", "description", "head", "hair", "colliders", "physics", "settings", "interpolation",
-               "duration", "keys", "guides", "vertices", "hair_length", "length_variation", "curl", "poisson", "seed",
-               "files", "file", "scale", "offset", "z_up", "mirror_z", "global_stiffness", "local_stiffness", "damping",
-               "drag", "name", "center", "radii", "rotation_deg", "wind", "sphere", "repulsion", "grid_atomics", "time",
-               "camera", "yaw", "pitch", "distance", "target", "light", "azimuth", "elevation", "intensity",
-               "head_yaw", "strands_per_guide", "divisions", "width", "lod", "hair_preset", "hair_color", "shading",
-               "transparency", "step_hz", "substeps", "grid", "friction", "samples", "shadow_size",
-               "oit_nodes_per_pixel"]
+               "duration", "keys", "guides", "vertices", "vertices_per_strand", "hair_length", "length_variation",
+               "curl", "poisson", "seed", "files", "file", "scale", "offset", "z_up", "mirror_z", "half_turn",
+               "global_stiffness", "local_stiffness", "damping", "drag", "name", "center", "radii", "rotation_deg",
+               "wind", "sphere", "repulsion", "grid_atomics", "time", "camera", "yaw", "pitch", "distance",
+               "target", "light", "azimuth", "elevation", "intensity", "head_yaw", "strands_per_guide", "divisions",
+               "width", "lod", "hair_preset", "hair_color", "shading", "transparency", "step_hz", "substeps",
+               "grid", "friction", "samples", "shadow_size", "oit_nodes_per_pixel"]
 
 DICTIONARIES = {
     "fuzz_tfx2": ["version", "scale", "rotation", "translation", "bothEndsImmovable", "maxNumVerticesInStrand",
