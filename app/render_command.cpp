@@ -6,6 +6,7 @@
 #include "app/hair_session.h"
 #include "app/headless.h"
 #include "app/image_io.h"
+#include "app/reference_render.h"
 #include "app/settings_table.h"
 #include "core/error.h"
 #include "gpu/check.h"
@@ -15,8 +16,11 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
+#include <cstdio>
 #include <iostream>
 #include <memory>
+#include <unistd.h>
 
 namespace wisp {
 
@@ -31,7 +35,54 @@ struct RenderCommand {
     float fps = 30.0f;
     uint32_t profileFrames = 0; // > 0: time this many frames (after profileWarmup) instead of writing a picture
     uint32_t profileWarmup = 60;
+    bool reference = false; // path-trace the frame instead (app/reference_render.h)
+    ReferenceOptions referenceOptions;
+    CLI::Option* spp = nullptr;
+    CLI::Option* seed = nullptr;
+    CLI::Option* bounces = nullptr;
 };
+
+// The reference's progress on stderr: a bar redrawn in place on a terminal, a line every 10% in a log.
+void referenceProgress(uint32_t done, uint32_t total, double elapsed)
+{
+    bool tty = isatty(STDERR_FILENO) != 0;
+    uint32_t step = std::max(1u, total / 10);
+    if (!tty && done != total && (done / step) == ((done - 1) / step))
+        return;
+    constexpr int kWidth = 30;
+    int filled = int(double(kWidth) * done / std::max(total, 1u));
+    double eta = done > 0 ? elapsed / done * (total - done) : 0.0;
+    std::fprintf(stderr, "%sreference [%s%s] %u/%u samples, %.1f s, ETA %.1f s%s", tty ? "\r" : "",
+                 std::string(size_t(filled), '#').c_str(), std::string(size_t(kWidth - filled), '.').c_str(), done,
+                 total, elapsed, eta, tty && done != total ? "" : "\n");
+    std::fflush(stderr);
+}
+
+int runReference(const GlobalOptions& g, SessionOptions& o, const RenderCommand& c)
+{
+    checkPngOutput(c.outFile); // fail before any GPU work
+    RenderSettings& settings = o.settings.render;
+    HairScene scene = buildCheckedScene(g, o, &settings);
+    vk::Context ctx(contextOptions(g));
+    ReferenceRender reference;
+    try {
+        HairSession session(ctx, std::move(scene), o.settings.sim, o.timeline, o.source);
+        auto start = std::chrono::steady_clock::now();
+        reference = renderReference(
+            ctx, session, settings, c.frames, c.fps, c.referenceOptions, [start](uint32_t done, uint32_t total) {
+                referenceProgress(done, total,
+                                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+            });
+    } catch (const vk::DeviceLost& e) {
+        throw vk::DeviceLost(e.what() + std::string("; ") + c.outFile + " was not written");
+    }
+    int status = validationStatus(ctx);
+    if (status != 0)
+        return status; // nothing written
+    writePng(c.outFile, reference.picture.width, reference.picture.height, reference.picture.rgba);
+    std::cout << c.outFile << "\n" << describeReference(reference, c.referenceOptions) << "\n";
+    return 0;
+}
 
 int runProfile(const GlobalOptions& g, SessionOptions& o, const RenderCommand& c)
 {
@@ -79,9 +130,15 @@ int run(const GlobalOptions& g, const RenderCommand& c)
 {
     if (c.profileFrames == 0 && !*c.out)
         throw UserError("render: --out FILE.png is required (or --profile N to time frames)");
+    if (!c.reference && (*c.spp || *c.seed || *c.bounces))
+        throw UserError("render: --spp, --sample-seed and --bounces are options of --reference");
+    if (c.reference && c.profileFrames > 0)
+        throw UserError("render: --reference renders a picture; it cannot be timed with --profile");
     SessionOptions o = c.shared->resolve();
     if (c.profileFrames > 0)
         return runProfile(g, o, c);
+    if (c.reference)
+        return runReference(g, o, c);
     checkPngOutput(c.outFile); // fail before any GPU work
     RenderSettings& settings = o.settings.render;
     HairScene scene = buildCheckedScene(g, o, &settings);
@@ -142,6 +199,20 @@ CommandRun addRenderCommand(CLI::App& app, const GlobalOptions& global)
         ->check(CLI::Range(0u, 100000u))
         ->capture_default_str();
     cmd->add_option("--fps", c->fps, "simulated frames per second")->check(within(1.0, 1000.0))->capture_default_str();
+    cmd->add_flag("--reference", c->reference,
+                  "path-trace the frame instead (the same scene, camera, lights and look; the exact fibre BSDF of "
+                  "Chiang et al. 2016): the reference a real-time picture is compared with");
+    c->spp = cmd->add_option("--spp", c->referenceOptions.samples, "with --reference: samples per pixel")
+                 ->check(CLI::Range(1u, 1000000u))
+                 ->capture_default_str();
+    c->seed = cmd->add_option("--sample-seed", c->referenceOptions.seed,
+                              "with --reference: the random sequence (the same seed, the same picture)")
+                  ->capture_default_str();
+    c->bounces = cmd->add_option("--bounces", c->referenceOptions.maxBounces,
+                                 "with --reference: the most scattering events of a path (Russian roulette ends "
+                                 "most paths sooner)")
+                     ->check(CLI::Range(1u, 1000u))
+                     ->capture_default_str();
     c->shared = std::make_unique<SessionCommandLine>(cmd, SessionCommandLine::Uses{});
     return [c, &global] { return c->command->parsed() ? run(global, *c) : -1; };
 }

@@ -40,16 +40,16 @@ std::vector<gpu::CurvePoint> guideCurves(const gpu::StrandRasterPush& push, cons
     return out;
 }
 
-StrandVertices generateStrands(const gpu::StrandRasterPush& push, const gpu::FrameParams& frame,
-                               const gpu::SimParams& sim, const std::vector<glm::vec3>& guides,
-                               const std::vector<glm::uvec4>& triangles)
+DrawnStrands placeStrands(const gpu::StrandRasterPush& push, const gpu::FrameParams& frame, const gpu::SimParams& sim,
+                          const std::vector<glm::vec3>& guides, const std::vector<glm::uvec4>& triangles)
 {
     uint32_t perStrand = push.divisions + 1;
     size_t count = size_t(push.guideCount) * push.drawnPerGuide * perStrand;
     std::vector<gpu::CurvePoint> curves = guideCurves(push, guides); // strands.curves, as the kernel reads it
-    StrandVertices out;
+    DrawnStrands out;
     out.positions.resize(count);
-    out.colors.resize(count);
+    out.tangents.resize(count);
+    out.widths.resize(count);
     for (uint32_t id = 0; id < count; ++id) {
         uint32_t drawn = id / perStrand;
         uint32_t i = id % perStrand;
@@ -68,10 +68,33 @@ StrandVertices generateStrands(const gpu::StrandRasterPush& push, const gpu::Fra
         if (s != 0)
             for (uint32_t c = 0; c < sim.colliderCount; ++c)
                 p = gpu::pushOutOfCollider(sim.colliders[c], frame.headTransform, p);
+        out.positions[id] = p;
+        out.tangents[id] = point.tangent;
+        out.widths[id] = gpu::strandWidthAt(push.width * gpu::guideWidthScale(triangles[guide].w), t);
+    }
+    return out;
+}
 
+StrandVertices generateStrands(const gpu::StrandRasterPush& push, const gpu::FrameParams& frame,
+                               const gpu::SimParams& sim, const std::vector<glm::vec3>& guides,
+                               const std::vector<glm::uvec4>& triangles)
+{
+    uint32_t perStrand = push.divisions + 1;
+    DrawnStrands placed = placeStrands(push, frame, sim, guides, triangles);
+    size_t count = placed.positions.size();
+    StrandVertices out;
+    out.positions.resize(count);
+    out.colors.resize(count);
+    for (uint32_t id = 0; id < count; ++id) {
+        uint32_t drawn = id / perStrand;
+        uint32_t i = id % perStrand;
+        uint32_t guide = drawn / push.drawnPerGuide;
+        uint32_t s = drawn % push.drawnPerGuide;
+        float t = float(i) / float(push.divisions);
+        glm::vec3 p = placed.positions[id];
         uint32_t strand = guide * push.strandsPerGuide + s;
         float alpha = frame.hairOpacity * gpu::lodAlpha(s, push.lodStrands);
-        float worldWidth = gpu::strandWidthAt(push.width * gpu::guideWidthScale(triangles[guide].w), t);
+        float worldWidth = placed.widths[id];
         if (push.fromLight != 0) {
             out.positions[id] = gpu::projectStrandVertex(frame.lightViewProjection, glm::vec2(frame.shadowMapSize), p,
                                                          worldWidth, frame.lightTexelsPerUnit);
@@ -82,7 +105,7 @@ StrandVertices generateStrands(const gpu::StrandRasterPush& push, const gpu::Fra
         float pixelsPerUnit = std::abs(frame.projection[1][1]) * 0.5f * size.y;
         out.positions[id] = gpu::projectStrandVertex(frame.viewProjection, size, p, worldWidth, pixelsPerUnit);
         glm::vec3 noLut[gpu::kFrameLights]{}; // (the twin is compared in the karis and kajiya modes)
-        glm::vec3 color = gpu::shadeStrandPoint(frame, p, point.tangent, t, strand, glm::vec2(1.0f), noLut);
+        glm::vec3 color = gpu::shadeStrandPoint(frame, p, placed.tangents[id], t, strand, glm::vec2(1.0f), noLut);
         out.colors[id] = gpu::packFragmentColor(color, alpha);
     }
     return out;

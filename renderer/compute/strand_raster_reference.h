@@ -25,6 +25,17 @@ struct StrandVertices {
 // `guides` holds the guide vertices in strand-major order (guide * V + i).
 std::vector<gpu::CurvePoint> guideCurves(const gpu::StrandRasterPush& push, const std::vector<glm::vec3>& guides);
 
+// The drawn strands in world space, as strands_generate.comp places them before it projects them:
+// vertex (guide * drawnPerGuide + s) * (D + 1) + i, its unit tangent and its world width
+// (strandWidthAt). The path tracer (renderer/reference/) traces these.
+struct DrawnStrands {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> tangents;
+    std::vector<float> widths;
+};
+DrawnStrands placeStrands(const gpu::StrandRasterPush& push, const gpu::FrameParams& frame, const gpu::SimParams& sim,
+                          const std::vector<glm::vec3>& guides, const std::vector<glm::uvec4>& triangles);
+
 // strands_generate.comp (and _light with push.fromLight): `guides` holds the guide vertices in
 // strand-major order (guide * V + i). Shading with the light's visibility at 1 (the twin does not
 // sample the light's maps: compare with shadows off) and the karis or kajiya model.

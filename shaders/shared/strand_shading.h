@@ -27,6 +27,16 @@ GPU_FN float hairStreakNoise(uint strand, float x)
     return 2.0f * mix(a, b, f * f * (3.0f - 2.0f * f)) - 1.0f;
 }
 
+// How much strand `strand` at t (0 root .. 1 tip) scales the material's absorption: a per-strand
+// factor (hairVariation), streaks along it (hairStreaks) and lighter toward the tip. The path
+// tracer (reference_path.h) gives its fibres the same absorption.
+GPU_FN float strandAbsorptionScale(FrameParams frame, uint strand, float t)
+{
+    float perStrand = 2.0f * hashToUnit(strand * 2654435761u) - 1.0f;
+    float streak = hairStreakNoise(strand, t * 7.0f) + 0.5f * hairStreakNoise(strand + 7919u, t * 19.0f);
+    return exp2(frame.hairVariation * perStrand + 0.6f * frame.hairStreaks * streak) * (1.25f - 0.5f * t);
+}
+
 // The hair's response S (hair_shading.h: outgoing radiance per unit incoming radiance) at a point
 // of material `m` (`baseColor` the material's own, before the strand's variation) to one light
 // from wi, reaching it through hair of `transmittance`, by the frame's model. `lutSingle` is the
@@ -89,9 +99,7 @@ GPU_FN vec3 shadeStrandPoint(FrameParams frame, vec3 world, vec3 tangent, float 
 {
     vec3 wo = normalize(frame.cameraPosition - world);
 
-    float perStrand = 2.0f * hashToUnit(strand * 2654435761u) - 1.0f;
-    float streak = hairStreakNoise(strand, t * 7.0f) + 0.5f * hairStreakNoise(strand + 7919u, t * 19.0f);
-    float factor = exp2(frame.hairVariation * perStrand + 0.6f * frame.hairStreaks * streak) * (1.25f - 0.5f * t);
+    float factor = strandAbsorptionScale(frame, strand, t);
     HairMaterial m = frame.hair;
     vec3 baseColor = vec3(m.baseColor);
     m.sigmaA = vec4(vec3(m.sigmaA) * factor, m.sigmaA.w);
