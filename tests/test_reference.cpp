@@ -2,7 +2,7 @@
 // fibre BSDF's kernel (fiber_probe.comp) against the CPU reference on random inputs; the path
 // tracer's kernel against its CPU twin over the same shared header, pixel by pixel; the same
 // picture for the same seed; the error against a many-sample picture falling as 1/sqrt(samples);
-// and `wisp render --reference`'s bad input.
+// and `wisp render --reference`'s bad input and a render stopped midway.
 #include "app/reference_render.h"
 #include "cli_support.h"
 #include "fiber_bsdf_cases.h"
@@ -15,7 +15,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <sys/wait.h>
 
 using namespace wisp;
 
@@ -229,4 +231,18 @@ TEST(Cli, RenderReferenceRefusesBadSamples)
     EXPECT_EQ(r.status, 2);
     EXPECT_NE(r.err.find("--spp, --sample-seed and --bounces are options of --reference"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "ref.png"));
+}
+
+// A render stopped midway (SIGINT, as Ctrl-C) leaves nothing in the output's folder: the PNG is
+// written whole at the end or not at all.
+TEST(Cli, RenderReferenceCancelledLeavesNoFile)
+{
+    test::TempDir dir;
+    std::string command = "timeout -s INT 3 '" WISP_BINARY "' render --reference --spp 1000000 --width 32 --height 24 "
+                          "--guides 30 --set strands_per_guide=2 --out '" +
+                          (dir / "ref.png").string() + "' >/dev/null 2>&1";
+    int status = std::system(command.c_str());
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 124); // timeout's status: it was still rendering when stopped
+    EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
 }
