@@ -89,6 +89,7 @@ ReferenceRender renderReference(const vk::Context& ctx, HairSession& session, Re
     auto start = std::chrono::steady_clock::now();
     tracer.render(options.samples, options.perPass, progress);
     std::vector<glm::vec4> sums = tracer.sums();
+    out.rays = tracer.raysCast();
     out.traceSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     out.picture = resolveReference(sums, f.params.frame, options.samples);
     return out;
@@ -99,11 +100,13 @@ std::string describeReference(const ReferenceRender& r, const ReferenceOptions& 
     double paths = double(r.picture.width) * r.picture.height * o.samples;
     char line[512];
     std::snprintf(line, sizeof line,
-                  "reference: %u samples per pixel at %ux%u in %.2f s (%.3g samples/s); %llu strand segments, %llu "
-                  "triangles, %llu hierarchy nodes; sample seed %u",
+                  "reference: %u samples per pixel at %ux%u in %.2f s (%.3g samples/s, %.3g rays/s); %llu strand "
+                  "segments, %llu triangles, %llu hierarchy nodes; sample seed %u",
                   o.samples, r.picture.width, r.picture.height, r.traceSeconds,
-                  r.traceSeconds > 0.0 ? paths / r.traceSeconds : 0.0, static_cast<unsigned long long>(r.segments),
-                  static_cast<unsigned long long>(r.triangles), static_cast<unsigned long long>(r.nodes), o.seed);
+                  r.traceSeconds > 0.0 ? paths / r.traceSeconds : 0.0,
+                  r.traceSeconds > 0.0 ? double(r.rays) / r.traceSeconds : 0.0,
+                  static_cast<unsigned long long>(r.segments), static_cast<unsigned long long>(r.triangles),
+                  static_cast<unsigned long long>(r.nodes), o.seed);
     std::string text = line;
     if (r.picture.noiseLevels >= 0.0) {
         std::snprintf(line, sizeof line,

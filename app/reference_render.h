@@ -26,6 +26,7 @@ struct ReferenceRender {
     uint64_t segments = 0;  // strand segments traced
     uint64_t triangles = 0; // mesh triangles traced
     uint64_t nodes = 0;     // the hierarchy's nodes
+    uint64_t rays = 0;      // rays cast (the paths' and the shadow rays)
     double traceSeconds = 0.0;
 };
 
@@ -44,7 +45,7 @@ ReferenceRender renderReference(const vk::Context& ctx, HairSession& session, Re
                                 float fps, const ReferenceOptions& options,
                                 const std::function<void(uint32_t, uint32_t)>& progress = {});
 
-// "reference: 64 samples per pixel in 3.2 s, 1.23 M paths/s; 30,000 segments, ... ; noise ..."
+// "reference: 64 samples per pixel at WxH in 3.2 s (... samples/s, ... rays/s); ... segments, ...", noise
 std::string describeReference(const ReferenceRender& r, const ReferenceOptions& options);
 
 } // namespace wisp

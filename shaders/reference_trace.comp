@@ -2,8 +2,8 @@
 // reference_trace.comp: the path-traced reference, one thread per pixel: `push.samples` paths from
 // sample `push.firstSample` on (shared/reference_path.h referenceSample), added to the pixel's sums,
 // the even samples' in the first half of the buffer and the odd samples' in the second (their
-// difference tells how much noise is left). The hierarchy is walked through shared/trace_bvh.h
-// with this shader's buffers as its accessors.
+// difference tells how much noise is left), and the rays they cast to the pixel's count. The
+// hierarchy is walked through shared/trace_bvh.h with this shader's buffers as its accessors.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/reference_params.h"
 #include "shared/trace.h"
@@ -28,6 +28,7 @@ TraceTriangle traceTriangle(TraceBuffers s, uint i) { return triangles[i]; }
 
 layout(set = 0, binding = kReferenceBindingParams) uniform ParamsBlock { ReferenceParams params; };
 layout(set = 0, binding = kReferenceBindingSums, std430) buffer Sums { vec4 sums[]; };
+layout(set = 0, binding = kReferenceBindingRays, std430) buffer Rays { uint rays[]; };
 layout(push_constant) uniform PushBlock { ReferencePush push; };
 
 void main()
@@ -39,9 +40,10 @@ void main()
     uint pixels = params.width * params.height;
     uint at = pixel.y * params.width + pixel.x;
     vec4 even = vec4(0.0), odd = vec4(0.0);
+    uint traced = 0u;
     for (uint k = 0u; k < push.samples; ++k) {
         uint s = push.firstSample + k;
-        vec4 r = referenceSample(scene, params, pixel, s);
+        vec4 r = referenceSample(scene, params, pixel, s, traced);
         if ((s & 1u) == 0u)
             even += r;
         else
@@ -49,4 +51,5 @@ void main()
     }
     sums[at] += even;
     sums[pixels + at] += odd;
+    rays[at] += traced;
 }

@@ -126,12 +126,14 @@ TEST(Reference, KernelMatchesItsCpuTwinPixelByPixel)
     std::vector<glm::vec4> sums = tracer.sums();
     size_t pixels = size_t(f.params.width) * f.params.height;
     int compared = 0, matched = 0, backdrop = 0, lit = 0;
+    uint64_t cpuRays = 0;
     for (uint32_t y = 2; y < f.params.height; y += 5)
         for (uint32_t x = 3; x < f.params.width; x += 7) {
-            std::array<glm::vec4, 2> cpu = reference::tracePixel(f.scene, f.params, {x, y}, 0, 2);
+            reference::PixelSums cpu = reference::tracePixel(f.scene, f.params, {x, y}, 0, 2);
+            cpuRays += cpu.rays;
             size_t at = size_t(y) * f.params.width + x;
             for (int half = 0; half < 2; ++half) {
-                glm::vec4 g = sums[size_t(half) * pixels + at], c = cpu[size_t(half)];
+                glm::vec4 g = sums[size_t(half) * pixels + at], c = cpu.sums[size_t(half)];
                 ++compared;
                 backdrop += c.w > 0.0f;
                 lit += glm::length(glm::vec3(c)) > 0.0f;
@@ -144,6 +146,12 @@ TEST(Reference, KernelMatchesItsCpuTwinPixelByPixel)
     EXPECT_GT(backdrop, 0);
     EXPECT_GT(lit, compared / 4);
     EXPECT_GE(matched, compared * 9 / 10) << matched << " of " << compared << " paths the same";
+    // Every pixel's rays, counted by the kernel: at least one a sample, and about as many as the twin
+    // casts for its pixels (theirs, scaled by the share of pixels compared).
+    EXPECT_GE(tracer.raysCast(), 2 * pixels);
+    double perPixelGpu = double(tracer.raysCast()) / double(pixels), perPixelCpu = double(cpuRays) / (compared / 2);
+    EXPECT_GT(perPixelCpu, 0.5 * perPixelGpu);
+    EXPECT_LT(perPixelCpu, 2.0 * perPixelGpu);
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 

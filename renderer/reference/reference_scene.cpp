@@ -73,16 +73,16 @@ gpu::ReferenceParams referenceParams(const ReferenceScene& scene, const gpu::Fra
             .surfaceOffset = 1e-5f * scene.extent};
 }
 
-std::array<glm::vec4, 2> tracePixel(const ReferenceScene& scene, const gpu::ReferenceParams& params, glm::uvec2 pixel,
-                                    uint32_t first, uint32_t count)
+PixelSums tracePixel(const ReferenceScene& scene, const gpu::ReferenceParams& params, glm::uvec2 pixel, uint32_t first,
+                     uint32_t count)
 {
     gpu::TraceBuffers buffers = scene.buffers();
-    std::array<glm::vec4, 2> sums{glm::vec4(0.0f), glm::vec4(0.0f)};
+    PixelSums out;
     for (uint32_t k = 0; k < count; ++k) {
         uint32_t sample = first + k;
-        sums[sample & 1u] += gpu::referenceSample(buffers, params, pixel, sample);
+        out.sums[sample & 1u] += gpu::referenceSample(buffers, params, pixel, sample, out.rays);
     }
-    return sums;
+    return out;
 }
 
 } // namespace wisp::reference

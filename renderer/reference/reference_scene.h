@@ -38,9 +38,14 @@ ReferenceScene buildReferenceScene(const gpu::StrandRasterPush& push, const Draw
 gpu::ReferenceParams referenceParams(const ReferenceScene& scene, const gpu::FrameParams& frame,
                                      const gpu::MeshRasterPush& meshes, uint32_t maxBounces, uint32_t seed);
 
-// The CPU twin of reference_trace.comp for one pixel: the sum of samples [first, first + count),
-// split as the kernel splits them: [0] the even samples' (radiance, backdrop count), [1] the odd.
-std::array<glm::vec4, 2> tracePixel(const ReferenceScene& scene, const gpu::ReferenceParams& params, glm::uvec2 pixel,
-                                    uint32_t first, uint32_t count);
+// The CPU twin of reference_trace.comp for one pixel: the sums of samples [first, first + count),
+// split as the kernel splits them (sums[0] the even samples' radiance and backdrop count, sums[1] the
+// odd), and the rays they cast.
+struct PixelSums {
+    std::array<glm::vec4, 2> sums{glm::vec4(0.0f), glm::vec4(0.0f)};
+    uint32_t rays = 0;
+};
+PixelSums tracePixel(const ReferenceScene& scene, const gpu::ReferenceParams& params, glm::uvec2 pixel, uint32_t first,
+                     uint32_t count);
 
 } // namespace wisp::reference

@@ -45,6 +45,14 @@ ReferenceTracer::ReferenceTracer(const vk::Context& ctx, const reference::Refere
     readback_ = ctx.createBuffer(
         {.size = bytes, .usage = vk::kTransferDst, .memory = vk::Memory::Readback, .name = "reference.readback"});
     sumsTrack_.buffer = sums_;
+    VkDeviceSize rayBytes = VkDeviceSize(params.width) * params.height * sizeof(uint32_t);
+    rays_ = ctx.createBuffer(
+        {.size = rayBytes, .usage = vk::kStorage | vk::kTransferSrc | vk::kTransferDst, .name = "reference.rays"});
+    raysReadback_ = ctx.createBuffer({.size = rayBytes,
+                                      .usage = vk::kTransferDst,
+                                      .memory = vk::Memory::Readback,
+                                      .name = "reference.rays.readback"});
+    raysTrack_.buffer = rays_;
 
     std::vector<ComputeStage> stages;
     for (int s = kClear; s <= kReadback; ++s)
@@ -59,22 +67,29 @@ ComputeStage ReferenceTracer::stage(int which)
 {
     switch (which) {
     case kClear:
-        return {.uses = {commandUse(sumsTrack_, Access::TransferDst)},
-                .record = [this](StageCommands& c) { c.fill(sumsTrack_, 0u); }};
+        return {.uses = {commandUse(sumsTrack_, Access::TransferDst), commandUse(raysTrack_, Access::TransferDst)},
+                .record = [this](StageCommands& c) {
+                    c.fill(sumsTrack_, 0u);
+                    c.fill(raysTrack_, 0u);
+                }};
     case kTrace:
         return {.uses = {uniformBlock(gpu::kReferenceBindingParams, paramsBuffer_.get()),
                          constantBuffer(gpu::kReferenceBindingNodes, nodes_),
                          constantBuffer(gpu::kReferenceBindingPrims, prims_),
                          constantBuffer(gpu::kReferenceBindingSegments, segments_),
                          constantBuffer(gpu::kReferenceBindingTriangles, triangles_),
-                         storageBuffer(gpu::kReferenceBindingSums, sumsTrack_, Access::ComputeWrite)},
+                         storageBuffer(gpu::kReferenceBindingSums, sumsTrack_, Access::ComputeWrite),
+                         storageBuffer(gpu::kReferenceBindingRays, raysTrack_, Access::ComputeWrite)},
                 .record = [this](StageCommands& c) {
                     c.dispatch(kernel_, push_, vk::groupCount(params_.width, gpu::kReferenceGroupSize),
                                vk::groupCount(params_.height, gpu::kReferenceGroupSize));
                 }};
     default:
-        return {.uses = {commandUse(sumsTrack_, Access::TransferSrc)},
-                .record = [this](StageCommands& c) { c.copyToHost(sumsTrack_, readback_, readback_.size()); }};
+        return {.uses = {commandUse(sumsTrack_, Access::TransferSrc), commandUse(raysTrack_, Access::TransferSrc)},
+                .record = [this](StageCommands& c) {
+                    c.copyToHost(sumsTrack_, readback_, readback_.size());
+                    c.copyToHost(raysTrack_, raysReadback_, raysReadback_.size());
+                }};
     }
 }
 
@@ -109,6 +124,11 @@ std::vector<glm::vec4> ReferenceTracer::sums()
     frame_.waitIdle();
     std::vector<glm::vec4> out(size_t(2) * params_.width * params_.height);
     std::memcpy(out.data(), readback_.mapped(), out.size() * sizeof(glm::vec4));
+    std::vector<uint32_t> rays(size_t(params_.width) * params_.height);
+    std::memcpy(rays.data(), raysReadback_.mapped(), rays.size() * sizeof(uint32_t));
+    raysCast_ = 0;
+    for (uint32_t r : rays)
+        raysCast_ += r;
     return out;
 }
 

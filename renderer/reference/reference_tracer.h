@@ -28,7 +28,10 @@ public:
     // Samples [0, samples) of every pixel, `perPass` a pass; `progress(done, samples)` after each.
     void render(uint32_t samples, uint32_t perPass, const std::function<void(uint32_t, uint32_t)>& progress = {});
     // The sums: width x height vec4 of the even samples (radiance, backdrop count), then of the odd.
+    // Also reads back the rays cast, raysCast().
     std::vector<glm::vec4> sums();
+    // Every ray the samples so far cast (each walk of the hierarchy), as of the last sums().
+    uint64_t raysCast() const { return raysCast_; }
 
 private:
     ComputeStage stage(int which);
@@ -36,8 +39,9 @@ private:
     const vk::Context& ctx_;
     gpu::ReferenceParams params_;
     gpu::ReferencePush push_{};
-    vk::Buffer paramsBuffer_, nodes_, prims_, segments_, triangles_, sums_, readback_;
-    TrackedBuffer sumsTrack_;
+    vk::Buffer paramsBuffer_, nodes_, prims_, segments_, triangles_, sums_, readback_, rays_, raysReadback_;
+    TrackedBuffer sumsTrack_, raysTrack_;
+    uint64_t raysCast_ = 0;
     StageLayout layout_;
     vk::ComputeKernel kernel_;
     std::vector<std::unique_ptr<ComputeStagePass>> passes_; // clear, trace, read back

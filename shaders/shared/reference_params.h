@@ -17,6 +17,7 @@ GPU_CONST uint kReferenceBindingPrims = 2;     // uint[]: primitive numbers in t
 GPU_CONST uint kReferenceBindingSegments = 3;  // TraceSegment[]
 GPU_CONST uint kReferenceBindingTriangles = 4; // TraceTriangle[]
 GPU_CONST uint kReferenceBindingSums = 5;      // vec4 per pixel, twice: the even samples', then the odd
+GPU_CONST uint kReferenceBindingRays = 6;      // uint per pixel: the rays its samples cast
 
 // The lights' angular radius (radians): small, as a studio's softbox far away (the sun is 0.0047).
 GPU_CONST float kReferenceLightRadius = 0.01f;

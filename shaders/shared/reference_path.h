@@ -86,8 +86,9 @@ GPU_FN vec3 referenceSky(FrameParams frame, vec3 d)
     return frame.ambientIntensity * hemisphereAmbient(d, frame.skyColor, frame.groundColor);
 }
 
-GPU_FN bool referenceOccluded(TraceBuffers scene, vec3 o, vec3 wi)
+GPU_FN bool referenceOccluded(TraceBuffers scene, vec3 o, vec3 wi, GPU_INOUT(uint) rays)
 {
+    rays += 1u;
     return traceScene(scene, o, wi, 0.0f, kTraceInfinity, true).prim != kTraceNoHit;
 }
 
@@ -104,8 +105,9 @@ GPU_FN vec3 cameraRayPoint(mat4 inverseViewProjection, vec2 ndc, float depth)
 // ---- One sample --------------------------------------------------------------------------------
 
 // The radiance one path brings to pixel `pixel` (xyz), and in w 1 when its camera ray met nothing
-// (the backdrop shows there; xyz is then 0).
-GPU_FN vec4 referenceSample(TraceBuffers scene, ReferenceParams P, uvec2 pixel, uint sampleIndex)
+// (the backdrop shows there; xyz is then 0). `rays` counts the rays cast (each walk of the
+// hierarchy: the path's and the lights' shadow rays).
+GPU_FN vec4 referenceSample(TraceBuffers scene, ReferenceParams P, uvec2 pixel, uint sampleIndex, GPU_INOUT(uint) rays)
 {
     uint rng = referenceRngStart(P.seed, pixel, P.width, sampleIndex);
     vec2 at = vec2(pixel) + referenceNext2(rng);
@@ -117,6 +119,7 @@ GPU_FN vec4 referenceSample(TraceBuffers scene, ReferenceParams P, uvec2 pixel, 
     vec3 radiance = vec3(0.0f);
     vec3 throughput = vec3(1.0f);
     for (uint bounce = 0u; bounce < P.maxBounces; ++bounce) {
+        rays += 1u;
         TraceHit hit = traceScene(scene, o, d, 0.0f, kTraceInfinity, false);
         if (hit.prim == kTraceNoHit) {
             if (bounce == 0u)
@@ -142,7 +145,7 @@ GPU_FN vec4 referenceSample(TraceBuffers scene, ReferenceParams P, uvec2 pixel, 
                 FrameLight light = frameLight(P.frame, i);
                 vec2 ul = referenceNext2(rng);
                 vec3 wi = sampleLightCone(light.direction, cosMax, ul.x, ul.y);
-                if (light.intensity > 0.0f && !referenceOccluded(scene, axis, wi))
+                if (light.intensity > 0.0f && !referenceOccluded(scene, axis, wi, rays))
                     radiance +=
                         throughput * vec3(fiberLobeSum(b, fo, fiberToLocal(f, wi))) * light.color * light.intensity;
             }
@@ -179,7 +182,7 @@ GPU_FN vec4 referenceSample(TraceBuffers scene, ReferenceParams P, uvec2 pixel, 
                 FrameLight light = frameLight(P.frame, i);
                 vec2 ul = referenceNext2(rng);
                 vec3 wi = sampleLightCone(light.direction, cosMax, ul.x, ul.y);
-                if (light.intensity > 0.0f && dot(ng, wi) > 0.0f && !referenceOccluded(scene, off, wi))
+                if (light.intensity > 0.0f && dot(ng, wi) > 0.0f && !referenceOccluded(scene, off, wi, rays))
                     radiance += throughput * surfaceRadiance(n, wi, wo, a, r, light.color * light.intensity);
             }
             // Cosine-weighted around n: the weight f cos / pdf = pi f = a + pi * highlight.
