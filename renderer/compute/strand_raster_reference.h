@@ -27,7 +27,8 @@ std::vector<gpu::CurvePoint> guideCurves(const gpu::StrandRasterPush& push, cons
 
 // The drawn strands in world space, as strands_generate.comp places them before it projects them:
 // vertex (guide * drawnPerGuide + s) * (D + 1) + i, its unit tangent and its world width
-// (strandWidthAt). The path tracer (renderer/reference/) traces these.
+// (strandWidthAt of the guide's share of the width setting, guideWidthScale). The path tracer
+// (renderer/reference/) traces these.
 struct DrawnStrands {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> tangents;
