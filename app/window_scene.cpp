@@ -2,6 +2,7 @@
 // applied as the panel applies them.
 #include "app/window_scene.h"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace wisp {
@@ -14,12 +15,14 @@ Scene windowScene(const std::filesystem::path& path, const HairSource& source, c
     if (!source.headFile.empty())
         saved.head = scenePathText(path, std::filesystem::absolute(source.headFile));
     if (source.hairFiles.empty()) {
-        // The grown hair's count, resolution, seed and shape, under the settings' names.
-        for (const char* name :
-             {"guides", "vertices_per_strand", "seed", "hair_length", "length_variation", "curl", "poisson"}) {
-            const SettingSpec& spec = settingSpec(name);
-            saved.hair.settings.emplace_back(spec.name, settingText(spec, spec.get(settings)));
-        }
+        // The grown hair: every setting that shapes it as it grows, in the table's order (the style
+        // first: it sets the others again, and a shape stiffness that is no setting of its own), so
+        // that the scene grows the same groom. (Seven of them only, before: a style was lost.)
+        const std::vector<SceneSectionKey>& keys = sceneSectionKeys(SceneSection::Hair);
+        for (const auto& [name, value] : currentSettings(settings))
+            if (settingSpec(name).change == SettingChange::Restart &&
+                std::any_of(keys.begin(), keys.end(), [&](const SceneSectionKey& k) { return k.name == name; }))
+                saved.hair.settings.emplace_back(name, value);
     } else {
         for (const std::string& f : source.hairFiles)
             saved.hair.files.push_back({.path = scenePathText(path, std::filesystem::absolute(f))});

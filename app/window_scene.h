@@ -1,5 +1,6 @@
 // app/window_scene.h: F2 and F3 in the window. F2 saves what the window shows as a scene of one
-// key (the head and hair as given, every setting but the growth ones, which the hair holds, and
+// key (the head and hair as given: grown hair as every growth setting, the style first; every other
+// setting; and
 // the camera, sphere, light, wind and head turn now); F3 brings a saved scene's settings and keys
 // back (the head and hair stay: another groom is `wisp view --scene FILE`).
 #pragma once

@@ -4,12 +4,14 @@
 #include "app/scene.h"
 #include "app/settings_table.h"
 #include "app/viewer.h"
+#include "app/window_scene.h"
 #include "core/error.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
 
 using namespace wisp;
+using wisp::test::TempDir;
 
 namespace {
 
@@ -117,4 +119,28 @@ TEST(Viewer, HeadTurnIsTheScenesConvention)
     EXPECT_NEAR(glm::length(glm::vec3(quarter * glm::vec4(centre, 1.0f)) - centre), 0.0f, 1e-6f);
     EXPECT_NEAR(moved.x - centre.x, 0.1f, 1e-6f);
     EXPECT_NEAR(moved.y - centre.y, 0.0f, 1e-6f);
+}
+
+TEST(Viewer, TheWindowsSavedSceneGrowsTheSameGroom)
+{
+    // F2 on a styled groom, then `wisp view --scene` on what it saved: every setting comes back,
+    // the style's shape stiffness (no setting of its own) too. It kept seven growth settings only,
+    // and a style's groom came back as the default's.
+    for (const char* refine : {"", "curl=0.004"}) {
+        Settings settings;
+        applySetting(settings, "hair_style=afro");
+        if (*refine)
+            applySetting(settings, refine);
+        TempDir dir;
+        std::filesystem::path path = dir / "saved.json";
+        saveScene(path, windowScene(path, HairSource{}, settings, SceneState{}));
+        Settings back;
+        HairSource source;
+        applyScene(loadScene(path), path, back, source);
+        EXPECT_EQ(settingsJson(back).dump(), settingsJson(settings).dump()) << refine;
+        if (!*refine) { // a refined style is "custom": its stiffness is the default's (docs: hair styles)
+            EXPECT_EQ(back.growth.globalStiffness, settings.growth.globalStiffness);
+        }
+        EXPECT_EQ(back.growth.curlRadiusMetres, settings.growth.curlRadiusMetres) << refine;
+    }
 }
