@@ -40,10 +40,6 @@ void inRange(float v, const Range& r, const std::string& what)
         broken(what + " = " + std::to_string(v) + " is outside " + std::to_string(r.min) + " .. " +
                std::to_string(r.max));
 }
-void inRange(uint32_t v, const Range& r, const std::string& what)
-{
-    inRange(double(v), r, what);
-}
 template <glm::length_t N> void inRange(const glm::vec<N, float>& v, const Range& r, const std::string& what)
 {
     for (glm::length_t i = 0; i < N; ++i)
