@@ -1,6 +1,7 @@
 // physics/cpu_solver.cpp: the reference solver. integrateStrand walks each strand with the
 // shared algorithm (shaders/shared/sim_strand.h, as sim_integrate.comp does) in the CPU's
-// strand-major order; the grid functions mirror grid_clear/splat/normalize/gather.comp over the
+// strand-major order; the grid functions mirror the GPU's splat (sim_integrate.comp), its zeroed
+// sums and grid_gather.comp (which takes each node's velocity as it reads it) over the
 // shared grid math (shaders/shared/sim.h, and sim_grid.h for the gather's update).
 #include "physics/cpu_solver.h"
 
@@ -98,7 +99,8 @@ void CpuSolver::integrateStrand(uint32_t s, const SimStep& step)
         velocities[g] = vec4(v.velocity, 0.0f);
         tangents[g] = vec4(v.tangent, 0.0f);
     };
-    StrandWalk walk = strandWalkBegin(params, step, strands_.strands[s], vec3(positions[base]), rest_[base].position);
+    StrandWalk walk =
+        strandWalkBegin(params, step, strands_.strands[s], vec3(positions[base]), rest_[base].position, step.time);
     for (uint32_t i = 1; i < V; ++i) {
         uint32_t g = base + i;
         write(g - 1, strandWalkStep(params, step, walk, i, V, vec3(positions[g]), vec3(velocities[g]), rest_[g],

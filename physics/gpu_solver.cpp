@@ -7,6 +7,7 @@
 #include "gpu/pipeline.h"
 #include "physics/cpu_solver.h"
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 
@@ -94,10 +95,12 @@ GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const Sim
     strands_ = ctx.createBufferWithData(
         {.size = strands.strands.size() * sizeof(gpu::StrandInfo), .usage = kStorageCopy, .name = "guide.strands"},
         strands.strands.data(), strands.strands.size() * sizeof(gpu::StrandInfo));
-    grid_ = ctx.createBuffer({.size = gridBytes, .usage = kStorageCopy, .name = "grid.accumulators"});
-    gridVelocity_ = ctx.createBuffer({.size = size_t(setup.params.gridNodeCount) * sizeof(glm::vec4),
-                                      .usage = kStorageCopy,
-                                      .name = "grid.velocity"});
+    // Both sets of sums start at zero: the first step splats into one, its gather zeroes the other.
+    std::vector<uint8_t> zeroGrid(gridBytes, 0);
+    for (size_t i = 0; i < grids_.size(); ++i)
+        grids_[i] = ctx.createBufferWithData(
+            {.size = gridBytes, .usage = kStorageCopy, .name = i == 0 ? "grid.sums.0" : "grid.sums.1"}, zeroGrid.data(),
+            gridBytes);
     gpu::SimCounters zero{};
     counters_ = ctx.createBufferWithData(
         {.size = sizeof(gpu::SimCounters), .usage = kStorageCopy, .name = "sim.counters"}, &zero, sizeof(zero));
@@ -108,7 +111,7 @@ GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const Sim
         {gpu::kSimBindingParams, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
     for (uint32_t b :
          {gpu::kSimBindingPositions, gpu::kSimBindingVelocities, gpu::kSimBindingRest, gpu::kSimBindingStrands,
-          gpu::kSimBindingTangents, gpu::kSimBindingGrid, gpu::kSimBindingGridVelocity, gpu::kSimBindingCounters})
+          gpu::kSimBindingTangents, gpu::kSimBindingGrid, gpu::kSimBindingGridNext, gpu::kSimBindingCounters})
         bindings.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT});
     vk::PipelineLayoutBundle layout = vk::createPipelineLayout(ctx, {.bindings = bindings,
                                                                      .pushConstantBytes = sizeof(gpu::SimStep),
@@ -123,15 +126,10 @@ void GpuSolver::createPipelines()
 {
     const vk::Context& ctx = ctx_;
     // The fixed-point grid's kernels are separate SPIR-V (they need 64-bit integer atomics, the
-    // float ones need float atomics); the splatting substep is a specialization of integrate.
+    // float ones need float atomics).
     std::string variant = fixedGrid_ ? "_fixed" : "";
-    integrate_ = vk::createComputePipeline(ctx, layout_, "sim_integrate" + variant + ".comp", "sim.integrate",
-                                           {/*kSplatToGrid=*/0});
-    integrateSplat_ = vk::createComputePipeline(ctx, layout_, "sim_integrate" + variant + ".comp",
-                                                "sim.integrate+splat", {/*kSplatToGrid=*/1});
-    clear_ = vk::createComputePipeline(ctx, layout_, "grid_clear" + variant + ".comp", "grid.clear");
-    normalize_ = vk::createComputePipeline(ctx, layout_, "grid_normalize" + variant + ".comp", "grid.normalize");
-    gather_ = vk::createComputePipeline(ctx, layout_, "grid_gather.comp", "grid.gather");
+    integrate_ = vk::createComputePipeline(ctx, layout_, "sim_integrate" + variant + ".comp", "sim.integrate");
+    gather_ = vk::createComputePipeline(ctx, layout_, "grid_gather" + variant + ".comp", "grid.gather");
 }
 
 void GpuSolver::reloadPipelines()
@@ -161,24 +159,30 @@ void GpuSolver::reset(const glm::mat4& headTransform)
         vkCmdCopyBuffer(cmd, staging, velocities_, 1, &region);
         region.srcOffset = 2 * bytes;
         vkCmdCopyBuffer(cmd, staging, tangents_, 1, &region);
+        for (const vk::Buffer& grid : grids_) // the turns start again from zeroed sums
+            vkCmdFillBuffer(cmd, grid, 0, VK_WHOLE_SIZE, 0);
     });
+    turn_ = 0;
 }
 
 void GpuSolver::recordStep(VkCommandBuffer cmd, const gpu::SimStep& step, vk::GpuTimer* timer)
 {
+    // This step splats into grids_[turn_]; its gather reads them and zeroes the other set.
+    const vk::Buffer& sums = grids_[turn_];
+    const vk::Buffer& next = grids_[1 - turn_];
+    turn_ = 1 - turn_;
     std::array<VkDescriptorBufferInfo, 9> infos = {VkDescriptorBufferInfo{params_, 0, VK_WHOLE_SIZE},
                                                    {positions_, 0, VK_WHOLE_SIZE},
                                                    {velocities_, 0, VK_WHOLE_SIZE},
                                                    {rest_, 0, VK_WHOLE_SIZE},
                                                    {strands_, 0, VK_WHOLE_SIZE},
                                                    {tangents_, 0, VK_WHOLE_SIZE},
-                                                   {grid_, 0, VK_WHOLE_SIZE},
-                                                   {gridVelocity_, 0, VK_WHOLE_SIZE},
+                                                   {sums, 0, VK_WHOLE_SIZE},
+                                                   {next, 0, VK_WHOLE_SIZE},
                                                    {counters_, 0, VK_WHOLE_SIZE}};
-    std::array<uint32_t, 9> bindingOf = {
-        gpu::kSimBindingParams, gpu::kSimBindingPositions,    gpu::kSimBindingVelocities,
-        gpu::kSimBindingRest,   gpu::kSimBindingStrands,      gpu::kSimBindingTangents,
-        gpu::kSimBindingGrid,   gpu::kSimBindingGridVelocity, gpu::kSimBindingCounters};
+    std::array<uint32_t, 9> bindingOf = {gpu::kSimBindingParams, gpu::kSimBindingPositions, gpu::kSimBindingVelocities,
+                                         gpu::kSimBindingRest,   gpu::kSimBindingStrands,   gpu::kSimBindingTangents,
+                                         gpu::kSimBindingGrid,   gpu::kSimBindingGridNext,  gpu::kSimBindingCounters};
     std::array<VkWriteDescriptorSet, 9> writes{};
     for (size_t i = 0; i < writes.size(); ++i)
         writes[i] = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
@@ -189,52 +193,21 @@ void GpuSolver::recordStep(VkCommandBuffer cmd, const gpu::SimStep& step, vk::Gp
 
     const gpu::SimParams& p = setup_.params;
     uint32_t strandGroups = vk::groupCount(p.strandCount, gpu::kSimGroupSize);
-    uint32_t vertexGroups = vk::groupCount(slotCount_, gpu::kSimGroupSize);
-    uint32_t nodeGroups = vk::groupCount(p.gridNodeCount, gpu::kSimGroupSize);
-    auto dispatch = [&](VkPipeline pipeline, uint32_t groups, const gpu::SimStep& push) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-        ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, uint32_t(writes.size()), writes.data());
-        vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-        vkCmdDispatch(cmd, groups, 1, 1);
-    };
-
-    auto begin = [&](const char* scope) {
+    // The gather's threads take a vertex slot and a node of the next sums each.
+    uint32_t gatherGroups = vk::groupCount(std::max(slotCount_, p.gridNodeCount), gpu::kSimGroupSize);
+    auto dispatch = [&](const char* scope, VkPipeline pipeline, uint32_t groups) {
         if (timer)
             timer->begin(cmd, scope);
-    };
-    auto end = [&] {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+        ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, uint32_t(writes.size()), writes.data());
+        vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(step), &step);
+        vkCmdDispatch(cmd, groups, 1, 1);
+        vk::computeToComputeBarrier(cmd);
         if (timer)
             timer->end(cmd);
     };
-    // The clear runs first: the last substep splats into the grid as it finishes each strand.
-    begin("grid_clear");
-    dispatch(clear_, nodeGroups, step);
-    vk::computeToComputeBarrier(cmd);
-    end();
-    // The substeps before the last, then the last, which splats the grid (each timed on its own).
-    gpu::SimStep sub = step;
-    auto substep = [&](uint32_t k, VkPipeline pipeline) {
-        sub.time = step.time + float(k) * p.dt;
-        dispatch(pipeline, strandGroups, sub);
-        vk::computeToComputeBarrier(cmd);
-    };
-    if (setup_.substeps > 1) {
-        begin("integrate");
-        for (uint32_t k = 0; k + 1 < setup_.substeps; ++k)
-            substep(k, integrate_);
-        end();
-    }
-    begin("integrate+splat");
-    substep(setup_.substeps - 1, integrateSplat_);
-    end();
-    begin("grid_normalize");
-    dispatch(normalize_, nodeGroups, step);
-    vk::computeToComputeBarrier(cmd);
-    end();
-    begin("grid_gather");
-    dispatch(gather_, vertexGroups, step);
-    vk::computeToComputeBarrier(cmd); // the next step's integrate reads the gathered velocities
-    end();
+    dispatch("integrate", integrate_, strandGroups);
+    dispatch("grid_gather", gather_, gatherGroups); // the next step's integrate reads the gathered velocities
 }
 
 std::vector<uint8_t> GpuSolver::download(const vk::Buffer& buffer) const
@@ -277,7 +250,7 @@ SimState GpuSolver::readState() const
 
 std::vector<gpu::GridNode> GpuSolver::readGrid() const
 {
-    std::vector<uint8_t> bytes = download(grid_);
+    std::vector<uint8_t> bytes = download(grids_[1 - turn_]); // the last recorded step's
     std::vector<gpu::GridNode> out(setup_.params.gridNodeCount);
     if (!fixedGrid_) {
         std::memcpy(out.data(), bytes.data(), out.size() * sizeof(gpu::GridNode));

@@ -1,8 +1,10 @@
 // physics/gpu_solver.h: the GPU solver's buffers and dispatch sequence. One step records
-//   grid_clear | substeps x sim_integrate (the last one also splats into the grid) |
-//   grid_normalize | grid_gather
-// with a compute->compute barrier between every producer and consumer (a workgroup barrier()
-// does not order work across workgroups). It talks to the device only through gpu/; the
+//   sim_integrate (every substep; the last one also splats into this step's grid sums) |
+//   grid_gather (reads them; zeroes the other set, the next step's)
+// with a compute->compute barrier after each (a workgroup barrier() does not order work across
+// workgroups). The two sets of sums take turns, so a step needs no clear or normalize pass; the
+// turn flips as each step is recorded, so every recorded step must be submitted (reset() starts
+// the turns again). It talks to the device only through gpu/; the
 // model and the maths stay in physics/ and shaders/shared/.
 #pragma once
 
@@ -11,6 +13,8 @@
 #include "gpu/resources.h"
 #include "gpu/timestamps.h"
 #include "physics/simulation.h"
+
+#include <array>
 
 namespace wisp {
 
@@ -23,8 +27,8 @@ public:
     GpuSolver(const vk::Context& ctx, const StrandSet& strands, const SimSetup& setup, const glm::mat4& headTransform);
 
     // Records one fixed step (all substeps and the grid). step.time is the step's start. With a
-    // timer, each kernel's dispatches are a timed scope: grid_clear, integrate+splat (all
-    // substeps), grid_normalize, grid_gather.
+    // timer, each kernel's dispatch is a timed scope: integrate (all substeps and the splat) and
+    // grid_gather.
     void recordStep(VkCommandBuffer cmd, const gpu::SimStep& step, vk::GpuTimer* timer = nullptr);
 
     // Makes the kernels' pipelines again from their SPIR-V as it is now on disk (a shader reload);
@@ -37,6 +41,7 @@ public:
     // Copies the state back in strand-major order (waits for the device): for metrics and tests.
     // On the GPU, vertex i of strand s is at gpu::vertexSlot(s, i, V).
     SimState readState() const;
+    // The last recorded step's grid sums (waits for the device).
     std::vector<gpu::GridNode> readGrid() const;
 
     const SimSetup& setup() const { return setup_; }
@@ -62,12 +67,15 @@ private:
     uint32_t slotCount_ = 0; // vertices in the interleaved buffers, padding included
     bool fixedGrid_ = false;
     uint64_t deviceBytes_ = 0;
-    vk::Buffer params_, positions_, velocities_, rest_, strands_, tangents_, grid_, gridVelocity_, counters_;
+    vk::Buffer params_, positions_, velocities_, rest_, strands_, tangents_, counters_;
+    std::array<vk::Buffer, 2>
+        grids_; // the grid's sums: one step splats into grids_[turn_], its gather zeroes the other
+    uint32_t turn_ = 0;
     TrackedBuffer positionsTrack_, tangentsTrack_;
     mutable vk::Buffer readback_; // host-visible, reused by every readState/readGrid
     vk::DescriptorSetLayout setLayout_;
     vk::PipelineLayout layout_;
-    vk::Pipeline integrate_, integrateSplat_, clear_, normalize_, gather_;
+    vk::Pipeline integrate_, gather_;
 };
 
 } // namespace wisp

@@ -13,8 +13,9 @@ uint64_t solverDeviceBytes(uint64_t strands, uint32_t verticesPerStrand, uint64_
     uint64_t slots = (strands + block - 1) / block * block * verticesPerStrand;
     uint64_t vertexBuffers = slots * (3 * sizeof(glm::vec4) + sizeof(gpu::RestVertex));
     uint64_t gridSums = fixedPointGrid ? gpu::kGridFixedWordsPerNode * sizeof(int64_t) : sizeof(gpu::GridNode);
-    return vertexBuffers + strands * sizeof(gpu::StrandInfo) + gridNodes * (gridSums + sizeof(glm::vec4)) +
-           sizeof(gpu::SimParams) + sizeof(gpu::SimCounters);
+    // Two sets of grid sums: a step splats into one while its gather zeroes the other for the next.
+    return vertexBuffers + strands * sizeof(gpu::StrandInfo) + gridNodes * 2 * gridSums + sizeof(gpu::SimParams) +
+           sizeof(gpu::SimCounters);
 }
 
 SimSetup makeSimSetup(const SimSettings& s, const StrandSet& strands, const std::vector<gpu::Ellipsoid>& colliders,
@@ -29,6 +30,7 @@ SimSetup makeSimSetup(const SimSettings& s, const StrandSet& strands, const std:
     setup.substeps = s.substeps;
     p.gravity = glm::vec3(0.0f, -s.gravity * unitsPerMetre, 0.0f);
     p.dt = 1.0f / (s.stepHz * float(s.substeps));
+    p.substeps = s.substeps;
     setup.wind = s.wind * unitsPerMetre;
     setup.windFrequency = s.windFrequency;
     setup.unitsPerMetre = unitsPerMetre;

@@ -1,12 +1,15 @@
-// grid_storage.glsl: the hair-hair grid's accumulators as the three kernels that write or read
-// them see them: float sums (float atomics) or, in the GRID_FIXED variants, 64-bit integer sums
-// scaled by params.gridFixedScale (deterministic: integer adds commute). The integer sums are
+// grid_storage.glsl: the hair-hair grid's accumulators as the two kernels that write or read them
+// see them: float sums (float atomics) or, in the GRID_FIXED variants, 64-bit integer sums scaled
+// by params.gridFixedScale (deterministic: integer adds commute). There are two sets: this step's
+// (`Grid`, splatted by sim_integrate, read by grid_gather) and the next step's (`GridNext`, which
+// grid_gather zeroes while it reads this step's, so no pass of its own clears them). The integer sums are
 // four arrays one after another (density, then each momentum component), so the four atomics of
 // one node go to four cache lines, which the GPU's memory serves in parallel (in one line they
 // queue behind each other where many strands splat into the same node). Include after
 // sim_common.glsl; the .comp file enables the extensions at its top.
 #ifdef GRID_FIXED
 layout(set = 0, binding = kSimBindingGrid, std430) buffer Grid { int64_t gridFixed[]; };  // 4 arrays of nodes
+layout(set = 0, binding = kSimBindingGridNext, std430) writeonly buffer GridNext { int64_t gridFixedNext[]; };
 
 void gridAdd(uint node, float density, vec3 momentum)
 {
@@ -15,10 +18,10 @@ void gridAdd(uint node, float density, vec3 momentum)
         atomicAdd(gridFixed[gridFixedWord(node, w, params.gridNodeCount)], sum[w]);
 }
 
-void gridZero(uint node)
+void gridZeroNext(uint node)
 {
     for (uint w = 0u; w < kGridFixedWordsPerNode; ++w)
-        gridFixed[gridFixedWord(node, w, params.gridNodeCount)] = int64_t(0);
+        gridFixedNext[gridFixedWord(node, w, params.gridNodeCount)] = int64_t(0);
 }
 
 GridNode gridRead(uint node)
@@ -33,6 +36,7 @@ GridNode gridRead(uint node)
 }
 #else
 layout(set = 0, binding = kSimBindingGrid, std430) buffer Grid { GridNode grid[]; };
+layout(set = 0, binding = kSimBindingGridNext, std430) writeonly buffer GridNext { GridNode gridNext[]; };
 
 void gridAdd(uint node, float density, vec3 momentum)
 {
@@ -42,10 +46,10 @@ void gridAdd(uint node, float density, vec3 momentum)
     atomicAdd(grid[node].momentum.z, momentum.z);
 }
 
-void gridZero(uint node)
+void gridZeroNext(uint node)
 {
-    grid[node].momentum = vec3(0.0);
-    grid[node].density = 0.0;
+    gridNext[node].momentum = vec3(0.0);
+    gridNext[node].density = 0.0;
 }
 
 GridNode gridRead(uint node)
@@ -53,3 +57,10 @@ GridNode gridRead(uint node)
     return grid[node];
 }
 #endif
+
+// A node's velocity (momentum / density where it holds enough hair, else 0) and density.
+vec4 gridNodeVelocity(uint node)
+{
+    GridNode g = gridRead(node);
+    return vec4(g.density > kGridMinDensity ? g.momentum / g.density : vec3(0.0), g.density);
+}

@@ -9,5 +9,4 @@ layout(set = 0, binding = kSimBindingVelocities, std430) buffer Velocities { vec
 layout(set = 0, binding = kSimBindingRest, std430) readonly buffer Rest { RestVertex rest[]; };
 layout(set = 0, binding = kSimBindingStrands, std430) readonly buffer Strands { StrandInfo strands[]; };
 layout(set = 0, binding = kSimBindingTangents, std430) writeonly buffer Tangents { vec4 tangents[]; };
-layout(set = 0, binding = kSimBindingGridVelocity, std430) buffer GridVelocity { vec4 gridVelocity[]; };
 layout(set = 0, binding = kSimBindingCounters, std430) buffer Counters { SimCounters counters; };

@@ -1,18 +1,19 @@
 #version 460
-// sim_integrate.comp: one substep of one strand per thread, root to tip. The algorithm is the
-// shared one (shaders/shared/sim_strand.h, which the CPU twin physics/cpu_solver.cpp calls too);
-// this kernel keeps the GPU's addressing (strands interleaved in blocks of 32, gpu::vertexSlot),
-// its writes, and the grid splat.
+// sim_integrate.comp: every substep of one step for one strand per thread, root to tip (a strand's
+// substeps touch only its own vertices, so one dispatch runs them all: no barrier between them).
+// The algorithm is the shared one (shaders/shared/sim_strand.h, which the CPU twin
+// physics/cpu_solver.cpp calls too); this kernel keeps the GPU's addressing (strands interleaved in
+// blocks of 32, gpu::vertexSlot), its writes, and the grid splat.
 //
-// The variant with kSplatToGrid (the step's last substep) also splats the hair-hair grid for its
-// strand: consecutive vertices of a strand usually fall in the same grid cell, so their trilinear
-// contributions are summed in registers and added with one set of atomics per run of vertices,
-// instead of one per vertex (atomics on the same nodes were the step's bottleneck). A run that
-// moves into a neighbouring cell keeps the corners both cells share and adds only the ones it
-// leaves (slideRun): 4 nodes per cell crossed instead of 8. The sums are CpuSolver::gridSplat's,
-// up to float order (a strand reset for non-finite values keeps the finite contributions it made
-// before the reset; the CPU splats its rest pose). It also writes the tangents, which earlier
-// substeps leave to it.
+// The step's last substep also splats the hair-hair grid for its strand, into this step's
+// accumulators (zeroed by the previous step's gather): consecutive vertices of a strand usually
+// fall in the same grid cell, so their trilinear contributions are summed in registers and added
+// with one set of atomics per run of vertices, instead of one per vertex (atomics on the same nodes
+// were the step's bottleneck). A run that moves into a neighbouring cell keeps the corners both
+// cells share and adds only the ones it leaves (slideRun): 4 nodes per cell crossed instead of 8.
+// The sums are CpuSolver::gridSplat's, up to float order (a strand reset for non-finite values
+// keeps the finite contributions it made before the reset; the CPU splats its rest pose). It also
+// writes the tangents, which earlier substeps leave to it.
 #extension GL_GOOGLE_include_directive : require
 #ifdef GRID_FIXED
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
@@ -48,8 +49,6 @@ float strandRestLength(uint base, uint i)
 #include "shared/sim_strand.h"
 
 layout(local_size_x = SIM_GROUP_SIZE) in;
-layout(constant_id = 0) const bool kSplatToGrid = false;
-
 // The run of vertices being summed: the cell they share and each corner's density and momentum.
 ivec3 runCell = ivec3(-1);
 bool runOpen = false;
@@ -142,18 +141,18 @@ void splatVertex(vec3 p, vec3 v)
     }
 }
 
-void main()
+// Substep k of strand s; the last one (splat) also splats the grid and writes the tangents.
+void integrateStrand(uint s, uint k, bool splat)
 {
-    uint s = gl_GlobalInvocationID.x;
-    if (s >= params.strandCount)
-        return;  // threads past the last strand write nothing
+    // The substep's start, rounded as the CPU twin's (no fused multiply-add).
+    precise float time = step.time + float(k) * params.dt;
     uint V = params.verticesPerStrand;
     uint base = vertexSlot(s, 0u, V);  // vertex i is at base + i * kSimStrandBlock
     StrandInfo info = strands[s];
-    StrandWalk walk = strandWalkBegin(info, positions[base].xyz, rest[base].position);
+    StrandWalk walk = strandWalkBegin(info, positions[base].xyz, rest[base].position, time);
     // A strand pinned at both ends is finished after its bend: its splat and tangents wait for it.
     bool bothEnds = pinnedAtBothEnds(info, V);
-    bool splatNow = kSplatToGrid && !bothEnds;
+    bool splatNow = splat && !bothEnds;
     for (uint i = 1u; i < V; ++i) {
         uint g = base + i * kSimStrandBlock;
         uint parent = g - kSimStrandBlock;
@@ -178,7 +177,7 @@ void main()
 
     if (bothEnds) {
         strandBend(base, info, V, walk.finite);
-        if (kSplatToGrid) {
+        if (splat) {
             for (uint i = 0u; i < V; ++i) {
                 uint g = base + i * kSimStrandBlock;
                 uint j = min(i + 1u, V - 1u);
@@ -202,4 +201,14 @@ void main()
         }
         atomicAdd(counters.nonfiniteResets, 1u);
     }
+}
+
+void main()
+{
+    uint s = gl_GlobalInvocationID.x;
+    if (s >= params.strandCount)
+        return;  // threads past the last strand write nothing
+    for (uint k = 0u; k + 1u < params.substeps; ++k)
+        integrateStrand(s, k, false);
+    integrateStrand(s, params.substeps - 1u, true);
 }

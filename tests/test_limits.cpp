@@ -133,10 +133,11 @@ TEST(Workload, SolverMemoryByHand)
 {
     // 33 strands pad to 64 (blocks of 32) x 4 vertices = 256 slots of positions, velocities,
     // tangents and rest vertices (16 bytes each); 33 strand infos; 512 grid nodes of 4 64-bit
-    // fixed-point sums (or one 16-byte float node) plus a velocity each; parameters and counters.
+    // fixed-point sums (or one 16-byte float node), twice (this step's and the next's); parameters
+    // and counters.
     uint64_t common = 33 * 16 + sizeof(gpu::SimParams) + sizeof(gpu::SimCounters);
-    EXPECT_EQ(solverDeviceBytes(33, 4, 512, true), 256u * 64u + 512u * (32u + 16u) + common);
-    EXPECT_EQ(solverDeviceBytes(33, 4, 512, false), 256u * 64u + 512u * (16u + 16u) + common);
+    EXPECT_EQ(solverDeviceBytes(33, 4, 512, true), 256u * 64u + 512u * 2u * 32u + common);
+    EXPECT_EQ(solverDeviceBytes(33, 4, 512, false), 256u * 64u + 512u * 2u * 16u + common);
     // The largest grown workload: 2e6 x 64 vertices, a 256^3 grid: about 8.5 GB, in 64 bits.
     uint64_t big = solverDeviceBytes(kMaxGuides, kMaxVerticesPerStrand, 256ull * 256 * 256, true);
     EXPECT_GT(big, uint64_t(8) << 30);

@@ -33,7 +33,7 @@ TEST(Cli, SimulateProfileTimesEveryKernel)
     auto r = runWisp("simulate --profile --json --guides 20 --warmup 2 --steps 4");
     ASSERT_EQ(r.status, 0) << r.err;
     nlohmann::json j = nlohmann::json::parse(r.out);
-    for (const char* kernel : {"grid_clear", "integrate", "integrate+splat", "grid_normalize", "grid_gather", "step"}) {
+    for (const char* kernel : {"integrate", "grid_gather", "step"}) {
         ASSERT_TRUE(j["ms"].contains(kernel)) << kernel;
         EXPECT_GE(j["ms"][kernel]["median"].get<double>(), 0.0);
         EXPECT_GE(j["ms"][kernel]["p95"].get<double>(), j["ms"][kernel]["median"].get<double>());

@@ -30,15 +30,15 @@ GPU_CONST uint kSimMaxParts = 8;         // hair parts with their own parameters
 GPU_CONST float kGridMinDensity = 1e-4f; // grid nodes lighter than this carry no velocity
 
 // Bindings of the simulation kernels (one push-descriptor set).
-GPU_CONST uint kSimBindingParams = 0;       // uniform SimParams (SimStep is a push constant)
-GPU_CONST uint kSimBindingPositions = 1;    // vec4[]: xyz position, w inverse mass (0 = pinned)
-GPU_CONST uint kSimBindingVelocities = 2;   // vec4[]: xyz velocity, w unused
-GPU_CONST uint kSimBindingRest = 3;         // RestVertex[]
-GPU_CONST uint kSimBindingStrands = 4;      // StrandInfo[]
-GPU_CONST uint kSimBindingTangents = 5;     // vec4[]: xyz unit tangent toward the tip, w unused
-GPU_CONST uint kSimBindingGrid = 6;         // GridNode[] (splat accumulators)
-GPU_CONST uint kSimBindingGridVelocity = 7; // vec4[]: xyz grid velocity, w density
-GPU_CONST uint kSimBindingCounters = 8;     // SimCounters
+GPU_CONST uint kSimBindingParams = 0;     // uniform SimParams (SimStep is a push constant)
+GPU_CONST uint kSimBindingPositions = 1;  // vec4[]: xyz position, w inverse mass (0 = pinned)
+GPU_CONST uint kSimBindingVelocities = 2; // vec4[]: xyz velocity, w unused
+GPU_CONST uint kSimBindingRest = 3;       // RestVertex[]
+GPU_CONST uint kSimBindingStrands = 4;    // StrandInfo[]
+GPU_CONST uint kSimBindingTangents = 5;   // vec4[]: xyz unit tangent toward the tip, w unused
+GPU_CONST uint kSimBindingGrid = 6;       // GridNode[] (splat accumulators: this step's)
+GPU_CONST uint kSimBindingGridNext = 7;   // the next step's accumulators, which the gather zeroes
+GPU_CONST uint kSimBindingCounters = 8;   // SimCounters
 
 // An ellipsoid collider: a point p is inside when |R^T (p - center) / radii| < 1.
 struct Ellipsoid {
@@ -77,7 +77,7 @@ struct SimParams {
     float gridMaxSplatSpeed;   // velocities splatted into the grid are clamped to this, asset units / s
     float gridRestDensity;     // the rest pose's typical node density (restGridDensity), > 0
     float gridSeparationSpeed; // repulsion's speed down a gradient of gridRestDensity per cell, asset units / s
-    float pad0;
+    uint substeps;             // integrate/FTL substeps per step, each dt long (one dispatch runs them all)
     SimPart parts[kSimMaxParts];
     Ellipsoid colliders[kSimMaxColliders]; // in head space: they move with the head
 };
@@ -88,7 +88,7 @@ struct SimStep {
     vec3 sphereCenter;   // the user's collision sphere, world space
     float sphereRadius;  // 0 disables it
     vec3 gridOrigin;     // world position of grid node (0, 0, 0)
-    float time;          // simulated seconds at the start of this substep
+    float time;          // simulated seconds at the start of the step (substep k starts k x dt later)
     vec3 wind;           // direction * strength, asset units / s² (before the gusts, strandWind)
     float windFrequency; // Hz of the gust modulation
 };

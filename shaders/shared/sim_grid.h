@@ -4,7 +4,7 @@
 // no part toward a collider the vertex lies within a cell of (sim.h gridFriction,
 // gridRepulsionChange, withoutPartInto). Each caller keeps its addressing: it defines, before
 // including this, a type GridRef naming the normalized grid and gridNodeDensity(grid, node), the
-// density of a node (gridVelocity's w); it samples the 8 corners of the vertex's cell into a
+// density of a node; it samples the 8 corners of the vertex's cell into a
 // GridSample and writes the velocity gridGatherVelocity returns.
 #ifndef WISP_SHARED_SIM_GRID_H
 #define WISP_SHARED_SIM_GRID_H

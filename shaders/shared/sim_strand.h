@@ -110,14 +110,15 @@ struct WalkedVertex {
     vec3 tangent;
 };
 
-// Starts a strand: its root (at rootX) is pinned where the head puts its rest position.
-GPU_FN StrandWalk strandWalkBegin(SIM_CONTEXT StrandInfo info, vec3 rootX, vec3 rootRest)
+// Starts a strand's substep that begins at `time` (seconds): its root (at rootX) is pinned where the
+// head puts its rest position.
+GPU_FN StrandWalk strandWalkBegin(SIM_CONTEXT StrandInfo info, vec3 rootX, vec3 rootRest, float time)
 {
     StrandWalk w;
     w.part = params.parts[info.part];
     w.pinnedRoot = info.pinnedRoot;
     w.pinnedTip = info.pinnedTip;
-    w.wind = strandWind(step.wind, step.windFrequency, step.time, info.seed);
+    w.wind = strandWind(step.wind, step.windFrequency, time, info.seed);
     w.prevX = rootX;
     w.prevP = vec3(step.headTransform * vec4(rootRest, 1.0f));
     w.prevShift = vec3(0.0f);
