@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
+#include <random>
 #include <string>
 #include <utility>
 #include <vector>
@@ -86,6 +87,36 @@ TEST(SimMath, SphereAndEllipsoidContacts)
     // A head moved by +10 in x carries its colliders along.
     glm::mat4 head = glm::translate(glm::mat4(1.0f), glm::vec3(10, 0, 0));
     EXPECT_NEAR(gpu::headColliderContact(toGpu(e), head, glm::vec3(10, 1.5f, 0), 0.0f).depth, 0.5f, 1e-5f);
+}
+
+TEST(SimMath, TheQuickInsideTestLetsThroughEveryPointTheContactFindsInside)
+{
+    // The solvers skip a collider's contact where ellipsoidMayContain says no: that must never skip
+    // a point the contact puts inside (depth > 0), with or without a margin, however turned.
+    Ellipsoid e{.name = "e",
+                .center = glm::vec3(0.1f, -0.2f, 0.3f),
+                .radii = glm::vec3(2, 1, 0.5f),
+                .rotationDeg = glm::vec3(20, 35, -50)};
+    gpu::Ellipsoid g = toGpu(e);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> coord(-2.5f, 2.5f);
+    int inside = 0, skipped = 0;
+    for (int n = 0; n < 20000; ++n) {
+        glm::vec3 p(coord(rng), coord(rng), coord(rng));
+        for (float margin : {0.0f, 0.05f}) {
+            float depth = gpu::ellipsoidContact(g, p, margin).depth;
+            bool may = gpu::ellipsoidMayContain(g, p, margin);
+            if (depth > 0.0f) {
+                ++inside;
+                EXPECT_TRUE(may) << "skipped a point " << depth << " inside at margin " << margin;
+            }
+            if (!may)
+                ++skipped;
+        }
+    }
+    // Both kinds occur, so the test says something; most points of the box lie outside.
+    EXPECT_GT(inside, 1000);
+    EXPECT_GT(skipped, 20000);
 }
 
 TEST(SimMath, WindActsAcrossTheStrandOnly)

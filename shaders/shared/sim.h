@@ -248,6 +248,16 @@ GPU_FN Contact ellipsoidContact(Ellipsoid e, vec3 p, float margin)
     return c;
 }
 
+// False when p lies outside ellipsoid e grown by `margin` (|q|² >= 1 for ellipsoidContact's q, so
+// its depth is <= 0): the solvers skip the contact there, which is where most hair is. (Where the
+// GPU's square root rounds |q| just below 1, the contact would give a depth of a few units in the
+// last place; skipped, it gives none.)
+GPU_FN bool ellipsoidMayContain(Ellipsoid e, vec3 p, float margin)
+{
+    vec3 q = (transpose(mat3(e.rotation)) * (p - e.center)) / (e.radii + vec3(margin));
+    return dot(q, q) < 1.0f;
+}
+
 // A world-space point in the head's space, for a head posed by the rigid `head`.
 GPU_FN vec3 toHeadSpace(mat4 head, vec3 p)
 {

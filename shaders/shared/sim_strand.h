@@ -55,6 +55,10 @@ GPU_FN vec3 colliderPenalty(SIM_CONTEXT vec3 x, vec3 restHead)
     vec3 a = vec3(0.0f);
     vec3 local = toHeadSpace(step.headTransform, x);
     for (uint c = 0u; c < params.colliderCount; ++c) {
+        // Outside the shell (most hair) the depth is <= 0 <= allowed: no force, and neither the
+        // contact nor the rest pose's depth is worked out.
+        if (!ellipsoidMayContain(params.colliders[c], local, params.collisionMargin))
+            continue;
         Contact k = ellipsoidContact(params.colliders[c], local, params.collisionMargin);
         float allowed =
             clamp(restDepth(params.colliders[c], restHead) + params.collisionMargin, 0.0f, params.collisionMargin);
@@ -74,6 +78,8 @@ GPU_FN vec3 collidersPushOut(SIM_CONTEXT vec3 p)
 {
     vec3 local = toHeadSpace(step.headTransform, p);
     for (uint c = 0u; c < params.colliderCount; ++c) {
+        if (!ellipsoidMayContain(params.colliders[c], local, 0.0f))
+            continue;
         Contact k = ellipsoidContact(params.colliders[c], local, 0.0f);
         if (k.depth > 0.0f) {
             p += k.depth * (mat3(step.headTransform) * k.normal);
