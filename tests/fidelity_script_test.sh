@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# ctest Scripts.Fidelity: scripts/fidelity.sh end to end at the smallest size (one case, two
+# variants, 16 samples per pixel, 48 x 32) with the built wisp: the table has a row per variant,
+# fidelity.json one case with its measurements, the pictures are packed; and its bad input (a
+# missing binary or data, a bad number, a refused setting, an earlier run) exits 2 with a message
+# naming it and writes nothing.
+# Usage: tests/fidelity_script_test.sh PATH/TO/wisp
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+wisp="${1:?usage: fidelity_script_test.sh PATH/TO/wisp}"
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+failures=0
+fail() {
+  echo "FAILED: $*" >&2
+  failures=$((failures + 1))
+}
+
+# refused CASE_NAME EXPECTED_TEXT ARGS...: exit 2, the text on stderr, OUT_DIR not made.
+refused() {
+  local name="$1" text="$2"
+  shift 2
+  local status=0
+  "$@" >"$tmp/$name.out" 2>"$tmp/$name.err" || status=$?
+  [ $status = 2 ] || fail "$name: exit $status, not 2 ($(cat "$tmp/$name.err"))"
+  grep -qF -- "$text" "$tmp/$name.err" || fail "$name: stderr lacks '$text': $(cat "$tmp/$name.err")"
+  [ ! -e "$tmp/$name" ] || fail "$name: $tmp/$name was written"
+}
+small=(--grooms default --lights front --colours brown --guides 20 --set strands_per_guide=2 --frames 2
+  --width 48 --height 32 --spp 16)
+WISP="$tmp/no-such-wisp" refused missing-binary "the wisp binary $tmp/no-such-wisp is missing" \
+  "$root/scripts/fidelity.sh" "$tmp/missing-binary" "${small[@]}"
+WISP="$wisp" refused missing-data "Sintel's groom needs $tmp/nowhere/sintel/sintel.obj" \
+  "$root/scripts/fidelity.sh" "$tmp/missing-data" "$tmp/nowhere" --grooms sintel
+WISP="$wisp" refused bad-spp "--spp: '0' is not a whole number of at least 1" \
+  "$root/scripts/fidelity.sh" "$tmp/bad-spp" --spp 0
+WISP="$wisp" refused bad-light "--lights: 'side' is not one of: front back" \
+  "$root/scripts/fidelity.sh" "$tmp/bad-light" --lights front,side
+WISP="$wisp" refused bad-setting "--set shading=phong" \
+  "$root/scripts/fidelity.sh" "$tmp/bad-setting" "${small[@]}" --vary shading=karis,phong
+
+out="$tmp/run"
+start=$SECONDS
+status=0
+WISP="$wisp" "$root/scripts/fidelity.sh" "$out" "${small[@]}" --vary shading=karis,kajiya --no-terms 2>"$tmp/run.err" ||
+  status=$?
+[ $status = 0 ] || { cat "$tmp/run.err" >&2; fail "the run exited $status"; }
+echo "fidelity.sh took $((SECONDS - start)) s" >&2
+# The first table: its header, then a row per variant (the closest in bold).
+table="$(awk '/^\| case \| shading \| RMSE/ {on = 1} on && /^$/ {exit} on' "$out/fidelity.md")"
+rows="$(echo "$table" | tail -n +3 | sed 's/\*\*//g' | cut -d'|' -f2,3 | tr -d ' ')"
+[ "$rows" = "$(printf 'default-front-brown|karis\ndefault-front-brown|kajiya')" ] ||
+  fail "fidelity.md's table has these rows (case|shading), not karis and kajiya: $rows"
+echo "$table" | grep -q '^| \*\*default-front-brown\*\* | ' || fail "fidelity.md marks no closest variant"
+python3 - "$out/fidelity.json" <<'EOF' || fail "fidelity.json is not as expected"
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert [c["case"] for c in r["cases"]] == ["default-front-brown"], r["cases"]
+c = r["cases"][0]
+assert [v["settings"] for v in c["variants"]] == [{"shading": "karis"}, {"shading": "kajiya"}], c["variants"]
+for v in c["variants"]:
+    assert 0 < v["frame"]["rmse"] < 1 and 0 < v["hair"]["rmse"] < 1 and v["hair"]["pixels"] > 0, v
+assert c["reference"]["noise_levels"] > 0 and 0 < c["reference"]["second"]["frame"]["rmse"] < 1, c["reference"]
+assert r["packed"]["files"] > 0 and not r["packed"]["left_out"], r["packed"]
+EOF
+tar -tf "$out/fidelity-images.tar" | grep -qx 'default-front-brown/reference.png' ||
+  fail "fidelity-images.tar lacks the reference"
+if command -v ffmpeg >/dev/null; then
+  [ -s "$out/fidelity-default.png" ] && [ -s "$out/fidelity-default-all.png" ] || fail "no sheets"
+fi
+status=0
+WISP="$wisp" "$root/scripts/fidelity.sh" "$out" "${small[@]}" >"$tmp/again.out" 2>"$tmp/again.err" || status=$?
+[ $status = 2 ] && grep -qF -- "--overwrite replaces it" "$tmp/again.err" ||
+  fail "a second run into the same folder: exit $status, $(cat "$tmp/again.err")"
+[ $failures = 0 ] || exit 1
+echo "fidelity.sh: all checks passed"
