@@ -401,7 +401,11 @@ def markdown(result, cases, order, varied, case_axes):
         add("How much the hair's RMSE changes, on average, when one factor alone changes (every other one "
             "held), largest first: " + ", ".join(f"{k} {fmt(v)}" for k, v in effects) + ".")
         add("")
-    if any(v.get("pixels") for n in order for v in cases[n]["variants"]):
+    if not any(v.get("pixels") for n in order for v in cases[n]["variants"]):
+        add("The hair's error is not taken apart here (noise, offset, luminance): the python3 that ran "
+            "this lacks numpy or Pillow (PYTHON=path chooses another).")
+        add("")
+    else:
         add("The hair's error taken apart (numpy, on the pictures): the RMSE over the hair; the same with "
             "the references' noise taken out (the mean square difference of the two references, halved, "
             "subtracted); the share of the mean square error that the reference's noise is; the share "

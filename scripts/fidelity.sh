@@ -320,13 +320,15 @@ echo "fidelity: renders took $render_s s$([ $resume = 1 ] && echo ' (with --resu
 
 # ---- The measurements ----------------------------------------------------------------------------
 start=$SECONDS
-tail -n +2 "$manifest" | while IFS=$'\t' read -r kind case groom light colour term variant reference mask test; do
-  if ! "$wisp" compare "$test" "$reference" --mask "$mask" --out "${test%.png}-err.png" --json \
-    >"${test%.png}.json" 2>"${test%.png}-compare.log" </dev/null; then
-    echo "fidelity: compare failed: $(cat "${test%.png}-compare.log")" >&2
-    exit 1
-  fi
-done
+compare_one() {  # TEST.png REFERENCE.png NO_HAIR.png: wisp compare's JSON and error image beside TEST
+  "$wisp" compare "$1" "$2" --mask "$3" --out "${1%.png}-err.png" --json >"${1%.png}.json" \
+    2>"${1%.png}-compare.log" </dev/null ||
+    { echo "fidelity: compare failed: $(cat "${1%.png}-compare.log")" >&2; exit 255; }
+}
+export -f compare_one
+export wisp
+tail -n +2 "$manifest" | cut -f8-10 | tr '\t\n' '\0\0' |
+  xargs -0 -P "$jobs" -n 3 bash -c 'compare_one "$@"' _ || { echo "fidelity: a comparison failed" >&2; exit 1; }
 echo "fidelity: comparisons took $((SECONDS - start)) s" | tee -a "$log" >&2
 
 devices="$("$wisp" info 2>/dev/null | grep -i '^device [0-9]' | tr '\n' ';' || true)"
