@@ -327,8 +327,8 @@ compare_one() {  # TEST.png REFERENCE.png NO_HAIR.png: wisp compare's JSON and e
 }
 export -f compare_one
 export wisp
-tail -n +2 "$manifest" | cut -f8-10 | tr '\t\n' '\0\0' |
-  xargs -0 -P "$jobs" -n 3 bash -c 'compare_one "$@"' _ || { echo "fidelity: a comparison failed" >&2; exit 1; }
+awk -F'\t' 'NR > 1 {print $10; print $8; print $9}' "$manifest" |
+  xargs -d '\n' -P "$jobs" -n 3 bash -c 'compare_one "$@"' _ || { echo "fidelity: a comparison failed" >&2; exit 1; }
 echo "fidelity: comparisons took $((SECONDS - start)) s" | tee -a "$log" >&2
 
 devices="$("$wisp" info 2>/dev/null | grep -i '^device [0-9]' | tr '\n' ';' || true)"
