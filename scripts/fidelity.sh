@@ -219,7 +219,8 @@ if [ $overwrite = 1 ]; then
     "$out"/fidelity-*.png
 fi
 mkdir -p "$out/work"
-work="$(cd "$out/work" && pwd)"
+out="$(cd "$out" && pwd)"
+work="$out/work"
 log="$work/run.log"
 [ $resume = 1 ] || : >"$log"
 jobs_file="$work/jobs.txt"
@@ -371,7 +372,10 @@ for groom in "${groom_list[@]}"; do
     w=$thumb
     [ $kind = all ] && name="$out/fidelity-$groom-all.png" && w=$small
     case $sheet_tool in
-    ffmpeg) sheet_ffmpeg "${name%.png}.partial.png" "$w" "$rows" && mv "${name%.png}.partial.png" "$name" ;;
+    ffmpeg)
+      sheet_ffmpeg "${name%.png}.partial.png" "$w" "$rows"
+      mv "${name%.png}.partial.png" "$name"
+      ;;
     pillow) "$python" "$root/scripts/fidelity.py" sheet --rows "$rows" --width "$w" --out "$name" ;;
     none) ;;
     esac
@@ -383,6 +387,7 @@ if [ "$sheet_tool" = none ]; then
 fi
 
 # ---- The pictures, packed (the list is fidelity.py's: references first) --------------------------
-(cd "$work" && tar -cf "$out/fidelity-images.tar.partial" -T pack.txt) && mv "$out/fidelity-images.tar.partial" "$out/fidelity-images.tar"
+(cd "$work" && tar -cf "$out/fidelity-images.tar.partial" -T pack.txt)
+mv "$out/fidelity-images.tar.partial" "$out/fidelity-images.tar"
 cp "$log" "$out/fidelity.log"
 echo "fidelity: $out/fidelity.md, fidelity.json, fidelity-images.tar ($(du -k "$out/fidelity-images.tar" | cut -f1) KiB), sheets by $sheet_tool; $((SECONDS)) s in all" >&2
