@@ -183,8 +183,8 @@ std::vector<SettingSpec> buildSpecs()
     // ---- Growth: the groom generator (physics/growth.h), in the order of its steps ----
     auto grown = [&](SettingSpec spec, auto ref) { add(field(std::move(spec), ref)); };
     SettingSpec style = choice("hair_style", {}, kRestart, "--style",
-                               "a named style: sets every growth parameter below but the seed (custom: none of "
-                               "the styles' own)");
+                               "a named style: sets every growth parameter below but the seed, and the drawn "
+                               "strands' coil and divisions (custom: none of the styles' own)");
     for (const HairStyle& h : hairStyles())
         style.choices.push_back(h.name);
     style.choices.push_back("custom");
@@ -198,8 +198,13 @@ std::vector<SettingSpec> buildSpecs()
     };
     style.put = [](Settings& x, const SettingValue& v) {
         size_t i = size_t(v.number);
-        if (i < hairStyles().size())
-            applyHairStyle(x.growth, hairStyles()[i]); // "custom" keeps the parameters as they are
+        if (i < hairStyles().size()) { // "custom" keeps the parameters as they are
+            const HairStyle& h = hairStyles()[i];
+            applyHairStyle(x.growth, h);
+            x.render.strands.coilRadiusMetres = h.drawn.coilRadiusMetres;
+            x.render.strands.coilTurnsPerMetre = h.drawn.coilTurnsPerMetre;
+            x.render.strands.divisions = h.drawn.divisions;
+        }
     };
     add(style);
     grown(
@@ -391,6 +396,16 @@ std::vector<SettingSpec> buildSpecs()
     add(field(
         number("clump_radius", "m", {0.0, 0.1}, kLive, "", "radius of the disc single-strand interpolation fills"),
         [](Settings & x) -> auto& { return x.render.strands.clumpRadiusMetres; }));
+    add(field(
+        number("coil_radius", "m", {0.0, 0.01}, kLive, "",
+               "render-time coil: the radius of a helix about each drawn strand, finer than the guides' vertices "
+               "(0: none)"),
+        [](Settings & x) -> auto& { return x.render.strands.coilRadiusMetres; }));
+    add(field(
+        number("coil_frequency", "1/m", {0.0, 2000.0}, kLive, "",
+               "render-time coil: its turns per metre along the strand (a turn needs 6 of the divisions; with fewer "
+               "it fades out)"),
+        [](Settings & x) -> auto& { return x.render.strands.coilTurnsPerMetre; }));
     add(field(
         number("width", "m", {0.00001, 0.01}, kLive, "", "strand width at the root"),
         [](Settings & x) -> auto& { return x.render.strands.widthMetres; }));

@@ -80,14 +80,18 @@ std::array<HairStyle, 6> makeStyles()
     afro.flyaways = 0.0f;
     afro.globalStiffness = 0.05f;
     afro.localStiffness = 0.5f;
+    // Coils of 1 cm a turn, 4 mm across, drawn about the grown 2 cm curls: a guide's 32 vertices
+    // over 13 cm are 4 mm apart, too few for them. 96 divisions give a 13 cm strand's 13 turns 7
+    // points each.
+    StyleDrawing afroDrawn{.coilRadiusMetres = 0.002f, .coilTurnsPerMetre = 100.0f, .divisions = 96};
 
     return {{
-        {"bob", "chin-length A-line bob with a side parting (the default)", bob},
-        {"long", "long straight hair with a centre parting, over the shoulders", longHair},
-        {"wavy", "shoulder-length waves with a side parting", wavy},
-        {"crop", "a short crop combed back", crop},
-        {"bangs", "shoulder-length with a side parting and bangs over the forehead", bangs},
-        {"afro", "curly, coily afro-textured hair standing out in a rounded shape", afro},
+        {"bob", "chin-length A-line bob with a side parting (the default)", bob, StyleDrawing{}},
+        {"long", "long straight hair with a centre parting, over the shoulders", longHair, StyleDrawing{}},
+        {"wavy", "shoulder-length waves with a side parting", wavy, StyleDrawing{}},
+        {"crop", "a short crop combed back", crop, StyleDrawing{}},
+        {"bangs", "shoulder-length with a side parting and bangs over the forehead", bangs, StyleDrawing{}},
+        {"afro", "curly, coily afro-textured hair standing out in a rounded shape", afro, afroDrawn},
     }};
 }
 

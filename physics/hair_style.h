@@ -7,14 +7,25 @@
 #include "physics/growth.h"
 
 #include <array>
+#include <cstdint>
 #include <string_view>
 
 namespace wisp {
+
+// What a style asks of the drawing (the settings coil_radius, coil_frequency and divisions, which
+// `hair_style` sets with the growth): coils finer than the guides' vertices are drawn, not grown
+// (shaders/shared/strands.h coilAt), and need the divisions to draw them.
+struct StyleDrawing {
+    float coilRadiusMetres = 0.0f;
+    float coilTurnsPerMetre = 0.0f;
+    uint32_t divisions = 24; // the renderer's default (renderer/settings.h StrandSettings)
+};
 
 struct HairStyle {
     const char* name;
     const char* description;
     GrowthSettings growth; // every parameter but the seed
+    StyleDrawing drawn;
 };
 
 // bob (the default: GrowthSettings{}), long, wavy, crop, bangs, afro.

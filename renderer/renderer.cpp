@@ -207,6 +207,8 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
                                                                    : gpu::kInterpolationMixed;
     draw.clumpRadius = s.clumpRadiusMetres * unitsPerMetre_;
     draw.deviation = s.deviationMetres * unitsPerMetre_;
+    draw.coilRadius = s.coilRadiusMetres * unitsPerMetre_;
+    draw.coilFrequency = s.coilTurnsPerMetre / unitsPerMetre_;
     draw.width = s.widthMetres * unitsPerMetre_;
     draw.lodStrands = std::max(1.0f, float(counts.strandsPerGuide) * fraction);
     draw.lodWidthScale = std::sqrt(float(counts.strandsPerGuide) / draw.lodStrands);

@@ -48,6 +48,8 @@ struct StrandSettings {
     Interpolation interpolation = Interpolation::Mixed;
     float clumpRadiusMetres = 0.01f; // single-strand disc radius
     float deviationMetres = 0.012f;  // strength of random deviations
+    float coilRadiusMetres = 0.0f;   // render-time coil (shaders/shared/strands.h coilAt): helix radius
+    float coilTurnsPerMetre = 0.0f;  // its turns per metre along the strand
     float widthMetres = 0.0005f;     // ribbon width at the root
     bool lod = true;                 // fewer, wider strands with distance
     float lodMinFraction = 0.2f;     // LOD never draws fewer than this share of strands

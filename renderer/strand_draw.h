@@ -18,6 +18,8 @@ struct StrandDraw {
     uint32_t interpolation = 0;     // gpu::kInterpolation* (shaders/shared/strands.h)
     float clumpRadius = 0.0f;       // asset units
     float deviation = 0.0f;         // asset units
+    float coilRadius = 0.0f;        // render-time coil's helix radius, asset units (0: none)
+    float coilFrequency = 0.0f;     // its turns per asset unit of length
     float width = 0.0f;             // strand width at the root, asset units, before LOD's scale
     float lodStrands = 0.0f;        // strands per guide after LOD (continuous, <= S)
     float lodWidthScale = 1.0f;     // LOD's width multiplier

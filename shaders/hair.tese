@@ -63,7 +63,7 @@ void main()
         g2 = evaluateGuide(tri.z, t);
     }
     CurvePoint point = placeStrandPoint(g, g1, g2, guide, s, t, push.interpolation, push.clumpRadius, push.deviation,
-                                          guideLength(tri.w));
+                                          guideLength(tri.w), push.coilRadius, push.coilFrequency, push.divisions);
     vec3 p = point.position;
     // Every generated strand is kept out of the head's colliders: blends of two outside points,
     // and offsets across a guide lying on the scalp, would otherwise fall inside the head.

@@ -53,7 +53,7 @@ void main()
         g2 = guideCurve(tri.z, i);
     }
     CurvePoint point = placeStrandPoint(g, g1, g2, guide, s, t, push.interpolation, push.clumpRadius, push.deviation,
-                                          guideLength(tri.w));
+                                          guideLength(tri.w), push.coilRadius, push.coilFrequency, push.divisions);
     vec3 p = point.position;
     if (s != 0u)
         for (uint c = 0u; c < sim.colliderCount; ++c)

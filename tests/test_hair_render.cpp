@@ -77,8 +77,8 @@ TEST(StrandMath, AShortGuidesStrandsSpreadInProportionToItsLength)
         for (uint32_t guide = 0; guide < 50; ++guide)
             for (uint32_t s = 1; s < 64; ++s)
                 for (float t = 0.0f; t <= 1.0f; t += 0.05f) {
-                    gpu::CurvePoint p =
-                        gpu::placeStrandPoint(g, g, g, guide, s, t, gpu::kInterpolationMixed, 0.01f, 0.012f, length);
+                    gpu::CurvePoint p = gpu::placeStrandPoint(g, g, g, guide, s, t, gpu::kInterpolationMixed, 0.01f,
+                                                              0.012f, length, 0.0f, 0.0f, 24);
                     out = std::max(out, glm::length(p.position - g.position));
                 }
         return out;
@@ -134,6 +134,69 @@ TEST(StrandMath, DeviationsAreDeterministicAndAboutHalfTheStrands)
     // Roots stay where interpolation puts them.
     for (uint32_t s = 0; s < 4000; ++s)
         ASSERT_LT(gpu::deviationProfile(s / 40, s % 40, 0.0f), 0.07f);
+}
+
+// The render-time coil (shaders/shared/strands.h coilAt): a helix about the strand, its radius and
+// turns as set, each strand at its own phase, shaded along its own turn, and faded out when the
+// divisions are too few to draw a turn.
+TEST(StrandMath, TheRenderTimeCoilTurnsAtItsFrequencyAndRadius)
+{
+    // A straight guide 0.2 long hanging down (-y: the strand's frame is x and z), no clump and no
+    // deviation; the coil 3 mm around at 50 turns per unit length, 10 turns, drawn with 80 divisions.
+    const float length = 0.2f, radius = 0.003f, frequency = 50.0f;
+    const uint32_t divisions = 80;
+    auto point = [&](uint32_t s, float t, uint32_t d) {
+        gpu::CurvePoint g{glm::vec3(0.0f, -length * t, 0.0f), glm::vec3(0.0f, -length, 0.0f)};
+        gpu::CurvePoint p = gpu::placeStrandPoint(g, g, g, 5, s, t, gpu::kInterpolationSingle, 0.0f, 0.0f, length,
+                                                  radius, frequency, d);
+        return std::make_pair(p, p.position - g.position);
+    };
+    std::vector<float> startAngles;
+    for (uint32_t s : {0u, 3u, 17u}) {
+        float unwrapped = 0.0f, previous = 0.0f;
+        for (uint32_t i = 0; i <= divisions; ++i) {
+            float t = float(i) / float(divisions);
+            auto [p, offset] = point(s, t, divisions);
+            ASSERT_NEAR(offset.y, 0.0f, 1e-6f) << "the coil lies across the strand";
+            if (t * frequency * length >= 1.0f) // past the first turn, where it grows in
+                ASSERT_NEAR(glm::length(offset), radius, 1e-5f) << "strand " << s << ", point " << i;
+            else
+                ASSERT_LE(glm::length(offset), radius + 1e-6f);
+            float angle = std::atan2(offset.z, offset.x);
+            if (i == divisions / 2)
+                startAngles.push_back(angle);
+            if (i > divisions / 8) { // the phase is defined once the radius is
+                float step = angle - previous;
+                step -= 6.2831853f * std::round(step / 6.2831853f);
+                EXPECT_NEAR(step, 6.2831853f * frequency * length / float(divisions), 1e-3f);
+                unwrapped += step;
+            }
+            previous = angle;
+            // The tangent turns with the helix: along the drawn points' own direction.
+            if (i > 0 && i < divisions) {
+                glm::vec3 chord = point(s, float(i + 1) / float(divisions), divisions).first.position -
+                                  point(s, float(i - 1) / float(divisions), divisions).first.position;
+                EXPECT_GT(glm::dot(p.tangent, glm::normalize(chord)), 0.97f) << "strand " << s << ", point " << i;
+                EXPECT_NEAR(glm::length(p.tangent), 1.0f, 1e-5f);
+            }
+        }
+        // The turns as set over the points measured (all but the first eighth).
+        EXPECT_NEAR(unwrapped / 6.2831853f, frequency * length * float(divisions - divisions / 8) / float(divisions),
+                    0.01f);
+    }
+    EXPECT_GT(std::abs(startAngles[0] - startAngles[1]), 0.05f) << "strands coil at phases of their own";
+    EXPECT_GT(std::abs(startAngles[1] - startAngles[2]), 0.05f);
+    // Ten turns in 30 divisions are 3 points a turn: a zigzag, so no coil at all; nor at radius 0.
+    for (float t = 0.0f; t <= 1.0f; t += 0.05f) {
+        EXPECT_EQ(glm::length(point(3, t, 30).second), 0.0f);
+        gpu::CurvePoint g{glm::vec3(0.0f, -length * t, 0.0f), glm::vec3(0.0f, -length, 0.0f)};
+        EXPECT_EQ(gpu::placeStrandPoint(g, g, g, 5, 3, t, gpu::kInterpolationSingle, 0.0f, 0.0f, length, 0.0f,
+                                        frequency, divisions)
+                      .position,
+                  g.position);
+    }
+    // At the root the strand leaves its follicle: no offset.
+    EXPECT_EQ(glm::length(point(3, 0.0f, divisions).second), 0.0f);
 }
 
 TEST(StrandMath, LodFadesTheLastStrandInstead)

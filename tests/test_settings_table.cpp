@@ -275,3 +275,24 @@ TEST(SettingsTable, SettingsListsEveryNameWithWhatAChangeNeeds)
     for (const auto& entry : json)
         EXPECT_TRUE(entry.contains("default") && entry.contains("change") && entry.contains("help")) << entry.dump();
 }
+
+// hair_style sets what a style asks of the drawing with its growth: the afro's coils, finer than its
+// guides' vertices, with the divisions to draw them; a straight style sets them back.
+TEST(SettingsTable, AStyleSetsItsDrawnCoilAndTheDivisionsToDrawIt)
+{
+    Settings s;
+    applySetting(s, "hair_style=afro");
+    const StrandSettings& drawn = s.render.strands;
+    EXPECT_GT(drawn.coilRadiusMetres, 0.0f);
+    EXPECT_GT(drawn.coilTurnsPerMetre, 0.0f);
+    float turn = 1.0f / drawn.coilTurnsPerMetre;
+    float segment = s.growth.lengthMetres / float(s.growth.verticesPerStrand - 1);
+    EXPECT_LT(turn, 3.0f * segment) << "a coil the guides' vertices could hold needs no drawing";
+    float pointsPerTurn = float(drawn.divisions) / (s.growth.lengthMetres * drawn.coilTurnsPerMetre);
+    EXPECT_GE(pointsPerTurn, 6.0f) << "the style's own strands are drawn at the coil's full radius";
+    EXPECT_EQ(settingText(settingSpec("hair_style"), settingSpec("hair_style").get(s)), "afro");
+
+    applySetting(s, "hair_style=bob");
+    EXPECT_EQ(s.render.strands.coilRadiusMetres, 0.0f);
+    EXPECT_EQ(s.render.strands.divisions, StrandSettings{}.divisions);
+}

@@ -334,6 +334,41 @@ TEST(StrandRaster, CameraKernelsMatchTheirCpuTwin)
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 
+// The render-time coil (shaders/shared/strands.h coilAt) in strands.generate as in its twin, and it
+// moves the drawn strands: about its radius on screen against the same frame without it.
+TEST(StrandRaster, TheRenderTimeCoilIsGeneratedAsItsTwinGeneratesIt)
+{
+    vk::Context ctx(test::validatedOptions());
+    HairScene scene = test::smallHairScene(60);
+    RenderSettings s = test::smallRenderSettings();
+    s.shadows.enabled = false; // the twin shades with the light unoccluded
+    s.strands.divisions = 64;  // the bob's 20 to 30 cm: 8 to 12 turns at 40 a metre, 5 points a turn or more
+    RasterFrame straight = renderRasterFrame(ctx, scene, s);
+    s.strands.coilRadiusMetres = 0.003f;
+    s.strands.coilTurnsPerMetre = 40.0f;
+    RasterFrame coiled = renderRasterFrame(ctx, scene, s);
+    EXPECT_GT(coiled.camera.coilRadius, 0.0f);
+    reference::StrandVertices gpuStrands = coiled.strands(false);
+    expectSameStrands(
+        gpuStrands,
+        reference::generateStrands(coiled.camera, coiled.frame, coiled.sim, coiled.guides, coiled.triangles), true);
+    reference::StrandVertices before = straight.strands(false);
+    ASSERT_EQ(before.positions.size(), gpuStrands.positions.size());
+    // 3 mm at this framing (about 4 mm a pixel: the bust's 0.6 m in 150 rows) is 0.75 pixels across
+    // the view, less where the helix turns along it.
+    double moved = 0.0;
+    size_t count = 0;
+    for (size_t i = 0; i < before.positions.size(); ++i)
+        if (before.positions[i].w > 0.0f && gpuStrands.positions[i].w > 0.0f) {
+            moved += glm::length(glm::vec2(gpuStrands.positions[i]) - glm::vec2(before.positions[i]));
+            ++count;
+        }
+    ASSERT_GT(count, 1000u);
+    EXPECT_GT(moved / double(count), 0.25) << "pixels, on average";
+    EXPECT_LT(moved / double(count), 1.5);
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
 TEST(StrandRaster, ThePiecesKernelMatchesItsCpuTwin)
 {
     // strands.pieces from the GPU's own scan, with the buffer held to a quarter of the frame's
@@ -592,6 +627,12 @@ INSTANTIATE_TEST_SUITE_P(
         EquivalenceCase{"grown", [](RenderSettings&) {}},
         EquivalenceCase{"single", [](RenderSettings& s) { s.strands.interpolation = Interpolation::Single; }},
         EquivalenceCase{"multi", [](RenderSettings& s) { s.strands.interpolation = Interpolation::Multi; }},
+        EquivalenceCase{"coiled",
+                        [](RenderSettings& s) {
+                            s.strands.divisions = 64;
+                            s.strands.coilRadiusMetres = 0.003f;
+                            s.strands.coilTurnsPerMetre = 40.0f;
+                        }},
         EquivalenceCase{"kajiya", [](RenderSettings& s) { s.hair.model = ShadingModel::Kajiya; }},
         EquivalenceCase{"lut", [](RenderSettings& s) { s.hair.model = ShadingModel::Lut; }},
         EquivalenceCase{"backlit",

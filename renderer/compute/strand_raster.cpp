@@ -257,6 +257,8 @@ void StrandRaster::prepare(FrameContext& frame, const StrandDraw& cameraDraw, co
         r.interpolation = d.interpolation;
         r.clumpRadius = d.clumpRadius;
         r.deviation = d.deviation;
+        r.coilRadius = d.coilRadius;
+        r.coilFrequency = d.coilFrequency;
         r.width = d.width * d.lodWidthScale;
         r.lodStrands = d.lodStrands;
         r.oitK = options.oitK;

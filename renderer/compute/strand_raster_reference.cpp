@@ -63,7 +63,8 @@ DrawnStrands placeStrands(const gpu::StrandRasterPush& push, const gpu::FramePar
             g2 = curves[size_t(triangles[guide].z) * perStrand + i];
         }
         gpu::CurvePoint point = gpu::placeStrandPoint(g, g1, g2, guide, s, t, push.interpolation, push.clumpRadius,
-                                                      push.deviation, gpu::guideLength(triangles[guide].w));
+                                                      push.deviation, gpu::guideLength(triangles[guide].w),
+                                                      push.coilRadius, push.coilFrequency, push.divisions);
         glm::vec3 p = point.position;
         if (s != 0)
             for (uint32_t c = 0; c < sim.colliderCount; ++c)

@@ -138,6 +138,8 @@ void HairPass::setDraw(const StrandDraw& camera, const StrandDraw& light, const 
         p.interpolation = d.interpolation;
         p.clumpRadius = d.clumpRadius;
         p.deviation = d.deviation;
+        p.coilRadius = d.coilRadius;
+        p.coilFrequency = d.coilFrequency;
         p.width = d.width;
         p.lodStrands = d.lodStrands;
         p.lodWidthScale = d.lodWidthScale;

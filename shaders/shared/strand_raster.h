@@ -113,6 +113,8 @@ struct StrandRasterPush {
     uint scanBlocks;       // ceil((pixels + 1) / kRasterScanBlock)
     uint oitK;             // nearest fragments kept sorted (the resolve's specialization constant)
     uint piece;            // the piece strands.write and strands.resolve draw; strands.pieces: how many are recorded
+    float coilRadius;      // render-time coil (strands.h coilAt): helix radius, asset units (0: none)
+    float coilFrequency;   // its turns per asset unit of length along the strand
 };
 
 // What the kernels count, copied back to the host each frame.
@@ -577,7 +579,7 @@ GPU_NAMESPACE_END
 
 #ifdef __cplusplus
 // The layouts GLSL gives these blocks, checked where they are defined (C++ only).
-static_assert(sizeof(gpu::StrandRasterPush) == 80, "StrandRasterPush must fit the 128 bytes of push constants");
+static_assert(sizeof(gpu::StrandRasterPush) == 88, "StrandRasterPush must fit the 128 bytes of push constants");
 static_assert(sizeof(gpu::RasterCounters) == 32);
 static_assert(sizeof(gpu::RasterPiece) == 48 && offsetof(gpu::RasterPiece, walkGroups) == 16 &&
                   offsetof(gpu::RasterPiece, resolveGroups) == 32,

@@ -3,7 +3,8 @@
 // C1 cubic Bezier segments from the guide polyline (uniform Catmull-Rom tangents), strands around
 // a guide (single-strand interpolation: a tapered disc, i.e. clumps) or between three guides
 // (multi-strand interpolation, barycentric, Nalu), random deviations (Rapp 2014's five profiles),
-// and continuous level of detail. (The shading models are in hair_shading.h.)
+// render-time coils finer than the simulated vertices, and continuous level of detail. (The
+// shading models are in hair_shading.h.)
 // Conventions: world space in the head's units; t in [0, 1] runs root to tip.
 #ifndef WISP_SHARED_STRANDS_H
 #define WISP_SHARED_STRANDS_H
@@ -59,9 +60,9 @@ struct HairPush {
     float lodWidthScale;    // width multiplier from LOD (keeps coverage as strands thin out)
     float minPixelWidth;    // ribbons narrower than this are widened, alpha scaled by coverage
     uint reverseOrder;      // 1: draw guides and strand chunks last to first (order-independence tests)
-    float pad1;
-    float pad2;
-    vec4 reserved0; // (free: the hair's look lives in FrameParams.hair)
+    float coilRadius;       // render-time coil's helix radius, asset units (0: none; coilOffset)
+    float coilFrequency;    // its turns per asset unit of length along the strand
+    vec4 reserved0;         // (free: the hair's look lives in FrameParams.hair)
     vec3 reserved1;
     uint samples; // MSAA samples of the target (for the coverage mask)
 };
@@ -218,16 +219,71 @@ GPU_FN float deviationAngle(uint guide, uint s)
     return 6.2831853f * hashToUnit(hashUint(guide * 613u + s * 7727u + 55u));
 }
 
+// ---- Render-time coils --------------------------------------------------------------------------
+// Tight coils (afro-textured hair: 4 to 15 mm a turn) are finer than a guide's simulated vertices
+// can hold (the afro's 32 over 13 cm, 4 mm apart), so the drawing adds them: a helix about the
+// placed strand, `radius` around it (asset units), `frequency` turns per asset unit of length along
+// it, each strand at a phase of its own (coils of one clump do not turn in step). Lengths along the
+// strand are t x the guide's rest length (guides keep their length within a fraction of a percent).
+// A turn drawn with fewer than about 5 of the strand's D + 1 points is a zigzag, not a coil, so the
+// helix fades out between 6 and 4 points a turn (set the divisions with the frequency); and it
+// grows in over its first turn from the root, so the root stays on its follicle.
+struct CoilShape {
+    float radius;  // the helix's radius at t, asset units (0: no coil here)
+    float angular; // its phase's rate, radians per asset unit of length
+    float phase;   // its phase at t, radians
+};
+
+// smoothstep, which the C++ prelude does not map.
+GPU_FN float coilFade(float e0, float e1, float x)
+{
+    float u = clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
+    return u * u * (3.0f - 2.0f * u);
+}
+
+GPU_FN CoilShape coilAt(uint guide, uint s, float t, float radius, float frequency, float guideLength, uint divisions)
+{
+    CoilShape c;
+    float turns = frequency * guideLength;
+    c.angular = 6.2831853f * frequency;
+    c.phase = 6.2831853f * (turns * t + hashToUnit(hashUint(guide * 2971u + s * 5087u + 29u)));
+    c.radius = 0.0f;
+    if (radius > 0.0f && turns > 0.0f) {
+        float pointsPerTurn = float(divisions) / turns;
+        c.radius = radius * coilFade(4.0f, 6.0f, pointsPerTurn) * coilFade(0.0f, 1.0f, turns * t);
+    }
+    return c;
+}
+
+// The coil's offset from the strand's point, in the strand's frame f (strandFrame: f[1], f[2]
+// perpendicular to the tangent).
+GPU_FN vec3 coilOffset(CoilShape c, mat3 f)
+{
+    return c.radius * (cos(c.phase) * f[1] + sin(c.phase) * f[2]);
+}
+
+// The coiled strand's unit tangent: the strand's T plus the helix's turn, d(offset)/ds =
+// radius x angular x (-sin f1 + cos f2) (the frame's own turn and the radius' fade left out), so
+// the coils are shaded as coils, their highlights turning with them.
+GPU_FN vec3 coilTangent(CoilShape c, mat3 f)
+{
+    vec3 turn = c.radius * c.angular * (-sin(c.phase) * f[1] + cos(c.phase) * f[2]);
+    return normalize(f[0] + turn);
+}
+
 // Point t of strand s of `guide`, before it is pushed out of the colliders: `g` is the guide's curve
 // at t, `g1` and `g2` its two neighbours' (read only by multi-strand interpolation). A multi strand
 // blends the three with barycentric weights; a single strand is offset in the guide's clump disc;
-// then the random deviation. A short guide (`guideLength`, its rest length) takes a clump disc of at
-// most a fifteenth of its length and a deviation of at most a twelfth (a crop's 5 cm strands under
-// the 1 cm disc and 1.2 cm deviations for long hair were drawn as fuzz). Returns the position and
-// the unit tangent. The tessellation path (hair.tese) and the compute path (strands_generate.comp)
+// then the random deviation, then the render-time coil (coilAt: `coilRadius` around, at most a
+// fifteenth of the guide's length, `coilFrequency` turns per unit length, drawn with `divisions`
+// segments). A short guide (`guideLength`, its rest length) takes a clump disc of at most a
+// fifteenth of its length and a deviation of at most a twelfth (a crop's 5 cm strands under the
+// 1 cm disc and 1.2 cm deviations for long hair were drawn as fuzz). Returns the position and the
+// unit tangent. The tessellation path (hair.tese) and the compute path (strands_generate.comp)
 // both place their strands with this.
 GPU_FN CurvePoint placeStrandPoint(CurvePoint g, CurvePoint g1, CurvePoint g2, uint guide, uint s, float t,
-                                   uint interpolation, float clumpRadius, float deviation, float guideLength)
+                                   uint interpolation, float clumpRadius, float deviation, float guideLength,
+                                   float coilRadius, float coilFrequency, uint divisions)
 {
     clumpRadius = min(clumpRadius, guideLength / 15.0f);
     deviation = min(deviation, guideLength / 12.0f);
@@ -247,9 +303,10 @@ GPU_FN CurvePoint placeStrandPoint(CurvePoint g, CurvePoint g1, CurvePoint g2, u
     }
     float a = deviationAngle(guide, s);
     p += deviation * deviationProfile(guide, s, t) * (cos(a) * f[1] + sin(a) * f[2]);
+    CoilShape coil = coilAt(guide, s, t, min(coilRadius, guideLength / 15.0f), coilFrequency, guideLength, divisions);
     CurvePoint placed;
-    placed.position = p;
-    placed.tangent = T;
+    placed.position = p + coilOffset(coil, f);
+    placed.tangent = coil.radius > 0.0f ? coilTangent(coil, f) : T;
     return placed;
 }
 
