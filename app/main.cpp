@@ -1,5 +1,5 @@
-// app/main.cpp: the wisp executable; everything happens in app/cli.cpp.
-#include "app/cli.h"
+// app/main.cpp: the wisp executable; everything happens in app/commands/cli.cpp.
+#include "app/commands/cli.h"
 
 int main(int argc, char** argv)
 {

@@ -1,7 +1,7 @@
 // physics/hair_scene.h: a head with its hair, ready to simulate: the head and its colliders (from
 // its description, or fitted to the mesh), the scalp rule, the guide strands (grown, or loaded from
-// hair files in parts) and the scene's scale. Every command builds one (app/hair_source.h) and
-// runs it in a hair session (app/hair_session.h).
+// hair files in parts) and the scene's scale. Every command builds one (app/settings/hair_source.h) and
+// runs it in a hair session (app/session/hair_session.h).
 #pragma once
 
 #include "assets/hair_asset.h"

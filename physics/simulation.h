@@ -1,5 +1,5 @@
 // physics/simulation.h: what a simulation run is configured with (the settings, with units and
-// defaults; their ranges are the settings table's, app/settings_table.cpp), how it packs into the
+// defaults; their ranges are the settings table's, app/settings/settings_table.cpp), how it packs into the
 // GPU's SimParams and per-step SimStep, the state both solvers advance, and the quality metrics
 // `wisp simulate` reports.
 #pragma once

@@ -1,5 +1,5 @@
 // renderer/settings.h: the render settings as plain structs with units and defaults; their names,
-// ranges and help for people are the settings table's (app/settings_table.cpp), and pack() in
+// ranges and help for people are the settings table's (app/settings/settings_table.cpp), and pack() in
 // renderer.cpp turns them into the GPU's FrameParams.
 #pragma once
 
@@ -103,7 +103,7 @@ enum class HairRaster { Graphics, Compute, Auto };
 
 // What hair_raster=auto draws with on a device of this type: compute, the faster on every device
 // measured (README, "Two ways to draw strands": the H100 8 to 23 times, lavapipe about 19 times,
-// whatever the workload). Here, not in renderer.cpp, so that the workload's memory (app/workload.cpp,
+// whatever the workload). Here, not in renderer.cpp, so that the workload's memory (app/settings/workload.cpp,
 // without a device) counts the path that will draw.
 constexpr HairRaster resolveHairRaster(HairRaster setting, VkPhysicalDeviceType deviceType)
 {

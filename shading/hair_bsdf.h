@@ -24,7 +24,7 @@ using Attenuations = std::array<glm::vec3, kPMax + 1>;
 // What the parameters may be (anything else throws UserError naming the parameter and range).
 // beta_m and beta_n stop at 0.01: at 0 the longitudinal variance and the logistic scale are 0
 // and the lobes become Dirac deltas, which this (non-delta) BSDF cannot represent.
-// The look's settings (app/settings_table.cpp) take the same ranges.
+// The look's settings (app/settings/settings_table.cpp) take the same ranges.
 inline constexpr Range kHRange{-1.0, 1.0};
 inline constexpr Range kEtaRange{1.0, 4.0};
 inline constexpr Range kBetaRange{0.01, 1.0};

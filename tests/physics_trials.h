@@ -5,8 +5,8 @@
 // its two seconds of steps and the worst of its metrics.
 #pragma once
 
-#include "app/hair_source.h"
-#include "app/settings_table.h"
+#include "app/settings/hair_source.h"
+#include "app/settings/settings_table.h"
 #include "physics/colliders.h"
 #include "physics/hair_scene.h"
 #include "physics/hair_style.h"

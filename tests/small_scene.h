@@ -2,7 +2,7 @@
 // default head, a 200 x 150 picture with a 512² shadow map and light strands, rendered offscreen.
 #pragma once
 
-#include "app/headless.h"
+#include "app/session/headless.h"
 #include "assets/head.h"
 #include "physics/gpu_solver.h"
 #include "physics/hair_scene.h"

@@ -3,8 +3,8 @@
 // writes the error image, and every bad input (a missing file, not a PNG, sizes that differ, a mask
 // with no hair, an output that cannot be written) ends with one line naming it, exit status 2 and
 // no file written.
-#include "app/image_compare.h"
-#include "app/image_io.h"
+#include "app/image/image_compare.h"
+#include "app/image/image_io.h"
 #include "cli_support.h"
 
 #include <gtest/gtest.h>

@@ -1,8 +1,8 @@
 // tests/test_hair_look.cpp: the hair's look in the renderer: presets in order of darkness, every
 // shading model renders (and differently), blonde renders lighter than black, backlit hair glows
 // (light transmitted through the fibres, TT), bad look settings are refused.
-#include "app/headless.h"
-#include "app/settings_table.h"
+#include "app/session/headless.h"
+#include "app/settings/settings_table.h"
 #include "core/error.h"
 #include "gpu/frame.h"
 #include "physics/hair_scene.h"

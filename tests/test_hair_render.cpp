@@ -2,7 +2,7 @@
 // C1 joints, interpolation weights, deterministic deviations); the pipeline-statistics counts the
 // settings imply, across the 64 limits; rendered images: coverage of the scalp region, a
 // horizontal strand visible, determinism, more strands covering more pixels.
-#include "app/headless.h"
+#include "app/session/headless.h"
 #include "gpu/frame.h"
 #include "physics/colliders.h"
 #include "physics/hair_scene.h"

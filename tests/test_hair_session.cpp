@@ -1,8 +1,8 @@
 // tests/test_hair_session.cpp: the hair session every front end runs: steps posed by a scene's
 // timeline at their end, the solver rebuilt only when what it packs changes, and its kernels
 // reloaded (F5). Its clock is tested in test_sim_cpu.cpp.
-#include "app/hair_session.h"
-#include "app/headless.h"
+#include "app/session/hair_session.h"
+#include "app/session/headless.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

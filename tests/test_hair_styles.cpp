@@ -1,7 +1,7 @@
 // tests/test_hair_styles.cpp: every named style (physics/hair_style.h) on the GPU (lavapipe in CI),
 // small: two seconds at rest keep the invariants and the style's shape, a turning head with the
 // sphere pushed through the hair keeps it on the head, and each style renders with validation on.
-#include "app/simulate.h"
+#include "app/session/simulate.h"
 #include "physics/hair_scene.h"
 #include "physics/hair_style.h"
 #include "small_scene.h"

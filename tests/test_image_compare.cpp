@@ -1,10 +1,10 @@
-// tests/test_image_compare.cpp: app/image_compare.h and PNG reading (app/image_io.h) on the CPU: the
+// tests/test_image_compare.cpp: app/image/image_compare.h and PNG reading (app/image/image_io.h) on the CPU: the
 // metrics against cases computed by hand (identical images, a constant offset, constant images'
 // SSIM), SSIM falling for shifted and noised copies, a mask restricting every metric, the hair's
 // mask from a frame without hair, the error image's colour map ordered by lightness, and PNG input's
 // bad files.
-#include "app/image_compare.h"
-#include "app/image_io.h"
+#include "app/image/image_compare.h"
+#include "app/image/image_io.h"
 #include "core/error.h"
 #include "tests/test_support.h"
 

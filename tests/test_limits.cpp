@@ -3,9 +3,9 @@
 // wind, offset and per-part values; loaded hair too large for floats once placed; the workload's 32-bit counts, and its
 // GPU memory estimated and checked against a device before anything is allocated. (The same through the real binary:
 // test_cli.cpp, BadInput.*.)
-#include "app/hair_source.h"
-#include "app/settings_table.h"
-#include "app/workload.h"
+#include "app/settings/hair_source.h"
+#include "app/settings/settings_table.h"
+#include "app/settings/workload.h"
 #include "core/error.h"
 #include "gpu/context.h"
 #include "physics/hair_scene.h"

@@ -2,7 +2,7 @@
 // GPU (lavapipe in CI) through the same loop as `wisp simulate`: stretch, penetration, root drift
 // and resets over 1,000 steps; coming to rest; the sphere pushing hair aside and the hair
 // recovering; a head turn followed with inertia; a styled groom keeping its shape.
-#include "app/simulate.h"
+#include "app/session/simulate.h"
 #include "physics/hair_scene.h"
 #include "test_support.h"
 

@@ -2,7 +2,7 @@
 // same frames (and a video), outputs checked before any work, an earlier run's folder refused (or
 // overwritten when asked, never mixed), the contact sheet's every frame numbered, and a lost device
 // that keeps the frames written, each complete.
-#include "app/record.h"
+#include "app/session/record.h"
 #include "cli_support.h"
 
 #include <gtest/gtest.h>

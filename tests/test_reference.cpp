@@ -3,7 +3,7 @@
 // tracer's kernel against its CPU twin over the same shared header, pixel by pixel; the same
 // picture for the same seed; the error against a many-sample picture falling as 1/sqrt(samples);
 // and `wisp render --reference`'s bad input and a render stopped midway.
-#include "app/reference_render.h"
+#include "app/session/reference_render.h"
 #include "cli_support.h"
 #include "fiber_bsdf_cases.h"
 #include "gpu/compute_stage.h"

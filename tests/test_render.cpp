@@ -1,7 +1,7 @@
 // tests/test_render.cpp: the head rendered offscreen on the real device with validation on:
 // deterministic, covering a plausible part of the frame, brighter on the light's side, the
 // same through the single-sample path, and the same in any units (no z-fighting in centimetres).
-#include "app/headless.h"
+#include "app/session/headless.h"
 #include "assets/head.h"
 #include "shaders/shared/frame_params.h"
 #include "shaders/shared/mesh_raster.h"

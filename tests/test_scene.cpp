@@ -2,7 +2,7 @@
 // timeline's values by hand (linear and smoothstep, held before the first and after the last key,
 // each channel between its own keys), the posed camera, the shipped scenes,
 // and every validation error naming the file and the value's JSON pointer.
-#include "app/scene.h"
+#include "app/scene/scene.h"
 #include "assets/text.h"
 #include "core/error.h"
 #include "test_support.h"
@@ -552,7 +552,7 @@ TEST(SceneErrors, OutOfRangeValuesNameTheRange)
     expect(R"({"hair": {"guides": 0}})", "/hair/guides: 0 is out of range: allowed 1 .. 2000000");
     expect(R"({"hair": {"vertices": 65}})", "/hair/vertices: 65 is out of range: allowed 4 .. 64");
     expect(R"({"hair": {"vertices_per_strand": 3}})", "/hair/vertices_per_strand: 3 is out of range: allowed 4 .. 64");
-    // Numbers read the same way everywhere (app/value_text.h): the value as written, in full.
+    // Numbers read the same way everywhere (app/settings/value_text.h): the value as written, in full.
     expect(R"({"keys": [{"time": 0, "head_yaw": 80.123456789012}]})",
            "/keys/0/head_yaw: 80.123456789012 is out of range: allowed -80 .. 80 degrees");
     expect(R"({"hair": {"hair_length": 2.123456789012}})",

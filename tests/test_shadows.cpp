@@ -2,7 +2,7 @@
 // opacity layers; on the device: shadows darken the head and never brighten anything, the side
 // away from the light is darker, the deep opacity layers hold the hair and their transmittance
 // falls with depth, the OIT result does not depend on draw order, and a full pool is counted.
-#include "app/headless.h"
+#include "app/session/headless.h"
 #include "gpu/context.h"
 #include "gpu/frame.h"
 #include "gpu/pipeline.h"

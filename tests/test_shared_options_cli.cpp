@@ -1,5 +1,5 @@
 // tests/test_shared_options_cli.cpp: the head, hair, physics and settings options render,
-// record, view, simulate and sweep share (app/session_options.h), through the real binary: values
+// record, view, simulate and sweep share (app/scene/session_options.h), through the real binary: values
 // out of range or not finite, --set, broken and missing files, per-part parameters, and workloads
 // refused before anything is built.
 #include "cli_support.h"

@@ -2,7 +2,7 @@
 // against hand-computed values, the CPU reference on a hand-checked step, the CPU reference on a
 // grown groom (every term: wind, the sphere, colliders, the grid) keeping its invariants, the
 // fixed-point grid's scale, and root sampling. (The GPU kernels against it: test_physics.cpp.)
-#include "app/settings_table.h"
+#include "app/settings/settings_table.h"
 #include "core/error.h"
 #include "physics/colliders.h"
 #include "physics/cpu_solver.h"

@@ -4,9 +4,9 @@
 // against the tessellation path on the same scenes (how much the hair changes each 8 x 8 block
 // correlates, and adds up to about the same), determinism, and a fragment buffer that overflows,
 // is counted and grows.
-#include "app/hair_source.h"
-#include "app/headless.h"
-#include "app/workload.h"
+#include "app/session/headless.h"
+#include "app/settings/hair_source.h"
+#include "app/settings/workload.h"
 #include "gpu/frame.h"
 #include "gpu/pipeline.h"
 #include "physics/gpu_solver.h"

@@ -2,7 +2,7 @@
 // is the vertical gradient frameBackground says, the fill lights the key's shadowed side, the rim
 // brightens the hair's silhouette more than its inside (the occlusion that stands in for its
 // shadow), and the default camera frames a head-and-shoulders portrait that the hair fills.
-#include "app/headless.h"
+#include "app/session/headless.h"
 #include "assets/head.h"
 #include "shaders/shared/frame_params.h"
 #include "shaders/shared/mesh_raster.h"

@@ -1,7 +1,7 @@
 // tests/test_sweep_cli.cpp: `wisp sweep` through the real binary: a tiny grid's CSV and charts,
 // the pass columns of both ways of drawing hair, and --vary values checked before anything is
 // written.
-#include "app/sweep.h"
+#include "app/session/sweep.h"
 #include "cli_support.h"
 #include "groom_files.h"
 
