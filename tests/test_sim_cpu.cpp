@@ -1,7 +1,7 @@
 // tests/test_sim_cpu.cpp: the simulation without a device: the shared math (shaders/shared/sim.h)
 // against hand-computed values, the CPU reference on a hand-checked step, the CPU reference on a
 // grown groom (every term: wind, the sphere, colliders, the grid) keeping its invariants, the
-// fixed-point grid's scale, and root sampling. (The GPU kernels against it: test_physics.cpp.)
+// fixed-point grid's scale, and root sampling. (The GPU kernels against it: test_gpu_solver.cpp.)
 #include "app/settings/settings_table.h"
 #include "core/error.h"
 #include "physics/colliders.h"

@@ -4,7 +4,7 @@
 // unstretched, goes no deeper into the head's colliders than its rest pose does plus the default
 // margin, keeps its kinetic energy within a bound set by the defaults' run, settles once the head
 // stops, and each value really reaches the solver. (The GPU against the CPU on a handful of them:
-// test_physics.cpp, GpuSolver.StabilityTrialsMatchTheCpu.)
+// test_gpu_solver.cpp, GpuSolver.StabilityTrialsMatchTheCpu.)
 #include "assets/head.h"
 #include "physics/colliders.h"
 #include "physics/cpu_solver.h"

@@ -1,4 +1,4 @@
-// tests/test_bsdf.cpp: the reference hair BSDF (shading/hair_bsdf.h): energy conservation (white
+// tests/test_hair_bsdf.cpp: the reference hair BSDF (shading/hair_bsdf.h): energy conservation (white
 // furnace, uniform and importance-sampled), sampling consistent with the pdf, the pdf normalised,
 // the symmetries that hold, hand-computed values of its pieces and of the melanin and colour
 // mappings, and bad parameters.

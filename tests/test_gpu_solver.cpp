@@ -1,4 +1,4 @@
-// tests/test_physics.cpp: the simulation on the GPU: the kernels against the CPU reference on
+// tests/test_gpu_solver.cpp: the simulation on the GPU: the kernels against the CPU reference on
 // awkward sizes, the grid's sums, and resets of non-finite strands. (The shared math, the CPU
 // reference by hand and root sampling are CPU tests: test_sim_cpu.cpp.)
 #include "core/error.h"
