@@ -1,10 +1,11 @@
 // fuzz/fuzz_scene.cpp: libFuzzer target of the scene parser (parseScene: the JSON, then every
 // value checked): the input is the whole file. A scene it returns must hold only finite values
-// within the ranges app/scene/scene.h and the settings table document, agree with itself (increasing
-// key times, grown or loaded hair), give finite channels at any time, and save and read back the same.
+// within the ranges app/scene/scene_file.h, app/scene/scene_timeline.h and the settings table
+// document, agree with itself (increasing key times, grown or loaded hair), give finite channels
+// at any time, and save and read back the same.
 #include "fuzz_support.h"
 
-#include "app/scene/scene.h"
+#include "app/scene/scene_file.h"
 #include "app/settings/settings_table.h"
 #include "core/error.h"
 #include "physics/strands.h"

@@ -43,7 +43,7 @@ SideStandoff sideStandoff(const Mesh& head, const StrandSet& strands, float unit
 
 // ---- Tip lag --------------------------------------------------------------------------------------
 // The turn axis is the head's up axis (head-space y, as the head is posed at the first sample)
-// through `pivot` (head space; the head turns about its bounds' centre, app/scene/scene.h
+// through `pivot` (head space; the head turns about its bounds' centre, app/scene/scene_timeline.h
 // headYawTransform). At each sample, with the head's transform M:
 //   head yaw = the rotation of M against the first sample's about the axis (continuous: unwrapped
 //              from sample to sample);

@@ -2,7 +2,7 @@
 // setting round-trips through --set, a scene file and the panel's code path; an out-of-range value
 // is refused with the same words by --set, its option, a scene and the panel; every option of the
 // table is on the commands that use it; the JSON outputs name every setting.
-#include "app/scene/scene.h"
+#include "app/scene/scene_file.h"
 #include "app/scene/session_options.h"
 #include "app/settings/settings_table.h"
 #include "core/error.h"

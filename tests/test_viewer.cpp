@@ -1,7 +1,7 @@
 // tests/test_viewer.cpp: the window's interactive state without a window: keys move the sphere
 // relative to the camera and the light around the head, the head's turn settles on its target,
 // wind and one-shot requests behave, scripts parse; its head turn is the scene files' (headYawTransform).
-#include "app/scene/scene.h"
+#include "app/scene/scene_file.h"
 #include "app/settings/settings_table.h"
 #include "app/window/viewer.h"
 #include "app/window/window_scene.h"
@@ -100,7 +100,7 @@ TEST(Viewer, ScriptsParseAndPlayByFrame)
 
 TEST(Viewer, HeadTurnIsTheScenesConvention)
 {
-    // The window turns the head as a scene's head_yaw does (app/scene/scene.h headYawTransform).
+    // The window turns the head as a scene's head_yaw does (app/scene/scene_file.h headYawTransform).
     Bounds head{glm::vec3(-0.2f, -0.1f, -0.1f), glm::vec3(0.2f, 0.3f, 0.1f)};
     Viewer viewer(OrbitCamera::framing(head, 1.5f), head, glm::vec4(0.0f), LightSettings{}, glm::vec3(0.0f));
     viewer.press(ViewerKey::HeadLeft);

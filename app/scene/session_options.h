@@ -6,7 +6,7 @@
 // the rest.
 #pragma once
 
-#include "app/scene/scene.h"
+#include "app/scene/scene_file.h"
 #include "app/settings/hair_source.h"
 #include "app/settings/settings_table.h"
 

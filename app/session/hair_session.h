@@ -5,7 +5,7 @@
 // viewer, a test's motion) come from here, and so do the solver's rebuilds and shader reloads.
 #pragma once
 
-#include "app/scene/scene.h"
+#include "app/scene/scene_timeline.h"
 #include "app/settings/hair_source.h"
 #include "physics/gpu_solver.h"
 #include "physics/hair_scene.h"

@@ -3,7 +3,7 @@
 // `sweep`, and by the rendering tests.
 #pragma once
 
-#include "app/scene/scene.h"
+#include "app/scene/scene_timeline.h"
 #include "app/session/hair_session.h"
 #include "gpu/context.h"
 #include "physics/hair_scene.h"

@@ -2,7 +2,7 @@
 // run loop behind it, which tests also drive with scripted head and sphere motion.
 #pragma once
 
-#include "app/scene/scene.h"
+#include "app/scene/scene_timeline.h"
 #include "app/session/hair_session.h"
 #include "app/session/headless.h"
 #include "app/settings/settings_table.h"

@@ -1,7 +1,7 @@
 // app/window/viewer.cpp: the window's interactive state, its keys, and input scripts.
 #include "app/window/viewer.h"
 
-#include "app/scene/scene.h"
+#include "app/scene/scene_timeline.h"
 #include "app/settings/settings_table.h"
 #include "core/error.h"
 

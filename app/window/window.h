@@ -6,7 +6,7 @@
 // it says so and points to `wisp render`.
 #pragma once
 
-#include "app/scene/scene.h"
+#include "app/scene/scene_timeline.h"
 #include "app/settings/hair_source.h"
 #include "app/settings/settings_table.h"
 #include "gpu/context.h"

@@ -5,7 +5,7 @@
 // back (the head and hair stay: another groom is `wisp view --scene FILE`).
 #pragma once
 
-#include "app/scene/scene.h"
+#include "app/scene/scene_file.h"
 #include "app/settings/hair_source.h"
 #include "app/settings/settings_table.h"
 

@@ -1,8 +1,7 @@
-// tests/test_scene.cpp: scene files without a GPU: save and load (or parse) give the same scene, the
-// timeline's values by hand (linear and smoothstep, held before the first and after the last key,
-// each channel between its own keys), the posed camera, the shipped scenes,
-// and every validation error naming the file and the value's JSON pointer.
-#include "app/scene/scene.h"
+// tests/test_scene_file.cpp: scene files (app/scene/scene_file.h) without a GPU: save and load (or
+// parse) give the same scene, a window's state saved as one key, the shipped scenes, paths, and
+// every validation error naming the file and the value's JSON pointer.
+#include "app/scene/scene_file.h"
 #include "assets/text.h"
 #include "core/error.h"
 #include "test_support.h"
@@ -96,13 +95,6 @@ std::string loadError(const std::string& text, const std::string& name = "bad.js
         return message;
     }
     return "";
-}
-
-SceneKey keyAt(double time)
-{
-    SceneKey k;
-    k.time = time;
-    return k;
 }
 
 } // namespace
@@ -225,123 +217,6 @@ TEST(Scene, TrailingPaddingIsReadAndANulInsideIsNamed)
     EXPECT_NE(e.find("cr.json:3:"), std::string::npos) << e;
 }
 
-TEST(SceneTimeline, LinearValuesByHand)
-{
-    SceneState base;
-    base.sphere = glm::vec4(1.0f, 2.0f, 3.0f, 0.5f);
-    base.light.azimuthDeg = 7.0f;
-    SceneKey a = keyAt(1.0), b = keyAt(3.0);
-    a.headYawDeg = 10.0f;
-    b.headYawDeg = 50.0f;
-    a.wind = glm::vec3(0.0f);
-    b.wind = glm::vec3(4.0f, 0.0f, -8.0f);
-    b.cameraYawDeg = 350.0f; // alone: held at every time
-    SceneTimeline t({a, b}, SceneInterpolation::Linear, base);
-    EXPECT_FLOAT_EQ(t.at(0.0).headYawDeg, 10.0f); // before the first key: held
-    EXPECT_FLOAT_EQ(t.at(1.0).headYawDeg, 10.0f);
-    EXPECT_FLOAT_EQ(t.at(1.5).headYawDeg, 20.0f); // a quarter of the way
-    EXPECT_FLOAT_EQ(t.at(2.0).headYawDeg, 30.0f);
-    EXPECT_FLOAT_EQ(t.at(3.0).headYawDeg, 50.0f);
-    EXPECT_FLOAT_EQ(t.at(99.0).headYawDeg, 50.0f); // after the last: held
-    glm::vec3 w = t.at(2.5).wind;
-    EXPECT_FLOAT_EQ(w.x, 3.0f);
-    EXPECT_FLOAT_EQ(w.z, -6.0f);
-    EXPECT_FLOAT_EQ(*t.at(0.0).camera.yawDeg, 350.0f);
-    EXPECT_FALSE(t.at(2.0).camera.pitchDeg.has_value()); // no key: the framing's
-    EXPECT_FALSE(t.at(2.0).camera.target.has_value());
-    EXPECT_EQ(t.at(2.0).sphere, base.sphere); // no key: the base
-    EXPECT_FLOAT_EQ(t.at(2.0).light.azimuthDeg, 7.0f);
-    EXPECT_EQ(t.at(2.0).light.color, base.light.color);
-}
-
-TEST(SceneTimeline, SmoothstepEasesBetweenKeys)
-{
-    SceneKey a = keyAt(1.0), b = keyAt(3.0);
-    a.lightElevationDeg = 10.0f;
-    b.lightElevationDeg = 50.0f;
-    SceneTimeline t({a, b}, SceneInterpolation::Smooth, SceneState{});
-    // u = 0.25: 3u² - 2u³ = 0.15625; u = 0.5: 0.5; u = 0.75: 0.84375.
-    EXPECT_FLOAT_EQ(t.at(1.5).light.elevationDeg, 10.0f + 40.0f * 0.15625f);
-    EXPECT_FLOAT_EQ(t.at(2.0).light.elevationDeg, 30.0f);
-    EXPECT_FLOAT_EQ(t.at(2.5).light.elevationDeg, 10.0f + 40.0f * 0.84375f);
-    // At rest at the keys: the first step away moves far less than a linear one would.
-    float nearStart = t.at(1.01).light.elevationDeg - 10.0f;
-    EXPECT_GT(nearStart, 0.0f);
-    EXPECT_LT(nearStart, 0.1f * 40.0f * 0.005f);
-}
-
-TEST(SceneTimeline, EachChannelMovesBetweenItsOwnKeys)
-{
-    SceneKey a = keyAt(0.0), b = keyAt(1.0), c = keyAt(2.0);
-    a.sphere = glm::vec4(0.0f, 0.0f, 0.0f, 0.1f);
-    c.sphere = glm::vec4(2.0f, 0.0f, 0.0f, 0.3f);
-    b.wind = glm::vec3(5.0f, 0.0f, 0.0f); // sets the wind only
-    a.cameraDistance = 1.0f;
-    c.cameraDistance = 2.0f;
-    SceneTimeline t({a, b, c}, SceneInterpolation::Linear, SceneState{});
-    SceneState s = t.at(1.0);
-    EXPECT_FLOAT_EQ(s.sphere.x, 1.0f); // halfway from a to c, through b
-    EXPECT_FLOAT_EQ(s.sphere.w, 0.2f);
-    EXPECT_FLOAT_EQ(*s.camera.distance, 1.5f);
-    EXPECT_EQ(t.at(0.0).wind, glm::vec3(5.0f, 0.0f, 0.0f)); // its only key, held both ways
-    EXPECT_EQ(t.at(2.0).wind, glm::vec3(5.0f, 0.0f, 0.0f));
-}
-
-TEST(Scene, PosedCameraMovesTheFraming)
-{
-    Bounds head{glm::vec3(-0.2f, -0.1f, -0.1f), glm::vec3(0.2f, 0.3f, 0.1f)};
-    OrbitCamera framing = OrbitCamera::framing(head, 1.5f);
-    OrbitCamera same = poseCamera(framing, CameraPose{});
-    EXPECT_EQ(same.yawDeg, framing.yawDeg);
-    EXPECT_EQ(same.distance, framing.distance);
-    EXPECT_EQ(same.target, framing.target);
-    EXPECT_EQ(same.nearPlane, framing.nearPlane); // the same projection: the same picture, byte for byte
-    EXPECT_EQ(same.farPlane, framing.farPlane);
-    CameraPose pose{.yawDeg = 180.0f, .pitchDeg = 30.0f, .distance = 3.0f, .target = glm::vec3(0.0f, 0.2f, 0.0f)};
-    OrbitCamera c = poseCamera(framing, pose);
-    EXPECT_EQ(c.yawDeg, 180.0f);
-    EXPECT_EQ(c.pitchDeg, 30.0f);
-    EXPECT_FLOAT_EQ(c.distance, 3.0f * framing.distance);
-    EXPECT_EQ(c.target, glm::vec3(0.0f, 0.2f, 0.0f));
-    // The whole head stays between the planes.
-    float radius = 0.5f * glm::length(head.size());
-    EXPECT_LT(c.nearPlane, c.distance - radius - glm::length(c.target - head.center()));
-    EXPECT_GT(c.farPlane, c.distance + radius + glm::length(c.target - head.center()));
-}
-
-TEST(Scene, TheCamerasPlanesScaleWithTheScene)
-{
-    // Depth precision depends on far / near: the planes of a head in centimetres are those of the
-    // same head in metres times 100, and a step of 1e-4 of the head's size at its front is many
-    // steps of 32-bit float depth.
-    Bounds metres{glm::vec3(-0.2f, -0.1f, -0.1f), glm::vec3(0.2f, 0.3f, 0.1f)};
-    Bounds centimetres{100.0f * metres.min, 100.0f * metres.max};
-    OrbitCamera m = OrbitCamera::framing(metres, 1.5f);
-    OrbitCamera c = OrbitCamera::framing(centimetres, 1.5f);
-    EXPECT_NEAR(c.nearPlane / m.nearPlane, 100.0f, 0.01f);
-    EXPECT_NEAR(c.farPlane / m.farPlane, 100.0f, 0.01f);
-    EXPECT_LT(m.farPlane / m.nearPlane, 1000.0f);
-    for (const OrbitCamera& cam : {m, c}) {
-        float radius = cam.sceneRadius;
-        glm::mat4 p = cam.projection(1.5f);
-        auto depth = [&](float z) { // z: distance in front of the camera
-            glm::vec4 clip = p * glm::vec4(0.0f, 0.0f, -z, 1.0f);
-            return clip.z / clip.w;
-        };
-        float front = cam.distance - radius;
-        float step = depth(front + 1e-4f * radius) - depth(front);
-        EXPECT_GT(step, 16.0f * 6e-8f) << "a 1e-4 step spans at least 16 float depth steps near 1";
-        EXPECT_GT(depth(front), 0.0f);
-        EXPECT_LT(depth(cam.distance + radius), 1.0f);
-    }
-    // Zooming keeps the planes around the scene.
-    OrbitCamera z = m;
-    z.zoom(0.1f);
-    EXPECT_LT(z.nearPlane, z.distance);
-    EXPECT_GT(z.nearPlane, 0.0f);
-    EXPECT_GT(z.farPlane, z.distance + m.sceneRadius);
-}
-
 TEST(Scene, AWindowsStateSavesAsOneKey)
 {
     // What the window will do: its orbit camera relative to the framing, and every channel, as
@@ -375,19 +250,8 @@ TEST(Scene, AWindowsStateSavesAsOneKey)
     EXPECT_EQ(back.headYawDeg, 12.0f);
 }
 
-TEST(SceneTimeline, ALoopingScenePlaysItsKeysAgain)
+TEST(Scene, ALoopReadsSavesAndNeedsALength)
 {
-    SceneKey a = keyAt(0.0), b = keyAt(2.0);
-    a.headYawDeg = 0.0f;
-    b.headYawDeg = 40.0f;
-    SceneTimeline once({a, b}, SceneInterpolation::Linear, SceneState{});
-    SceneTimeline looped({a, b}, SceneInterpolation::Linear, SceneState{}, 4.0); // 2 s of keys, 2 s held
-    for (double t : {0.0, 0.5, 1.5, 3.0})
-        EXPECT_FLOAT_EQ(looped.at(t).headYawDeg, once.at(t).headYawDeg) << t;
-    EXPECT_FLOAT_EQ(looped.at(4.5).headYawDeg, 10.0f); // the second time round
-    EXPECT_FLOAT_EQ(looped.at(4000.5).headYawDeg, 10.0f);
-    EXPECT_FLOAT_EQ(once.at(4.5).headYawDeg, 40.0f); // without the loop: held
-
     // "loop" reads, saves and reads back; it needs a length to repeat.
     TempDir dir;
     writeFile(dir / "loop.json",
