@@ -3,8 +3,6 @@
 #include "app/session/headless.h"
 
 #include "core/host_memory.h"
-#include "gpu/frame.h"
-#include "renderer/renderer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -79,6 +77,19 @@ void runSteps(Frame& frame, Renderer& renderer, HairSession& session, uint32_t s
     renderer.setSteps({});
 }
 
+PosedFrame::PosedFrame(const vk::Context& ctx, HairSession& session, const RenderSettings& settings, uint32_t frames,
+                       float fps)
+    : renderer(ctx, settings, 1), frame(ctx, 1)
+{
+    renderer.setHead(session.scene().head);
+    session.attachTo(renderer);
+    if (session.hasHair())
+        runSteps(frame, renderer, session, frames * session.clock().stepsPerFrame(fps));
+    float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
+    camera = poseFrame(renderer, session.timeline(), session.clock().seconds(),
+                       OrbitCamera::framing(renderer.sceneBounds(), aspect));
+}
+
 std::string describeHairCounts(const Renderer& renderer)
 {
     HairDrawCounts c = renderer.hairCounts();
@@ -96,21 +107,13 @@ std::string describeHairCounts(const Renderer& renderer)
 Picture renderPicture(const vk::Context& ctx, HairSession& session, const RenderSettings& settings, uint32_t frames,
                       float fps)
 {
-    Renderer renderer(ctx, settings, 1);
-    renderer.setHead(session.scene().head);
-    session.attachTo(renderer);
-    Frame frame(ctx, 1);
-    if (session.hasHair())
-        runSteps(frame, renderer, session, frames * session.clock().stepsPerFrame(fps));
-    float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
-    OrbitCamera camera = poseFrame(renderer, session.timeline(), session.clock().seconds(),
-                                   OrbitCamera::framing(renderer.sceneBounds(), aspect));
-    Picture picture = renderFrame(ctx, renderer, frame, camera);
+    PosedFrame posed(ctx, session, settings, frames, fps);
+    Picture picture = renderFrame(ctx, posed.renderer, posed.frame, posed.camera);
     // The compute path's bins grow after a frame that outgrew them: that frame is drawn again.
     for (int again = 0; again < 2 && picture.raster.overflow > 0; ++again)
-        picture = renderFrame(ctx, renderer, frame, camera);
+        picture = renderFrame(ctx, posed.renderer, posed.frame, posed.camera);
     if (session.hasHair())
-        picture.hairCounts = describeHairCounts(renderer);
+        picture.hairCounts = describeHairCounts(posed.renderer);
     return picture;
 }
 
@@ -126,15 +129,12 @@ Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSett
 std::vector<PassTiming> profileFrames(const vk::Context& ctx, HairSession& session, const RenderSettings& settings,
                                       float fps, uint32_t warmup, uint32_t frames, OitStats* oit, RasterStats* raster)
 {
-    Renderer renderer(ctx, settings, 1);
-    renderer.setHead(session.scene().head);
-    session.attachTo(renderer);
-    Frame frame(ctx, 1);
-    uint32_t stepsPerFrame = session.clock().stepsPerFrame(fps);
     // The scene's first pose (its camera, head and light), held: what is timed is the drawing.
-    OrbitCamera camera =
-        poseFrame(renderer, session.timeline(), session.clock().seconds(),
-                  OrbitCamera::framing(renderer.sceneBounds(), float(settings.width) / float(settings.height)));
+    PosedFrame posed(ctx, session, settings);
+    Renderer& renderer = posed.renderer;
+    Frame& frame = posed.frame;
+    const OrbitCamera& camera = posed.camera;
+    uint32_t stepsPerFrame = session.clock().stepsPerFrame(fps);
     std::map<std::string, std::vector<double>> samples;
     std::vector<std::string> order;
     std::vector<double> totals;

@@ -6,12 +6,14 @@
 #include "app/scene/scene_timeline.h"
 #include "app/session/hair_session.h"
 #include "gpu/context.h"
+#include "gpu/frame.h"
 #include "physics/hair_scene.h"
 #include "physics/simulation.h"
 #include "renderer/camera.h"
 #include "renderer/compute/strand_raster.h"
 #include "renderer/graphics/hair_pass.h"
 #include "renderer/graphics/oit.h"
+#include "renderer/renderer.h"
 #include "renderer/settings.h"
 
 #include <cstdint>
@@ -19,9 +21,6 @@
 #include <vector>
 
 namespace wisp {
-
-class Renderer;
-class Frame;
 
 struct Picture {
     uint32_t width = 0;
@@ -52,6 +51,20 @@ OrbitCamera poseFrame(Renderer& renderer, const SceneTimeline& timeline, double 
 // Runs `session`'s next `steps` fixed steps alone (the physics pass of `renderer`, 32 steps a
 // submission), drawing nothing.
 void runSteps(Frame& frame, Renderer& renderer, HairSession& session, uint32_t steps);
+
+// Where every offscreen picture of a session starts: a renderer of `settings` drawing `session`'s
+// head and hair, its frame, `frames` simulated frames of `fps` run (each exactly round(step_hz /
+// fps) fixed steps, the physics pass alone), the renderer posed by the session's timeline at that
+// moment (head turn, sphere, light) and the camera there (the default framing of the settings'
+// aspect, moved by the timeline's camera). renderPicture, profileFrames and the reference
+// (app/session/reference_render.h) each start from one.
+struct PosedFrame {
+    PosedFrame(const vk::Context& ctx, HairSession& session, const RenderSettings& settings, uint32_t frames = 0,
+               float fps = 30.0f);
+    Renderer renderer;
+    Frame frame;
+    OrbitCamera camera;
+};
 
 // Renders one frame of `session`'s head and hair after `frames` simulated frames of `fps` (each
 // exactly round(step_hz / fps) fixed steps), posed by its timeline (camera, light, head turn,

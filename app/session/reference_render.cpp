@@ -38,16 +38,9 @@ ReferenceFrame prepareReference(const vk::Context& ctx, HairSession& session, Re
 {
     settings.hairRaster = HairRaster::Compute; // the strands traced are the compute path's
     settings.strands.showGuides = false;       // (which draws its meshes in compute too)
-    Renderer renderer(ctx, settings, 1);
-    renderer.setHead(session.scene().head);
-    session.attachTo(renderer);
-    Frame frame(ctx, 1);
-    if (session.hasHair())
-        runSteps(frame, renderer, session, frames * session.clock().stepsPerFrame(fps));
-    float aspect = float(settings.width) / float(settings.height);
-    OrbitCamera camera = poseFrame(renderer, session.timeline(), session.clock().seconds(),
-                                   OrbitCamera::framing(renderer.sceneBounds(), aspect));
-    renderFrame(ctx, renderer, frame, camera);
+    PosedFrame posed(ctx, session, settings, frames, fps);
+    renderFrame(ctx, posed.renderer, posed.frame, posed.camera);
+    Renderer& renderer = posed.renderer;
     const gpu::FrameParams& params = renderer.frameParams();
     if (!renderer.meshRaster())
         throw std::logic_error("the reference needs the compute meshes' material");
