@@ -85,6 +85,6 @@ void main()
     // Hair receiving the hair's own depth map (deep opacity off) needs about a strand's depth of
     // bias; the PCF disk turns per strand instead of per pixel.
     vec2 noise = vec2(float(outStrand % 251u), float(outStrand / 251u % 241u)) + 17.0 * t;
-    outVisibility = lightVisibilityParts(p, noise, 4.0 * frame.shadowBias);
+    outVisibility = lightVisibilityParts(p, noise, 4.0 * frame.shadowBias, false);
 #endif
 }

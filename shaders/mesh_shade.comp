@@ -81,7 +81,7 @@ void main()
     vec3 color = vec3(0.0);
     uint covered = 0u;
     if (nearest != kNoMesh) {
-        vec2 visibility = lightVisibilityParts(surfaceAt(nearest, centre, size).position, centre, frame.shadowBias);
+        vec2 visibility = lightVisibilityParts(surfaceAt(nearest, centre, size).position, centre, frame.shadowBias, true);
         for (uint s = 0u; s < push.samples; ++s) {
             uint id = ids[first + s];
             bool seen = id == kNoMesh;

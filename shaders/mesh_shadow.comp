@@ -37,7 +37,7 @@ void main()
     if (depth < 1.0) {
         vec2 ndc = (vec2(pixel) + 0.5) / vec2(push.width, push.height) * 2.0 - 1.0;
         vec4 world = push.inverseViewProjection * vec4(ndc, depth, 1.0);
-        visibility = lightVisibilityParts(world.xyz / world.w, vec2(pixel) + 0.5, frame.shadowBias);
+        visibility = lightVisibilityParts(world.xyz / world.w, vec2(pixel) + 0.5, frame.shadowBias, true);
     }
     imageStore(shadowMask, pixel, vec4(visibility, 0.0, 1.0));
 }

@@ -73,7 +73,7 @@ void main()
     // As hair.tese: about a strand's depth of bias for the hair's own depth map, the PCF disk
     // turned per strand.
     vec2 noise = vec2(float(strand % 251u), float(strand / 251u % 241u)) + 17.0 * t;
-    vec2 visibility = lightVisibilityParts(p, noise, 4.0 * frame.shadowBias);
+    vec2 visibility = lightVisibilityParts(p, noise, 4.0 * frame.shadowBias, false);
     vec3 lut[kFrameLights];
     strandLutSingles(frame, hairLut, point.tangent, normalize(frame.cameraPosition - p), lut);
     colors[id] = packFragmentColor(shadeStrandPoint(frame, p, point.tangent, t, strand, visibility, lut), alpha);
