@@ -30,6 +30,14 @@ float pcf(sampler2DShadow map, vec3 coords, float bias, float angle, float radiu
     return lit / float(n);
 }
 
+// Transmittance through the hair in front of the point, one lookup of the deep opacity map.
+float hairTransmittanceAt(vec3 coords)
+{
+    float z0 = texture(hairDepth, coords.xy).r;
+    vec4 layers = texture(opacityLayers, coords.xy);
+    return domTransmittance(domOpacity(layers, coords.z, z0, frame.domSpacing, frame.domLayers), frame.domKappa);
+}
+
 // Transmittance through the hair in front of the point (deep opacity map), averaged over the same
 // Vogel disk as PCF. One lookup point-sampled the map, whose texels are finer than a strand's
 // shadow and than the receiver's pixel at a portrait's distance (2048 texels over the scene: about
@@ -41,12 +49,8 @@ float hairTransmittance(vec3 coords, float radius, float angle)
     uint n = min(frame.pcfSamples, kMaxPcfSamples);
     float texel = 1.0 / frame.shadowMapSize;
     float sum = 0.0;
-    for (uint i = 0u; i < n; ++i) {
-        vec2 uv = coords.xy + vogelDiskTap(i, n, angle) * radius * texel;
-        float z0 = texture(hairDepth, uv).r;
-        vec4 layers = texture(opacityLayers, uv);
-        sum += domTransmittance(domOpacity(layers, coords.z, z0, frame.domSpacing, frame.domLayers), frame.domKappa);
-    }
+    for (uint i = 0u; i < n; ++i)
+        sum += hairTransmittanceAt(vec3(coords.xy + vogelDiskTap(i, n, angle) * radius * texel, coords.z));
     return sum / float(n);
 }
 
@@ -59,14 +63,6 @@ float shadowFilterRadius(vec3 world)
     float pixelsPerUnit = abs(frame.projection[1][1]) * 0.5 * frame.viewportHeight; // at w = 1
     float pixelTexels = w / max(pixelsPerUnit, 1e-12) * frame.lightTexelsPerUnit;
     return max(frame.pcfRadius, 0.7 * pixelTexels);
-}
-
-// Transmittance through the hair in front of the point, one lookup of the deep opacity map.
-float hairTransmittanceAt(vec3 coords)
-{
-    float z0 = texture(hairDepth, coords.xy).r;
-    vec4 layers = texture(opacityLayers, coords.xy);
-    return domTransmittance(domOpacity(layers, coords.z, z0, frame.domSpacing, frame.domLayers), frame.domKappa);
 }
 
 // The light's visibility at a point, in two parts: x the head's shadow (PCF), y the hair's
@@ -92,10 +88,4 @@ vec2 lightVisibilityParts(vec3 world, vec2 pixel, float hairBias, bool overPixel
     else
         hair = overPixel ? hairTransmittance(coords, radius, angle) : hairTransmittanceAt(coords);
     return vec2(head, hair);
-}
-
-float lightVisibility(vec3 world, vec2 pixel, float hairBias, bool overPixel)
-{
-    vec2 v = lightVisibilityParts(world, pixel, hairBias, overPixel);
-    return v.x * v.y;
 }
