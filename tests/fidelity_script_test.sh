@@ -51,7 +51,7 @@ table="$(awk '/^\| case \| shading \| RMSE/ {on = 1} on && /^$/ {exit} on' "$out
 rows="$(echo "$table" | tail -n +3 | sed 's/\*\*//g' | cut -d'|' -f2,3 | tr -d ' ')"
 [ "$rows" = "$(printf 'default-front-brown|karis\ndefault-front-brown|kajiya')" ] ||
   fail "fidelity.md's table has these rows (case|shading), not karis and kajiya: $rows"
-echo "$table" | grep -q '^| \*\*default-front-brown\*\* | ' || fail "fidelity.md marks no closest variant"
+grep -q '^| \*\*default-front-brown\*\* | ' <<<"$table" || fail "fidelity.md marks no closest variant"
 python3 - "$out/fidelity.json" <<'EOF' || fail "fidelity.json is not as expected"
 import json, sys
 r = json.load(open(sys.argv[1]))
@@ -63,7 +63,10 @@ for v in c["variants"]:
 assert c["reference"]["noise_levels"] > 0 and 0 < c["reference"]["second"]["frame"]["rmse"] < 1, c["reference"]
 assert r["packed"]["files"] > 0 and not r["packed"]["left_out"], r["packed"]
 EOF
-tar -tf "$out/fidelity-images.tar" | grep -qx 'default-front-brown/reference.png' ||
+# The listing whole first: grep -q stops at the first match (the reference is packed first), and
+# under pipefail the tar it leaves writing into a closed pipe would fail the check.
+packed="$(tar -tf "$out/fidelity-images.tar")"
+grep -qx 'default-front-brown/reference.png' <<<"$packed" ||
   fail "fidelity-images.tar lacks the reference"
 if command -v ffmpeg >/dev/null; then
   [ -s "$out/fidelity-default.png" ] && [ -s "$out/fidelity-default-all.png" ] || fail "no sheets"
