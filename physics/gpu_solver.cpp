@@ -105,20 +105,17 @@ GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const Sim
     counters_ = ctx.createBufferWithData(
         {.size = sizeof(gpu::SimCounters), .usage = kStorageCopy, .name = "sim.counters"}, &zero, sizeof(zero));
     positionsTrack_ = {.buffer = positions_.get()};
+    velocitiesTrack_ = {.buffer = velocities_.get()};
     tangentsTrack_ = {.buffer = tangents_.get()};
+    countersTrack_ = {.buffer = counters_.get()};
+    for (size_t i = 0; i < grids_.size(); ++i)
+        gridTracks_[i] = {.buffer = grids_[i].get()};
 
-    std::vector<vk::DescriptorBinding> bindings = {
-        {gpu::kSimBindingParams, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
-    for (uint32_t b :
-         {gpu::kSimBindingPositions, gpu::kSimBindingVelocities, gpu::kSimBindingRest, gpu::kSimBindingStrands,
-          gpu::kSimBindingTangents, gpu::kSimBindingGrid, gpu::kSimBindingGridNext, gpu::kSimBindingCounters})
-        bindings.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT});
-    vk::PipelineLayoutBundle layout = vk::createPipelineLayout(ctx, {.bindings = bindings,
-                                                                     .pushConstantBytes = sizeof(gpu::SimStep),
-                                                                     .pushConstantStages = VK_SHADER_STAGE_COMPUTE_BIT,
-                                                                     .name = "sim.layout"});
-    setLayout_ = std::move(layout.setLayout);
-    layout_ = std::move(layout.layout);
+    // The layout holds every binding the stages list.
+    std::vector<ComputeStage> stages;
+    for (Stage s : kStages)
+        stages.push_back(stage(s, {}, 0));
+    layout_ = StageLayout(ctx, stages, sizeof(gpu::SimStep), "sim.layout");
     createPipelines();
 }
 
@@ -128,8 +125,8 @@ void GpuSolver::createPipelines()
     // The fixed-point grid's kernels are separate SPIR-V (they need 64-bit integer atomics, the
     // float ones need float atomics).
     std::string variant = fixedGrid_ ? "_fixed" : "";
-    integrate_ = vk::createComputePipeline(ctx, layout_, "sim_integrate" + variant + ".comp", "sim.integrate");
-    gather_ = vk::createComputePipeline(ctx, layout_, "grid_gather" + variant + ".comp", "grid.gather");
+    integrate_ = vk::createComputeKernel(ctx, layout_.layout(), "sim_integrate" + variant + ".comp", "sim.integrate");
+    gather_ = vk::createComputeKernel(ctx, layout_.layout(), "grid_gather" + variant + ".comp", "grid.gather");
 }
 
 void GpuSolver::reloadPipelines()
@@ -165,49 +162,53 @@ void GpuSolver::reset(const glm::mat4& headTransform)
     turn_ = 0;
 }
 
+ComputeStage GpuSolver::stage(Stage stage, const gpu::SimStep& step, uint32_t turn)
+{
+    using enum Access;
+    using namespace gpu; // the bindings: shaders/shared/sim.h
+    // Both kernels bind every buffer (shaders/sim_common.glsl, grid_storage.glsl); the ones a kernel
+    // leaves alone are listed as read, the least access.
+    bool integrate = stage == Stage::Integrate;
+    Access writtenByIntegrate = integrate ? ComputeWrite : ComputeRead;
+    TrackedBuffer& sums = gridTracks_[turn];
+    TrackedBuffer& next = gridTracks_[1 - turn];
+    const SimParams& p = setup_.params;
+    // The integrate's threads take a strand each; the gather's a vertex slot and a node of the next sums.
+    uint32_t groups = integrate ? vk::groupCount(p.strandCount, kSimGroupSize)
+                                : vk::groupCount(std::max(slotCount_, p.gridNodeCount), kSimGroupSize);
+    return {.uses = {uniformBlock(kSimBindingParams, params_.get()),
+                     storageBuffer(kSimBindingPositions, positionsTrack_, writtenByIntegrate),
+                     storageBuffer(kSimBindingVelocities, velocitiesTrack_, ComputeWrite),
+                     constantBuffer(kSimBindingRest, rest_.get()), constantBuffer(kSimBindingStrands, strands_.get()),
+                     storageBuffer(kSimBindingTangents, tangentsTrack_, writtenByIntegrate),
+                     storageBuffer(kSimBindingGrid, sums, writtenByIntegrate), // splatted, then gathered
+                     storageBuffer(kSimBindingGridNext, next, integrate ? ComputeRead : ComputeWrite), // zeroed
+                     storageBuffer(kSimBindingCounters, countersTrack_, writtenByIntegrate)},
+            .record = [this, integrate, step, groups](StageCommands& c) {
+                c.dispatch(integrate ? integrate_ : gather_, step, groups);
+            }};
+}
+
+void GpuSolver::declare(PassIo& io)
+{
+    for (Stage s : kStages)
+        stage(s, {}, turn_).declare(io);
+}
+
 void GpuSolver::recordStep(VkCommandBuffer cmd, const gpu::SimStep& step, vk::GpuTimer* timer)
 {
     // This step splats into grids_[turn_]; its gather reads them and zeroes the other set.
-    const vk::Buffer& sums = grids_[turn_];
-    const vk::Buffer& next = grids_[1 - turn_];
+    uint32_t turn = turn_;
     turn_ = 1 - turn_;
-    std::array<VkDescriptorBufferInfo, 9> infos = {VkDescriptorBufferInfo{params_, 0, VK_WHOLE_SIZE},
-                                                   {positions_, 0, VK_WHOLE_SIZE},
-                                                   {velocities_, 0, VK_WHOLE_SIZE},
-                                                   {rest_, 0, VK_WHOLE_SIZE},
-                                                   {strands_, 0, VK_WHOLE_SIZE},
-                                                   {tangents_, 0, VK_WHOLE_SIZE},
-                                                   {sums, 0, VK_WHOLE_SIZE},
-                                                   {next, 0, VK_WHOLE_SIZE},
-                                                   {counters_, 0, VK_WHOLE_SIZE}};
-    std::array<uint32_t, 9> bindingOf = {gpu::kSimBindingParams, gpu::kSimBindingPositions, gpu::kSimBindingVelocities,
-                                         gpu::kSimBindingRest,   gpu::kSimBindingStrands,   gpu::kSimBindingTangents,
-                                         gpu::kSimBindingGrid,   gpu::kSimBindingGridNext,  gpu::kSimBindingCounters};
-    std::array<VkWriteDescriptorSet, 9> writes{};
-    for (size_t i = 0; i < writes.size(); ++i)
-        writes[i] = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-                     .dstBinding = bindingOf[i],
-                     .descriptorCount = 1,
-                     .descriptorType = i == 0 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                     .pBufferInfo = &infos[i]};
-
-    const gpu::SimParams& p = setup_.params;
-    uint32_t strandGroups = vk::groupCount(p.strandCount, gpu::kSimGroupSize);
-    // The gather's threads take a vertex slot and a node of the next sums each.
-    uint32_t gatherGroups = vk::groupCount(std::max(slotCount_, p.gridNodeCount), gpu::kSimGroupSize);
-    auto dispatch = [&](const char* scope, VkPipeline pipeline, uint32_t groups) {
+    for (Stage s : kStages) {
+        const char* scope = s == Stage::Integrate ? "integrate" : "grid_gather";
         if (timer)
             timer->begin(cmd, scope);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-        ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, uint32_t(writes.size()), writes.data());
-        vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(step), &step);
-        vkCmdDispatch(cmd, groups, 1, 1);
-        vk::computeToComputeBarrier(cmd);
+        layout_.record(stage(s, step, turn), cmd, 0, scope);
+        vk::computeToComputeBarrier(cmd); // the gather reads the splat; the next integrate, the gather
         if (timer)
             timer->end(cmd);
-    };
-    dispatch("integrate", integrate_, strandGroups);
-    dispatch("grid_gather", gather_, gatherGroups); // the next step's integrate reads the gathered velocities
+    }
 }
 
 std::vector<uint8_t> GpuSolver::download(const vk::Buffer& buffer) const

@@ -2,12 +2,14 @@
 //   sim_integrate (every substep; the last one also splats into this step's grid sums) |
 //   grid_gather (reads them; zeroes the other set, the next step's)
 // with a compute->compute barrier after each (a workgroup barrier() does not order work across
-// workgroups). The two sets of sums take turns, so a step needs no clear or normalize pass; the
-// turn flips as each step is recorded, so every recorded step must be submitted (reset() starts
-// the turns again). It talks to the device only through gpu/; the
-// model and the maths stay in physics/ and shaders/shared/.
+// workgroups). Each kernel is a compute stage (gpu/compute_stage.h), one list of what it touches
+// from which its descriptors and the frame's declarations (PhysicsPass) come. The two sets of sums take turns, so a
+// step needs no clear or normalize pass; the turn flips as each step is recorded, so every recorded step must be
+// submitted (reset() starts the turns again). It talks to the device only through gpu/; the model and the maths stay in
+// physics/ and shaders/shared/.
 #pragma once
 
+#include "gpu/compute_stage.h"
 #include "gpu/handle.h"
 #include "gpu/pass.h"
 #include "gpu/resources.h"
@@ -24,12 +26,22 @@ class Context;
 
 class GpuSolver {
 public:
+    enum class Stage { Integrate, GridGather };
+    static constexpr Stage kStages[] = {Stage::Integrate, Stage::GridGather}; // a step's, in order
+
     GpuSolver(const vk::Context& ctx, const StrandSet& strands, const SimSetup& setup, const glm::mat4& headTransform);
 
     // Records one fixed step (all substeps and the grid). step.time is the step's start. With a
     // timer, each kernel's dispatch is a timed scope: integrate (all substeps and the splat) and
     // grid_gather.
     void recordStep(VkCommandBuffer cmd, const gpu::SimStep& step, vk::GpuTimer* timer = nullptr);
+    // What the steps of a frame touch: each stage's list declared (both sets of grid sums written).
+    void declare(PassIo& io);
+
+    // A kernel of `step` as the one list of what it touches (binding, resource, access) and its
+    // dispatch, splatting into grid sums `turn` (0 or 1) and zeroing the other set.
+    ComputeStage stage(Stage stage, const gpu::SimStep& step, uint32_t turn);
+    const StageLayout& layout() const { return layout_; }
 
     // Makes the kernels' pipelines again from their SPIR-V as it is now on disk (a shader reload);
     // the device must be idle.
@@ -71,11 +83,11 @@ private:
     std::array<vk::Buffer, 2>
         grids_; // the grid's sums: one step splats into grids_[turn_], its gather zeroes the other
     uint32_t turn_ = 0;
-    TrackedBuffer positionsTrack_, tangentsTrack_;
+    TrackedBuffer positionsTrack_, velocitiesTrack_, tangentsTrack_, countersTrack_;
+    std::array<TrackedBuffer, 2> gridTracks_;
     mutable vk::Buffer readback_; // host-visible, reused by every readState/readGrid
-    vk::DescriptorSetLayout setLayout_;
-    vk::PipelineLayout layout_;
-    vk::Pipeline integrate_, gather_;
+    StageLayout layout_;
+    vk::ComputeKernel integrate_, gather_;
 };
 
 } // namespace wisp

@@ -30,20 +30,16 @@ struct MeshVertex {
 };
 static_assert(sizeof(MeshVertex) == 28);
 
-// One of the passes before the shading (MeshPass::depthPass, shadowMaskPass).
-class MeshStagePass : public Pass {
+// The depth pass before the shading (MeshPass::depthPass).
+class MeshDepthPass : public Pass {
 public:
-    MeshStagePass(MeshPass& meshes, bool shadow) : meshes_(meshes), shadow_(shadow) {}
-    const char* name() const override { return shadow_ ? "meshes.shadow" : "meshes.depth"; }
-    void declare(PassIo& io) override { shadow_ ? meshes_.declareShadowMask(io) : meshes_.declareDepth(io); }
-    void record(VkCommandBuffer cmd, FrameContext& frame) override
-    {
-        shadow_ ? meshes_.recordShadowMask(cmd, frame) : meshes_.recordDepth(cmd, frame);
-    }
+    explicit MeshDepthPass(MeshPass& meshes) : meshes_(meshes) {}
+    const char* name() const override { return "meshes.depth"; }
+    void declare(PassIo& io) override { meshes_.declareDepth(io); }
+    void record(VkCommandBuffer cmd, FrameContext& frame) override { meshes_.recordDepth(cmd, frame); }
 
 private:
     MeshPass& meshes_;
-    bool shadow_;
 };
 
 } // namespace
@@ -105,8 +101,8 @@ std::vector<float> scalpCoverage(const Mesh& head, const StrandSet& strands)
     return out;
 }
 
-MeshPass::MeshPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& uniforms)
-    : ctx_(ctx), target_(target), uniforms_(uniforms)
+MeshPass::MeshPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& uniforms, LightMaps& maps)
+    : ctx_(ctx), target_(target), uniforms_(uniforms), maps_(maps)
 {
     vk::PipelineLayoutBundle layout = vk::createPipelineLayout(
         ctx,
@@ -161,27 +157,15 @@ MeshPass::MeshPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
     depth.name = "mesh.depth.pipeline";
     depthPipeline_ = vk::createGraphicsPipeline(ctx, depth);
 
-    constexpr VkShaderStageFlags kCompute = VK_SHADER_STAGE_COMPUTE_BIT;
-    constexpr VkDescriptorType kSampler = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    vk::PipelineLayoutBundle shadow = vk::createPipelineLayout(
-        ctx, {.bindings = {{gpu::kMeshBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCompute},
-                           {gpu::kBindingShadowHead, kSampler, kCompute},
-                           {gpu::kBindingShadowHair, kSampler, kCompute},
-                           {gpu::kBindingHairDepth, kSampler, kCompute},
-                           {gpu::kBindingOpacity, kSampler, kCompute},
-                           {gpu::kMeshBindingShadowMask, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCompute},
-                           {gpu::kMeshBindingDepth, kSampler, kCompute}},
-              .pushConstantBytes = sizeof(gpu::MeshShadowPush),
-              .pushConstantStages = kCompute,
-              .name = "mesh.shadow.layout"});
-    shadowSetLayout_ = std::move(shadow.setLayout);
-    shadowLayout_ = std::move(shadow.layout);
-    shadowPipeline_ = vk::createComputePipeline(ctx, shadowLayout_,
-                                                target.multisampled() ? "mesh_shadow.comp" : "mesh_shadow_single.comp",
-                                                "mesh.shadow.pipeline");
     nearest_ = vk::createSampler(ctx, VK_FILTER_NEAREST, false, "mesh.nearest.sampler");
-    depthPass_ = std::make_unique<MeshStagePass>(*this, false);
-    shadowMaskPass_ = std::make_unique<MeshStagePass>(*this, true);
+    ComputeStage shadow = shadowMaskStage(); // (the layout holds the bindings it lists)
+    shadowLayout_ = StageLayout(ctx, std::span(&shadow, 1), sizeof(gpu::MeshShadowPush), "mesh.shadow.layout");
+    shadowKernel_ = vk::createComputeKernel(ctx, shadowLayout_.layout(),
+                                            target.multisampled() ? "mesh_shadow.comp" : "mesh_shadow_single.comp",
+                                            "mesh.shadow.pipeline");
+    depthPass_ = std::make_unique<MeshDepthPass>(*this);
+    shadowMaskPass_ =
+        std::make_unique<ComputeStagePass>("meshes.shadow", shadowLayout_, [this] { return shadowMaskStage(); });
     resize();
     lightPipeline_ = vk::createGraphicsPipeline(
         ctx, {.layout = layout_,
@@ -257,13 +241,6 @@ void MeshPass::declareDepth(PassIo& io)
     target_.declareDepth(io);
 }
 
-void MeshPass::declareShadowMask(PassIo& io)
-{
-    lightMaps_->declareRead(io, Access::ComputeSampled);
-    io.use(target_.depth(), Access::DepthSampled);
-    io.use(shadowMaskTrack_, Access::ComputeWrite);
-}
-
 void MeshPass::draw(VkCommandBuffer cmd, const GpuMesh& mesh, const glm::mat4& model, const glm::vec3& albedo,
                     float roughness)
 {
@@ -320,28 +297,26 @@ void MeshPass::recordDepth(VkCommandBuffer cmd, FrameContext& frame)
     target_.endRendering(cmd);
 }
 
-void MeshPass::recordShadowMask(VkCommandBuffer cmd, FrameContext& frame)
+ComputeStage MeshPass::shadowMaskStage()
 {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, shadowPipeline_);
-    VkDescriptorBufferInfo frameInfo = uniforms_.descriptor(frame.slot);
-    VkDescriptorImageInfo mask{VK_NULL_HANDLE, shadowMask_.view(), VK_IMAGE_LAYOUT_GENERAL};
-    VkDescriptorImageInfo depth{nearest_, target_.depthImage().view(), VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL};
-    std::vector<VkWriteDescriptorSet> writes = {
-        vk::bufferWrite(gpu::kMeshBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frameInfo),
-        vk::imageWrite(gpu::kMeshBindingShadowMask, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &mask),
-        vk::imageWrite(gpu::kMeshBindingDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &depth)};
-    for (const VkWriteDescriptorSet& w : lightMaps_->descriptorWrites())
-        writes.push_back(w);
-    ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, shadowLayout_, 0, uint32_t(writes.size()),
-                           writes.data());
-    VkExtent2D e = target_.extent();
-    gpu::MeshShadowPush push{.inverseViewProjection = inverseViewProjection_,
-                             .width = e.width,
-                             .height = e.height,
-                             .samples = uint32_t(target_.samples()),
-                             .pad = 0};
-    vkCmdPushConstants(cmd, shadowLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatch(cmd, vk::groupCount(e.width, 8), vk::groupCount(e.height, 8), 1);
+    using enum Access;
+    using namespace gpu; // the bindings: shaders/shared/mesh_params.h, shadows.h
+    ComputeStage s{.uses = {uniformBlock(kMeshBindingFrame, uniforms_.descriptors())}};
+    for (const StageUse& u : maps_.computeReads())
+        s.uses.push_back(u);
+    s.uses.push_back(
+        sampledImage(kMeshBindingDepth, target_.depth(), target_.depthImage().view(), nearest_, DepthSampled));
+    s.uses.push_back(storageImage(kMeshBindingShadowMask, shadowMaskTrack_, shadowMask_.view(), ComputeWrite));
+    s.record = [this](StageCommands& c) {
+        VkExtent2D e = target_.extent();
+        MeshShadowPush push{.inverseViewProjection = inverseViewProjection_,
+                            .width = e.width,
+                            .height = e.height,
+                            .samples = uint32_t(target_.samples()),
+                            .pad = 0};
+        c.dispatch(shadowKernel_, push, vk::groupCount(e.width, 8), vk::groupCount(e.height, 8));
+    };
+    return s;
 }
 
 void MeshPass::record(VkCommandBuffer cmd, FrameContext& frame)

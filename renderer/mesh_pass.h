@@ -9,6 +9,7 @@
 #pragma once
 
 #include "assets/mesh.h"
+#include "gpu/compute_stage.h"
 #include "gpu/handle.h"
 #include "gpu/pass.h"
 #include "gpu/resources.h"
@@ -38,14 +39,13 @@ inline constexpr float kScalpDarkening = 0.45f;
 
 class MeshPass : public Pass {
 public:
-    MeshPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& uniforms);
+    // `maps`: the light's maps the shading reads (shadows).
+    MeshPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& uniforms, LightMaps& maps);
     ~MeshPass() override;
     const char* name() const override { return "meshes"; }
     void declare(PassIo& io) override;
     void record(VkCommandBuffer cmd, FrameContext& frame) override;
 
-    // The light's maps the shading reads (shadows); must be set before the first frame.
-    void setLightMaps(LightMaps* maps) { lightMaps_ = maps; }
     // Draws the meshes' depth from the light into the rendering the caller has begun.
     void recordFromLight(VkCommandBuffer cmd, FrameContext& frame);
 
@@ -92,8 +92,11 @@ public:
 
     void declareDepth(PassIo& io);
     void recordDepth(VkCommandBuffer cmd, FrameContext& frame);
-    void declareShadowMask(PassIo& io);
-    void recordShadowMask(VkCommandBuffer cmd, FrameContext& frame);
+    // The shadow mask's compute stage (gpu/compute_stage.h): the frame's parameters, the light's
+    // maps and the meshes' depth read, the mask written, and its dispatch; its pass declares and
+    // records from it.
+    ComputeStage shadowMaskStage();
+    const StageLayout& shadowMaskLayout() const { return shadowLayout_; }
 
 private:
     const vk::Context& ctx_;
@@ -105,15 +108,14 @@ private:
     vk::Pipeline backgroundPipeline_; // the backdrop's gradient behind the meshes (background.frag)
     vk::Pipeline lightPipeline_;      // depth only, from the light
     vk::Pipeline depthPipeline_;      // depth only, from the camera
-    vk::DescriptorSetLayout shadowSetLayout_;
-    vk::PipelineLayout shadowLayout_;
-    vk::Pipeline shadowPipeline_; // mesh_shadow.comp
+    LightMaps& maps_;
+    StageLayout shadowLayout_;
+    vk::ComputeKernel shadowKernel_; // mesh_shadow.comp
     vk::Sampler nearest_;
     vk::Image shadowMask_;
     TrackedImage shadowMaskTrack_;
     std::unique_ptr<Pass> depthPass_, shadowMaskPass_;
     glm::mat4 inverseViewProjection_{1.0f};
-    LightMaps* lightMaps_ = nullptr;
     struct GpuMesh {
         vk::Buffer vertices;
         vk::Buffer indices;

@@ -1,6 +1,6 @@
 // renderer/physics_pass.h: the simulation as a pass of the frame: records the fixed steps due
-// this frame on the GPU solver and declares the guide buffers it writes, so the frame puts a
-// barrier between it and any pass that draws them.
+// this frame on the GPU solver and declares what its stages list (the guide buffers it writes
+// among them), so the frame puts a barrier between it and any pass that draws them.
 #pragma once
 
 #include "gpu/pass.h"
@@ -17,11 +17,7 @@ public:
     // Each step carries its pose and its wind (gpu::SimStep).
     void setSteps(std::vector<gpu::SimStep> steps) { steps_ = std::move(steps); }
     size_t stepCount() const { return steps_.size(); }
-    void declare(PassIo& io) override
-    {
-        io.use(solver_.positionsTrack(), Access::ComputeWrite);
-        io.use(solver_.tangentsTrack(), Access::ComputeWrite);
-    }
+    void declare(PassIo& io) override { solver_.declare(io); }
     void record(VkCommandBuffer cmd, FrameContext&) override
     {
         for (const gpu::SimStep& step : steps_)

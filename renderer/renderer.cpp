@@ -89,8 +89,7 @@ Renderer::Renderer(const vk::Context& ctx, const RenderSettings& settings, uint3
 {
     target_ = std::make_unique<RenderTarget>(ctx, VkExtent2D{settings.width, settings.height}, settings.samples);
     lightMaps_ = std::make_unique<LightMaps>(ctx, settings.shadows.mapSize);
-    meshPass_ = std::make_unique<MeshPass>(ctx_, *target_, uniforms_);
-    meshPass_->setLightMaps(lightMaps_.get());
+    meshPass_ = std::make_unique<MeshPass>(ctx_, *target_, uniforms_, *lightMaps_);
     shadowPass_ = std::make_unique<ShadowPass>(*lightMaps_, *meshPass_, nullptr);
     opacityPass_ = std::make_unique<OpacityPass>(*lightMaps_, nullptr);
     meshPass_->setSurface(settings_.headAlbedo, settings_.headRoughness);

@@ -90,6 +90,8 @@ public:
     bool computeMeshes() const;
 
     RenderTarget& target() { return *target_; }
+    MeshPass& meshes() { return *meshPass_; }
+    OitResolvePass* oitResolve() { return oitResolve_.get(); } // (made with the graphics path's OIT)
     StrandRaster* strandRaster() { return strandRaster_.get(); }
     MeshRaster* meshRaster() { return meshRaster_.get(); }
     // The per-frame block prepare() last wrote (the tests' CPU twins take it as their input).

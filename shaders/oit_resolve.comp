@@ -16,10 +16,10 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const uint kOitK = 8u;  // oit_k, 1 .. kMaxOitK: the lists stay in registers
 layout(push_constant) uniform PushBlock { uint width; uint height; uint k; uint maxWalk; } push;
-layout(set = 0, binding = 0, std430) readonly buffer Heads { uint heads[]; };
-layout(set = 0, binding = 1, std430) readonly buffer Nodes { OitNode nodes[]; };
-layout(set = 0, binding = 2, std430) readonly buffer Counters { OitCounters counters; };
-layout(set = 0, binding = 3, rgba16f) uniform writeonly image2D hairColor;
+layout(set = 0, binding = kOitResolveBindingHeads, std430) readonly buffer Heads { uint heads[]; };
+layout(set = 0, binding = kOitResolveBindingNodes, std430) readonly buffer Nodes { OitNode nodes[]; };
+layout(set = 0, binding = kOitResolveBindingCounters, std430) readonly buffer Counters { OitCounters counters; };
+layout(set = 0, binding = kOitResolveBindingColor, rgba16f) uniform writeonly image2D hairColor;
 
 void main()
 {

@@ -3,10 +3,14 @@
 // untracked not at all); a stage cannot use what it does not list: a command on a resource it
 // does not list throws, and so does the dispatch of a kernel whose shader uses a binding its stage
 // leaves out (the compute strands' own scan, one entry dropped), which would otherwise read
-// whatever an earlier stage pushed there, with no barrier.
+// whatever an earlier stage pushed there, with no barrier. The kernels outside the compute path
+// (the solver's two, the meshes' shadow mask, the OIT resolve) are held to their lists the same way.
 #include "gpu/compute_stage.h"
 #include "gpu/frame.h"
+#include "physics/gpu_solver.h"
 #include "renderer/compute/strand_raster.h"
+#include "renderer/graphics/oit.h"
+#include "renderer/mesh_pass.h"
 #include "small_scene.h"
 #include "test_support.h"
 
@@ -196,4 +200,72 @@ TEST(ComputeStage, AKernelCannotUseABindingItsStageLeavesOut)
                          std::to_string(gpu::kRasterBindingCounts)),
               std::string::npos)
         << error;
+}
+
+namespace {
+
+// Records `stage`, less its entry at `dropBinding` (none: the whole list), into a command buffer
+// that is never submitted: false when recording threw (its message in `error`).
+bool recordWithout(const vk::Context& ctx, const StageLayout& layout, ComputeStage stage, uint32_t dropBinding,
+                   const std::string& name, std::string& error)
+{
+    size_t listed = stage.uses.size();
+    std::erase_if(stage.uses, [&](const StageUse& u) { return u.binding == dropBinding; });
+    EXPECT_EQ(stage.uses.size(), dropBinding == StageUse::kNoBinding ? listed : listed - 1) << name;
+    Frame frame(ctx, 1);
+    FrameContext& fc = frame.begin({});
+    try {
+        layout.record(stage, fc.cmd, fc.slot, name);
+    } catch (const std::logic_error& e) {
+        error = e.what();
+        return false;
+    }
+    return true;
+}
+
+// The stage's whole list records, and without any one of its bindings the dispatch is refused,
+// naming that binding: its kernel uses every binding it lists, and can use no other.
+void expectEachBindingNeeded(const vk::Context& ctx, const StageLayout& layout, const ComputeStage& stage,
+                             const std::string& name)
+{
+    std::string error;
+    EXPECT_TRUE(recordWithout(ctx, layout, stage, StageUse::kNoBinding, name, error)) << error;
+    size_t bindings = 0;
+    for (const StageUse& u : stage.uses) {
+        if (u.binding == StageUse::kNoBinding)
+            continue;
+        ++bindings;
+        EXPECT_FALSE(recordWithout(ctx, layout, stage, u.binding, name, error)) << name << " without " << u.binding;
+        EXPECT_NE(error.find("compute stage '" + name + "' dispatches"), std::string::npos) << error;
+        EXPECT_NE(error.find("uses binding " + std::to_string(u.binding) + ","), std::string::npos) << error;
+    }
+    EXPECT_GT(bindings, 0u) << name;
+}
+
+} // namespace
+
+// The compute kernels outside the compute path (the solver's, the meshes' shadow mask, the OIT
+// resolve) are stages too: each lists what its kernel uses, and one entry less is refused.
+TEST(ComputeStage, TheSolverTheShadowMaskAndTheOitResolveCannotUseWhatTheyDoNotList)
+{
+    vk::Context ctx(test::validatedOptions());
+    HairScene scene = test::smallHairScene(12);
+    RenderSettings s = test::smallRenderSettings();
+    s.hairRaster = HairRaster::Graphics;
+    s.transparency.mode = Transparency::Oit;
+    s.transparency.oitAutoNodes = 1u << 16;
+    test::HairRenderer hair(ctx, scene, s);
+    gpu::SimStep step{};
+    for (uint32_t turn : {0u, 1u}) {
+        expectEachBindingNeeded(ctx, hair.solver.layout(), hair.solver.stage(GpuSolver::Stage::Integrate, step, turn),
+                                "integrate");
+        expectEachBindingNeeded(ctx, hair.solver.layout(), hair.solver.stage(GpuSolver::Stage::GridGather, step, turn),
+                                "grid_gather");
+    }
+    MeshPass& meshes = hair.renderer.meshes();
+    expectEachBindingNeeded(ctx, meshes.shadowMaskLayout(), meshes.shadowMaskStage(), "meshes.shadow");
+    OitResolvePass* resolve = hair.renderer.oitResolve();
+    ASSERT_NE(resolve, nullptr);
+    expectEachBindingNeeded(ctx, resolve->layout(), resolve->stage(), "oit.resolve");
+    EXPECT_EQ(ctx.validationMessages(), 0u);
 }

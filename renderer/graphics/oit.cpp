@@ -177,17 +177,9 @@ void OitStatsPass::record(VkCommandBuffer cmd, FrameContext& frame)
 
 OitResolvePass::OitResolvePass(const vk::Context& ctx, Oit& oit) : ctx_(ctx), oit_(oit)
 {
-    vk::PipelineLayoutBundle layout =
-        vk::createPipelineLayout(ctx, {.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-                                                    {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-                                                    {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-                                                    {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}},
-                                       .pushConstantBytes = sizeof(ResolvePush),
-                                       .pushConstantStages = VK_SHADER_STAGE_COMPUTE_BIT,
-                                       .name = "oit.resolve.layout"});
-    setLayout_ = std::move(layout.setLayout);
-    layout_ = std::move(layout.layout);
-    pipeline_ = vk::createComputePipeline(ctx, layout_, "oit_resolve.comp", "oit.resolve.pipeline", {k_});
+    ComputeStage resolve = stage(); // (the layout holds the bindings it lists)
+    layout_ = StageLayout(ctx, std::span(&resolve, 1), sizeof(ResolvePush), "oit.resolve.layout");
+    kernel_ = vk::createComputeKernel(ctx, layout_.layout(), "oit_resolve.comp", "oit.resolve.pipeline", {k_});
 }
 
 void OitResolvePass::setK(uint32_t k, FrameContext& frame)
@@ -196,43 +188,29 @@ void OitResolvePass::setK(uint32_t k, FrameContext& frame)
     if (k == k_)
         return;
     k_ = k;
-    frame.retire(std::move(pipeline_));
-    pipeline_ = vk::createComputePipeline(ctx_, layout_, "oit_resolve.comp", "oit.resolve.pipeline", {k_});
+    frame.retire(std::move(kernel_.pipeline));
+    kernel_ = vk::createComputeKernel(ctx_, layout_.layout(), "oit_resolve.comp", "oit.resolve.pipeline", {k_});
 }
 
-void OitResolvePass::declare(PassIo& io)
+ComputeStage OitResolvePass::stage()
 {
-    io.use(oit_.heads(), Access::ComputeRead);
-    io.use(oit_.nodes(), Access::ComputeRead);
-    io.use(oit_.counters(), Access::ComputeRead);
-    io.use(oit_.color(), Access::ComputeWrite);
+    using enum Access;
+    using namespace gpu; // the bindings: shaders/shared/shadows.h
+    return {.uses = {storageBuffer(kOitResolveBindingHeads, oit_.heads(), ComputeRead),
+                     storageBuffer(kOitResolveBindingNodes, oit_.nodes(), ComputeRead),
+                     storageBuffer(kOitResolveBindingCounters, oit_.counters(), ComputeRead),
+                     storageImage(kOitResolveBindingColor, oit_.color(), oit_.colorImage().view(), ComputeWrite)},
+            .record = [this](StageCommands& c) {
+                // A list can never hold more nodes than the pool; the bound also keeps a corrupted list finite.
+                VkExtent2D e = oit_.extent();
+                ResolvePush push{.width = e.width, .height = e.height, .k = k_, .maxWalk = oit_.capacity()};
+                c.dispatch(kernel_, push, vk::groupCount(e.width, 8), vk::groupCount(e.height, 8));
+            }};
 }
 
-void OitResolvePass::record(VkCommandBuffer cmd, FrameContext&)
+void OitResolvePass::record(VkCommandBuffer cmd, FrameContext& frame)
 {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
-    std::array<VkDescriptorBufferInfo, 3> infos = {VkDescriptorBufferInfo{oit_.headsBuffer(), 0, VK_WHOLE_SIZE},
-                                                   VkDescriptorBufferInfo{oit_.nodesBuffer(), 0, VK_WHOLE_SIZE},
-                                                   VkDescriptorBufferInfo{oit_.countersBuffer(), 0, VK_WHOLE_SIZE}};
-    VkDescriptorImageInfo image{VK_NULL_HANDLE, oit_.colorImage().view(), VK_IMAGE_LAYOUT_GENERAL};
-    std::array<VkWriteDescriptorSet, 4> writes{};
-    for (uint32_t i = 0; i < 3; ++i)
-        writes[i] = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-                     .dstBinding = i,
-                     .descriptorCount = 1,
-                     .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                     .pBufferInfo = &infos[i]};
-    writes[3] = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-                 .dstBinding = 3,
-                 .descriptorCount = 1,
-                 .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                 .pImageInfo = &image};
-    ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, uint32_t(writes.size()), writes.data());
-    // A list can never hold more nodes than the pool; the bound also keeps a corrupted list finite.
-    VkExtent2D e = oit_.extent();
-    ResolvePush push{.width = e.width, .height = e.height, .k = k_, .maxWalk = oit_.capacity()};
-    vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatch(cmd, vk::groupCount(e.width, 8), vk::groupCount(e.height, 8), 1);
+    layout_.record(stage(), cmd, frame.slot, name());
 }
 
 } // namespace wisp

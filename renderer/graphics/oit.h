@@ -11,6 +11,7 @@
 // fragments (counted) but never writes out of bounds or loops.
 #pragma once
 
+#include "gpu/compute_stage.h"
 #include "gpu/handle.h"
 #include "gpu/pass.h"
 #include "gpu/resources.h"
@@ -112,22 +113,27 @@ private:
     Oit& oit_;
 };
 
+// A compute stage (gpu/compute_stage.h): its one list of what it touches gives its declarations
+// and its descriptors.
 class OitResolvePass : public Pass {
 public:
     OitResolvePass(const vk::Context& ctx, Oit& oit);
     const char* name() const override { return "oit.resolve"; }
-    void declare(PassIo& io) override;
+    void declare(PassIo& io) override { stage().declare(io); }
     void record(VkCommandBuffer cmd, FrameContext& frame) override;
     // oit_k, a specialization constant of the resolve (its lists stay in registers): a new value
     // builds the pipeline again, the old one retired to `frame`.
     void setK(uint32_t k, FrameContext& frame);
 
+    // The lists' heads, nodes and counters read, the resolved colour written, and the dispatch.
+    ComputeStage stage();
+    const StageLayout& layout() const { return layout_; }
+
 private:
     const vk::Context& ctx_;
     Oit& oit_;
-    vk::DescriptorSetLayout setLayout_;
-    vk::PipelineLayout layout_;
-    vk::Pipeline pipeline_;
+    StageLayout layout_;
+    vk::ComputeKernel kernel_;
     uint32_t k_ = 8;
 };
 

@@ -27,6 +27,12 @@ GPU_CONST uint kMaxPcfSamples = 64u;
 GPU_CONST uint kMaxOitK = 16u;        // nearest fragments the OIT resolve sorts (oit_k <= this)
 GPU_CONST uint kOitNil = 0xffffffffu; // end of a per-pixel list
 
+// Bindings of the OIT resolve (oit_resolve.comp).
+GPU_CONST uint kOitResolveBindingHeads = 0;    // the lists' heads, one per pixel
+GPU_CONST uint kOitResolveBindingNodes = 1;    // the pool of nodes
+GPU_CONST uint kOitResolveBindingCounters = 2; // OitCounters
+GPU_CONST uint kOitResolveBindingColor = 3;    // image2D rgba16f: the resolved hair, premultiplied
+
 // Tap i of n on a Vogel disk of unit radius, rotated by `angle` (radians): radii sqrt((i+0.5)/n)
 // cover the disk with equal area per tap, angles step by the golden angle.
 GPU_FN vec2 vogelDiskTap(uint i, uint n, float angle)
