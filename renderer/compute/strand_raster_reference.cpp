@@ -40,38 +40,70 @@ std::vector<gpu::CurvePoint> guideCurves(const gpu::StrandRasterPush& push, cons
     return out;
 }
 
+namespace {
+
+// Vertex `id` of the drawn strands as strands_generate.comp places it: which guide, which of its
+// strands and how far along (t = i / D), the point (pushed out of the colliders), its tangent and
+// its world width. `curves`: guideCurves().
+struct PlacedVertex {
+    uint32_t guide = 0;
+    uint32_t s = 0; // of the guide's drawnPerGuide
+    float t = 0.0f;
+    glm::vec3 position{0.0f};
+    glm::vec3 tangent{0.0f};
+    float width = 0.0f;
+};
+
+PlacedVertex placeVertex(const gpu::StrandRasterPush& push, const gpu::FrameParams& frame, const gpu::SimParams& sim,
+                         const std::vector<gpu::CurvePoint>& curves, const std::vector<glm::uvec4>& triangles,
+                         uint32_t id)
+{
+    uint32_t perStrand = push.divisions + 1;
+    uint32_t drawn = id / perStrand;
+    uint32_t i = id % perStrand;
+    PlacedVertex v;
+    v.guide = drawn / push.drawnPerGuide;
+    v.s = drawn % push.drawnPerGuide;
+    v.t = float(i) / float(push.divisions);
+    gpu::CurvePoint g = curves[size_t(v.guide) * perStrand + i];
+    gpu::CurvePoint g1 = g, g2 = g;
+    if (gpu::strandIsMulti(push.interpolation, v.s)) {
+        g1 = curves[size_t(triangles[v.guide].y) * perStrand + i];
+        g2 = curves[size_t(triangles[v.guide].z) * perStrand + i];
+    }
+    gpu::CurvePoint point = gpu::placeStrandPoint(g, g1, g2, v.guide, v.s, v.t, push.interpolation, push.clumpRadius,
+                                                  push.deviation, gpu::guideLength(triangles[v.guide].w),
+                                                  push.coilRadius, push.coilFrequency, push.divisions);
+    v.position = point.position;
+    if (v.s != 0)
+        for (uint32_t c = 0; c < sim.colliderCount; ++c)
+            v.position = gpu::pushOutOfCollider(sim.colliders[c], frame.headTransform, v.position);
+    v.tangent = point.tangent;
+    v.width = gpu::strandWidthAt(push.width * gpu::guideWidthScale(triangles[v.guide].w), v.t);
+    return v;
+}
+
+size_t drawnVertexCount(const gpu::StrandRasterPush& push)
+{
+    return size_t(push.guideCount) * push.drawnPerGuide * (push.divisions + 1);
+}
+
+} // namespace
+
 DrawnStrands placeStrands(const gpu::StrandRasterPush& push, const gpu::FrameParams& frame, const gpu::SimParams& sim,
                           const std::vector<glm::vec3>& guides, const std::vector<glm::uvec4>& triangles)
 {
-    uint32_t perStrand = push.divisions + 1;
-    size_t count = size_t(push.guideCount) * push.drawnPerGuide * perStrand;
+    size_t count = drawnVertexCount(push);
     std::vector<gpu::CurvePoint> curves = guideCurves(push, guides); // strands.curves, as the kernel reads it
     DrawnStrands out;
     out.positions.resize(count);
     out.tangents.resize(count);
     out.widths.resize(count);
     for (uint32_t id = 0; id < count; ++id) {
-        uint32_t drawn = id / perStrand;
-        uint32_t i = id % perStrand;
-        uint32_t guide = drawn / push.drawnPerGuide;
-        uint32_t s = drawn % push.drawnPerGuide;
-        float t = float(i) / float(push.divisions);
-        gpu::CurvePoint g = curves[size_t(guide) * perStrand + i];
-        gpu::CurvePoint g1 = g, g2 = g;
-        if (gpu::strandIsMulti(push.interpolation, s)) {
-            g1 = curves[size_t(triangles[guide].y) * perStrand + i];
-            g2 = curves[size_t(triangles[guide].z) * perStrand + i];
-        }
-        gpu::CurvePoint point = gpu::placeStrandPoint(g, g1, g2, guide, s, t, push.interpolation, push.clumpRadius,
-                                                      push.deviation, gpu::guideLength(triangles[guide].w),
-                                                      push.coilRadius, push.coilFrequency, push.divisions);
-        glm::vec3 p = point.position;
-        if (s != 0)
-            for (uint32_t c = 0; c < sim.colliderCount; ++c)
-                p = gpu::pushOutOfCollider(sim.colliders[c], frame.headTransform, p);
-        out.positions[id] = p;
-        out.tangents[id] = point.tangent;
-        out.widths[id] = gpu::strandWidthAt(push.width * gpu::guideWidthScale(triangles[guide].w), t);
+        PlacedVertex v = placeVertex(push, frame, sim, curves, triangles, id);
+        out.positions[id] = v.position;
+        out.tangents[id] = v.tangent;
+        out.widths[id] = v.width;
     }
     return out;
 }
@@ -80,33 +112,26 @@ StrandVertices generateStrands(const gpu::StrandRasterPush& push, const gpu::Fra
                                const gpu::SimParams& sim, const std::vector<glm::vec3>& guides,
                                const std::vector<glm::uvec4>& triangles)
 {
-    uint32_t perStrand = push.divisions + 1;
-    DrawnStrands placed = placeStrands(push, frame, sim, guides, triangles);
-    size_t count = placed.positions.size();
+    size_t count = drawnVertexCount(push);
+    std::vector<gpu::CurvePoint> curves = guideCurves(push, guides);
     StrandVertices out;
     out.positions.resize(count);
     out.colors.resize(count);
     for (uint32_t id = 0; id < count; ++id) {
-        uint32_t drawn = id / perStrand;
-        uint32_t i = id % perStrand;
-        uint32_t guide = drawn / push.drawnPerGuide;
-        uint32_t s = drawn % push.drawnPerGuide;
-        float t = float(i) / float(push.divisions);
-        glm::vec3 p = placed.positions[id];
-        uint32_t strand = guide * push.strandsPerGuide + s;
-        float alpha = frame.hairOpacity * gpu::lodAlpha(s, push.lodStrands);
-        float worldWidth = placed.widths[id];
+        PlacedVertex v = placeVertex(push, frame, sim, curves, triangles, id); // as placeStrands places it
+        uint32_t strand = v.guide * push.strandsPerGuide + v.s;
+        float alpha = frame.hairOpacity * gpu::lodAlpha(v.s, push.lodStrands);
         if (push.fromLight != 0) {
-            out.positions[id] = gpu::projectStrandVertex(frame.lightViewProjection, glm::vec2(frame.shadowMapSize), p,
-                                                         worldWidth, frame.lightTexelsPerUnit);
+            out.positions[id] = gpu::projectStrandVertex(frame.lightViewProjection, glm::vec2(frame.shadowMapSize),
+                                                         v.position, v.width, frame.lightTexelsPerUnit);
             out.colors[id] = gpu::packFragmentColor(glm::vec3(0.0f), alpha);
             continue;
         }
         glm::vec2 size(frame.viewportWidth, frame.viewportHeight);
         float pixelsPerUnit = std::abs(frame.projection[1][1]) * 0.5f * size.y;
-        out.positions[id] = gpu::projectStrandVertex(frame.viewProjection, size, p, worldWidth, pixelsPerUnit);
+        out.positions[id] = gpu::projectStrandVertex(frame.viewProjection, size, v.position, v.width, pixelsPerUnit);
         glm::vec3 noLut[gpu::kFrameLights]{}; // (the twin is compared in the karis and kajiya modes)
-        glm::vec3 color = gpu::shadeStrandPoint(frame, p, placed.tangents[id], t, strand, glm::vec2(1.0f), noLut);
+        glm::vec3 color = gpu::shadeStrandPoint(frame, v.position, v.tangent, v.t, strand, glm::vec2(1.0f), noLut);
         out.colors[id] = gpu::packFragmentColor(color, alpha);
     }
     return out;
