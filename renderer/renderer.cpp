@@ -81,6 +81,7 @@ gpu::FrameParams pack(const RenderSettings& s, const OrbitCamera& camera, VkExte
     p.hairVariation = look.variation;
     p.hairStreaks = look.streaks;
     p.hairAmbientOcclusion = 0.6f;
+    p.multipleScattering = look.multipleScattering ? 1u : 0u;
     return p;
 }
 

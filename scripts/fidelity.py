@@ -365,9 +365,12 @@ def markdown(result, cases, order, varied, case_axes):
                 cells = [f"**{x}**" for x in cells]
             add("| " + " | ".join(cells) + " |")
     add("")
-    add("No setting turns the real-time path's multiple scattering off: `karis` and `lut` add Karis's "
-        "approximation (`hairKarisMultiple`), `kajiya` has none (its diffuse lobe stands in). Once one "
-        "exists, `--vary` it: the table takes any setting.")
+    if "multiple_scattering" in varied:
+        add("`multiple_scattering=off` leaves Karis's approximation (`hairKarisMultiple`) out of `karis` and "
+            "`lut`; `kajiya` has none (its diffuse lobe stands in), so its pictures are the same either way.")
+    else:
+        add("`karis` and `lut` add Karis's multiple-scattering approximation (`hairKarisMultiple`), `kajiya` "
+            "has none (its diffuse lobe stands in): `--vary multiple_scattering=on,off` gives its column.")
     add("")
     add("## The references")
     add("")

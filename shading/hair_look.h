@@ -27,8 +27,9 @@ struct HairLook {
     float betaN = 0.3f; // azimuthal roughness
     float cuticleTiltDeg = 2.0f;
     float eta = 1.55f;
-    float variation = 0.3f; // per-strand spread of absorption (0: every strand alike)
-    float streaks = 0.35f;  // strength of lighter and darker streaks along strands
+    float variation = 0.3f;         // per-strand spread of absorption (0: every strand alike)
+    float streaks = 0.35f;          // strength of lighter and darker streaks along strands
+    bool multipleScattering = true; // karis and lut add Karis's multiple scattering (kajiya has none)
 };
 
 // Named looks: melanin pairs in the range Chiang et al. 2016 show for these colours (their figure

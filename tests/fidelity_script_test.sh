@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# ctest Scripts.Fidelity: scripts/fidelity.sh end to end at the smallest size (one case, two
-# variants, 16 samples per pixel, 48 x 32) with the built wisp: the table has a row per variant,
-# fidelity.json one case with its measurements, the pictures are packed; and its bad input (a
+# ctest Scripts.Fidelity: scripts/fidelity.sh end to end at the smallest size (one case, four
+# variants: two models with multiple scattering on and off, 16 samples per pixel, 48 x 32) with the
+# built wisp: the table has a row per variant and a column per varied setting, fidelity.json one
+# case with its measurements (kajiya's the same with multiple scattering on or off), the pictures
+# are packed; and its bad input (a
 # missing binary or data, a bad number, a refused setting, an earlier run) exits 2 with a message
 # naming it and writes nothing.
 # Usage: tests/fidelity_script_test.sh PATH/TO/wisp
@@ -38,28 +40,38 @@ WISP="$wisp" refused bad-light "--lights: 'side' is not one of: front back" \
   "$root/scripts/fidelity.sh" "$tmp/bad-light" --lights front,side
 WISP="$wisp" refused bad-setting "--set shading=phong" \
   "$root/scripts/fidelity.sh" "$tmp/bad-setting" "${small[@]}" --vary shading=karis,phong
+WISP="$wisp" refused bad-on-off "--set multiple_scattering=sometimes" \
+  "$root/scripts/fidelity.sh" "$tmp/bad-on-off" "${small[@]}" --vary multiple_scattering=on,sometimes
 
 out="$tmp/run"
 start=$SECONDS
 status=0
-WISP="$wisp" "$root/scripts/fidelity.sh" "$out" "${small[@]}" --vary shading=karis,kajiya --no-terms 2>"$tmp/run.err" ||
+WISP="$wisp" "$root/scripts/fidelity.sh" "$out" "${small[@]}" --vary shading=karis,kajiya \
+  --vary multiple_scattering=on,off --no-terms 2>"$tmp/run.err" ||
   status=$?
 [ $status = 0 ] || { cat "$tmp/run.err" >&2; fail "the run exited $status"; }
 echo "fidelity.sh took $((SECONDS - start)) s" >&2
 # The first table: its header, then a row per variant (the closest in bold).
-table="$(awk '/^\| case \| shading \| RMSE/ {on = 1} on && /^$/ {exit} on' "$out/fidelity.md")"
-rows="$(echo "$table" | tail -n +3 | sed 's/\*\*//g' | cut -d'|' -f2,3 | tr -d ' ')"
-[ "$rows" = "$(printf 'default-front-brown|karis\ndefault-front-brown|kajiya')" ] ||
-  fail "fidelity.md's table has these rows (case|shading), not karis and kajiya: $rows"
+table="$(awk '/^\| case \| shading \| multiple_scattering \| RMSE/ {on = 1} on && /^$/ {exit} on' "$out/fidelity.md")"
+rows="$(echo "$table" | tail -n +3 | sed 's/\*\*//g' | cut -d'|' -f2,3,4 | tr -d ' ')"
+expected="$(printf 'default-front-brown|karis|%s\n' on off; printf 'default-front-brown|kajiya|%s\n' on off)"
+[ "$rows" = "$expected" ] ||
+  fail "fidelity.md's table has these rows (case|shading|multiple_scattering), not karis and kajiya, on and off: $rows"
+grep -qF '| case | shading=karis multiple_scattering=on | shading=karis multiple_scattering=off |' "$out/fidelity.md" ||
+  fail "fidelity.md's first table does not name the variants' columns"
 grep -q '^| \*\*default-front-brown\*\* | ' <<<"$table" || fail "fidelity.md marks no closest variant"
 python3 - "$out/fidelity.json" <<'EOF' || fail "fidelity.json is not as expected"
 import json, sys
 r = json.load(open(sys.argv[1]))
 assert [c["case"] for c in r["cases"]] == ["default-front-brown"], r["cases"]
 c = r["cases"][0]
-assert [v["settings"] for v in c["variants"]] == [{"shading": "karis"}, {"shading": "kajiya"}], c["variants"]
+assert [v["settings"] for v in c["variants"]] == [
+    {"shading": m, "multiple_scattering": s} for m in ("karis", "kajiya") for s in ("on", "off")], c["variants"]
 for v in c["variants"]:
     assert 0 < v["frame"]["rmse"] < 1 and 0 < v["hair"]["rmse"] < 1 and v["hair"]["pixels"] > 0, v
+karis_on, karis_off, kajiya_on, kajiya_off = c["variants"]
+assert karis_on["hair"] != karis_off["hair"], "multiple_scattering=off changed nothing in karis"
+assert kajiya_on["hair"] == kajiya_off["hair"], "kajiya has no multiple scattering to turn off"
 assert c["reference"]["noise_levels"] > 0 and 0 < c["reference"]["second"]["frame"]["rmse"] < 1, c["reference"]
 assert r["packed"]["files"] > 0 and not r["packed"]["left_out"], r["packed"]
 EOF

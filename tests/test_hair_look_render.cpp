@@ -97,6 +97,39 @@ TEST(HairLookRender, BacklitHairGlows)
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 
+// multiple_scattering=off leaves Karis's multiple scattering out of karis and lut: their hair is
+// darker, on both drawing paths; kajiya has none, so its picture does not change by a byte.
+TEST(HairLookRender, MultipleScatteringOffDarkensKarisAndLeavesKajiyaAlone)
+{
+    vk::Context ctx(test::validatedOptions());
+    HairScene scene = smallHairScene(150);
+    RenderSettings s = smallRenderSettings();
+    applyHairPreset(s.hair, "blonde"); // light hair: multiple scattering is much of its colour
+    OrbitCamera camera;
+    LightFit fit{Bounds{glm::vec3(-1.0f), glm::vec3(1.0f)}, 1.0f};
+    EXPECT_EQ(pack(s, camera, {64, 64}, 0.0f, fit).multipleScattering, 1u);
+    s.hair.multipleScattering = false;
+    EXPECT_EQ(pack(s, camera, {64, 64}, 0.0f, fit).multipleScattering, 0u);
+    Picture bald = renderPicture(ctx, scene.head, s);
+    for (HairRaster raster : {HairRaster::Graphics, HairRaster::Compute}) {
+        s.hairRaster = raster;
+        for (ShadingModel m : {ShadingModel::Karis, ShadingModel::Lut, ShadingModel::Kajiya}) {
+            s.hair.model = m;
+            s.hair.multipleScattering = true;
+            Picture on = renderHair(ctx, scene, s);
+            s.hair.multipleScattering = false;
+            Picture off = renderHair(ctx, scene, s);
+            if (m == ShadingModel::Kajiya) {
+                EXPECT_EQ(on.rgba, off.rgba) << "raster " << int(raster);
+                continue;
+            }
+            EXPECT_LT(hairBrightness(off, bald), hairBrightness(on, bald) - 10.0)
+                << "raster " << int(raster) << " model " << int(m);
+        }
+    }
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
 TEST(HairLookRender, TheLookupTablesFollowTheLook)
 {
     // In lut mode the tables are rebuilt when the look changes (the old image retired with the

@@ -138,6 +138,46 @@ TEST(StudioLights, TheRimLightsAStrandFromBehindThroughItsTransmission)
     EXPECT_GT(deep.x, dark.x) << "but not gone (the occlusion is softened as the ambient's)";
 }
 
+TEST(StudioLights, MultipleScatteringOffLeavesKarisSingleScatteringAndKajiyaAsItIs)
+{
+    // One strand point lit by the key: with multipleScattering 0 the karis model's response is its
+    // single scattering alone (hairKaris), lut's its tables' alone; kajiya's does not change.
+    FrameParams f = keyOnlyFrame();
+    f.ambientIntensity = 0.0f;
+    f.exposure = 0.05f; // far below the tone map's shoulder
+    f.hair.baseColor = vec4(0.6f, 0.4f, 0.25f, 0.0f);
+    f.hair.sigmaA = vec4(0.3f, 0.6f, 1.2f, 1.55f);
+    f.hair.roughness = vec4(0.3f, 0.3f, -0.035f, 0.0f);
+    f.hair.kajiya = vec4(0.05f, -0.1f, 80.0f, 20.0f);
+    f.hair.kajiyaWeights = vec4(0.5f, 0.05f, 0.1f, 0.0f);
+    vec3 t(0, 1, 0), wi = normalize(vec3(0.3f, 0.2f, 1.0f)), wo(0, 0, 1);
+    f.lightDirection = wi;
+    HairMaterial m = f.hair;
+    vec3 base = vec3(m.baseColor);
+    vec3 lut(0.02f, 0.015f, 0.01f);
+    for (uint model : {kShadingKaris, kShadingLut, kShadingKajiya}) {
+        f.shadingModel = model;
+        f.multipleScattering = 1u;
+        vec3 on = strandLightResponse(f, m, base, t, wi, wo, 0.7f, lut);
+        f.multipleScattering = 0u;
+        vec3 off = strandLightResponse(f, m, base, t, wi, wo, 0.7f, lut);
+        if (model == kShadingKajiya) {
+            EXPECT_EQ(on, off);
+            continue;
+        }
+        vec3 multiple = 0.7f * hairKarisMultiple(t, wi, wo, m, 0.3f);
+        vec3 single = model == kShadingKaris ? 0.7f * hairKaris(t, wi, wo, m) : 0.7f * lut;
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(off[c], single[c], 1e-6f) << "model " << model;
+            EXPECT_NEAR(on[c], single[c] + multiple[c], 1e-6f) << "model " << model;
+        }
+        EXPECT_GT(multiple.x, 0.01f);
+    }
+    f.shadingModel = kShadingKaris;
+    f.multipleScattering = 1u;
+    EXPECT_EQ(strandLightResponse(f, m, base, t, wi, wo, 0.7f, lut), hairKarisLit(t, wi, wo, m, 0.3f));
+}
+
 TEST(StudioLights, TheBackdropRunsFromTopToBottom)
 {
     FrameParams f = keyOnlyFrame();

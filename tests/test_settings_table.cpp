@@ -263,6 +263,19 @@ TEST(SettingsTable, ThePanelShowsEachTypeAsItsControl)
     EXPECT_FALSE(panelControl(settingSpec("guides")).enabled); // grown at start
 }
 
+// multiple_scattering is on by default, a checkbox, and --set turns it off (what the frame's
+// parameters take from it: tests/test_hair_look_render.cpp).
+TEST(SettingsTable, MultipleScatteringIsOnByDefaultAndTurnsOff)
+{
+    Settings s;
+    EXPECT_TRUE(s.render.hair.multipleScattering);
+    EXPECT_EQ(settingText(settingSpec("multiple_scattering"), settingSpec("multiple_scattering").get(s)), "on");
+    applySetting(s, "multiple_scattering=off");
+    EXPECT_FALSE(s.render.hair.multipleScattering);
+    EXPECT_EQ(settingSpec("multiple_scattering").group, SettingGroup::Look);
+    EXPECT_EQ(panelControl(settingSpec("multiple_scattering")).kind, PanelControl::Kind::Checkbox);
+}
+
 TEST(SettingsTable, SettingsListsEveryNameWithWhatAChangeNeeds)
 {
     std::string table = settingsTable();

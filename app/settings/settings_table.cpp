@@ -567,6 +567,11 @@ std::vector<SettingSpec> buildSpecs()
         choice("shading", {"karis", "kajiya", "lut"}, kLive, "",
                "hair shading model (lut: tables from the reference BSDF)"),
         [](Settings & x) -> auto& { return x.render.hair.model; }));
+    add(field(
+        onOff("multiple_scattering", kLive, "",
+              "the light scattered between fibres (Karis's approximation) in the karis and lut models; "
+              "kajiya has none"),
+        [](Settings & x) -> auto& { return x.render.hair.multipleScattering; }));
     SettingSpec preset = choice("hair_preset", {}, kLive, "",
                                 "a hair colour by name: sets melanin and pheomelanin (custom: neither preset's)");
     for (const HairPreset& p : kHairPresets)

@@ -63,7 +63,7 @@ struct FrameParams {
     float hairVariation;        // per-strand spread of absorption, 0..1
     float hairStreaks;          // strength of streaks along strands (Meshuggah's noise), 0..1
     float hairAmbientOcclusion; // how much the deep opacity map darkens the ambient, 0..1
-    float pad0;
+    uint multipleScattering;    // 1: karis and lut add Karis's multiple scattering (hairKarisMultiple), 0: not
     HairMaterial hair;
     FrameLight unshadowed[kFrameLights - 1u]; // the fill and the rim (frameLight 1 and 2)
     vec3 backgroundBottom;                    // the backdrop's colour at the bottom row (linear RGB)

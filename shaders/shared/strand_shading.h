@@ -40,19 +40,23 @@ GPU_FN float strandAbsorptionScale(FrameParams frame, uint strand, float t)
 // The hair's response S (hair_shading.h: outgoing radiance per unit incoming radiance) at a point
 // of material `m` (`baseColor` the material's own, before the strand's variation) to one light
 // from wi, reaching it through hair of `transmittance`, by the frame's model. `lutSingle` is the
-// lookup mode's single scattering for these directions; the other models ignore it.
+// lookup mode's single scattering for these directions; the other models ignore it. With
+// frame.multipleScattering 0 the karis and lut models leave out Karis's multiple scattering (the
+// light scattered between fibres) and keep the single scattering alone; kajiya has none to leave.
 GPU_FN vec3 strandLightResponse(FrameParams frame, HairMaterial m, vec3 baseColor, vec3 tangent, vec3 wi, vec3 wo,
                                 float transmittance, vec3 lutSingle)
 {
-    if (frame.shadingModel == kShadingKaris)
-        return hairKarisLit(tangent, wi, wo, m, 1.0f - transmittance);
     if (frame.shadingModel == kShadingKajiya)
         return transmittance * hairKajiyaKay(tangent, wi, wo, m);
+    vec3 multiple =
+        frame.multipleScattering != 0u ? hairKarisMultiple(tangent, wi, wo, m, 1.0f - transmittance) : vec3(0.0f);
+    if (frame.shadingModel == kShadingKaris)
+        return transmittance * (hairKaris(tangent, wi, wo, m) + multiple); // hairKarisLit, with the setting
     // The tables hold the material's single scattering (absorption baked in; the strand's own
     // tints it); the light scattered between fibres comes from Karis's approximation, as in
     // the karis mode.
     vec3 single = lutSingle * (vec3(m.baseColor) / max(baseColor, vec3(1e-4f)));
-    return transmittance * (single + hairKarisMultiple(tangent, wi, wo, m, 1.0f - transmittance));
+    return transmittance * (single + multiple);
 }
 
 #ifndef __cplusplus
