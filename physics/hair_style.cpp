@@ -11,6 +11,11 @@ std::array<HairStyle, 6> makeStyles()
 
     GrowthSettings longHair;
     longHair.parting = Parting::Centre;
+    // Combed down and to the sides from the parting, not back over the top: combed back, the front
+    // hairline's strands ran sideways across it and their roots read as a blunt, ragged edge from
+    // the front, and the hair at the sides fell sparsely onto the shoulders (streaks of shoulder
+    // between strands from above). Down, it falls over the hairline's corners like curtains.
+    longHair.fallBack = 0.2f;
     longHair.lengthMetres = 0.5f;
     longHair.lengthVariation = 0.06f;
     longHair.trimLevelMetres = 0.0f;
