@@ -244,7 +244,7 @@ float ScalpField::density(const glm::vec3& p, const glm::vec3& n) const
 
 float ScalpField::paint(const glm::vec3& p, const glm::vec3& n) const
 {
-    return smoothstep01((distance(p, n) + bandWidth) / bandWidth);
+    return smoothstep01((distance(p, n) + kPaintLead * bandWidth) / bandWidth);
 }
 
 ScalpField makeScalpField(const ScalpRule& rule, float unitsPerMetre, float bandMetres, float skullRadius)

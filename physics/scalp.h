@@ -25,10 +25,13 @@ struct ScalpField {
     float distance(const glm::vec3& p, const glm::vec3& n) const;
     // Root density at a point, 0..1: a smoothstep of distance() over the band.
     float density(const glm::vec3& p, const glm::vec3& n) const;
-    // How strongly the head is painted under the hair, 0..1: the density moved a band outward, so
-    // the skin is fully painted where roots begin (partings read as partings) and fades out over a
-    // band beyond the hairline, never with a hard border.
+    // How strongly the head is painted under the hair, 0..1: the density moved kPaintLead of a band
+    // outward, so the skin is painted where roots are dense (partings read as partings) and fades
+    // out from inside the band to just beyond the hairline, never with a hard border. (Moved a whole
+    // band out, the paint ran a centimetre down the forehead: a crop combed back showed it as a
+    // dark rim under the hair, a helmet's edge.)
     float paint(const glm::vec3& p, const glm::vec3& n) const;
+    static constexpr float kPaintLead = 0.25f;
 };
 
 // The scalp field of a head under its rule, with the band scaled to its units.
