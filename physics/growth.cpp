@@ -225,6 +225,14 @@ std::vector<glm::vec3> growCentreline(const GrowthSettings& s, const HeadFrame& 
     return points;
 }
 
+float trimJitter(const GrowthSettings& s, const HeadFrame& head, const glm::vec3& root, float random)
+{
+    // The angle from the back (the noise's seam is at the front, under the face, where no hem is).
+    float around = std::atan2(root.x - head.centre.x, head.centre.z - root.z) / (2.0f * kPi) + 0.5f;
+    float wave = valueNoise(10.0f * around, s.seed ^ 0x3C6EF372u);
+    return 0.5f * s.trimJitterMetres * head.unitsPerMetre * (wave + std::clamp(random, -1.0f, 1.0f));
+}
+
 void trim(std::vector<glm::vec3>& points, const GrowthSettings& s, const HeadFrame& head, float jitter, float shortest)
 {
     if (s.trimLevelMetres <= 0.0f || points.size() < 2)
@@ -455,7 +463,7 @@ StrandSet growGuides(const Mesh& mesh, const ScalpRule& scalp, const std::vector
         length =
             glm::mix(length, s.bangsLengthMetres * upm * (1.0f + 0.5f * s.lengthVariation * rng.signedNext()), bangs);
         length = std::max(length, 0.5f * shortest);
-        jitter[k] = 0.006f * upm * rng.signedNext();
+        jitter[k] = groom::trimJitter(s, head, roots[k].position, rng.signedNext());
         lines[k] = groom::growCentreline(s, head, colliders, roots[k], length, step);
         groom::trim(lines[k], s, head, jitter[k], std::min(shortest, 0.9f * groom::polylineLength(lines[k])));
     }

@@ -46,12 +46,13 @@ struct GrowthSettings {
     float styleGravity = 1.0f;         // how fast strands turn down once they leave the scalp, 0..4
     float volumeMetres = 0.012f;       // how far a strand lies off the head once it has run a head's length
     // 3. Length and trim
-    float lengthMetres = 0.3f;     // mean strand length before the trim
-    float lengthVariation = 0.1f;  // relative spread of lengths
-    float trimLevelMetres = 0.19f; // strands are cut this far below the head's top (0: no trim)
-    float trimSlope = 0.35f;       // the trim line drops this much per unit toward the face (an A-line bob)
-    float hairlineLength = 0.5f;   // a hair at the very hairline is this share of the length
-    float hairlineWidth = 0.4f;    // and is drawn this share of the `width` setting wide (finer)
+    float lengthMetres = 0.3f;       // mean strand length before the trim
+    float lengthVariation = 0.1f;    // relative spread of lengths
+    float trimLevelMetres = 0.19f;   // strands are cut this far below the head's top (0: no trim)
+    float trimSlope = 0.35f;         // the trim line drops this much per unit toward the face (an A-line bob)
+    float trimJitterMetres = 0.016f; // the trim line's spread (trimJitter)
+    float hairlineLength = 0.5f;     // a hair at the very hairline is this share of the length
+    float hairlineWidth = 0.4f;      // and is drawn this share of the `width` setting wide (finer)
     // 4. Clumps
     float clumpSizeMetres = 0.012f; // spacing of the clump centres (0: no clumps)
     float clumpStrength = 0.45f;    // how far a strand's tip gathers to its clump's centre, 0..1
@@ -109,6 +110,11 @@ glm::vec3 flowDirection(const GrowthSettings& s, const HeadFrame& head, const gl
 std::vector<glm::vec3> growCentreline(const GrowthSettings& s, const HeadFrame& head,
                                       const std::vector<gpu::Ellipsoid>& colliders, const RootSample& root,
                                       float length, float step);
+
+// The trim line's offset for a strand from `root` (head units, within +-trimJitterMetres): half a
+// slow wave along the hem (value noise over the angle about the head's vertical axis, about ten
+// features around the head, so a bob's back is cut blunt but not ruled), half `random` (-1..1).
+float trimJitter(const GrowthSettings& s, const HeadFrame& head, const glm::vec3& root, float random);
 
 // The polyline cut where it first falls below the trim line (never shorter than `shortest`).
 void trim(std::vector<glm::vec3>& points, const GrowthSettings& s, const HeadFrame& head, float jitter, float shortest);

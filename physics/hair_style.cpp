@@ -28,6 +28,7 @@ std::array<HairStyle, 6> makeStyles()
     wavy.lengthMetres = 0.36f;
     wavy.trimLevelMetres = 0.27f;
     wavy.trimSlope = 0.0f;
+    wavy.trimJitterMetres = 0.006f;
     wavy.waveMetres = 0.02f;
     wavy.waveLengthMetres = 0.09f;
     wavy.volumeMetres = 0.02f;
@@ -59,6 +60,7 @@ std::array<HairStyle, 6> makeStyles()
     bangs.lengthMetres = 0.32f;
     bangs.trimLevelMetres = 0.21f;
     bangs.trimSlope = 0.0f;
+    bangs.trimJitterMetres = 0.006f;
     bangs.partingOffsetMetres = 0.035f;
     bangs.globalStiffness = 0.03f; // bangs hold their line over the forehead
     bangs.localStiffness = 0.3f;

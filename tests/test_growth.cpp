@@ -394,6 +394,38 @@ TEST(GroomSteps, TrimCutsWhereTheStrandFallsBelowTheLine)
     EXPECT_NEAR(front.back().y, 0.10f, 0.0051f);
 }
 
+TEST(GroomSteps, TrimJitterIsASlowWaveAlongTheHemAndEachStrandsOwn)
+{
+    GrowthSettings s;
+    s.trimJitterMetres = 0.016f;
+    groom::HeadFrame head;
+    head.centre = {0.0f, 0.14f, 0.0f};
+    // Roots around the back of the head, with no strand's own share: the wave alone, within half
+    // the spread, the same for the same root and seed, slow (neighbours a degree apart differ by
+    // little) but not constant along the hem (a ruled line).
+    float lowest = 1.0f, highest = -1.0f, steepest = 0.0f, previous = 0.0f;
+    for (int i = 0; i <= 180; ++i) {
+        float a = glm::radians(90.0f + float(i)); // from the head's left round the back to its right
+        glm::vec3 root = head.centre + 0.09f * glm::vec3(std::cos(a), 0.0f, std::sin(a));
+        float j = groom::trimJitter(s, head, root, 0.0f);
+        EXPECT_LE(std::abs(j), 0.5f * s.trimJitterMetres + 1e-6f);
+        EXPECT_EQ(j, groom::trimJitter(s, head, root, 0.0f));
+        if (i > 0)
+            steepest = std::max(steepest, std::abs(j - previous));
+        previous = j;
+        lowest = std::min(lowest, j);
+        highest = std::max(highest, j);
+    }
+    EXPECT_GT(highest - lowest, 0.3f * s.trimJitterMetres) << "the hem is not ruled";
+    EXPECT_LT(steepest, 0.05f * s.trimJitterMetres) << "a slow wave, not noise";
+    // Each strand's own share adds up to the other half; none at all without a spread.
+    glm::vec3 back = head.centre + glm::vec3(0.0f, 0.0f, -0.09f);
+    EXPECT_NEAR(groom::trimJitter(s, head, back, 1.0f) - groom::trimJitter(s, head, back, -1.0f), s.trimJitterMetres,
+                1e-6f);
+    s.trimJitterMetres = 0.0f;
+    EXPECT_EQ(groom::trimJitter(s, head, back, 1.0f), 0.0f);
+}
+
 TEST(GroomSteps, ClumpRadiusShrinksTowardTheTips)
 {
     // Strands 1 cm around a straight centre: each point moves strength * t^shape of the way.

@@ -274,6 +274,10 @@ std::vector<SettingSpec> buildSpecs()
                "how much lower the trim line runs per unit toward the face (an A-line)"),
         [](Settings & x) -> auto& { return x.growth.trimSlope; });
     grown(
+        number("trim_jitter", "m", {0.0, 0.1}, kRestart, "",
+               "the trim line's spread along the hem and from strand to strand (0: a ruled line)"),
+        [](Settings & x) -> auto& { return x.growth.trimJitterMetres; });
+    grown(
         number("hairline_length", "", {0.1, 1.0}, kRestart, "",
                "the length of a hair at the very hairline, as a share of the length"),
         [](Settings & x) -> auto& { return x.growth.hairlineLength; });
