@@ -89,8 +89,10 @@ std::array<HairStyle, 6> makeStyles()
     afro.localStiffness = 0.5f;
     // Coils of 1 cm a turn, 4 mm across, drawn about the grown 2 cm curls: a guide's 32 vertices
     // over 13 cm are 4 mm apart, too few for them. 96 divisions give a 13 cm strand's 13 turns 7
-    // points each.
-    StyleDrawing afroDrawn{.coilRadiusMetres = 0.002f, .coilTurnsPerMetre = 100.0f, .divisions = 96};
+    // points each. Its 2,400 guides keep 32 strands each (76,800): every strand's 96 divisions
+    // cost four times the segments of another style's.
+    StyleDrawing afroDrawn{
+        .coilRadiusMetres = 0.002f, .coilTurnsPerMetre = 100.0f, .divisions = 96, .strandsPerGuide = 32};
 
     return {{
         {"bob", "chin-length A-line bob with a side parting (the default)", bob, StyleDrawing{}},

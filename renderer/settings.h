@@ -43,8 +43,10 @@ enum class Interpolation { Single, Multi, Mixed };
 
 // How the simulated guides become drawn strands (renderer/graphics/hair_pass.cpp, shaders/hair.*).
 struct StrandSettings {
-    uint32_t strandsPerGuide = 32; // strands drawn per guide (the guide is one of them)
-    uint32_t divisions = 24;       // segments per drawn strand
+    // Strands drawn per guide (the guide is one of them): the default's 2,200 guides x 46 draw 101,200,
+    // a full head (more drawn strands cost the raster alone; more guides would cost the physics too).
+    uint32_t strandsPerGuide = 46;
+    uint32_t divisions = 24; // segments per drawn strand
     Interpolation interpolation = Interpolation::Mixed;
     float clumpRadiusMetres = 0.01f; // single-strand disc radius
     float deviationMetres = 0.012f;  // strength of random deviations

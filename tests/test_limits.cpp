@@ -355,14 +355,14 @@ TEST(Workload, AComputeRasterTooLargeForTheDeviceIsNamed)
 TEST(Workload, ALoadedGroomIsDrawnAtAboutAHundredThousandStrands)
 {
     // A file of every strand of a groom draws each once or twice; one of sparse guides draws more,
-    // at most the default's 32 a guide.
+    // at most the default's 46 a guide.
     uint32_t most = StrandSettings{}.strandsPerGuide;
     EXPECT_EQ(loadedStrandsPerGuide(150000, most), 1u);
     EXPECT_EQ(loadedStrandsPerGuide(100000, most), 1u);
     EXPECT_EQ(loadedStrandsPerGuide(50000, most), 2u);
     EXPECT_EQ(loadedStrandsPerGuide(11400, most), 9u); // Sintel's groom: 102,600 strands
     EXPECT_EQ(loadedStrandsPerGuide(10000, most), 10u);
-    EXPECT_EQ(loadedStrandsPerGuide(228, most), 32u); // Sintel lite's: capped
+    EXPECT_EQ(loadedStrandsPerGuide(228, most), 46u); // Sintel lite's: capped
     EXPECT_EQ(loadedStrandsPerGuide(228, 4), 4u);
     EXPECT_EQ(loadedStrandsPerGuide(0, most), most);
 }

@@ -304,8 +304,23 @@ TEST(SettingsTable, AStyleSetsItsDrawnCoilAndTheDivisionsToDrawIt)
     float pointsPerTurn = float(drawn.divisions) / (s.growth.lengthMetres * drawn.coilTurnsPerMetre);
     EXPECT_GE(pointsPerTurn, 6.0f) << "the style's own strands are drawn at the coil's full radius";
     EXPECT_EQ(settingText(settingSpec("hair_style"), settingSpec("hair_style").get(s)), "afro");
+    // Its strands of 96 divisions cost four times another style's segments: it draws fewer a guide.
+    EXPECT_LT(drawn.strandsPerGuide, StrandSettings{}.strandsPerGuide);
 
     applySetting(s, "hair_style=bob");
     EXPECT_EQ(s.render.strands.coilRadiusMetres, 0.0f);
     EXPECT_EQ(s.render.strands.divisions, StrandSettings{}.divisions);
+    EXPECT_EQ(s.render.strands.strandsPerGuide, StrandSettings{}.strandsPerGuide);
+}
+
+// The default draws a full head of hair, about 100,000 strands (issue 21), from its guides and the
+// strands drawn around each.
+TEST(SettingsTable, TheDefaultDrawsAboutAHundredThousandStrands)
+{
+    Settings s;
+    uint64_t strands = uint64_t(s.growth.guides) * s.render.strands.strandsPerGuide;
+    EXPECT_GE(strands, 95'000u);
+    EXPECT_LE(strands, 110'000u);
+    applySetting(s, "hair_style=bob"); // the default is the bob, its drawing too
+    EXPECT_EQ(uint64_t(s.growth.guides) * s.render.strands.strandsPerGuide, strands);
 }

@@ -184,7 +184,7 @@ std::vector<SettingSpec> buildSpecs()
     auto grown = [&](SettingSpec spec, auto ref) { add(field(std::move(spec), ref)); };
     SettingSpec style = choice("hair_style", {}, kRestart, "--style",
                                "a named style: sets every growth parameter below but the seed, and the drawn "
-                               "strands' coil and divisions (custom: none of the styles' own)");
+                               "strands' coil, divisions and count (custom: none of the styles' own)");
     for (const HairStyle& h : hairStyles())
         style.choices.push_back(h.name);
     style.choices.push_back("custom");
@@ -204,6 +204,7 @@ std::vector<SettingSpec> buildSpecs()
             x.render.strands.coilRadiusMetres = h.drawn.coilRadiusMetres;
             x.render.strands.coilTurnsPerMetre = h.drawn.coilTurnsPerMetre;
             x.render.strands.divisions = h.drawn.divisions;
+            x.render.strands.strandsPerGuide = h.drawn.strandsPerGuide;
         }
     };
     add(style);
