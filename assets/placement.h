@@ -133,7 +133,7 @@ struct GroomShape {
 // surface. A fitted groom is weighed against its twin turned round about the up axis (root
 // distance alone cannot tell a front from a back): by the roots when they clearly differ, else by
 // the hair over the face and the long strands (GroomFacing). What the request fixes is kept. The
-// caller decides what an off-head result means (HairScene refuses an automatic one) and passes on
+// caller decides what an off-head result means (GroomedHead refuses an automatic one) and passes on
 // an ambiguity. `defaults`: the format's axes (cyHair z-up, TressFX 3 mirrored).
 GroomPlacement placeGroom(const GroomShape& groom, const Bounds& groomBounds, const HairPlacement& defaults,
                           const Mesh& head, const PlacementRequest& request = {});

@@ -8,7 +8,7 @@
 #include "app/scene/scene_file.h"
 #include "app/settings/settings_table.h"
 #include "core/error.h"
-#include "physics/strands.h"
+#include "physics/strand_set.h"
 
 #include <cstddef>
 #include <cstdint>

@@ -3,7 +3,7 @@
 #pragma once
 
 #include "assets/head.h"
-#include "physics/strands.h"
+#include "physics/strand_set.h"
 #include "shaders/shared/sim.h"
 
 #include <vector>

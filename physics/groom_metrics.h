@@ -5,7 +5,7 @@
 #pragma once
 
 #include "assets/mesh.h"
-#include "physics/strands.h"
+#include "physics/strand_set.h"
 
 #include <glm/glm.hpp>
 

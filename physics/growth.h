@@ -15,7 +15,7 @@
 
 #include "assets/head.h"
 #include "physics/scalp.h"
-#include "physics/strands.h"
+#include "physics/strand_set.h"
 
 #include <vector>
 

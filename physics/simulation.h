@@ -4,7 +4,7 @@
 // `wisp simulate` reports.
 #pragma once
 
-#include "physics/strands.h"
+#include "physics/strand_set.h"
 #include "shaders/shared/sim.h"
 
 #include <optional>

@@ -13,7 +13,7 @@
 #include "gpu/handle.h"
 #include "gpu/pass.h"
 #include "gpu/resources.h"
-#include "physics/strands.h"
+#include "physics/strand_set.h"
 
 #include <glm/glm.hpp>
 

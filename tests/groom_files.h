@@ -3,7 +3,7 @@
 // and cyHair; and a groom grown on the default head to place elsewhere.
 #pragma once
 
-#include "physics/hair_scene.h"
+#include "physics/groomed_head.h"
 
 #include <glm/glm.hpp>
 
@@ -110,7 +110,7 @@ template <class Transform> Strands grownStrands(uint32_t guides, uint32_t vertic
     GrowthSettings g;
     g.guides = guides;
     g.verticesPerStrand = vertices;
-    HairScene scene = buildGrownScene(defaultHeadPath(), g);
+    GroomedHead scene = buildGrownHead(defaultHeadPath(), g);
     Strands out(scene.strands.strandCount());
     for (size_t s = 0; s < out.size(); ++s)
         for (uint32_t i = 0; i < vertices; ++i)

@@ -8,7 +8,7 @@
 #include "app/settings/hair_source.h"
 #include "app/settings/settings_table.h"
 #include "physics/colliders.h"
-#include "physics/hair_scene.h"
+#include "physics/groomed_head.h"
 #include "physics/hair_style.h"
 #include "physics/simulation.h"
 
@@ -85,7 +85,7 @@ inline std::vector<std::pair<std::string, GrowthSettings>> trialGrooms()
 
 // The scene's strands with each part's parameters as a session gives them under `sim` (the
 // every-part values global_stiffness, local_stiffness, damping and drag when set).
-inline StrandSet strandsUnder(const HairScene& scene, const SimSettings& sim)
+inline StrandSet strandsUnder(const GroomedHead& scene, const SimSettings& sim)
 {
     StrandSet strands = scene.strands;
     strands.parts = HairSource{}.partsFor(strands.parts, sim);
@@ -153,7 +153,7 @@ inline float pullAgainstDefault(const SimSettings& sim)
 
 // The deepest free vertex of the rest pose inside the head's colliders (the colliders are
 // ellipsoids under the scalp, which dips into them here and there).
-inline float restPenetration(const HairScene& scene)
+inline float restPenetration(const GroomedHead& scene)
 {
     float deepest = 0.0f;
     const StrandSet& s = scene.strands;

@@ -11,7 +11,7 @@
 #include "renderer/compute/strand_raster.h"
 #include "renderer/graphics/oit.h"
 #include "renderer/mesh_pass.h"
-#include "small_scene.h"
+#include "small_groomed_head.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -153,7 +153,7 @@ namespace {
 bool renderScanWithout(uint32_t dropBinding, std::string& error)
 {
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = test::smallHairScene(12);
+    GroomedHead scene = test::smallGroomedHead(12);
     RenderSettings s = test::smallRenderSettings();
     s.hairRaster = HairRaster::Compute;
     test::HairRenderer hair(ctx, scene, s);
@@ -249,7 +249,7 @@ void expectEachBindingNeeded(const vk::Context& ctx, const StageLayout& layout, 
 TEST(ComputeStage, TheSolverTheShadowMaskAndTheOitResolveCannotUseWhatTheyDoNotList)
 {
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = test::smallHairScene(12);
+    GroomedHead scene = test::smallGroomedHead(12);
     RenderSettings s = test::smallRenderSettings();
     s.hairRaster = HairRaster::Graphics;
     s.transparency.mode = Transparency::Oit;

@@ -6,7 +6,7 @@
 #include "physics/colliders.h"
 #include "physics/cpu_solver.h"
 #include "physics/gpu_solver.h"
-#include "physics/hair_scene.h"
+#include "physics/groomed_head.h"
 #include "physics_trials.h"
 #include "renderer/physics_pass.h"
 #include "test_support.h"
@@ -318,7 +318,7 @@ TEST(GpuSolver, StabilityTrialsMatchTheCpu)
                           {"fur", "repulsion=1"}};
     constexpr uint32_t kEvery = 5;
     for (const auto& [groomName, growth] : test::trialGrooms()) {
-        HairScene scene = buildGrownScene(defaultHeadPath(), growth);
+        GroomedHead scene = buildGrownHead(defaultHeadPath(), growth);
         float diagonal = scene.head.mesh.bounds().diagonal();
         float rest = test::restPenetration(scene);
         float margin = SimSettings{}.collisionMarginMetres * scene.unitsPerMetre;

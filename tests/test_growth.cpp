@@ -5,8 +5,8 @@
 #include "assets/head.h"
 #include "core/error.h"
 #include "physics/colliders.h"
+#include "physics/groomed_head.h"
 #include "physics/growth.h"
-#include "physics/hair_scene.h"
 #include "physics/hair_style.h"
 #include "shaders/shared/strands.h"
 
@@ -21,19 +21,19 @@ namespace {
 
 constexpr float kPi = 3.14159265f;
 
-const HairScene& defaultHeadOnly()
+const GroomedHead& defaultHeadOnly()
 {
-    static const HairScene scene = [] {
+    static const GroomedHead scene = [] {
         GrowthSettings g;
         g.guides = 8;
-        return buildGrownScene(defaultHeadPath(), g);
+        return buildGrownHead(defaultHeadPath(), g);
     }();
     return scene;
 }
 
 ScalpField defaultField(float band = 0.012f)
 {
-    const HairScene& scene = defaultHeadOnly();
+    const GroomedHead& scene = defaultHeadOnly();
     return makeScalpField(scene.scalp, scene.unitsPerMetre, band, 0.09f);
 }
 
@@ -86,7 +86,7 @@ TEST(ScalpField, IsASmoothSignedDistanceAcrossTheHairline)
 
 TEST(ScalpField, RootsLieInsideTheFieldAndThinAcrossTheBand)
 {
-    const HairScene& scene = defaultHeadOnly();
+    const GroomedHead& scene = defaultHeadOnly();
     const Mesh& mesh = scene.head.mesh;
     ScalpField f = defaultField();
     std::vector<RootSample> roots = sampleScalpRoots(mesh, f, 6000, true, 3);
@@ -129,7 +129,7 @@ TEST(ScalpField, RootsAreInsideTrianglesNotOnTheirEdges)
 {
     // The sawtooth came from whole triangles: roots now fall anywhere inside them, so a triangle cut
     // by the hairline holds roots on its inner side only.
-    const HairScene& scene = defaultHeadOnly();
+    const GroomedHead& scene = defaultHeadOnly();
     ScalpField f = defaultField();
     std::vector<RootSample> roots = sampleScalpRoots(scene.head.mesh, f, 3000, true, 9);
     size_t partial = 0;
@@ -146,7 +146,7 @@ TEST(ScalpField, RootsAreInsideTrianglesNotOnTheirEdges)
 
 TEST(ScalpField, AHeadWithNoScalpSaysSo)
 {
-    const HairScene& scene = defaultHeadOnly();
+    const GroomedHead& scene = defaultHeadOnly();
     ScalpRule above = scene.scalp;
     above.planePoint = glm::vec3(0.0f, 10.0f, 0.0f); // the plane far above the head
     above.planeNormal = glm::vec3(0.0f, 1.0f, 0.0f);
@@ -167,16 +167,16 @@ TEST(ScalpField, ABareMeshsAutomaticHairlineCoversTheHeadAsItsDescriptionDoes)
     // took in every normal within 70 degrees of the front).
     GrowthSettings g;
     g.guides = 400;
-    HairScene described = buildGrownScene(defaultHeadPath(), g);
-    HairScene bare = buildGrownScene(defaultHeadPath().parent_path() / "head.obj", g);
+    GroomedHead described = buildGrownHead(defaultHeadPath(), g);
+    GroomedHead bare = buildGrownHead(defaultHeadPath().parent_path() / "head.obj", g);
     ASSERT_TRUE(bare.collidersFitted);
-    auto area = [](const HairScene& s) {
+    auto area = [](const GroomedHead& s) {
         return scalpArea(s.head.mesh, makeScalpField(s.scalp, s.unitsPerMetre, 0.012f, 0.09f));
     };
     double ratio = area(bare) / area(described);
     EXPECT_GT(ratio, 0.8) << "the automatic scalp is much smaller than the described one";
     EXPECT_LT(ratio, 1.25) << "the automatic scalp reaches over the face or the neck";
-    auto frontmost = [](const HairScene& s) {
+    auto frontmost = [](const GroomedHead& s) {
         float z = -1e30f;
         for (size_t k = 0; k < s.strands.strandCount(); ++k)
             z = std::max(z, s.strands.rest[k * s.strands.verticesPerStrand].z);
@@ -189,7 +189,7 @@ TEST(ScalpField, ABareMeshsAutomaticHairlineCoversTheHeadAsItsDescriptionDoes)
 
 TEST(GroomFlow, HairIsCombedAwayFromTheSideParting)
 {
-    const HairScene& scene = defaultHeadOnly();
+    const GroomedHead& scene = defaultHeadOnly();
     GrowthSettings s;
     s.parting = Parting::Side;
     s.partingOffsetMetres = 0.03f;
@@ -225,7 +225,7 @@ TEST(GroomFlow, HairIsCombedAwayFromTheSideParting)
 // with the rows, and blue noise alone leaves a gap several times wider.
 TEST(GroomFlow, ThePartingsEdgesAreRowsOfRootsCloseToItsLine)
 {
-    const HairScene& scene = defaultHeadOnly();
+    const GroomedHead& scene = defaultHeadOnly();
     GrowthSettings s; // the bob: a side parting
     groom::HeadFrame head;
     head.centre = scene.gpuColliders.front().center;
@@ -282,7 +282,7 @@ TEST(GroomFlow, ThePartingsEdgesAreRowsOfRootsCloseToItsLine)
 // farther in most slices).
 TEST(GroomFlow, TheBangsEdgeIsRowsOfRootsCloseToIt)
 {
-    const HairScene& scene = defaultHeadOnly();
+    const GroomedHead& scene = defaultHeadOnly();
     groom::HeadFrame head;
     head.centre = scene.gpuColliders.front().center;
     head.skullRadius = 0.09f;
@@ -348,7 +348,7 @@ TEST(GroomFlow, TheBangsEdgeIsRowsOfRootsCloseToIt)
 
 TEST(GroomFlow, StrandsLeaveTheScalpNearTangentAtTheRootLiftLowerAtTheHairline)
 {
-    const HairScene& scene = defaultHeadOnly();
+    const GroomedHead& scene = defaultHeadOnly();
     for (float lift : {5.0f, 12.0f, 30.0f}) {
         GrowthSettings s;
         s.rootLiftDeg = lift;
@@ -511,11 +511,11 @@ TEST(Groom, DeterministicForASeedAndDifferentForAnother)
         GrowthSettings g;
         applyHairStyle(g, style);
         g.guides = 60;
-        StrandSet a = buildGrownScene(defaultHeadPath(), g).strands;
-        StrandSet b = buildGrownScene(defaultHeadPath(), g).strands;
+        StrandSet a = buildGrownHead(defaultHeadPath(), g).strands;
+        StrandSet b = buildGrownHead(defaultHeadPath(), g).strands;
         ASSERT_EQ(a.rest, b.rest) << style.name;
         g.seed = 2;
-        StrandSet c = buildGrownScene(defaultHeadPath(), g).strands;
+        StrandSet c = buildGrownHead(defaultHeadPath(), g).strands;
         EXPECT_NE(a.rest, c.rest) << style.name;
         EXPECT_EQ(a.strandCount(), 60u);
         EXPECT_EQ(a.verticesPerStrand, style.growth.verticesPerStrand);
@@ -526,7 +526,7 @@ TEST(Groom, GrownStrandsStayOutsideTheCollidersAndThePaintFollowsTheField)
 {
     GrowthSettings g;
     g.guides = 400;
-    HairScene scene = buildGrownScene(defaultHeadPath(), g);
+    GroomedHead scene = buildGrownHead(defaultHeadPath(), g);
     const StrandSet& s = scene.strands;
     uint32_t V = s.verticesPerStrand;
     size_t inside = 0, free = 0;
@@ -562,7 +562,7 @@ TEST(Groom, HairlineHairsAreFinerAsTheyAreShorter)
     GrowthSettings g;
     g.guides = 600;
     g.hairlineWidth = 0.3f;
-    HairScene scene = buildGrownScene(defaultHeadPath(), g);
+    GroomedHead scene = buildGrownHead(defaultHeadPath(), g);
     const StrandSet& s = scene.strands;
     ASSERT_EQ(s.widthScale.size(), s.strandCount());
     ScalpField field = defaultField(g.hairlineBandMetres);
@@ -631,7 +631,7 @@ TEST(Groom, BangsAreShortAndInFront)
     GrowthSettings g;
     applyHairStyle(g, *findHairStyle("bangs"));
     g.guides = 800;
-    HairScene scene = buildGrownScene(defaultHeadPath(), g);
+    GroomedHead scene = buildGrownHead(defaultHeadPath(), g);
     const StrandSet& s = scene.strands;
     uint32_t V = s.verticesPerStrand;
     glm::vec3 centre = scene.gpuColliders.front().center;

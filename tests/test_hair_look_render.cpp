@@ -4,11 +4,11 @@
 // look's settings, on the CPU: tests/test_hair_look.cpp.)
 #include "app/session/headless.h"
 #include "gpu/frame.h"
-#include "physics/hair_scene.h"
+#include "physics/groomed_head.h"
 #include "renderer/mesh_pass.h"
 #include "renderer/renderer.h"
 #include "shading/hair_look.h"
-#include "small_scene.h"
+#include "small_groomed_head.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -16,7 +16,7 @@
 using namespace wisp;
 
 using test::renderHair;
-using test::smallHairScene;
+using test::smallGroomedHead;
 using test::smallRenderSettings;
 
 namespace {
@@ -44,7 +44,7 @@ double hairBrightness(const Picture& hair, const Picture& bald, size_t* count = 
 TEST(HairLookRender, EveryShadingModelRendersItsOwnPicture)
 {
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = smallHairScene(150);
+    GroomedHead scene = smallGroomedHead(150);
     RenderSettings s = smallRenderSettings();
     Picture bald = renderPicture(ctx, scene.head, s);
     std::vector<Picture> pictures;
@@ -64,7 +64,7 @@ TEST(HairLookRender, EveryShadingModelRendersItsOwnPicture)
 TEST(HairLookRender, BlondeRendersLighterThanBrownAndBrownThanBlack)
 {
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = smallHairScene(150);
+    GroomedHead scene = smallGroomedHead(150);
     RenderSettings s = smallRenderSettings();
     Picture bald = renderPicture(ctx, scene.head, s);
     double previous = -1.0;
@@ -82,7 +82,7 @@ TEST(HairLookRender, BacklitHairGlows)
     // With the light behind the head, what reaches the camera has passed through fibres (TT) or
     // scattered among them: lighter hair glows, compared with the same hair with the light off.
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = smallHairScene(150);
+    GroomedHead scene = smallGroomedHead(150);
     RenderSettings s = smallRenderSettings();
     applyHairPreset(s.hair, "blonde");
     s.light.azimuthDeg = 180.0f;
@@ -102,7 +102,7 @@ TEST(HairLookRender, BacklitHairGlows)
 TEST(HairLookRender, MultipleScatteringOffDarkensKarisAndLeavesKajiyaAlone)
 {
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = smallHairScene(150);
+    GroomedHead scene = smallGroomedHead(150);
     RenderSettings s = smallRenderSettings();
     applyHairPreset(s.hair, "blonde"); // light hair: multiple scattering is much of its colour
     OrbitCamera camera;
@@ -135,7 +135,7 @@ TEST(HairLookRender, TheLookupTablesFollowTheLook)
     // In lut mode the tables are rebuilt when the look changes (the old image retired with the
     // frame): the same renderer draws darker hair after more melanin, validation clean.
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = smallHairScene(150);
+    GroomedHead scene = smallGroomedHead(150);
     RenderSettings s = smallRenderSettings();
     s.hair.model = ShadingModel::Lut;
     applyHairPreset(s.hair, "blonde");
@@ -157,7 +157,7 @@ TEST(HairLookRender, TheLookupTablesFollowTheLook)
 
 TEST(ScalpPaint, CoverageIsFullAmongTheRootsAndFadesPastTheHairline)
 {
-    HairScene scene = smallHairScene(300);
+    GroomedHead scene = smallGroomedHead(300);
     // The rule for a loaded groom (grown hair paints its own scalp field: Groom.GrownStrandsStay...).
     scene.strands.scalpPaint.clear();
     std::vector<float> w = scalpCoverage(scene.head.mesh, scene.strands);
@@ -187,7 +187,7 @@ TEST(ScalpPaint, SeenFromAboveTheGroomShowsNoBareScalp)
     // between strands. Where the scalp shows between strands seen from above (the pixels the
     // painting changes), bare it was bright skin; painted a darkened hair colour, it is not.
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = smallHairScene(400);
+    GroomedHead scene = smallGroomedHead(400);
     RenderSettings s = smallRenderSettings();
     s.width = 160;
     s.height = 160;

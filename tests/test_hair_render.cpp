@@ -6,10 +6,10 @@
 #include "app/session/headless.h"
 #include "gpu/frame.h"
 #include "physics/colliders.h"
-#include "physics/hair_scene.h"
+#include "physics/groomed_head.h"
 #include "renderer/renderer.h"
 #include "shaders/shared/strands.h"
-#include "small_scene.h"
+#include "small_groomed_head.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -80,7 +80,7 @@ struct HairFrame {
     }
 };
 
-HairFrame renderHairFrame(const vk::Context& ctx, const HairScene& scene, const RenderSettings& settings,
+HairFrame renderHairFrame(const vk::Context& ctx, const GroomedHead& scene, const RenderSettings& settings,
                           float cameraDistanceScale = 1.0f)
 {
     test::HairRenderer hair(ctx, scene, settings);
@@ -94,11 +94,11 @@ HairFrame renderHairFrame(const vk::Context& ctx, const HairScene& scene, const 
     return {picture, graphics ? renderer.hair()->statistics() : HairPass::Statistics{}};
 }
 
-HairScene smallScene(uint32_t guides)
+GroomedHead smallScene(uint32_t guides)
 {
     GrowthSettings g;
     g.guides = guides;
-    return buildGrownScene(defaultHeadPath(), g);
+    return buildGrownHead(defaultHeadPath(), g);
 }
 
 } // namespace
@@ -108,7 +108,7 @@ TEST(HairRender, PipelineStatisticsCountWhatTheSettingsAsk)
     vk::Context ctx(test::validatedOptions());
     if (!ctx.report().pipelineStatisticsQuery)
         GTEST_SKIP() << "the device has no pipeline statistics queries";
-    HairScene scene = smallScene(7);
+    GroomedHead scene = smallScene(7);
     struct Case {
         uint32_t strands, divisions;
     };
@@ -178,7 +178,7 @@ RenderSettings imageSettings()
 TEST_P(HairRenderBoth, HairCoversTheScalpAndMoreStrandsCoverMore)
 {
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = smallScene(300);
+    GroomedHead scene = smallScene(300);
     RenderSettings s = imageSettings();
     s.hairRaster = GetParam();
     s.scalpPaint = 0.0f; // the strands' own coverage against the bare head (the paint is under every count)
@@ -213,7 +213,7 @@ TEST_P(HairRenderBoth, AHorizontalStrandKeepsItsWidth)
     // One guide lying horizontally across the view (the seed offset ribbons along screen x, so
     // such a strand collapsed to nothing): its ribbon must cover pixels in a band, not a line.
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = smallScene(1);
+    GroomedHead scene = smallScene(1);
     std::vector<glm::vec3> points(scene.strands.verticesPerStrand);
     for (uint32_t i = 0; i < points.size(); ++i)
         points[i] = glm::vec3(-0.15f + 0.3f * float(i) / float(points.size() - 1), 0.3f, 0.2f); // above the head
@@ -251,7 +251,7 @@ TEST_P(HairRenderBoth, LodDrawsFewerStrandsFarAwayAndAllNearby)
     vk::Context ctx(test::validatedOptions());
     if (GetParam() == HairRaster::Graphics && !ctx.report().pipelineStatisticsQuery)
         GTEST_SKIP() << "the device has no pipeline statistics queries";
-    HairScene scene = smallScene(20);
+    GroomedHead scene = smallScene(20);
     RenderSettings s;
     s.hairRaster = GetParam();
     s.width = 96;

@@ -11,11 +11,11 @@ using namespace wisp;
 
 namespace {
 
-HairScene smallScene(uint32_t guides)
+GroomedHead smallScene(uint32_t guides)
 {
     GrowthSettings g;
     g.guides = guides;
-    return buildGrownScene(defaultHeadPath(), g);
+    return buildGrownHead(defaultHeadPath(), g);
 }
 
 } // namespace

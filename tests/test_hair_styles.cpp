@@ -2,9 +2,9 @@
 // small: two seconds at rest keep the invariants and the style's shape, a turning head with the
 // sphere pushed through the hair keeps it on the head, and each style renders with validation on.
 #include "app/session/simulate.h"
-#include "physics/hair_scene.h"
+#include "physics/groomed_head.h"
 #include "physics/hair_style.h"
-#include "small_scene.h"
+#include "small_groomed_head.h"
 #include "test_support.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -17,16 +17,16 @@ using namespace wisp;
 
 namespace {
 
-HairScene styledScene(const HairStyle& style, uint32_t guides)
+GroomedHead styledScene(const HairStyle& style, uint32_t guides)
 {
     GrowthSettings g;
     applyHairStyle(g, style);
     g.guides = guides;
-    return buildGrownScene(defaultHeadPath(), g);
+    return buildGrownHead(defaultHeadPath(), g);
 }
 
 // Mean distance of the free vertices from the rest pose, and the strands' mean length.
-std::pair<float, float> shapeKept(const HairScene& scene, const SimState& state)
+std::pair<float, float> shapeKept(const GroomedHead& scene, const SimState& state)
 {
     const StrandSet& s = scene.strands;
     uint32_t V = s.verticesPerStrand;
@@ -47,7 +47,7 @@ TEST(HairStyles, EveryStyleRestsTwoSecondsWithItsInvariantsAndItsShape)
 {
     vk::Context ctx(test::validatedOptions());
     for (const HairStyle& style : hairStyles()) {
-        HairScene scene = styledScene(style, 100);
+        GroomedHead scene = styledScene(style, 100);
         float diagonal = scene.head.mesh.bounds().diagonal();
         SimulationReport r = simulateHeadless(ctx, scene, SimSettings{}, 240, {}, 40); // 2 s at 120 Hz
         auto [moved, length] = shapeKept(scene, r.state);
@@ -76,7 +76,7 @@ TEST(HairStyles, EveryStyleStaysOnATurningHeadWithTheSpherePushedThrough)
     };
     motion.sphere = [](float t) { return glm::vec4(-0.2f + 0.27f * t, 0.12f, -0.15f, 0.05f); };
     for (const HairStyle& style : hairStyles()) {
-        HairScene scene = styledScene(style, 80);
+        GroomedHead scene = styledScene(style, 80);
         float diagonal = scene.head.mesh.bounds().diagonal();
         SimulationReport r = simulateHeadless(ctx, scene, SimSettings{}, 180, motion, 30);
         std::fprintf(stderr, "%s: worst penetration %g of the diagonal, drift %g, resets %u\n", style.name,
@@ -94,7 +94,7 @@ TEST(HairStyles, EveryStyleRendersWithValidationOn)
     vk::Context ctx(test::validatedOptions());
     RenderSettings s = test::smallRenderSettings();
     for (const HairStyle& style : hairStyles()) {
-        HairScene scene = styledScene(style, 120);
+        GroomedHead scene = styledScene(style, 120);
         Picture picture = test::renderHair(ctx, scene, s);
         ASSERT_EQ(picture.width, s.width);
         // Hair darkens and colours the picture: count the pixels that differ from the frame drawn

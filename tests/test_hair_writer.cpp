@@ -5,7 +5,7 @@
 #include "assets/hair_asset.h"
 #include "assets/hair_writer.h"
 #include "core/error.h"
-#include "physics/hair_scene.h"
+#include "physics/groomed_head.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -153,7 +153,7 @@ TEST(HairWriter, AGrownGroomLoadsBackOnItsHeadAsInTheFile)
     GrowthSettings growth;
     growth.guides = 24;
     growth.verticesPerStrand = 8;
-    HairScene grown = buildGrownScene(defaultHeadPath(), growth);
+    GroomedHead grown = buildGrownHead(defaultHeadPath(), growth);
     GroomToWrite g;
     for (size_t s = 0; s < grown.strands.strandCount(); ++s) {
         HairStrand strand;
@@ -165,7 +165,7 @@ TEST(HairWriter, AGrownGroomLoadsBackOnItsHeadAsInTheFile)
     TempDir dir;
     for (const char* name : {"grown.hair", "grown.tfx"}) {
         writeHairFile(dir / name, g);
-        HairScene loaded = buildLoadedScene(defaultHeadPath(), {{.file = dir / name}}, 8);
+        GroomedHead loaded = buildLoadedHead(defaultHeadPath(), {{.file = dir / name}}, 8);
         ASSERT_TRUE(loaded.placement.has_value());
         EXPECT_EQ(loaded.placement->method, GroomPlacement::Method::File) << name;
         EXPECT_FLOAT_EQ(loaded.placement->placement.scale, 1.0f) << name;

@@ -8,7 +8,7 @@
 #include "app/settings/workload.h"
 #include "core/error.h"
 #include "gpu/context.h"
-#include "physics/hair_scene.h"
+#include "physics/groomed_head.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -117,13 +117,13 @@ TEST(Limits, LoadedHairTooLargeForFloatsIsRefusedNamingItsLine)
     std::string text = "numStrands 1\nstrand 0 numVerts 3 texcoord 0 0\n0 0 0\n0 3e38 0\n0 3.2e38 0\n";
     test::writeFile(dir / "huge.tfx", text);
     HairPartSource part{.file = dir / "huge.tfx", .placement = HairPlacement{.scale = 10.0f}, .settings = {}};
-    std::string what = errorOf([&] { buildLoadedScene(defaultHeadPath(), {part}, 8); });
+    std::string what = errorOf([&] { buildLoadedHead(defaultHeadPath(), {part}, 8); });
     EXPECT_NE(what.find("huge.tfx:4: coordinate 3e+38 is out of the range Wisp's float math handles"),
               std::string::npos)
         << what;
     test::writeFile(dir / "far.tfx", "numStrands 1\nstrand 0 numVerts 2 texcoord 0 0\n-3e38 0 0\n3e38 0 0\n");
     part = {.file = dir / "far.tfx", .placement = HairPlacement{}, .settings = {}};
-    what = errorOf([&] { buildLoadedScene(defaultHeadPath(), {part}, 4); });
+    what = errorOf([&] { buildLoadedHead(defaultHeadPath(), {part}, 4); });
     EXPECT_NE(what.find("far.tfx:3: coordinate -3e+38 is out of the range"), std::string::npos) << what;
 }
 

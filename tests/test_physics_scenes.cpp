@@ -3,7 +3,7 @@
 // and resets over 1,000 steps; coming to rest; the sphere pushing hair aside and the hair
 // recovering; a head turn followed with inertia; a styled groom keeping its shape.
 #include "app/session/simulate.h"
-#include "physics/hair_scene.h"
+#include "physics/groomed_head.h"
 #include "test_support.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -16,11 +16,11 @@ using namespace wisp;
 
 namespace {
 
-HairScene defaultScene(uint32_t guides)
+GroomedHead defaultScene(uint32_t guides)
 {
     GrowthSettings g;
     g.guides = guides;
-    return buildGrownScene(defaultHeadPath(), g);
+    return buildGrownHead(defaultHeadPath(), g);
 }
 
 struct Deviation {
@@ -49,7 +49,7 @@ Deviation deviation(const SimState& a, const std::vector<glm::vec4>& b)
 
 TEST(PhysicsScenes, ThousandStepsWithGravityAndWindKeepTheInvariants)
 {
-    HairScene scene = defaultScene(150);
+    GroomedHead scene = defaultScene(150);
     SimSettings sim;
     sim.wind = glm::vec3(3.0f, 0.0f, 1.0f);
     vk::Context ctx(test::validatedOptions());
@@ -68,7 +68,7 @@ TEST(PhysicsScenes, ThousandStepsWithGravityAndWindKeepTheInvariants)
 
 TEST(PhysicsScenes, HairAtRestUnderGravityComesToRest)
 {
-    HairScene scene = defaultScene(150);
+    GroomedHead scene = defaultScene(150);
     vk::Context ctx(test::validatedOptions());
     SimulationReport r = simulateHeadless(ctx, scene, SimSettings{}, 1500, {}, 50);
     ASSERT_GE(r.energy.size(), 10u);
@@ -84,7 +84,7 @@ TEST(PhysicsScenes, HairAtRestUnderGravityComesToRest)
 
 TEST(PhysicsScenes, SpherePushedThroughTheHairDisplacesItAndItRecovers)
 {
-    HairScene scene = defaultScene(150);
+    GroomedHead scene = defaultScene(150);
     vk::Context ctx(test::validatedOptions());
     SimSettings sim;
     // A 5 cm sphere sweeps across the back of the head, through the bob's hair, from t = 3 s to 4 s,
@@ -114,7 +114,7 @@ TEST(PhysicsScenes, SpherePushedThroughTheHairDisplacesItAndItRecovers)
 
 TEST(PhysicsScenes, HairFollowsATurningHeadWithInertia)
 {
-    HairScene scene = defaultScene(120);
+    GroomedHead scene = defaultScene(120);
     vk::Context ctx(test::validatedOptions());
     SimSettings sim;
     // The head turns 40 degrees about y between t = 2 s and 2.3 s, then holds.
@@ -156,7 +156,7 @@ TEST(PhysicsScenes, StyledGroomKeepsItsShapeWithShapeStiffness)
     float meanLength = 0.0f;
     Deviation kept, fell;
     for (int pass = 0; pass < 2; ++pass) {
-        HairScene scene = buildLoadedScene(head, {pass == 0 ? styled : limp}, 16);
+        GroomedHead scene = buildLoadedHead(head, {pass == 0 ? styled : limp}, 16);
         meanLength = 0.0f;
         for (size_t s = 0; s < scene.strands.strandCount(); ++s)
             for (uint32_t i = 1; i < 16; ++i)

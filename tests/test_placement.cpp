@@ -9,7 +9,7 @@
 #include "core/error.h"
 #include "groom_files.h"
 #include "physics/cpu_solver.h"
-#include "physics/hair_scene.h"
+#include "physics/groomed_head.h"
 #include "physics/hair_style.h"
 #include "test_support.h"
 
@@ -61,7 +61,7 @@ Strands longHair(glm::vec3 (*transform)(glm::vec3))
     applyHairStyle(g, *findHairStyle("long"));
     g.guides = 300;
     g.verticesPerStrand = 12;
-    HairScene scene = buildGrownScene(defaultHeadPath(), g);
+    GroomedHead scene = buildGrownHead(defaultHeadPath(), g);
     Strands out(scene.strands.strandCount());
     for (size_t s = 0; s < out.size(); ++s)
         for (uint32_t i = 0; i < g.verticesPerStrand; ++i)
@@ -219,7 +219,7 @@ TEST(Placement, ATressFxGroomInPartsTurnedRoundOnItsHeadIsTurnedBack)
     WISP_REQUIRE_DATA(headFile, "tressfx-text/head_max4.obj");
     std::vector<HairPartSource> parts = {{.file = front, .placement = std::nullopt, .settings = {}},
                                          {.file = tail, .placement = std::nullopt, .settings = {}}};
-    HairScene asMade = buildLoadedScene(headFile, parts, 16);
+    GroomedHead asMade = buildLoadedHead(headFile, parts, 16);
     ASSERT_FALSE(asMade.placement->placement.halfTurn);
     uint32_t v = asMade.strands.verticesPerStrand;
     TempDir dir;
@@ -234,10 +234,10 @@ TEST(Placement, ATressFxGroomInPartsTurnedRoundOnItsHeadIsTurnedBack)
     }
     test::writeTfx4(dir / "front.tfx", turned[0]);
     test::writeTfx4(dir / "tail.tfx", turned[1]);
-    HairScene back = buildLoadedScene(headFile,
-                                      {{.file = dir / "front.tfx", .placement = std::nullopt, .settings = {}},
-                                       {.file = dir / "tail.tfx", .placement = std::nullopt, .settings = {}}},
-                                      16);
+    GroomedHead back = buildLoadedHead(headFile,
+                                       {{.file = dir / "front.tfx", .placement = std::nullopt, .settings = {}},
+                                        {.file = dir / "tail.tfx", .placement = std::nullopt, .settings = {}}},
+                                       16);
     const GroomPlacement& g = *back.placement;
     EXPECT_TRUE(g.placement.halfTurn) << g.describe();
     EXPECT_FALSE(g.placement.mirrorZ) << g.describe();
@@ -255,7 +255,7 @@ TEST(Placement, SintelsGroomTurnedRoundOnHerHeadIsTurnedBack)
 {
     WISP_REQUIRE_DATA(hair, "sintel-lite/sintel_hair_228x32.tfx");
     WISP_REQUIRE_DATA(headFile, "sintel-lite/sintel_lite.obj");
-    HairScene asMade = buildLoadedScene(headFile, {{.file = hair, .placement = std::nullopt, .settings = {}}}, 16);
+    GroomedHead asMade = buildLoadedHead(headFile, {{.file = hair, .placement = std::nullopt, .settings = {}}}, 16);
     ASSERT_EQ(asMade.placement->method, GroomPlacement::Method::File);
     uint32_t v = asMade.strands.verticesPerStrand;
     Strands original(asMade.strands.strandCount()), turned(original.size());
@@ -266,8 +266,8 @@ TEST(Placement, SintelsGroomTurnedRoundOnHerHeadIsTurnedBack)
         }
     TempDir dir;
     test::writeTfx4(dir / "turned.tfx", turned);
-    HairScene back =
-        buildLoadedScene(headFile, {{.file = dir / "turned.tfx", .placement = std::nullopt, .settings = {}}}, 16);
+    GroomedHead back =
+        buildLoadedHead(headFile, {{.file = dir / "turned.tfx", .placement = std::nullopt, .settings = {}}}, 16);
     const GroomPlacement& g = *back.placement;
     EXPECT_NE(g.method, GroomPlacement::Method::Given);
     EXPECT_TRUE(g.placement.halfTurn) << g.describe();
@@ -311,17 +311,16 @@ TEST(Placement, RootsThatFitNowhereAreRefusedNamingTheOptions)
     }
     test::writeTfx4(dir / "plate.tfx", plate);
     std::string e = errorOf([&] {
-        buildLoadedScene(defaultHeadPath(), {{.file = dir / "plate.tfx", .placement = std::nullopt, .settings = {}}},
-                         4);
+        buildLoadedHead(defaultHeadPath(), {{.file = dir / "plate.tfx", .placement = std::nullopt, .settings = {}}}, 4);
     });
     EXPECT_NE(e.find("plate.tfx: the groom's roots are not on the head"), std::string::npos) << e;
     EXPECT_NE(e.find("--hair-scale"), std::string::npos) << e;
     EXPECT_NE(e.find("--hair-offset"), std::string::npos) << e;
     EXPECT_NE(e.find("--hair-z-up"), std::string::npos) << e;
     // Placed by hand, the same groom loads, with a warning that says where the roots are.
-    HairScene scene =
-        buildLoadedScene(defaultHeadPath(), {{.file = dir / "plate.tfx", .placement = std::nullopt, .settings = {}}}, 4,
-                         PlacementRequest{.scale = 1.0f, .offset = glm::vec3(0.0f)});
+    GroomedHead scene =
+        buildLoadedHead(defaultHeadPath(), {{.file = dir / "plate.tfx", .placement = std::nullopt, .settings = {}}}, 4,
+                        PlacementRequest{.scale = 1.0f, .offset = glm::vec3(0.0f)});
     ASSERT_EQ(scene.warnings.size(), 1u);
     EXPECT_NE(scene.warnings[0].find("not on the head: as given"), std::string::npos) << scene.warnings[0];
     EXPECT_EQ(scene.placement->method, GroomPlacement::Method::Given);
@@ -344,8 +343,8 @@ TEST(ShortStrands, AreKeptRigidAndStrandsOfNoLengthDropped)
     }
     fur[1].assign(fur[1].size(), fur[1][0]); // no length
     test::writeTfx4(dir / "fur.tfx", fur);
-    HairScene scene =
-        buildLoadedScene(defaultHeadPath(), {{.file = dir / "fur.tfx", .placement = std::nullopt, .settings = {}}}, 16);
+    GroomedHead scene =
+        buildLoadedHead(defaultHeadPath(), {{.file = dir / "fur.tfx", .placement = std::nullopt, .settings = {}}}, 16);
     EXPECT_EQ(scene.loaded.dropped, 1u);
     EXPECT_EQ(scene.loaded.rigid, shortOnes);
     EXPECT_EQ(scene.strands.strandCount(), fur.size() - 1);
@@ -375,7 +374,7 @@ TEST(ShortStrands, AreKeptRigidAndStrandsOfNoLengthDropped)
     Strands none(3, std::vector<glm::vec3>(4, glm::vec3(0.0f, 0.2f, 0.0f)));
     test::writeTfx4(dir / "none.tfx", none);
     std::string e = errorOf([&] {
-        buildLoadedScene(defaultHeadPath(), {{.file = dir / "none.tfx", .placement = std::nullopt, .settings = {}}}, 4);
+        buildLoadedHead(defaultHeadPath(), {{.file = dir / "none.tfx", .placement = std::nullopt, .settings = {}}}, 4);
     });
     EXPECT_NE(e.find("none.tfx"), std::string::npos) << e;
 }

@@ -8,7 +8,7 @@
 #include "fiber_bsdf_cases.h"
 #include "gpu/compute_stage.h"
 #include "gpu/frame.h"
-#include "small_scene.h"
+#include "small_groomed_head.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -66,7 +66,7 @@ ReferenceFrame smallReference(const vk::Context& ctx, uint32_t width, uint32_t h
     RenderSettings s = test::smallRenderSettings();
     s.width = width;
     s.height = height;
-    HairScene scene = test::smallHairScene(40);
+    GroomedHead scene = test::smallGroomedHead(40);
     HairSession session(ctx, scene, SimSettings{}, stillTimeline(glm::vec4(0.0f), glm::vec3(0.0f), s.light));
     ReferenceOptions o;
     o.seed = seed;

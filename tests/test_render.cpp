@@ -92,7 +92,7 @@ TEST_F(HeadRender, WithSimulatedHairTwoRendersAreByteIdentical)
     // The fixed-point hair grid makes the whole simulated picture reproducible.
     GrowthSettings growth;
     growth.guides = 300;
-    HairScene scene = buildGrownScene(defaultHeadPath(), growth);
+    GroomedHead scene = buildGrownHead(defaultHeadPath(), growth);
     SimSettings sim;
     sim.wind = glm::vec3(3.0f, 0.0f, 0.0f);
     SceneTimeline held = stillTimeline(glm::vec4(0.0f, 0.1f, -0.12f, 0.05f), sim.wind, smallSettings().light);

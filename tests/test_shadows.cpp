@@ -6,10 +6,10 @@
 #include "gpu/context.h"
 #include "gpu/frame.h"
 #include "gpu/pipeline.h"
-#include "physics/hair_scene.h"
+#include "physics/groomed_head.h"
 #include "renderer/renderer.h"
 #include "shaders/shared/shadows.h"
-#include "small_scene.h"
+#include "small_groomed_head.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -25,7 +25,7 @@ using namespace wisp;
 namespace {
 
 using test::renderHair;
-using test::smallHairScene;
+using test::smallGroomedHead;
 using test::smallRenderSettings;
 
 double luminance(const Picture& p, size_t pixel)
@@ -106,7 +106,7 @@ INSTANTIATE_TEST_SUITE_P(Paths, ShadowsBoth, ::testing::Values(HairRaster::Graph
 TEST_P(ShadowsBoth, DarkenTheHeadAndNeverBrightenAnything)
 {
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = smallHairScene(150);
+    GroomedHead scene = smallGroomedHead(150);
     RenderSettings s = smallRenderSettings();
     s.hairRaster = GetParam();
     s.transparency.mode = Transparency::Msaa;
@@ -132,7 +132,7 @@ TEST_P(ShadowsBoth, DarkenTheHeadAndNeverBrightenAnything)
 TEST_P(ShadowsBoth, TheSideAwayFromTheLightIsDarker)
 {
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = smallHairScene(150);
+    GroomedHead scene = smallGroomedHead(150);
     RenderSettings s = smallRenderSettings();
     s.hairRaster = GetParam();
     s.light.elevationDeg = 10.0f;
@@ -154,7 +154,7 @@ TEST_P(ShadowsBoth, TheSideAwayFromTheLightIsDarker)
 TEST_P(ShadowsBoth, DeepOpacityLayersHoldTheHairAndTransmittanceFallsWithDepth)
 {
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = smallHairScene(200);
+    GroomedHead scene = smallGroomedHead(200);
     RenderSettings s = smallRenderSettings();
     s.hairRaster = GetParam();
     s.shadows.mapSize = 256;
@@ -206,7 +206,7 @@ TEST_P(ShadowsBoth, DeepOpacityLayersHoldTheHairAndTransmittanceFallsWithDepth)
 TEST(Oit, TheResultDoesNotDependOnDrawOrder)
 {
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = smallHairScene(120);
+    GroomedHead scene = smallGroomedHead(120);
     RenderSettings s = smallRenderSettings();
     s.hairRaster = HairRaster::Graphics; // the linked lists (the compute path's order: TwoRendersAreIdentical)
     s.transparency.mode = Transparency::Oit;
@@ -232,7 +232,7 @@ TEST(Oit, AGroomPastOneDrawsTessellationLimitDrawsEveryStrandInEitherOrder)
     // there in either order, and the picture equals that of one strand per patch (other patches,
     // other draws, the same strands).
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = smallHairScene(600);
+    GroomedHead scene = smallGroomedHead(600);
     RenderSettings s = smallRenderSettings();
     s.hairRaster = HairRaster::Graphics; // the tessellation path's draws and its lists
     s.transparency.oitNodesPerPixel = 64;
@@ -263,7 +263,7 @@ TEST(Oit, AnAutomaticPoolThatOverflowsGrowsAndTheFrameIsDrawnAgain)
     // 2,000 nodes, far too few) grows when a frame overflows and the frame is drawn again: nothing
     // dropped, and the picture of a pool large from the start.
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = smallHairScene(150);
+    GroomedHead scene = smallGroomedHead(150);
     RenderSettings s = smallRenderSettings();
     s.hairRaster = HairRaster::Graphics; // the linked lists' pool
     s.transparency.oitNodesPerPixel = 64;
@@ -301,7 +301,7 @@ TEST(Oit, OverflowAdviceOffersWhatCanHelp)
 TEST(Oit, AFullPoolIsCountedAndTheFrameStillCompletes)
 {
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = smallHairScene(150);
+    GroomedHead scene = smallGroomedHead(150);
     RenderSettings s = smallRenderSettings();
     s.hairRaster =
         HairRaster::Graphics; // the linked lists (the compute path's buffer: StrandRaster.AFullFragmentBuffer...)

@@ -6,8 +6,8 @@
 #include "core/error.h"
 #include "physics/colliders.h"
 #include "physics/cpu_solver.h"
+#include "physics/groomed_head.h"
 #include "physics/growth.h"
-#include "physics/hair_scene.h"
 #include "physics/hair_style.h"
 #include "physics/step_clock.h"
 
@@ -291,7 +291,7 @@ TEST(CpuReference, GrownGroomKeepsItsInvariantsUnderEveryTerm)
     GrowthSettings growth;
     growth.guides = 40;
     growth.verticesPerStrand = 12;
-    HairScene scene = buildGrownScene(defaultHeadPath(), growth);
+    GroomedHead scene = buildGrownHead(defaultHeadPath(), growth);
     SimSettings settings;
     settings.wind = glm::vec3(3.0f, 0.0f, 1.0f);
     settings.gridFriction = 0.2f;
@@ -331,7 +331,7 @@ struct GroomRun {
 };
 
 // `steps` steps: the head turns to and fro for the first half, then holds still.
-GroomRun runGroom(const HairScene& scene, const SimSettings& settings, uint32_t steps)
+GroomRun runGroom(const GroomedHead& scene, const SimSettings& settings, uint32_t steps)
 {
     SimSetup setup = makeSimSetup(settings, scene.strands, scene.gpuColliders, scene.unitsPerMetre);
     CpuSolver cpu(scene.strands, setup, glm::mat4(1.0f));
@@ -376,7 +376,7 @@ TEST(CpuReference, RepulsionAndFrictionAreStableAtEveryAllowedValue)
     fur.trimLevelMetres = 0.0f;
     fur.hairlineLength = 1.0f;
     for (const auto& [name, growth] : {std::pair{"bob", bob}, std::pair{"fur", fur}}) {
-        HairScene scene = buildGrownScene(defaultHeadPath(), growth);
+        GroomedHead scene = buildGrownHead(defaultHeadPath(), growth);
         const uint32_t steps = 240;
         SimSettings base;
         base.gridResolution = 16;
@@ -434,7 +434,7 @@ TEST(GridRepulsion, RestDensityIsTheDensityAVertexSeesWhateverTheGroomsSize)
     // repulsion, measured against it, is the same for both.
     GrowthSettings g;
     g.guides = 100;
-    HairScene one = buildGrownScene(defaultHeadPath(), g);
+    GroomedHead one = buildGrownHead(defaultHeadPath(), g);
     StrandSet two = one.strands;
     for (size_t s = 0; s < one.strands.strandCount(); ++s) {
         auto first = one.strands.rest.begin() + std::ptrdiff_t(s * g.verticesPerStrand);

@@ -22,7 +22,7 @@ using test::TrialRun;
 
 namespace {
 
-TrialRun runTrial(const HairScene& scene, const SimSettings& sim)
+TrialRun runTrial(const GroomedHead& scene, const SimSettings& sim)
 {
     StrandSet strands = test::strandsUnder(scene, sim);
     SimSetup setup = makeSimSetup(sim, strands, scene.gpuColliders, scene.unitsPerMetre);
@@ -43,7 +43,7 @@ TrialRun runTrial(const HairScene& scene, const SimSettings& sim)
 
 struct Groom {
     std::string name;
-    HairScene scene;
+    GroomedHead scene;
     float restPenetration = 0.0f; // the deepest free vertex of the rest pose inside a collider
     TrialRun defaults;
 };
@@ -54,7 +54,7 @@ const std::vector<Groom>& grooms()
     static const std::vector<Groom> all = [] {
         std::vector<Groom> out;
         for (const auto& [name, growth] : test::trialGrooms()) {
-            Groom g{name, buildGrownScene(defaultHeadPath(), growth), 0.0f, {}};
+            Groom g{name, buildGrownHead(defaultHeadPath(), growth), 0.0f, {}};
             g.restPenetration = test::restPenetration(g.scene);
             g.defaults = runTrial(g.scene, SimSettings{});
             out.push_back(std::move(g));

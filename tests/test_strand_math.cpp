@@ -3,7 +3,7 @@
 // disc, the offset frame, deterministic deviations, level of detail, the guides' neighbours
 // (physics' guideTriangles) and multi-strand points kept out of the colliders.
 #include "physics/colliders.h"
-#include "physics/hair_scene.h"
+#include "physics/groomed_head.h"
 #include "shaders/shared/strands.h"
 
 #include <gtest/gtest.h>
@@ -236,7 +236,7 @@ TEST(StrandMath, MultiStrandPointsNeverInsideACollider)
     // pushed out of every collider in turn, exactly as hair.tese does.
     GrowthSettings g;
     g.guides = 400;
-    HairScene scene = buildGrownScene(defaultHeadPath(), g);
+    GroomedHead scene = buildGrownHead(defaultHeadPath(), g);
     std::vector<glm::uvec4> tri = guideTriangles(scene.strands);
     uint32_t V = scene.strands.verticesPerStrand;
     auto curve = [&](uint32_t guide, float t) {

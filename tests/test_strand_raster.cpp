@@ -10,12 +10,12 @@
 #include "gpu/frame.h"
 #include "gpu/pipeline.h"
 #include "physics/gpu_solver.h"
-#include "physics/hair_scene.h"
+#include "physics/groomed_head.h"
 #include "renderer/compute/mesh_raster_reference.h"
 #include "renderer/compute/strand_raster.h"
 #include "renderer/compute/strand_raster_reference.h"
 #include "renderer/renderer.h"
-#include "small_scene.h"
+#include "small_groomed_head.h"
 #include "test_support.h"
 
 #include <glm/gtc/packing.hpp>
@@ -164,7 +164,7 @@ struct RasterFrame {
 
 // One frame of the compute path with every buffer read back; `fragmentBudget` > 0 holds the
 // fragment buffer to that many (the frame records one piece and one spare).
-RasterFrame renderRasterFrame(const vk::Context& ctx, const HairScene& scene, RenderSettings s,
+RasterFrame renderRasterFrame(const vk::Context& ctx, const GroomedHead& scene, RenderSettings s,
                               uint64_t fragmentBudget = 0)
 {
     s.hairRaster = HairRaster::Compute;
@@ -237,7 +237,7 @@ void expectSameStrands(const reference::StrandVertices& gpu, const reference::St
 TEST(StrandRaster, CameraKernelsMatchTheirCpuTwin)
 {
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = test::smallHairScene(60);
+    GroomedHead scene = test::smallGroomedHead(60);
     for (Interpolation interpolation : {Interpolation::Single, Interpolation::Multi}) {
         for (ShadingModel model : {ShadingModel::Karis, ShadingModel::Kajiya}) {
             SCOPED_TRACE(interpolation == Interpolation::Single ? "single" : "multi");
@@ -339,7 +339,7 @@ TEST(StrandRaster, CameraKernelsMatchTheirCpuTwin)
 TEST(StrandRaster, TheRenderTimeCoilIsGeneratedAsItsTwinGeneratesIt)
 {
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = test::smallHairScene(60);
+    GroomedHead scene = test::smallGroomedHead(60);
     RenderSettings s = test::smallRenderSettings();
     s.shadows.enabled = false; // the twin shades with the light unoccluded
     s.strands.divisions = 64;  // the bob's 20 to 30 cm: 8 to 12 turns at 40 a metre, 5 points a turn or more
@@ -374,7 +374,7 @@ TEST(StrandRaster, ThePiecesKernelMatchesItsCpuTwin)
     // strands.pieces from the GPU's own scan, with the buffer held to a quarter of the frame's
     // fragments (two pieces recorded of the five it needs) and unbounded (one piece and a spare).
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = test::smallHairScene(60);
+    GroomedHead scene = test::smallGroomedHead(60);
     RenderSettings s = test::smallRenderSettings();
     s.shadows.enabled = false;
     RasterFrame whole = renderRasterFrame(ctx, scene, s);
@@ -416,7 +416,7 @@ TEST(MeshRaster, KernelsMatchTheirCpuTwin)
     // mesh_raster.comp and mesh_shade.comp against their twin, in the compute path's frame (the
     // head drawn in compute, one sample a pixel; shadows off: the twin shades unoccluded).
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = test::smallHairScene(60);
+    GroomedHead scene = test::smallGroomedHead(60);
     RenderSettings s = test::smallRenderSettings();
     s.shadows.enabled = false;
     RasterFrame f = renderRasterFrame(ctx, scene, s);
@@ -464,7 +464,7 @@ TEST(MeshRaster, MatchesTheGraphicsMeshes)
     // The head alone, 4x MSAA, shadows on: drawn by the graphics pipeline and by compute, the same
     // picture but for samples on the silhouette's edges and the shadows' noise there.
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = test::smallHairScene(60);
+    GroomedHead scene = test::smallGroomedHead(60);
     RenderSettings s = test::smallRenderSettings();
     s.samples = 4;
     s.hairRaster = HairRaster::Graphics;
@@ -492,7 +492,7 @@ TEST(MeshRaster, MatchesTheGraphicsMeshes)
 TEST(StrandRaster, LightKernelsMatchTheirCpuTwin)
 {
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = test::smallHairScene(60);
+    GroomedHead scene = test::smallGroomedHead(60);
     RenderSettings s = test::smallRenderSettings();
     s.shadows.mapSize = 256;
     RasterFrame f = renderRasterFrame(ctx, scene, s);
@@ -575,7 +575,7 @@ struct EquivalenceCase {
 };
 
 // Sintel Lite's groom on its bust, loaded as a user loads it (none where ../shared/data lacks it).
-std::optional<HairScene> sintelLiteScene()
+std::optional<GroomedHead> sintelLiteScene()
 {
     std::filesystem::path head = test::sharedData("sintel-lite/sintel_lite.obj");
     std::filesystem::path hair = test::sharedData("sintel-lite/sintel_hair_228x32.tfx");
@@ -584,12 +584,12 @@ std::optional<HairScene> sintelLiteScene()
     HairSource source;
     source.headFile = head;
     source.hairFiles = {hair.string()};
-    return source.buildScene(Settings{});
+    return source.buildGroomedHead(Settings{});
 }
 constexpr const char* kNoSintelLite = "../shared/data/sintel-lite is absent: this test needs the shared "
                                       "third-party assets beside the checkout";
 
-Picture renderWith(const vk::Context& ctx, const HairScene& scene, RenderSettings s, HairRaster raster)
+Picture renderWith(const vk::Context& ctx, const GroomedHead& scene, RenderSettings s, HairRaster raster)
 {
     s.hairRaster = raster;
     return test::renderHair(ctx, scene, s);
@@ -603,10 +603,10 @@ TEST_P(RasterEquivalence, TheComputePathDrawsWhatTheTessellationPathDraws)
 {
     const EquivalenceCase& c = GetParam();
     vk::Context ctx(test::validatedOptions());
-    std::optional<HairScene> loaded = c.loadedGroom ? sintelLiteScene() : std::nullopt;
+    std::optional<GroomedHead> loaded = c.loadedGroom ? sintelLiteScene() : std::nullopt;
     if (c.loadedGroom && !loaded)
         GTEST_SKIP() << kNoSintelLite;
-    HairScene scene = loaded ? std::move(*loaded) : test::smallHairScene(300);
+    GroomedHead scene = loaded ? std::move(*loaded) : test::smallGroomedHead(300);
     RenderSettings s = test::smallRenderSettings();
     s.width = 320;
     s.height = 240;
@@ -647,7 +647,7 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(StrandRaster, TwoRendersAreIdentical)
 {
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = test::smallHairScene(200);
+    GroomedHead scene = test::smallGroomedHead(200);
     RenderSettings s = test::smallRenderSettings();
     Picture a = renderWith(ctx, scene, s, HairRaster::Compute);
     Picture b = renderWith(ctx, scene, s, HairRaster::Compute);
@@ -665,7 +665,7 @@ TEST(StrandRaster, ASmallBudgetDrawsTheSamePictureInPieces)
     // records the pieces its slot needed before (one, and one spare): it counts what it could
     // not draw, and the next frame records enough.
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = test::smallHairScene(150);
+    GroomedHead scene = test::smallGroomedHead(150);
     RenderSettings s = test::smallRenderSettings();
     s.hairRaster = HairRaster::Compute;
     Picture reference = test::renderHair(ctx, scene, s);
@@ -715,10 +715,10 @@ TEST(StrandRaster, PiecesDrawEveryCaseByteForByte)
                           Case{"single sample", [](RenderSettings& s) { s.samples = 1; }, false},
                           Case{"loaded", [](RenderSettings&) {}, true}}) {
         SCOPED_TRACE(c.name);
-        std::optional<HairScene> loaded = c.loaded ? sintelLiteScene() : std::nullopt;
+        std::optional<GroomedHead> loaded = c.loaded ? sintelLiteScene() : std::nullopt;
         if (c.loaded && !loaded) // (last: without the data, the cases before it have run)
             GTEST_SKIP() << kNoSintelLite;
-        HairScene scene = loaded ? std::move(*loaded) : test::smallHairScene(120);
+        GroomedHead scene = loaded ? std::move(*loaded) : test::smallGroomedHead(120);
         RenderSettings s = test::smallRenderSettings();
         s.hairRaster = HairRaster::Compute;
         c.set(s);
@@ -744,7 +744,7 @@ TEST(StrandRaster, DeviceBytesIsWhatItAllocates)
     // against the buffers and image a first frame really makes: with the light's strands, without
     // them (shadows off), on a size whose pixels do not fill the scan's blocks.
     vk::Context ctx(test::validatedOptions());
-    HairScene scene = test::smallHairScene(150);
+    GroomedHead scene = test::smallGroomedHead(150);
     for (bool shadows : {true, false}) {
         RenderSettings s = test::smallRenderSettings();
         s.width = 203;

@@ -6,7 +6,7 @@
 #include "assets/head.h"
 #include "shaders/shared/frame_params.h"
 #include "shaders/shared/mesh_raster.h"
-#include "small_scene.h"
+#include "small_groomed_head.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -68,7 +68,7 @@ protected:
     static void SetUpTestSuite()
     {
         head_ = new Head(loadHead(defaultHeadPath()));
-        scene_ = new HairScene(test::smallHairScene(300));
+        scene_ = new GroomedHead(test::smallGroomedHead(300));
     }
     static void TearDownTestSuite()
     {
@@ -76,10 +76,10 @@ protected:
         delete scene_;
     }
     static Head* head_;
-    static HairScene* scene_;
+    static GroomedHead* scene_;
 };
 Head* StudioLook::head_ = nullptr;
-HairScene* StudioLook::scene_ = nullptr;
+GroomedHead* StudioLook::scene_ = nullptr;
 
 } // namespace
 

@@ -63,7 +63,7 @@ std::string useDeviceSamples(RenderSettings& render, const vk::DeviceReport& dev
            "; drawing with " + std::to_string(render.samples);
 }
 
-HairScene buildCheckedScene(const GlobalOptions& g, const SessionOptions& o, RenderSettings* render, bool window)
+GroomedHead buildCheckedHead(const GlobalOptions& g, const SessionOptions& o, RenderSettings* render, bool window)
 {
     const HairSource& h = o.source;
     const GrowthSettings& growth = o.settings.growth;
@@ -82,7 +82,7 @@ HairScene buildCheckedScene(const GlobalOptions& g, const SessionOptions& o, Ren
     };
     if (h.noHair || h.hairFiles.empty())
         check(h.noHair ? 0 : growth.guides);
-    HairScene scene = h.buildScene(o.settings);
+    GroomedHead scene = h.buildGroomedHead(o.settings);
     if (!h.noHair && !h.hairFiles.empty()) {
         // A loaded groom is drawn at a density chosen from it, unless strands_per_guide is given.
         uint64_t strands = scene.strands.strandCount();

@@ -6,7 +6,7 @@
 
 #include "app/scene/session_options.h"
 #include "gpu/context.h"
-#include "physics/hair_scene.h"
+#include "physics/groomed_head.h"
 
 #include <functional>
 #include <string>
@@ -40,8 +40,8 @@ CLI::Validator within(double lo, double hi);
 // draws of them (useDeviceSamples), and a loaded groom's strands_per_guide chosen there
 // (loadedStrandsPerGuide) unless the command line or the scene gave it; `window`: the device must
 // present.
-HairScene buildCheckedScene(const GlobalOptions& global, const SessionOptions& options, RenderSettings* render,
-                            bool window = false);
+GroomedHead buildCheckedHead(const GlobalOptions& global, const SessionOptions& options, RenderSettings* render,
+                             bool window = false);
 // Sets render.samples to what `device` draws of them (RenderTarget::samplesFor: the most of the
 // asked number, half of it, ... that it has); returns the one line that says so when that is fewer
 // ("" otherwise), for the caller to print once the run is not refused.

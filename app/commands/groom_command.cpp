@@ -76,7 +76,7 @@ int run(const GlobalOptions& g, const GroomCommand& c)
     HairFormat format = checkGroomOutput(out);
     SessionOptions session = c.shared->resolve();
     if (c.frames == 0) { // the rest pose needs no device
-        HairScene scene = session.source.buildScene(session.settings);
+        GroomedHead scene = session.source.buildGroomedHead(session.settings);
         for (const std::string& w : scene.warnings)
             std::fprintf(stderr, "wisp: warning: %s\n", w.c_str());
         if (scene.strands.strandCount() == 0)
@@ -87,7 +87,7 @@ int run(const GlobalOptions& g, const GroomCommand& c)
                     format == HairFormat::CyHair ? "cyHair (z-up)" : "TressFX 4 (y-up)");
         return 0;
     }
-    HairScene scene = buildCheckedScene(g, session, nullptr);
+    GroomedHead scene = buildCheckedHead(g, session, nullptr);
     if (scene.strands.strandCount() == 0)
         throw UserError("groom: the groom has no strands to write (every strand of its files has no length)");
     vk::Context ctx(contextOptions(g));

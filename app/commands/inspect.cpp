@@ -1,6 +1,6 @@
 // app/commands/inspect.cpp: the `inspect` subcommand: a mesh's counts and bounds; a groom's counts, bounds,
 // units, up axis, pinned tips, lengths and short strands; with --head, the groom placed as `render`
-// and `simulate` would place it (the same HairScene), its roots against the head and its side
+// and `simulate` would place it (the same GroomedHead), its roots against the head and its side
 // standoff (physics/groom_metrics.h).
 #include "app/commands/inspect.h"
 
@@ -10,8 +10,8 @@
 #include "assets/placement.h"
 #include "core/error.h"
 #include "physics/groom_metrics.h"
-#include "physics/hair_scene.h"
-#include "physics/strands.h"
+#include "physics/groomed_head.h"
+#include "physics/strand_set.h"
 
 #include <nlohmann/json.hpp>
 
@@ -68,7 +68,7 @@ int inspectGroomOnHead(const InspectOptions& o, const PlacementRequest& request)
     Bounds b = head.mesh.bounds();
     float diagonal = b.diagonal();
     // The scene render and simulate build: the same placement, the same treatment of strands.
-    HairScene scene = buildLoadedScene(std::move(head), parts, o.verticesPerStrand, request);
+    GroomedHead scene = buildLoadedHead(std::move(head), parts, o.verticesPerStrand, request);
     nlohmann::json out = {{"kind", "groom_on_head"},
                           {"head",
                            {{"file", o.head.empty() ? defaultHeadPath().string() : o.head},

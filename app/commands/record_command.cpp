@@ -32,7 +32,7 @@ int run(const GlobalOptions& g, RecordCommand& c)
     if (session.scene && c.frames->count() == 0 && session.sceneLength() > 0.0)
         rec.frames = std::max(1u, uint32_t(std::ceil(session.sceneLength() * double(rec.fps) - 1e-6)));
     checkRecordOutputs(rec); // before any loading
-    HairScene scene = buildCheckedScene(g, session, &rec.settings);
+    GroomedHead scene = buildCheckedHead(g, session, &rec.settings);
     vk::Context ctx(contextOptions(g));
     HairSession hair(ctx, std::move(scene), session.settings.sim, session.timeline, session.source);
     return runRecord(ctx, hair, rec);

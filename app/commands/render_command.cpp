@@ -62,7 +62,7 @@ int runReference(const GlobalOptions& g, SessionOptions& o, const RenderCommand&
 {
     checkPngOutput(c.outFile); // fail before any GPU work
     RenderSettings& settings = o.settings.render;
-    HairScene scene = buildCheckedScene(g, o, &settings);
+    GroomedHead scene = buildCheckedHead(g, o, &settings);
     vk::Context ctx(contextOptions(g));
     ReferenceRender reference;
     try {
@@ -88,7 +88,7 @@ int runProfile(const GlobalOptions& g, SessionOptions& o, const RenderCommand& c
 {
     RenderSettings& settings = o.settings.render; // its samples and a loaded groom's density are chosen into it
     o.source.noHair = false;
-    HairScene scene = buildCheckedScene(g, o, &settings);
+    GroomedHead scene = buildCheckedHead(g, o, &settings);
     vk::Context ctx(contextOptions(g));
     HairSession session(ctx, std::move(scene), o.settings.sim, o.timeline, o.source);
     OitStats oit;
@@ -141,7 +141,7 @@ int run(const GlobalOptions& g, const RenderCommand& c)
         return runReference(g, o, c);
     checkPngOutput(c.outFile); // fail before any GPU work
     RenderSettings& settings = o.settings.render;
-    HairScene scene = buildCheckedScene(g, o, &settings);
+    GroomedHead scene = buildCheckedHead(g, o, &settings);
     vk::Context ctx(contextOptions(g));
     // What loading the hair did (placement, short strands), printed after the picture.
     std::vector<std::string> loaded = o.source.noHair ? std::vector<std::string>{} : describeLoadedHair(scene);

@@ -23,7 +23,7 @@ int run(const GlobalOptions& g, SimulateCommand& c)
 {
     SessionOptions session = c.shared->resolve();
     c.options.settings = session.settings;
-    HairScene scene = buildCheckedScene(g, session, nullptr);
+    GroomedHead scene = buildCheckedHead(g, session, nullptr);
     vk::Context ctx(contextOptions(g));
     HairSession hair(ctx, std::move(scene), session.settings.sim, session.timeline, session.source);
     return runSimulate(ctx, hair, c.options);

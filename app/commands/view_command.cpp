@@ -26,7 +26,7 @@ int run(const GlobalOptions& g, ViewCommand& c)
     SessionOptions session = c.shared->resolve();
     WindowOptions& o = c.options;
     o.context = contextOptions(g);
-    o.scene = buildCheckedScene(g, session, &session.settings.render, /*window=*/true);
+    o.scene = buildCheckedHead(g, session, &session.settings.render, /*window=*/true);
     o.timeline = session.timeline;
     o.sceneLength = session.sceneLength();
     o.source = session.source;

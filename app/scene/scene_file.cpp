@@ -6,7 +6,7 @@
 #include "assets/text.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "physics/strands.h"
+#include "physics/strand_set.h"
 
 #include <nlohmann/json.hpp>
 

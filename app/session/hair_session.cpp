@@ -16,7 +16,7 @@ SceneTimeline stillTimeline(const glm::vec4& sphere, const glm::vec3& wind, cons
     return SceneTimeline({}, SceneInterpolation::Linear, still);
 }
 
-HairSession::HairSession(const vk::Context& ctx, HairScene scene, const SimSettings& sim, SceneTimeline timeline,
+HairSession::HairSession(const vk::Context& ctx, GroomedHead scene, const SimSettings& sim, SceneTimeline timeline,
                          HairSource source)
     : ctx_(ctx), scene_(std::move(scene)), source_(std::move(source)), partsAsBuilt_(scene_.strands.parts),
       headBounds_(scene_.head.mesh.bounds()), sim_(sim), clock_(sim.stepHz), timeline_(std::move(timeline))

@@ -8,7 +8,7 @@
 #include "app/scene/scene_timeline.h"
 #include "app/settings/hair_source.h"
 #include "physics/gpu_solver.h"
-#include "physics/hair_scene.h"
+#include "physics/groomed_head.h"
 #include "physics/simulation.h"
 #include "physics/step_clock.h"
 
@@ -39,12 +39,12 @@ public:
     // `scene`: the head and its hair (no strands: the head alone, nothing simulated); `timeline`
     // poses the steps (its head turn, sphere and wind); `source` gives each part's own parameters
     // over the settings (HairSource::partsFor).
-    HairSession(const vk::Context& ctx, HairScene scene, const SimSettings& sim, SceneTimeline timeline,
+    HairSession(const vk::Context& ctx, GroomedHead scene, const SimSettings& sim, SceneTimeline timeline,
                 HairSource source = {});
     HairSession(const HairSession&) = delete;
     HairSession& operator=(const HairSession&) = delete;
 
-    const HairScene& scene() const { return scene_; }
+    const GroomedHead& scene() const { return scene_; }
     const Bounds& headBounds() const { return headBounds_; }
     bool hasHair() const { return solver_ != nullptr; }
     GpuSolver* solver() { return solver_.get(); }
@@ -82,7 +82,7 @@ private:
     StepPose timelinePose(double seconds) const;
 
     const vk::Context& ctx_;
-    HairScene scene_;
+    GroomedHead scene_;
     HairSource source_;
     std::vector<PartSettings> partsAsBuilt_; // before the settings' and the per-part overrides
     Bounds headBounds_;

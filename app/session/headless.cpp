@@ -119,7 +119,7 @@ Picture renderPicture(const vk::Context& ctx, HairSession& session, const Render
 
 Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSettings& settings)
 {
-    HairScene bald;
+    GroomedHead bald;
     bald.head = head;
     HairSession session(ctx, std::move(bald), SimSettings{},
                         stillTimeline(glm::vec4(0.0f), glm::vec3(0.0f), settings.light));

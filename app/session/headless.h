@@ -7,7 +7,7 @@
 #include "app/session/hair_session.h"
 #include "gpu/context.h"
 #include "gpu/frame.h"
-#include "physics/hair_scene.h"
+#include "physics/groomed_head.h"
 #include "physics/simulation.h"
 #include "renderer/camera.h"
 #include "renderer/compute/strand_raster.h"

@@ -8,7 +8,7 @@
 #include "assets/mesh.h"
 #include "gpu/frame.h"
 #include "physics/gpu_solver.h"
-#include "physics/strands.h"
+#include "physics/strand_set.h"
 #include "renderer/mesh_pass.h"
 #include "renderer/renderer.h"
 

@@ -46,7 +46,7 @@ SimulationReport simulateHeadless(const vk::Context& ctx, HairSession& session, 
     GpuSolver& solver = *session.solver();
     PhysicsPass physics(solver);
     Frame frame(ctx, 1);
-    const HairScene& scene = session.scene();
+    const GroomedHead& scene = session.scene();
     float stepSeconds = session.clock().stepSeconds();
 
     SimulationReport report;
@@ -119,7 +119,7 @@ SimulationReport simulateHeadless(const vk::Context& ctx, HairSession& session, 
     return report;
 }
 
-SimulationReport simulateHeadless(const vk::Context& ctx, const HairScene& scene, const SimSettings& sim,
+SimulationReport simulateHeadless(const vk::Context& ctx, const GroomedHead& scene, const SimSettings& sim,
                                   uint32_t steps, const Motion& motion, uint32_t sampleEvery,
                                   const std::function<void(uint32_t)>& progress)
 {
@@ -188,7 +188,7 @@ std::vector<DispatchTiming> profilePhysics(const vk::Context& ctx, HairSession& 
 
 int runSimulate(const vk::Context& ctx, HairSession& session, const SimulateOptions& o)
 {
-    const HairScene& scene = session.scene();
+    const GroomedHead& scene = session.scene();
     const SimSettings& sim = session.sim();
     if (o.profile) {
         std::vector<DispatchTiming> timings = profilePhysics(ctx, session, o.warmup, o.steps);

@@ -8,7 +8,7 @@
 #include "app/settings/settings_table.h"
 #include "gpu/context.h"
 #include "physics/groom_metrics.h"
-#include "physics/hair_scene.h"
+#include "physics/groomed_head.h"
 #include "physics/simulation.h"
 
 #include <functional>
@@ -45,7 +45,7 @@ struct SimulationReport {
 SimulationReport simulateHeadless(const vk::Context& ctx, HairSession& session, uint32_t steps,
                                   uint32_t sampleEvery = 25, const std::function<void(uint32_t)>& progress = {});
 // The same for `scene` from rest, posed by `motion` (each step at its end).
-SimulationReport simulateHeadless(const vk::Context& ctx, const HairScene& scene, const SimSettings& sim,
+SimulationReport simulateHeadless(const vk::Context& ctx, const GroomedHead& scene, const SimSettings& sim,
                                   uint32_t steps, const Motion& motion = {}, uint32_t sampleEvery = 25,
                                   const std::function<void(uint32_t)>& progress = {});
 

@@ -201,7 +201,7 @@ int runSweep(const vk::Context& ctx, const SweepOptions& o, const SessionOptions
         if (std::string note = useDeviceSamples(settings.render, ctx.report()); !note.empty())
             std::fprintf(stderr, "%s\n", note.c_str());
         point.samples = render.samples;
-        HairSession session(ctx, base.source.buildScene(settings), settings.sim,
+        HairSession session(ctx, base.source.buildGroomedHead(settings), settings.sim,
                             stillTimeline(base.source.sphere, settings.sim.wind, render.light), base.source);
         point.timings = profileFrames(ctx, session, render, 30.0f, o.warmup, o.frames, &point.oit, &point.raster);
         point.drawn = resolveHairRaster(render.hairRaster, ctx.report().type);

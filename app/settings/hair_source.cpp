@@ -15,18 +15,18 @@ std::filesystem::path HairSource::headPath() const
     return headFile.empty() ? defaultHeadPath() : headFile;
 }
 
-HairScene HairSource::buildScene(const Settings& settings) const
+GroomedHead HairSource::buildGroomedHead(const Settings& settings) const
 {
     Head head = loadHead(headPath());
     if (colliders)
         head.description.colliders = *colliders;
     if (noHair) {
-        HairScene scene;
+        GroomedHead scene;
         scene.head = std::move(head);
         return scene;
     }
     if (hairFiles.empty()) {
-        return buildGrownScene(std::move(head), settings.growth);
+        return buildGrownHead(std::move(head), settings.growth);
     }
     std::vector<HairPartSource> parts;
     for (const std::string& file : hairFiles) {
@@ -34,7 +34,7 @@ HairScene HairSource::buildScene(const Settings& settings) const
         part.settings.name = std::filesystem::path(file).stem().string();
         parts.push_back(part);
     }
-    return buildLoadedScene(std::move(head), parts, settings.growth.verticesPerStrand, placementRequest());
+    return buildLoadedHead(std::move(head), parts, settings.growth.verticesPerStrand, placementRequest());
 }
 
 PlacementRequest HairSource::placementRequest() const

@@ -1,11 +1,11 @@
 // app/settings/hair_source.h: where the head and its hair come from, apart from the settings: the head
 // file, grown guides or hair files as parts with their placement, each part's own parameters, a
-// scene's colliders and the user's sphere. buildScene() makes the HairScene they describe with the
+// scene's colliders and the user's sphere. buildGroomedHead() makes the GroomedHead they describe with the
 // growth settings; partsFor() gives each part's simulation parameters under the settings.
 #pragma once
 
 #include "app/settings/settings_table.h"
-#include "physics/hair_scene.h"
+#include "physics/groomed_head.h"
 
 #include <glm/glm.hpp>
 
@@ -44,7 +44,7 @@ struct HairSource {
     std::filesystem::path headPath() const; // headFile, or the default head
     // The head with grown guides (or none with noHair), or with the hair files as parts, each
     // placed; each part's parameters as grown or loaded (a HairSession applies partsFor()).
-    HairScene buildScene(const Settings& settings) const;
+    GroomedHead buildGroomedHead(const Settings& settings) const;
     // What --hair-scale, --hair-offset, --hair-z-up, --hair-mirror-z and --hair-half-turn fix of
     // the placement.
     PlacementRequest placementRequest() const;

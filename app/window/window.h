@@ -10,7 +10,7 @@
 #include "app/settings/hair_source.h"
 #include "app/settings/settings_table.h"
 #include "gpu/context.h"
-#include "physics/hair_scene.h"
+#include "physics/groomed_head.h"
 #include "physics/simulation.h"
 #include "renderer/settings.h"
 
@@ -22,7 +22,7 @@ namespace wisp {
 struct WindowOptions {
     vk::ContextOptions context;
     Settings settings;            // every setting, edited live in the panel
-    HairScene scene;              // the head and its hair (no strands: the head alone)
+    GroomedHead scene;            // the head and its hair (no strands: the head alone)
     glm::vec4 sphere{0.0f};       // the user's sphere (xyz, radius; 0 = none)
     uint32_t maxFrames = 0;       // 0 = until the window is closed
     std::string screenshot;       // PNG of the last frame, written on exit when set

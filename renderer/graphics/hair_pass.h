@@ -7,7 +7,7 @@
 #include "gpu/handle.h"
 #include "gpu/pass.h"
 #include "gpu/resources.h"
-#include "physics/strands.h"
+#include "physics/strand_set.h"
 #include "renderer/settings.h"
 #include "renderer/strand_draw.h"
 #include "shaders/shared/strands.h"

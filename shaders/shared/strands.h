@@ -316,7 +316,7 @@ GPU_FN float strandWidthAt(float rootWidth, float t)
     return rootWidth * (1.0f - 0.85f * t);
 }
 
-// A guide's shape as its neighbour triangle's w carries it (physics/strands.h guideTriangles): its
+// A guide's shape as its neighbour triangle's w carries it (physics/strand_set.h guideTriangles): its
 // rest length and the width its strands are drawn at, as a share of the `width` setting (finer at
 // the hairline), in two halves (11 bits of mantissa: a length within 0.05%).
 GPU_FN uint packGuideShape(float restLength, float widthScale)

@@ -1,5 +1,5 @@
-// physics/strands.cpp: the strand set's bookkeeping.
-#include "physics/strands.h"
+// physics/strand_set.cpp: the strand set's bookkeeping.
+#include "physics/strand_set.h"
 
 #include "core/error.h"
 #include "shaders/shared/strands.h"

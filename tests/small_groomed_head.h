@@ -1,21 +1,21 @@
-// tests/small_scene.h: the small hair scene the rendering suites share: grown guides on the
+// tests/small_groomed_head.h: the small groomed head the rendering suites share: grown guides on the
 // default head, a 200 x 150 picture with a 512² shadow map and light strands, rendered offscreen.
 #pragma once
 
 #include "app/session/headless.h"
 #include "assets/head.h"
 #include "physics/gpu_solver.h"
-#include "physics/hair_scene.h"
+#include "physics/groomed_head.h"
 #include "renderer/renderer.h"
 #include "renderer/settings.h"
 
 namespace wisp::test {
 
-inline HairScene smallHairScene(uint32_t guides)
+inline GroomedHead smallGroomedHead(uint32_t guides)
 {
     GrowthSettings g;
     g.guides = guides;
-    return buildGrownScene(defaultHeadPath(), g);
+    return buildGrownHead(defaultHeadPath(), g);
 }
 
 inline RenderSettings smallRenderSettings()
@@ -30,7 +30,7 @@ inline RenderSettings smallRenderSettings()
 }
 
 // The scene's head and hair as the default camera frames them (the hair unsimulated).
-inline Picture renderHair(const vk::Context& ctx, const HairScene& scene, const RenderSettings& s)
+inline Picture renderHair(const vk::Context& ctx, const GroomedHead& scene, const RenderSettings& s)
 {
     HairSession session(ctx, scene, SimSettings{}, stillTimeline(glm::vec4(0.0f), glm::vec3(0.0f), s.light));
     return renderPicture(ctx, session, s);
@@ -39,7 +39,7 @@ inline Picture renderHair(const vk::Context& ctx, const HairScene& scene, const 
 // A renderer with the scene's head and its hair attached (unsimulated: the solver holds the rest
 // pose), for the tests that run its passes themselves, one frame in flight.
 struct HairRenderer {
-    HairRenderer(const vk::Context& ctx, const HairScene& scene, const RenderSettings& s)
+    HairRenderer(const vk::Context& ctx, const GroomedHead& scene, const RenderSettings& s)
         : renderer(ctx, s, 1),
           solver(ctx, scene.strands,
                  makeSimSetup(SimSettings{}, scene.strands, scene.gpuColliders, scene.unitsPerMetre), glm::mat4(1.0f))

@@ -1,4 +1,4 @@
-// physics/hair_scene.h: a head with its hair, ready to simulate: the head and its colliders (from
+// physics/groomed_head.h: a head with its hair, ready to simulate: the head and its colliders (from
 // its description, or fitted to the mesh), the scalp rule, the guide strands (grown, or loaded from
 // hair files in parts) and the scene's scale. Every command builds one (app/settings/hair_source.h) and
 // runs it in a hair session (app/session/hair_session.h).
@@ -8,7 +8,7 @@
 #include "assets/head.h"
 #include "assets/placement.h"
 #include "physics/growth.h"
-#include "physics/strands.h"
+#include "physics/strand_set.h"
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -27,7 +27,7 @@ struct LoadedStrands {
     size_t pinnedTips = 0;       // both ends pinned (TressFX bothEndsImmovable)
 };
 
-struct HairScene {
+struct GroomedHead {
     Head head;
     std::vector<Ellipsoid> colliders;         // head space
     std::vector<gpu::Ellipsoid> gpuColliders; // the same, as the solver takes them
@@ -45,9 +45,9 @@ struct HairScene {
 };
 
 // Loads the head and grows guides on it.
-HairScene buildGrownScene(const std::filesystem::path& headFile, const GrowthSettings& growth);
+GroomedHead buildGrownHead(const std::filesystem::path& headFile, const GrowthSettings& growth);
 // The same on a head already loaded (its description's colliders may have been replaced).
-HairScene buildGrownScene(Head head, const GrowthSettings& growth);
+GroomedHead buildGrownHead(Head head, const GrowthSettings& growth);
 
 // One hair file of a groom, with how to place it and its own simulation parameters.
 struct HairPartSource {
@@ -62,17 +62,17 @@ struct HairPartSource {
 // the options that place a groom by hand: a groom half on the head draws hair through the face);
 // a placement by hand that does is kept, with a warning. Strands of no
 // length are dropped and strands too short to simulate kept rigid, both counted (`loaded`).
-HairScene buildLoadedScene(const std::filesystem::path& headFile, const std::vector<HairPartSource>& parts,
-                           uint32_t verticesPerStrand, const PlacementRequest& request = {});
-HairScene buildLoadedScene(Head head, const std::vector<HairPartSource>& parts, uint32_t verticesPerStrand,
-                           const PlacementRequest& request = {});
+GroomedHead buildLoadedHead(const std::filesystem::path& headFile, const std::vector<HairPartSource>& parts,
+                            uint32_t verticesPerStrand, const PlacementRequest& request = {});
+GroomedHead buildLoadedHead(Head head, const std::vector<HairPartSource>& parts, uint32_t verticesPerStrand,
+                            const PlacementRequest& request = {});
 
 // What loading did, for a person, one line each (none for grown hair): "hair placement: fitted to
 // the scalp: scale 0.4, offset (...), y-up; roots: median 0.3% of the head's size from its
 // surface, 98.2% within 2%" and "hair strands: 12 kept rigid (shorter than 0.9 head units), ...".
-std::vector<std::string> describeLoadedHair(const HairScene& scene);
+std::vector<std::string> describeLoadedHair(const GroomedHead& scene);
 // The same as JSON (null for grown hair).
-nlohmann::json loadedHairJson(const HairScene& scene);
+nlohmann::json loadedHairJson(const GroomedHead& scene);
 
 // The default parameters of a loaded (styled) part: it keeps its shape more than grown hair.
 PartSettings styledPartDefaults();

@@ -1,4 +1,4 @@
-// physics/strands.h: guide strands ready to simulate: every strand resampled to V vertices,
+// physics/strand_set.h: guide strands ready to simulate: every strand resampled to V vertices,
 // rest positions in head space, per-strand attributes (part, pinned vertices, seed), and the
 // parts (one per hair source) with their own parameters.
 #pragma once

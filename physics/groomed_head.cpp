@@ -1,5 +1,5 @@
-// physics/hair_scene.cpp: head, colliders and strands assembled.
-#include "physics/hair_scene.h"
+// physics/groomed_head.cpp: head, colliders and strands assembled.
+#include "physics/groomed_head.h"
 
 #include "core/error.h"
 #include "physics/colliders.h"
@@ -16,7 +16,7 @@ namespace wisp {
 
 namespace {
 
-void prepareHead(HairScene& scene)
+void prepareHead(GroomedHead& scene)
 {
     scene.unitsPerMetre = unitsPerMetre(scene.head);
     scene.colliders = scene.head.description.colliders;
@@ -36,14 +36,14 @@ void prepareHead(HairScene& scene)
 
 } // namespace
 
-HairScene buildGrownScene(const std::filesystem::path& headFile, const GrowthSettings& growth)
+GroomedHead buildGrownHead(const std::filesystem::path& headFile, const GrowthSettings& growth)
 {
-    return buildGrownScene(loadHead(headFile), growth);
+    return buildGrownHead(loadHead(headFile), growth);
 }
 
-HairScene buildGrownScene(Head head, const GrowthSettings& growth)
+GroomedHead buildGrownHead(Head head, const GrowthSettings& growth)
 {
-    HairScene scene;
+    GroomedHead scene;
     scene.head = std::move(head);
     prepareHead(scene);
     scene.strands = growGuides(scene.head.mesh, scene.scalp, scene.gpuColliders, growth, scene.unitsPerMetre);
@@ -58,10 +58,10 @@ PartSettings styledPartDefaults()
     return p;
 }
 
-HairScene buildLoadedScene(const std::filesystem::path& headFile, const std::vector<HairPartSource>& parts,
-                           uint32_t verticesPerStrand, const PlacementRequest& request)
+GroomedHead buildLoadedHead(const std::filesystem::path& headFile, const std::vector<HairPartSource>& parts,
+                            uint32_t verticesPerStrand, const PlacementRequest& request)
 {
-    return buildLoadedScene(loadHead(headFile), parts, verticesPerStrand, request);
+    return buildLoadedHead(loadHead(headFile), parts, verticesPerStrand, request);
 }
 
 namespace {
@@ -75,15 +75,15 @@ std::string percent(float fraction)
 
 } // namespace
 
-HairScene buildLoadedScene(Head head, const std::vector<HairPartSource>& parts, uint32_t verticesPerStrand,
-                           const PlacementRequest& request)
+GroomedHead buildLoadedHead(Head head, const std::vector<HairPartSource>& parts, uint32_t verticesPerStrand,
+                            const PlacementRequest& request)
 {
     if (parts.empty())
-        throw std::invalid_argument("buildLoadedScene: no hair files");
+        throw std::invalid_argument("buildLoadedHead: no hair files");
     if (parts.size() > gpu::kSimMaxParts)
         throw UserError("at most " + std::to_string(gpu::kSimMaxParts) + " hair files can be loaded at once, got " +
                         std::to_string(parts.size()));
-    HairScene scene;
+    GroomedHead scene;
     scene.head = std::move(head);
     prepareHead(scene);
     scene.strands.verticesPerStrand = verticesPerStrand;
@@ -204,7 +204,7 @@ HairScene buildLoadedScene(Head head, const std::vector<HairPartSource>& parts, 
     return scene;
 }
 
-std::vector<std::string> describeLoadedHair(const HairScene& scene)
+std::vector<std::string> describeLoadedHair(const GroomedHead& scene)
 {
     std::vector<std::string> out;
     if (!scene.placement)
@@ -223,7 +223,7 @@ std::vector<std::string> describeLoadedHair(const HairScene& scene)
     return out;
 }
 
-nlohmann::json loadedHairJson(const HairScene& scene)
+nlohmann::json loadedHairJson(const GroomedHead& scene)
 {
     if (!scene.placement)
         return nullptr;
