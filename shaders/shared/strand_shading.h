@@ -91,13 +91,13 @@ GPU_FN float hairVolumeExposure(vec4 volume, vec3 world, vec3 wi)
 // lights (frameLight). `visibility` is the key light's: x through the head's shadow, y through the
 // hair in front of it (the deep opacity map's transmittance). `lutSingle[i]` is the lookup mode's
 // single scattering for light i (hairShadeLut in GLSL, evaluateHairLut in C++; ignored by the other
-// models). The fill and the rim have no maps of their own: what reaches a point of them is the side
-// of the hair's volume they light (hairVolumeExposure: the rim lights the crown and the silhouette,
-// not the hair over the face, which the head would hide from it), not darkened by the key's deep
-// opacity map: that map says how deep the point lies toward the key, not toward them (the crown a
-// rim from behind lights is deep in the hair seen from a key in front). Darkened by it as the
-// ambient is (mix(1, T, hairAmbientOcclusion)), the hair was further from the path-traced reference
-// in each of the fidelity table's four cases on lavapipe (docs/reference.md).
+// models). The fill and the rim have no maps of their own. What reaches a point of them is
+// approximated twice: the side of the hair's volume they light (hairVolumeExposure: the rim lights
+// the crown and the silhouette, not the hair over the face, which the head would hide from it), and
+// how deep in the hair the point lies, which the key's deep opacity map knows (its transmittance
+// softened as the ambient's occlusion is, mix(1, T, hairAmbientOcclusion): the deep opacity map
+// standing in for the hair's ambient occlusion, as it does for the ambient below): strands inside
+// the volume get less of the rim than those on its edge.
 GPU_FN vec3 shadeStrandPoint(FrameParams frame, vec3 world, vec3 tangent, float t, uint strand, vec2 visibility,
                              vec3 lutSingle[kFrameLights])
 {
@@ -117,7 +117,7 @@ GPU_FN vec3 shadeStrandPoint(FrameParams frame, vec3 world, vec3 tangent, float 
         if (light.intensity <= 0.0f)
             continue;
         bool key = i == kFrameKeyLight;
-        float transmittance = key ? visibility.y : 1.0f;
+        float transmittance = key ? visibility.y : occlusion;
         float head = key ? visibility.x : hairVolumeExposure(frame.hairVolume, world, light.direction);
         radiance +=
             strandLightResponse(frame, m, baseColor, tangent, light.direction, wo, transmittance, lutSingle[i]) *
