@@ -19,10 +19,14 @@ Scene windowScene(const std::filesystem::path& path, const HairSource& source, c
         // first: it sets the others again, and a shape stiffness that is no setting of its own), so
         // that the scene grows the same groom. (Seven of them only, before: a style was lost.)
         const std::vector<SceneSectionKey>& keys = sceneSectionKeys(SceneSection::Hair);
-        for (const auto& [name, value] : currentSettings(settings))
+        // (The pair whole, not a structured binding: clang, which builds the sanitizer round, does
+        // not let a lambda capture a binding.)
+        for (const auto& setting : currentSettings(settings)) {
+            const std::string& name = setting.first;
             if (settingSpec(name).change == SettingChange::Restart &&
                 std::any_of(keys.begin(), keys.end(), [&](const SceneSectionKey& k) { return k.name == name; }))
-                saved.hair.settings.emplace_back(name, value);
+                saved.hair.settings.push_back(setting);
+        }
     } else {
         for (const std::string& f : source.hairFiles)
             saved.hair.files.push_back({.path = scenePathText(path, std::filesystem::absolute(f))});
