@@ -380,6 +380,7 @@ std::vector<Pass*> Renderer::passes()
             list.push_back(strandRaster_->piecePass(Stage::Write, piece));
             list.push_back(strandRaster_->piecePass(Stage::Resolve, piece));
         }
+        list.push_back(strandRaster_->pass(Stage::Reserve));
         if (meshesInCompute) {
             for (MeshRaster::Stage stage : MeshRaster::kFinalStages)
                 list.push_back(meshRaster_->pass(stage));

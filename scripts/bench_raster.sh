@@ -64,7 +64,7 @@ rows = [json.loads(l) for l in open(sys.argv[1])]
 hair = {"graphics": ["shadow", "opacity", "oit.clear", "hair", "oit.resolve", "oit.composite", "oit.stats"],
         "compute": ["strands.clear", "shadow", "strands.light", "light.depth", "light.opacity", "light.resolve",
                     "light.copy", "strands.generate", "strands.depth", "strands.count", "strands.scan.blocks",
-                    "strands.scan.totals", "strands.scan.offsets", "strands.pieces", "strands.write", "strands.resolve",
+                    "strands.scan.totals", "strands.scan.offsets", "strands.pieces", "strands.write", "strands.resolve", "strands.reserve",
                     "hair.composite", "strands.stats"]}
 by = {}
 for r in rows:

@@ -6,9 +6,15 @@
 // interpolate the two vertices' (shaded along the strand by strands_generate.comp).
 // Two variants (the walk is the same code, the pieces' bookkeeping only in the second, so that
 // the count's loop is not made heavier by what it never runs):
-//   strands_fragments.comp (strands.count): each fragment that stays is counted at its pixel (atomicAdd)
+//   strands_fragments.comp (strands.count): each fragment that stays is counted at its pixel
+//                          (atomicAdd) and written into the pixel's reserved room
+//                          (shared/strand_raster.h "One walk") when the count is within it; the
+//                          fragments that are not are counted as spilled
 //   strands_fragments_write.comp (RASTER_WRITE, strands.write): written to its pixel's next slot, from a cursor (the counts, which the
-//                          scan set to each pixel's offset), one piece of the frame a dispatch
+//                          scan set to each pixel's offset). In the reserved layout only the
+//                          pixels that had no room, after the reserved region (none walks when no
+//                          pixel spilled: strands.pieces dispatches no groups). Otherwise one piece
+//                          of the frame a dispatch
 //                          (push.piece, shared/strand_raster.h "Pieces"): only the piece's pixels,
 //                          at their slot less the piece's start, segments off the piece's rows
 //                          not walked; a pixel's fragments past rasterPixelCap are skipped (the
@@ -39,6 +45,7 @@ layout(set = 0, binding = kRasterBindingDepthRange, std430) readonly buffer Dept
 layout(set = 0, binding = kRasterBindingMeshSamples, std430) readonly buffer MeshSamples { uint meshSamples[]; };
 
 layout(set = 0, binding = kRasterBindingTileDepth, std430) readonly buffer TileDepth { float tileDepth[]; };
+layout(set = 0, binding = kRasterBindingReserved, std430) readonly buffer Reserved { uint reserved[]; };
 #ifdef RASTER_WRITE
 layout(set = 0, binding = kRasterBindingOffsets, std430) readonly buffer Offsets { uint offsets[]; };
 layout(set = 0, binding = kRasterBindingPieces, std430) readonly buffer Pieces { RasterPiece pieces[]; };
@@ -46,6 +53,7 @@ layout(set = 0, binding = kRasterBindingPieces, std430) readonly buffer Pieces {
 
 shared uint groupSegments;
 shared uint groupHidden;
+shared uint groupSpilled;
 
 // Whether any pixel in `bounds` could hold a fragment as near as `nearest`: whether it lies in
 // front of the farthest mesh sample of some tile the bounds reach (true, unlooked, past
@@ -68,6 +76,7 @@ void main()
     if (gl_LocalInvocationIndex == 0u) {
         groupSegments = 0u;
         groupHidden = 0u;
+        groupSpilled = 0u;
     }
     barrier();
 
@@ -77,9 +86,11 @@ void main()
     uint firstPixel = 0u, endPixel = 0xffffffffu, firstRow = 0u, endRow = 0xffffffffu, base = 0u;
     bool capped = false;
     uint cap = push.fragmentCapacity;
+    uint reservedEnd = counters.reservedEnd; // the reserved layout: the spilled pixels after its region
+    bool inReserved = reservedEnd != kRasterNotReserved;
     {
         uint stride = counters.stride;
-        if (stride != kRasterOnePiece) {
+        if (!inReserved && stride != kRasterOnePiece) {
             RasterPiece piece = pieces[push.piece];
             firstPixel = piece.firstPixel;
             endPixel = piece.endPixel;
@@ -96,6 +107,7 @@ void main()
     uint segment = clumpOrderedSegment(thread, push.divisions, push.drawnPerGuide);
     bool drawn = false;
     bool hidden = false;
+    uint spilled = 0u;  // (strands.count) fragments with no reserved room
     if (thread < push.segmentCount) {
         uint v = segment / push.divisions * (push.divisions + 1u) + segment % push.divisions;
         vec4 a = vertices[v];
@@ -139,14 +151,21 @@ void main()
 #ifdef RASTER_WRITE
                     if (p < firstPixel || p >= endPixel)
                         continue;  // another piece's pixel
+                    if (inReserved && offsets[p + 1u] - offsets[p] <= reserved[p + 1u] - reserved[p])
+                        continue;  // strands.count wrote it into the pixel's room
                     uint cursor = atomicAdd(counts[p], 1u);  // it starts at the pixel's offset
                     if (capped && cursor - offsets[p] >= cap)
                         continue;
-                    uint slot = cursor - base;
+                    uint slot = inReserved ? reservedEnd + cursor : cursor - base;
                     if (slot < push.fragmentCapacity)
                         fragments[slot] = uvec2(floatBitsToUint(depth), packFragmentColor(c.rgb, alpha));
 #else
-                    atomicAdd(counts[p], 1u);
+                    uint n = atomicAdd(counts[p], 1u);
+                    uint first = reserved[p];
+                    if (n < reserved[p + 1u] - first && first + n < push.fragmentCapacity)
+                        fragments[first + n] = uvec2(floatBitsToUint(depth), packFragmentColor(c.rgb, alpha));
+                    else
+                        spilled++;
 #endif
                 }
             }
@@ -156,9 +175,13 @@ void main()
         atomicAdd(groupSegments, 1u);
     if (!kWrite && hidden)
         atomicAdd(groupHidden, 1u);
+    if (!kWrite && spilled > 0u)
+        atomicAdd(groupSpilled, spilled);
     barrier();
     if (!kWrite && gl_LocalInvocationIndex == 0u && groupSegments > 0u)
         atomicAdd(counters.segments, groupSegments);
     if (!kWrite && gl_LocalInvocationIndex == 0u && groupHidden > 0u)
         atomicAdd(counters.hidden, groupHidden);
+    if (!kWrite && gl_LocalInvocationIndex == 0u && groupSpilled > 0u)
+        atomicAdd(counters.spilled, groupSpilled);
 }

@@ -5,7 +5,9 @@
 // (shared/strand_raster.h insertFragment / resolveFragments; oit_k is specialization constant 0,
 // so the lists stay in registers); the pixel's premultiplied hair written once. One piece of the
 // frame a dispatch (push.piece: its rows of tiles, only its pixels, their slots less the piece's
-// start; shared/strand_raster.h "Pieces"). hair.composite lays the picture over the target.
+// start; shared/strand_raster.h "Pieces"); in the reserved layout ("One walk") a pixel's list starts
+// at its reserved slot, or after the reserved region where it had no room there.
+// hair.composite lays the picture over the target.
 #extension GL_GOOGLE_include_directive : require
 // The tail's clear units (tailClearUnits) of each alpha byte, filled at the workgroup's start: a
 // shared-memory load where each fragment of the tail would take a logarithm.
@@ -21,6 +23,7 @@ layout(set = 0, binding = kRasterBindingFragments, std430) readonly buffer Fragm
 layout(set = 0, binding = kRasterBindingCounters, std430) readonly buffer Counters { RasterCounters counters; };
 layout(set = 0, binding = kRasterBindingHairColor, rgba16f) uniform writeonly image2D hairColor;
 layout(set = 0, binding = kRasterBindingPieces, std430) readonly buffer Pieces { RasterPiece pieces[]; };
+layout(set = 0, binding = kRasterBindingReserved, std430) readonly buffer Reserved { uint reserved[]; };
 
 void main()
 {
@@ -30,6 +33,7 @@ void main()
     uint stride = counters.stride;
     uint firstPixel = 0u, endPixel = 0xffffffffu, base = 0u, cap = push.fragmentCapacity;
     uvec2 origin = uvec2(0u);
+    uint reservedEnd = counters.reservedEnd;
     if (stride != kRasterOnePiece) {
         RasterPiece piece = pieces[push.piece];
         firstPixel = piece.firstPixel;
@@ -42,8 +46,11 @@ void main()
     uint p = uint(pixel.y) * push.targetWidth + uint(pixel.x);
     bool inside = pixel.x < int(push.targetWidth) && pixel.y < int(push.targetHeight) && p >= firstPixel && p < endPixel;
     if (inside) {
+        uint count = offsets[p + 1u] - offsets[p];
         uint begin = min(offsets[p] - base, push.fragmentCapacity);
-        uint end = min(begin + min(offsets[p + 1u] - offsets[p], cap), push.fragmentCapacity);
+        if (reservedEnd != kRasterNotReserved)  // (within the buffer: rasterDrawsReserved)
+            begin = count <= reserved[p + 1u] - reserved[p] ? reserved[p] : reservedEnd + offsets[p];
+        uint end = min(begin + min(count, cap), push.fragmentCapacity);
         const uint k = kOitK;  // 1 .. kMaxOitK (the renderer clamps it)
         PixelFragments f = emptyPixelFragments();
         // The list in batches of eight, the next batch's loads issued before this one's inserts: a

@@ -5,8 +5,10 @@
 //   0 (strands.scan.blocks)  one workgroup per block of kRasterScanBlock counts: its total, and
 //                            the largest count into the counters (maxPixel)
 //   1 (strands.scan.totals)  one workgroup: the blocks' totals scanned into their offsets; the
-//                            grand total, the capacity, and the pieces the frame takes with
-//                            their stride (rasterPieceStride, rasterPieces) into the counters
+//                            grand total, the capacity, whether the frame is drawn in the
+//                            reserved layout (rasterDrawsReserved: one piece) or else the pieces
+//                            it takes with their stride (rasterPieceStride, rasterPieces) into
+//                            the counters
 //   2 (strands.scan.offsets) one workgroup per block: each count's offset (its block's plus its
 //                            own within the block); each pixel's count becomes its write cursor,
 //                            starting at its offset (strands.write takes its slots from it); the
@@ -22,6 +24,7 @@ layout(set = 0, binding = kRasterBindingCounts, std430) buffer Counts { uint cou
 layout(set = 0, binding = kRasterBindingOffsets, std430) writeonly buffer Offsets { uint offsets[]; };
 layout(set = 0, binding = kRasterBindingBlockSums, std430) buffer BlockSums { uint blockSums[]; };
 layout(set = 0, binding = kRasterBindingCounters, std430) buffer Counters { RasterCounters counters; };
+layout(set = 0, binding = kRasterBindingReserved, std430) readonly buffer Reserved { uint reserved[]; };
 
 shared uint sums[kRasterScanGroupSize];
 shared uint groupMost;
@@ -60,7 +63,11 @@ void main()
             offset += s;
         }
         if (lane == 0u) {
-            uint stride = rasterPieceStride(total, push.fragmentCapacity, counters.maxPixel);
+            uint reservedEnd = reserved[push.targetWidth * push.targetHeight];
+            bool inReserved = rasterDrawsReserved(reservedEnd, total, push.fragmentCapacity);
+            uint stride =
+                inReserved ? kRasterOnePiece : rasterPieceStride(total, push.fragmentCapacity, counters.maxPixel);
+            counters.reservedEnd = inReserved ? reservedEnd : kRasterNotReserved;
             counters.fragments = total;
             counters.capacity = push.fragmentCapacity;
             counters.stride = stride;

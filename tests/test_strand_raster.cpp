@@ -38,10 +38,11 @@ using Buffer = StrandRaster::Buffer;
 struct uvec2Fragment { // as strands.write stores a fragment
     uint32_t depth;    // float bits
     uint32_t color;
+    bool operator==(const uvec2Fragment&) const = default;
 };
 constexpr Buffer kReadBuffers[] = {Buffer::Curves,      Buffer::Vertices,     Buffer::Colors,    Buffer::LightVertices,
                                    Buffer::LightColors, Buffer::Offsets,      Buffer::Fragments, Buffer::Counters,
-                                   Buffer::LightDepth,  Buffer::LightOpacity, Buffer::Pieces};
+                                   Buffer::LightDepth,  Buffer::LightOpacity, Buffer::Pieces,    Buffer::Reserved};
 
 // Copies the compute path's buffers, its hair image, the compute meshes' samples (depth and
 // triangle, one sample a pixel) and their colour to the host at the end of the frame that made them.
@@ -393,8 +394,7 @@ TEST(StrandRaster, ThePiecesKernelMatchesItsCpuTwin)
         EXPECT_EQ(c.pieces == 1u, budget == 0) << c.pieces;
         ASSERT_EQ(f.recordedPieces, 2u);
         uint32_t notDrawn = 0;
-        std::vector<gpu::RasterPiece> cpu =
-            reference::framePieces(f.camera, offsets, c.stride, c.pieces, f.recordedPieces, &notDrawn);
+        std::vector<gpu::RasterPiece> cpu = reference::framePieces(f.camera, offsets, c, f.recordedPieces, &notDrawn);
         std::vector<gpu::RasterPiece> gpu = f.readback->read<gpu::RasterPiece>(Buffer::Pieces, f.recordedPieces);
         auto text = [](const gpu::RasterPiece& r) {
             const uint32_t* w = reinterpret_cast<const uint32_t*>(&r);
@@ -699,6 +699,124 @@ TEST(StrandRaster, ASmallBudgetDrawsTheSamePictureInPieces)
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 
+// The fragments of every pixel, from a frame's read-back buffers: pixel p's list at `first[p]`,
+// offsets[p + 1] - offsets[p] of them, sorted (the atomics write them in any order).
+std::vector<std::vector<uvec2Fragment>> sortedPixelLists(const RasterReadback& r, const std::vector<uint32_t>& offsets,
+                                                         const std::vector<uint32_t>& first, uint32_t capacity)
+{
+    std::vector<uvec2Fragment> raw = r.read<uvec2Fragment>(Buffer::Fragments, capacity);
+    std::vector<std::vector<uvec2Fragment>> out(offsets.size() - 1);
+    for (size_t p = 0; p + 1 < offsets.size(); ++p) {
+        for (uint32_t i = 0; i < offsets[p + 1] - offsets[p]; ++i)
+            out[p].push_back(raw.at(first[p] + i));
+        std::sort(out[p].begin(), out[p].end(), [](const uvec2Fragment& a, const uvec2Fragment& b) {
+            return std::tie(a.depth, a.color) < std::tie(b.depth, b.color);
+        });
+    }
+    return out;
+}
+
+TEST(StrandRaster, TheNextFrameIsWrittenInOneWalkIntoTheRoomTheLastOneReserved)
+{
+    // shared/strand_raster.h "One walk". The first frame finds no room (the reserved layout starts
+    // at zeros): strands.count spills every fragment and strands.write lays them out exactly, as
+    // before. strands.reserve then leaves each pixel its count, an eighth more and a few (its twin
+    // below); the next frame of the same scene fits that room: strands.count writes every fragment,
+    // no second walk is dispatched, and each pixel holds the same fragments, at its reserved slot.
+    vk::Context ctx(test::validatedOptions());
+    GroomedHead scene = test::smallGroomedHead(150);
+    RenderSettings s = test::smallRenderSettings();
+    s.hairRaster = HairRaster::Compute;
+    s.samples = 1;
+    test::HairRenderer hair(ctx, scene, s);
+    Renderer& renderer = hair.renderer;
+    Frame frame(ctx, 1);
+    OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(s.width) / float(s.height));
+    auto run = [&] {
+        FrameContext& fc = frame.begin(renderer.transientImages());
+        renderer.prepare(fc, camera, 0.0f);
+        auto readback =
+            std::make_unique<RasterReadback>(ctx, *renderer.strandRaster(), *renderer.meshRaster(), renderer.target());
+        std::vector<Pass*> passes = renderer.passes();
+        passes.push_back(readback.get());
+        frame.run(fc, passes);
+        frame.submit(fc);
+        frame.waitIdle();
+        return readback;
+    };
+    size_t pixels = size_t(s.width) * s.height;
+    std::unique_ptr<RasterReadback> first = run();
+    std::vector<uint32_t> offsets = first->read<uint32_t>(Buffer::Offsets, pixels + 1);
+    gpu::RasterCounters c1 = first->read<gpu::RasterCounters>(Buffer::Counters, 1)[0];
+    ASSERT_GT(c1.fragments, 4000u);
+    EXPECT_EQ(c1.reservedEnd, 0u) << "no room yet: the spilled pixels' layout starts at the buffer's start";
+    EXPECT_EQ(c1.spilled, c1.fragments);
+    EXPECT_GT(first->read<gpu::RasterPiece>(Buffer::Pieces, 1)[0].walkGroups[0], 0u);
+    std::vector<uint32_t> reserved = first->read<uint32_t>(Buffer::Reserved, pixels + 1);
+    EXPECT_EQ(reserved, reference::reservedLayout(offsets)) << "strands.reserve and its twin";
+    for (size_t p = 0; p < pixels; ++p) {
+        uint32_t count = offsets[p + 1] - offsets[p];
+        ASSERT_GE(reserved[p + 1] - reserved[p], count + count / 8 + gpu::kRasterReservedPerPixel) << "pixel " << p;
+    }
+
+    std::unique_ptr<RasterReadback> second = run();
+    gpu::RasterCounters c2 = second->read<gpu::RasterCounters>(Buffer::Counters, 1)[0];
+    EXPECT_EQ(c2.fragments, c1.fragments);
+    EXPECT_EQ(c2.reservedEnd, reserved[pixels]);
+    EXPECT_EQ(c2.spilled, 0u);
+    EXPECT_EQ(c2.pieces, 1u);
+    EXPECT_EQ(second->read<gpu::RasterPiece>(Buffer::Pieces, 1)[0].walkGroups[0], 0u) << "no second walk";
+    EXPECT_EQ(second->read<uint32_t>(Buffer::Offsets, pixels + 1), offsets);
+    std::vector<uint32_t> exact(offsets.begin(), offsets.end() - 1);
+    std::vector<uint32_t> room(reserved.begin(), reserved.end() - 1);
+    EXPECT_TRUE(sortedPixelLists(*second, offsets, room, c2.capacity) ==
+                sortedPixelLists(*first, offsets, exact, c1.capacity))
+        << "each pixel's fragments, at its reserved slot";
+    EXPECT_EQ(second->color(), first->color());
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
+TEST(StrandRaster, AFrameThatOutgrowsItsRoomWalksAgainOnlyForThePixelsThatDid)
+{
+    // After two frames from one camera, the camera turns: the pixels that now hold more than
+    // their reserved room spill, and only theirs are written by the second walk, after the
+    // reserved region; the picture is the one a renderer that never had room draws there. With a
+    // buffer too small for the reserved layout and the exact one after it, the frame is laid out
+    // exactly, as before.
+    vk::Context ctx(test::validatedOptions());
+    GroomedHead scene = test::smallGroomedHead(150);
+    RenderSettings s = test::smallRenderSettings();
+    s.hairRaster = HairRaster::Compute;
+    test::HairRenderer hair(ctx, scene, s);
+    Frame frame(ctx, 1);
+    OrbitCamera camera = OrbitCamera::framing(hair.renderer.sceneBounds(), float(s.width) / float(s.height));
+    renderFrame(ctx, hair.renderer, frame, camera);
+    Picture still = renderFrame(ctx, hair.renderer, frame, camera);
+    EXPECT_TRUE(still.raster.oneWalk());
+    OrbitCamera turned = camera;
+    turned.orbit(4.0f, 1.0f);
+    Picture moved = renderFrame(ctx, hair.renderer, frame, turned);
+    EXPECT_TRUE(moved.raster.reserved);
+    EXPECT_GT(moved.raster.spilled, 0u);
+    EXPECT_LT(moved.raster.spilled, moved.raster.fragments / 2) << "most pixels had room";
+    EXPECT_EQ(moved.raster.overflow, 0u);
+
+    test::HairRenderer fresh(ctx, scene, s);
+    Frame freshFrame(ctx, 1);
+    Picture exact = renderFrame(ctx, fresh.renderer, freshFrame, turned);
+    EXPECT_EQ(exact.raster.spilled, exact.raster.fragments) << "a first frame: no room";
+    EXPECT_EQ(moved.raster.fragments, exact.raster.fragments);
+    EXPECT_EQ(moved.rgba, exact.rgba);
+
+    hair.renderer.strandRaster()->setFragmentCapacity(moved.raster.fragments + moved.raster.fragments / 8);
+    Picture tight = renderFrame(ctx, hair.renderer, frame, turned);
+    EXPECT_FALSE(tight.raster.reserved) << "no room for both layouts";
+    EXPECT_EQ(tight.raster.pieces, 1u);
+    EXPECT_EQ(tight.raster.overflow, 0u);
+    EXPECT_EQ(tight.rgba, exact.rgba);
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
 TEST(StrandRaster, PiecesDrawEveryCaseByteForByte)
 {
     // The cases the paths are compared in (a loaded groom with its own head, MSAA meshes, the
@@ -799,6 +917,14 @@ TEST(StrandRaster, StatsAreDescribedInOneLine)
     EXPECT_EQ(describeRasterStats(s), "compute raster: 1200 segments on screen (300 behind the meshes), 5000 hair "
                                       "fragments (at most 17 in a pixel), buffer of 2000, drawn in 3 pieces, 1000 not "
                                       "drawn (more pieces are recorded for the next frame)");
+    RasterStats reserved{.segments = 1200, .hidden = 300, .fragments = 5000, .capacity = 16000, .maxPixel = 17};
+    reserved.reserved = true;
+    EXPECT_EQ(describeRasterStats(reserved), "compute raster: 1200 segments on screen (300 behind the meshes), 5000 "
+                                             "hair fragments (at most 17 in a pixel), buffer of 16000, one walk");
+    reserved.spilled = 40;
+    EXPECT_EQ(describeRasterStats(reserved),
+              "compute raster: 1200 segments on screen (300 behind the meshes), 5000 hair fragments (at most 17 in a "
+              "pixel), buffer of 16000, 40 without reserved room written by a second walk");
 }
 
 TEST(StrandRaster, TheFragmentBudgetSettingDrawsTheSamePicture)

@@ -55,6 +55,8 @@ const char* stageName(StrandRaster::Stage stage)
         return "strands.write";
     case StrandRaster::Stage::Resolve:
         return "strands.resolve";
+    case StrandRaster::Stage::Reserve:
+        return "strands.reserve";
     case StrandRaster::Stage::Stats:
         return "strands.stats";
     }
@@ -74,6 +76,10 @@ std::string describeRasterStats(const RasterStats& s)
                        std::to_string(s.capacity);
     if (s.pieces > 1)
         text += ", drawn in " + std::to_string(s.pieces) + " pieces";
+    if (s.oneWalk())
+        text += ", one walk";
+    else if (s.reserved)
+        text += ", " + std::to_string(s.spilled) + " without reserved room written by a second walk";
     if (s.overflow > 0)
         text += ", " + std::to_string(s.overflow) + " not drawn (more pieces are recorded for the next frame)";
     return text;
@@ -106,6 +112,7 @@ StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUn
     scanOffsetsKernel_ = vk::createComputeKernel(ctx, layout, "strands_scan.comp", "strands.scan.offsets.pipeline",
                                                  {/*kPhase=*/2, kScanBlockThreads});
     piecesKernel_ = vk::createComputeKernel(ctx, layout, "strands_pieces.comp", "strands.pieces.pipeline");
+    reserveKernel_ = vk::createComputeKernel(ctx, layout, "strands_reserve.comp", "strands.reserve.pipeline");
     lightDepthKernel_ =
         vk::createComputeKernel(ctx, layout, "strands_light.comp", "light.depth.pipeline", {/*kOpacity=*/0});
     lightOpacityKernel_ =
@@ -156,13 +163,19 @@ void StrandRaster::resize()
     uint64_t blocks = (pixels + 1 + gpu::kRasterScanBlock - 1) / gpu::kRasterScanBlock;
     allocate(counts_, (pixels + 1) * sizeof(uint32_t), vk::kStorage | vk::kTransferDst, "strands.counts", nullptr);
     allocate(offsets_, (pixels + 1) * sizeof(uint32_t), vk::kStorage | vk::kTransferSrc, "strands.offsets", nullptr);
+    allocate(reserved_, (pixels + 1) * sizeof(uint32_t), vk::kStorage | vk::kTransferDst | vk::kTransferSrc,
+             "strands.reserved", nullptr);
     allocate(depthRange_, pixels * 2 * sizeof(float), vk::kStorage, "strands.depth_range", nullptr);
     allocate(tileDepth_, depthTiles(e) * sizeof(float), vk::kStorage, "strands.tile_depth", nullptr);
     allocate(blockSums_, blocks * sizeof(uint32_t), vk::kStorage, "strands.block_sums", nullptr);
     allocate(meshSamples_, pixels * uint32_t(target_.samples()) * sizeof(uint32_t), vk::kStorage,
              "strands.mesh_samples", nullptr);
-    // The count past the last pixel is always 0 (its offset is the total): zeroed once.
-    ctx_.submitAndWait([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, counts_.buffer, 0, VK_WHOLE_SIZE, 0); });
+    // The count past the last pixel is always 0 (its offset is the total): zeroed once. No pixel has
+    // reserved room before a frame has laid it out.
+    ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+        vkCmdFillBuffer(cmd, counts_.buffer, 0, VK_WHOLE_SIZE, 0);
+        vkCmdFillBuffer(cmd, reserved_.buffer, 0, VK_WHOLE_SIZE, 0);
+    });
     color_ = ctx_.createImage(
         {.format = kColorFormat,
          .extent = e,
@@ -205,6 +218,8 @@ StrandRaster::Storage& StrandRaster::storage(Buffer which)
         return lightOpacity_;
     case Buffer::Pieces:
         return pieces_;
+    case Buffer::Reserved:
+        return reserved_;
     }
     return counters_;
 }
@@ -215,7 +230,7 @@ uint64_t StrandRaster::allocatedBytes() const
         triangles_.size() + uint64_t(color_.extent().width) * color_.extent().height * vk::formatBytes(color_.format());
     for (const Storage* s :
          {&curves_, &vertices_, &colors_, &lightVertices_, &lightColors_, &counts_, &offsets_, &fragments_, &counters_,
-          &depthRange_, &tileDepth_, &blockSums_, &lightDepth_, &lightOpacity_, &meshSamples_, &pieces_})
+          &depthRange_, &tileDepth_, &blockSums_, &lightDepth_, &lightOpacity_, &meshSamples_, &pieces_, &reserved_})
         bytes += s->buffer ? s->buffer.size() : 0;
     return bytes;
 }
@@ -240,7 +255,9 @@ RasterStats StrandRaster::stats(uint32_t slot) const
             .capacity = c.capacity,
             .overflow = c.overflow,
             .maxPixel = c.maxPixel,
-            .pieces = std::max(c.pieces, 1u)};
+            .pieces = std::max(c.pieces, 1u),
+            .reserved = c.reservedEnd != gpu::kRasterNotReserved,
+            .spilled = c.spilled};
 }
 
 void StrandRaster::prepare(FrameContext& frame, const StrandDraw& cameraDraw, const StrandDraw& lightDraw,
@@ -305,6 +322,12 @@ void StrandRaster::prepare(FrameContext& frame, const StrandDraw& cameraDraw, co
     RasterStats last = stats(frame.slot);
     if (last.fragments > fragmentCapacity_)
         wanted = std::max(wanted, last.fragments + last.fragments / 4);
+    // Room for the reserved layout (an eighth more than the last frame's fragments, and
+    // kRasterReservedPerPixel a pixel) and the exact one after it, an eighth to spare, where the budget allows: the
+    // frame is then written in one walk (shaders/shared/strand_raster.h "One walk").
+    uint64_t reservedLayout = last.fragments * 19 / 8 + gpu::kRasterReservedPerPixel * (uint64_t(e.width) * e.height);
+    if (last.fragments > 0 && reservedLayout <= budget_)
+        wanted = std::max(wanted, reservedLayout);
     wanted = std::min(wanted, budget_);
     if (wanted > fragmentCapacity_ || fragmentCapacity_ > budget_ || !fragments_.buffer) {
         fragmentCapacity_ = fragmentCapacity_ > budget_ ? wanted : std::max(wanted, fragmentCapacity_);
@@ -458,6 +481,7 @@ ComputeStage StrandRaster::stage(Stage stage, uint32_t piece)
                          storageBuffer(kRasterBindingCounts, counts_.track, ComputeWrite), // counts, then cursors
                          storageBuffer(kRasterBindingFragments, fragments_.track, ComputeWrite),
                          storageBuffer(kRasterBindingCounters, counters_.track, ComputeWrite),
+                         storageBuffer(kRasterBindingReserved, reserved_.track, ComputeRead),
                          storageBuffer(kRasterBindingOffsets, offsets_.track, ComputeRead).when(write),
                          storageBuffer(kRasterBindingPieces, pieces_.track, ComputeRead).when(write),
                          commandUse(pieces_.track, IndirectRead).when(write)},
@@ -478,7 +502,8 @@ ComputeStage StrandRaster::stage(Stage stage, uint32_t piece)
         return {.uses = {storageBuffer(kRasterBindingCounts, counts_.track, ComputeWrite),
                          storageBuffer(kRasterBindingOffsets, offsets_.track, ComputeWrite),
                          storageBuffer(kRasterBindingBlockSums, blockSums_.track, ComputeWrite),
-                         storageBuffer(kRasterBindingCounters, counters_.track, ComputeWrite)},
+                         storageBuffer(kRasterBindingCounters, counters_.track, ComputeWrite),
+                         storageBuffer(kRasterBindingReserved, reserved_.track, ComputeRead)},
                 .record = [this, stage](StageCommands& c) {
                     if (stage == Stage::ScanTotals)
                         c.dispatch(scanTotalsKernel_, camera_, 1);
@@ -500,6 +525,7 @@ ComputeStage StrandRaster::stage(Stage stage, uint32_t piece)
                          storageBuffer(kRasterBindingFragments, fragments_.track, ComputeRead),
                          storageBuffer(kRasterBindingCounters, counters_.track, ComputeRead),
                          storageBuffer(kRasterBindingPieces, pieces_.track, ComputeRead),
+                         storageBuffer(kRasterBindingReserved, reserved_.track, ComputeRead),
                          commandUse(pieces_.track, IndirectRead),
                          storageImage(kRasterBindingHairColor, colorTrack_, color_.view(), ComputeWrite)},
                 .record = [this, piece](StageCommands& c) {
@@ -507,6 +533,13 @@ ComputeStage StrandRaster::stage(Stage stage, uint32_t piece)
                     push.piece = piece;
                     c.dispatchIndirect(resolveKernel_, push, pieces_.track,
                                        piece * kPieceBytes + offsetof(RasterPiece, resolveGroups));
+                }};
+    case Stage::Reserve:
+        return {.uses = {storageBuffer(kRasterBindingOffsets, offsets_.track, ComputeRead),
+                         storageBuffer(kRasterBindingReserved, reserved_.track, ComputeWrite)},
+                .record = [this](StageCommands& c) {
+                    uint64_t entries = uint64_t(camera_.targetWidth) * camera_.targetHeight + 1;
+                    dispatchLinear(c, reserveKernel_, camera_, entries, kRasterGroupSize);
                 }};
     case Stage::Stats:
         return {.uses = {commandUse(counters_.track, TransferSrc)}, .record = [this](StageCommands& c) {

@@ -15,15 +15,20 @@
 //     (then the meshes, which read those maps)
 //   strands.generate      the camera's strands: placed, projected, shaded per vertex
 //   strands.depth         each pixel's nearest and farthest mesh depth sample; its count zeroed
-//   strands.count         each segment's fragments counted at their pixels
+//   strands.count         each segment's fragments counted at their pixels, and written into
+//                         the room the last frame's layout reserved (shaders/shared/strand_raster.h
+//                         "One walk") where it has room
 //   strands.scan.blocks   the counts' prefix sum: each block's total,
 //   strands.scan.totals   the blocks' offsets and the total against the capacity,
 //   strands.scan.offsets  each pixel's first slot
 //   strands.pieces        the pieces of the frame that fit the fragment buffer (one where the
 //                         frame fits): each piece's pixels and its two indirect dispatches
-//   strands.write N       (per piece) each of the piece's fragments written to its pixel's slot
+//   strands.write N       (per piece) each of the piece's fragments written to its pixel's slot;
+//                         in the reserved layout only those of the pixels that had no room (no
+//                         walk when none spilled)
 //   strands.resolve N     (per piece) per pixel: the nearest k sorted and the rest blended (the
 //                         lists' semantics), one write
+//   strands.reserve       the next frame's reserved layout, from this frame's offsets
 //   hair.composite        the hair image over the target
 //   strands.stats         the counters to the host
 // The kernels are shaders/strands_*.comp over shaders/shared/strand_raster.h; their C++ twin is
@@ -83,9 +88,14 @@ struct RasterStats {
     uint64_t overflow = 0;  // fragments not drawn: pieces past those recorded (more are recorded next frame)
     uint64_t maxPixel = 0;  // the most fragments one pixel held
     uint64_t pieces = 1;    // the pieces the frame took (1: it fit the buffer whole)
+    bool reserved = false;  // drawn in the last frame's reserved layout ("One walk")
+    uint64_t spilled = 0;   // of its fragments, those without reserved room, written by a second walk
+    // Whether strands.count wrote every fragment (no second walk).
+    bool oneWalk() const { return reserved && spilled == 0; }
 };
-// "compute raster: S segments on screen (H behind the meshes), F hair fragments (at most P in a pixel), buffer of C"
-// and ", dropped K" when some did not fit: the line `wisp render` prints and the window's panel shows.
+// "compute raster: S segments on screen (H behind the meshes), F hair fragments (at most P in a pixel), buffer of C",
+// ", one walk" or ", K without room written by a second walk" in the reserved layout, and ", K not
+// drawn" when some did not fit: the line `wisp render` prints and the window's panel shows.
 std::string describeRasterStats(const RasterStats& stats);
 
 class StrandRaster {
@@ -107,13 +117,14 @@ public:
         Pieces,
         Write,
         Resolve,
+        Reserve,
         Stats
     };
     // (Curves, the guides' points both generates read, runs with the light's stages: before them.)
     static constexpr std::array<Stage, 7> kLightStages = {Stage::Clear,      Stage::Curves,       Stage::LightGenerate,
                                                           Stage::LightDepth, Stage::LightOpacity, Stage::LightResolve,
                                                           Stage::LightCopy};
-    // (Then strands.write and strands.resolve for each recorded piece: piecePass.)
+    // (Then strands.write and strands.resolve for each recorded piece, piecePass, and strands.reserve.)
     static constexpr std::array<Stage, 7> kCameraStages = {Stage::Generate,   Stage::Depth,      Stage::Count,
                                                            Stage::ScanBlocks, Stage::ScanTotals, Stage::ScanOffsets,
                                                            Stage::Pieces};
@@ -191,7 +202,7 @@ public:
                bufferBytes(s.guides * (s.divisions + 1) * kCurvePointBytes) + bufferBytes(sizeof(gpu::RasterCounters)) +
                bufferBytes(cameraVertices * kVertexBytes) + bufferBytes(cameraVertices * kColorBytes) +
                bufferBytes(lightVertices * kVertexBytes) + bufferBytes(lightVertices * kColorBytes) +
-               2 * bufferBytes((pixels + 1) * sizeof(uint32_t)) +  // counts, offsets (and the total past the last)
+               3 * bufferBytes((pixels + 1) * sizeof(uint32_t)) +  // counts, offsets, reserved (and one past the last)
                bufferBytes(pixels * 2 * sizeof(float)) +           // each pixel's mesh depth range
                bufferBytes(depthTiles(s.extent) * sizeof(float)) + // each tile's farthest mesh sample
                bufferBytes(blocks * sizeof(uint32_t)) +            // the scan's block sums
@@ -274,7 +285,8 @@ public:
         Counters,
         LightDepth,
         LightOpacity,
-        Pieces
+        Pieces,
+        Reserved
     };
     TrackedBuffer& track(Buffer which) { return storage(which).track; }
     const vk::Buffer& buffer(Buffer which) { return storage(which).buffer; }
@@ -307,7 +319,8 @@ private:
     StageLayout layout_;
     vk::ComputeKernel generateKernel_, generateLightKernel_, depthKernel_, depthBufferKernel_, countKernel_,
         writeKernel_;
-    vk::ComputeKernel scanBlocksKernel_, scanTotalsKernel_, scanOffsetsKernel_, piecesKernel_, resolveKernel_;
+    vk::ComputeKernel scanBlocksKernel_, scanTotalsKernel_, scanOffsetsKernel_, piecesKernel_, resolveKernel_,
+        reserveKernel_;
     vk::ComputeKernel lightDepthKernel_, lightOpacityKernel_, lightResolveKernel_, curvesKernel_;
     uint32_t pipelineK_ = 0;   // the oit_k the resolve pipeline was built for
     vk::Sampler depthSampler_; // the meshes' depth, fetched by texel
@@ -316,6 +329,7 @@ private:
     Storage vertices_, colors_;           // the camera's strand vertices
     Storage lightVertices_, lightColors_; // the light's
     Storage counts_, offsets_, fragments_, counters_, depthRange_, tileDepth_, blockSums_, pieces_;
+    Storage reserved_;    // each pixel's reserved first slot (strands.reserve; zeros: no room)
     Storage meshSamples_; // the depth image's samples, when the meshes are drawn by graphics
     TrackedBuffer* externalSamples_ = nullptr;
     Storage lightDepth_, lightOpacity_;

@@ -205,8 +205,10 @@ std::vector<std::vector<Fragment>> pixelFragments(const gpu::StrandRasterPush& p
 }
 
 std::vector<gpu::RasterPiece> framePieces(const gpu::StrandRasterPush& push, const std::vector<uint32_t>& offsets,
-                                          uint32_t stride, uint32_t needed, uint32_t recorded, uint32_t* notDrawn)
+                                          const gpu::RasterCounters& counters, uint32_t recorded, uint32_t* notDrawn)
 {
+    uint32_t stride = counters.stride, needed = counters.pieces;
+    bool walks = counters.reservedEnd == gpu::kRasterNotReserved || counters.spilled > 0;
     uint32_t width = push.targetWidth;
     uint32_t pixels = width * push.targetHeight;
     auto firstPixelFrom = [&](uint32_t target) {
@@ -224,7 +226,8 @@ std::vector<gpu::RasterPiece> framePieces(const gpu::StrandRasterPush& push, con
         bool drawn = r.firstPixel < r.endPixel;
         r.firstRow = drawn ? r.firstPixel / width : 0u;
         r.endRow = drawn ? (r.endPixel - 1) / width + 1 : 0u;
-        glm::uvec2 walk = drawn ? gpu::rasterLinearGroups(push.segmentCount, gpu::kRasterGroupSize) : glm::uvec2(0);
+        glm::uvec2 walk =
+            drawn && walks ? gpu::rasterLinearGroups(push.segmentCount, gpu::kRasterGroupSize) : glm::uvec2(0);
         r.walkGroups[0] = walk.x;
         r.walkGroups[1] = walk.y;
         r.walkGroups[2] = 1;
@@ -235,6 +238,14 @@ std::vector<gpu::RasterPiece> framePieces(const gpu::StrandRasterPush& push, con
         if (p + 1 == recorded && needed > recorded)
             *notDrawn = offsets[pixels] - offsets[firstPixelFrom(recorded * stride)];
     }
+    return out;
+}
+
+std::vector<uint32_t> reservedLayout(const std::vector<uint32_t>& offsets)
+{
+    std::vector<uint32_t> out(offsets.size());
+    for (size_t p = 0; p < offsets.size(); ++p)
+        out[p] = gpu::rasterReservedSlot(offsets[p], uint32_t(p));
     return out;
 }
 

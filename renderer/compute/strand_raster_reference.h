@@ -70,9 +70,14 @@ std::vector<std::vector<Fragment>> pixelFragments(const gpu::StrandRasterPush& p
 
 // strands_pieces.comp: the `recorded` pieces of a frame whose scan gave `offsets` (pixels + 1,
 // the total last), cut at `stride` into `needed` pieces; `notDrawn` gets the fragments of the
-// pixels past the recorded pieces.
+// pixels past the recorded pieces. `counters` say whether the frame is drawn in the reserved
+// layout and whether any fragment spilled (no second walk when it is and none did).
 std::vector<gpu::RasterPiece> framePieces(const gpu::StrandRasterPush& push, const std::vector<uint32_t>& offsets,
-                                          uint32_t stride, uint32_t needed, uint32_t recorded, uint32_t* notDrawn);
+                                          const gpu::RasterCounters& counters, uint32_t recorded, uint32_t* notDrawn);
+
+// strands_reserve.comp: the next frame's reserved first slot of every pixel (and one past the
+// last) from this frame's `offsets`.
+std::vector<uint32_t> reservedLayout(const std::vector<uint32_t>& offsets);
 
 // strands_resolve.comp: the premultiplied hair of every pixel.
 std::vector<glm::vec4> resolvePixels(const gpu::StrandRasterPush& push,

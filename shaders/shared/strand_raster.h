@@ -17,17 +17,21 @@
 //              (ribbonRowSpan, row by row) covered analytically (segmentCoverage: the exact area of
 //              the ribbon over the pixel across it, times the overlap along it) and depth-tested
 //              against the meshes (each MSAA sample); each fragment that stays counted at its pixel
+//              and written at once into the room the last frame's layout reserved for the pixel
+//              (see "One walk" below), where there is room
 //   scan       the counts' exclusive prefix sum (blocks, their totals, the offsets): each pixel's
 //              first slot in one fragment buffer, the total against its capacity; the counts
 //              become write cursors
 //   pieces     one workgroup: the pieces of the frame that fit the buffer (one where it fits
 //              whole), each piece's pixels and its walk's and resolve's indirect dispatches
-//   write      per piece, the same walk again over the piece's rows, each fragment of its pixels
-//              (depth, colour and opacity) written to its slot: every pixel's fragments side by
-//              side, binned by prefix sums
+//   write      only where the reserved room was short: per piece, the same walk again over the
+//              piece's rows, each fragment of its pixels (depth, colour and opacity) written to its
+//              slot: every pixel's fragments side by side, binned by prefix sums (in the reserved
+//              layout, only the pixels that had no room, after the reserved region)
 //   resolve    per piece, one thread per pixel: its fragments kept as the list resolve keeps them, the
 //              nearest k sorted and the rest blended as one order-independent layer
 //              (insertFragment / resolveFragments, shared with oit_resolve.comp); one write
+//   reserve    one thread per pixel: the next frame's room, from this frame's offsets
 //   light      from the light, the same generated segments (fewer, wider: shadow_strands) are
 //              rasterized one thread per segment into the hair's depth (atomicMin) and then the
 //              deep opacity layers (fixed-point atomicAdd: sums commute, so frames repeat bit for bit)
@@ -76,6 +80,7 @@ GPU_CONST uint kRasterBindingLightDepthImage = 23; // image2D r32f: the hair's f
 GPU_CONST uint kRasterBindingTileDepth = 24; // float per kRasterDepthTile^2 pixels: their farthest mesh depth sample
 GPU_CONST uint kRasterBindingCurves = 25;    // vec4 x 2 per guide point (guide * (D + 1) + i): position, tangent
 GPU_CONST uint kRasterBindingPieces = 26;    // RasterPiece per recorded piece (strands.pieces)
+GPU_CONST uint kRasterBindingReserved = 27;  // uint per pixel + 1: its first reserved slot (rasterReservedSlot)
 
 // The coarse depth's tiles: kRasterDepthTile x kRasterDepthTile pixels (strands_depth.comp's workgroup).
 GPU_CONST uint kRasterDepthTile = 8u;
@@ -119,14 +124,16 @@ struct StrandRasterPush {
 
 // What the kernels count, copied back to the host each frame.
 struct RasterCounters {
-    uint fragments; // fragments the pixels held this frame (what the buffer needed)
-    uint capacity;  // fragments the buffer holds
-    uint overflow;  // fragments not drawn: pieces past those recorded (the renderer records more next frame)
-    uint segments;  // segments on screen, in front of the camera
-    uint maxPixel;  // the most fragments one pixel held
-    uint hidden;    // of the segments on screen, those behind the meshes' coarse depth (not walked)
-    uint pieces;    // the pieces the frame's fragments needed (rasterPieces)
-    uint stride;    // the pieces' stride in the scan's offsets (rasterPieceStride)
+    uint fragments;   // fragments the pixels held this frame (what the buffer needed)
+    uint capacity;    // fragments the buffer holds
+    uint overflow;    // fragments not drawn: pieces past those recorded (the renderer records more next frame)
+    uint segments;    // segments on screen, in front of the camera
+    uint maxPixel;    // the most fragments one pixel held
+    uint hidden;      // of the segments on screen, those behind the meshes' coarse depth (not walked)
+    uint pieces;      // the pieces the frame's fragments needed (rasterPieces)
+    uint stride;      // the pieces' stride in the scan's offsets (rasterPieceStride)
+    uint spilled;     // fragments strands.count found no reserved room for (strands.write writes them)
+    uint reservedEnd; // the reserved layout's end when the frame is drawn in it, else kRasterNotReserved
 };
 
 // ---- Pieces: any frame in a bounded fragment buffer --------------------------------------------
@@ -160,6 +167,41 @@ GPU_FN uint rasterPieces(uint total, uint stride)
 GPU_FN uint rasterPixelCap(uint capacity, uint stride)
 {
     return stride == kRasterOnePiece ? capacity : capacity - stride;
+}
+
+// ---- One walk: the last frame's layout, with room to spare ------------------------------------
+// A pixel's fragments change little from one frame to the next, so strands.count writes each
+// fragment as it counts it, into room reserved from the last frame's offsets: pixel p's n-th
+// fragment goes to reserved[p] + n while that is below reserved[p + 1] (rasterReservedSlot leaves
+// each pixel an eighth more than its last count and kRasterReservedPerPixel more). The scan then
+// finds the exact offsets as before; the frame is drawn in the reserved layout when the reserved
+// region and the exact one after it fit the buffer (rasterDrawsReserved): a pixel whose count fit
+// its room is resolved from there, and only a frame with a pixel that did not (its fragments are
+// `spilled`) walks again, strands.write writing those pixels' fragments after the reserved region,
+// at reservedEnd + their exact offsets. Otherwise (the buffer too small for both: a tight budget)
+// the frame is drawn as before, exactly laid out, in pieces. strands.reserve lays out the next
+// frame's room after the resolve. The lists' semantics do not depend on the order fragments
+// arrive in, so the picture is the same byte for byte however it was written. A first frame
+// finds no room (the reserved offsets start at 0): it is written by the second walk, as before.
+GPU_CONST uint kRasterNotReserved = 0xffffffffu;
+GPU_CONST uint kRasterReservedPerPixel = 4u;
+
+// Pixel `pixel`'s first reserved slot when the last frame's offset there was `offset`: monotone in
+// the pixel (the offsets are), so pixel p's room, reserved[p + 1] - reserved[p], is at least its
+// last count c plus c / 8 plus kRasterReservedPerPixel. Past three quarters of a uint's range (where
+// it would wrap) there is no room.
+GPU_FN uint rasterReservedSlot(uint offset, uint pixel)
+{
+    if (offset >= 0xc0000000u || pixel >= 0x04000000u)
+        return 0xffffffffu;
+    return offset + offset / 8u + kRasterReservedPerPixel * pixel;
+}
+
+// Whether a frame of `total` fragments is drawn in the reserved layout, which ends at `reservedEnd`:
+// the reserved region and, after it, the exact layout of the pixels that had no room fit `capacity`.
+GPU_FN bool rasterDrawsReserved(uint reservedEnd, uint total, uint capacity)
+{
+    return reservedEnd <= capacity && total <= capacity - reservedEnd;
 }
 
 // A recorded piece as strands.pieces finds it (binary searches over the offsets), with the
@@ -580,7 +622,7 @@ GPU_NAMESPACE_END
 #ifdef __cplusplus
 // The layouts GLSL gives these blocks, checked where they are defined (C++ only).
 static_assert(sizeof(gpu::StrandRasterPush) == 88, "StrandRasterPush must fit the 128 bytes of push constants");
-static_assert(sizeof(gpu::RasterCounters) == 32);
+static_assert(sizeof(gpu::RasterCounters) == 40);
 static_assert(sizeof(gpu::RasterPiece) == 48 && offsetof(gpu::RasterPiece, walkGroups) == 16 &&
                   offsetof(gpu::RasterPiece, resolveGroups) == 32,
               "RasterPiece must match its std430 layout (its dispatches are read at these offsets)");
