@@ -143,6 +143,9 @@ TEST(Cli, SamplesTheDeviceLacksAreSaidAndWhatWasDrawnRecorded)
         nlohmann::json j = nlohmann::json::parse(r.out);
         EXPECT_EQ(j["samples"], drawn(asked)) << "the JSON records what was drawn";
         EXPECT_EQ(j["settings"]["samples"], drawn(asked));
+        // the compute raster's counts, the one walk's included (a first frame has no room: it spills)
+        ASSERT_TRUE(j["raster"]["one_walk"].is_boolean()) << r.out;
+        EXPECT_LE(j["raster"]["spilled"].get<uint64_t>(), j["raster"]["fragments"].get<uint64_t>()) << r.out;
         std::string line = "wisp: samples " + std::to_string(asked) + ": '";
         if (drawn(asked) < asked) {
             EXPECT_NE(r.err.find(line), std::string::npos) << r.err;

@@ -925,6 +925,9 @@ TEST(StrandRaster, StatsAreDescribedInOneLine)
     EXPECT_EQ(describeRasterStats(reserved),
               "compute raster: 1200 segments on screen (300 behind the meshes), 5000 hair fragments (at most 17 in a "
               "pixel), buffer of 16000, 40 without reserved room written by a second walk");
+    reserved.spilled = reserved.fragments; // a first frame: no room anywhere
+    EXPECT_EQ(describeRasterStats(reserved), "compute raster: 1200 segments on screen (300 behind the meshes), 5000 "
+                                             "hair fragments (at most 17 in a pixel), buffer of 16000");
 }
 
 TEST(StrandRaster, TheFragmentBudgetSettingDrawsTheSamePicture)

@@ -117,9 +117,9 @@ int runProfile(const GlobalOptions& g, SessionOptions& o, const RenderCommand& c
                           {"hair_raster_drawn", path == HairRaster::Compute ? "compute" : "graphics"},
                           {"settings", settingsJson(o.settings)}};
     if (path == HairRaster::Compute)
-        out["raster"] = {{"segments", raster.segments}, {"hidden", raster.hidden},     {"fragments", raster.fragments},
-                         {"capacity", raster.capacity}, {"overflow", raster.overflow}, {"max_pixel", raster.maxPixel},
-                         {"pieces", raster.pieces}};
+        out["raster"] = {{"segments", raster.segments}, {"hidden", raster.hidden},      {"fragments", raster.fragments},
+                         {"capacity", raster.capacity}, {"overflow", raster.overflow},  {"max_pixel", raster.maxPixel},
+                         {"pieces", raster.pieces},     {"one_walk", raster.oneWalk()}, {"spilled", raster.spilled}};
     for (const PassTiming& t : timings)
         out["ms"][t.name] = {{"median", t.medianMs}, {"p95", t.p95Ms}};
     std::cout << out.dump() << "\n";

@@ -78,7 +78,7 @@ std::string describeRasterStats(const RasterStats& s)
         text += ", drawn in " + std::to_string(s.pieces) + " pieces";
     if (s.oneWalk())
         text += ", one walk";
-    else if (s.reserved)
+    else if (s.reserved && s.spilled < s.fragments) // (a first frame has no room at all: nothing to say)
         text += ", " + std::to_string(s.spilled) + " without reserved room written by a second walk";
     if (s.overflow > 0)
         text += ", " + std::to_string(s.overflow) + " not drawn (more pieces are recorded for the next frame)";

@@ -94,7 +94,8 @@ struct RasterStats {
     bool oneWalk() const { return reserved && spilled == 0; }
 };
 // "compute raster: S segments on screen (H behind the meshes), F hair fragments (at most P in a pixel), buffer of C",
-// ", one walk" or ", K without room written by a second walk" in the reserved layout, and ", K not
+// ", one walk" or ", K without reserved room written by a second walk" in the reserved layout (unless none
+// had room: a first frame), and ", K not
 // drawn" when some did not fit: the line `wisp render` prints and the window's panel shows.
 std::string describeRasterStats(const RasterStats& stats);
 
