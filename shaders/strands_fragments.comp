@@ -12,8 +12,9 @@
 //                          fragments that are not are counted as spilled
 //   strands_fragments_write.comp (RASTER_WRITE, strands.write): written to its pixel's next slot, from a cursor (the counts, which the
 //                          scan set to each pixel's offset). In the reserved layout only the
-//                          pixels that had no room, after the reserved region (none walks when no
-//                          pixel spilled: strands.pieces dispatches no groups). Otherwise one piece
+//                          pixels that had no room, after the reserved region: one thread a
+//                          fragment of the spill list, no walk (no threads where nothing spilled),
+//                          or past the list's capacity the walk again. Otherwise one piece
 //                          of the frame a dispatch
 //                          (push.piece, shared/strand_raster.h "Pieces"): only the piece's pixels,
 //                          at their slot less the piece's start, segments off the piece's rows
@@ -39,13 +40,22 @@ layout(push_constant) uniform PushBlock { StrandRasterPush push; };
 layout(set = 0, binding = kRasterBindingVertices, std430) readonly buffer Vertices { vec4 vertices[]; };
 layout(set = 0, binding = kRasterBindingColors, std430) readonly buffer Colors { uint colors[]; };
 layout(set = 0, binding = kRasterBindingCounts, std430) buffer Counts { uint counts[]; };
+#ifdef RASTER_WRITE
+layout(set = 0, binding = kRasterBindingFragments, std430) buffer Fragments { uvec2 fragments[]; };
+#else
 layout(set = 0, binding = kRasterBindingFragments, std430) writeonly buffer Fragments { uvec2 fragments[]; };
+#endif
 layout(set = 0, binding = kRasterBindingCounters, std430) buffer Counters { RasterCounters counters; };
 layout(set = 0, binding = kRasterBindingDepthRange, std430) readonly buffer DepthRange { vec2 depthRange[]; };
 layout(set = 0, binding = kRasterBindingMeshSamples, std430) readonly buffer MeshSamples { uint meshSamples[]; };
 
 layout(set = 0, binding = kRasterBindingTileDepth, std430) readonly buffer TileDepth { float tileDepth[]; };
 layout(set = 0, binding = kRasterBindingReserved, std430) readonly buffer Reserved { uint reserved[]; };
+#ifdef RASTER_WRITE
+layout(set = 0, binding = kRasterBindingSpillList, std430) readonly buffer SpillList { uvec4 spillList[]; };
+#else
+layout(set = 0, binding = kRasterBindingSpillList, std430) writeonly buffer SpillList { uvec4 spillList[]; };
+#endif
 #ifdef RASTER_WRITE
 layout(set = 0, binding = kRasterBindingOffsets, std430) readonly buffer Offsets { uint offsets[]; };
 layout(set = 0, binding = kRasterBindingPieces, std430) readonly buffer Pieces { RasterPiece pieces[]; };
@@ -104,6 +114,23 @@ void main()
 #endif
 
     uint thread = linearInvocation(gl_GlobalInvocationID, gl_NumWorkGroups.x * gl_WorkGroupSize.x);
+#ifdef RASTER_WRITE
+    if (inReserved && counters.spilled <= push.spillCapacity) {  // (the same for every thread)
+        // The spilled fragments, listed: each to its pixel's place after the reserved region, and
+        // the pixel's fragments that had room moved there by the one numbered as its room.
+        if (thread < counters.spilled) {
+            uvec4 f = spillList[thread];
+            uint p = f.x, n = f.y;
+            uint first = reserved[p], room = reserved[p + 1u] - first;
+            uint to = reservedEnd + offsets[p];
+            fragments[to + n] = f.zw;
+            if (n == room)
+                for (uint i = 0u; i < room; ++i)
+                    fragments[to + i] = fragments[first + i];
+        }
+        return;
+    }
+#endif
     uint segment = clumpOrderedSegment(thread, push.divisions, push.drawnPerGuide);
     bool drawn = false;
     bool hidden = false;
@@ -161,11 +188,20 @@ void main()
                         fragments[slot] = uvec2(floatBitsToUint(depth), packFragmentColor(c.rgb, alpha));
 #else
                     uint n = atomicAdd(counts[p], 1u);
+                    if (push.reserving == 0u)
+                        continue;
                     uint first = reserved[p];
-                    if (n < reserved[p + 1u] - first && first + n < push.fragmentCapacity)
-                        fragments[first + n] = uvec2(floatBitsToUint(depth), packFragmentColor(c.rgb, alpha));
-                    else
-                        spilled++;
+                    uvec2 fragment = uvec2(floatBitsToUint(depth), packFragmentColor(c.rgb, alpha));
+                    if (n < reserved[p + 1u] - first && first + n < push.fragmentCapacity) {
+                        fragments[first + n] = fragment;
+                        continue;
+                    }
+                    spilled++;  // listed, while the list has room (a plain read first: no atomics once full)
+                    if (counters.spillListed < push.spillCapacity) {
+                        uint listed = atomicAdd(counters.spillListed, 1u);
+                        if (listed < push.spillCapacity)
+                            spillList[listed] = uvec4(p, n, fragment);
+                    }
 #endif
                 }
             }

@@ -3,8 +3,8 @@
 // of them): the piece's pixels, found by binary search in the scan's offsets (the first pixel
 // whose offset reaches p * stride), the rows they span, and the indirect dispatches of its walk
 // (strands.write) and its resolve (strands.resolve); none where the piece is empty or past the
-// pieces the frame needs, and no walk where the frame is drawn in the reserved layout and every
-// pixel's fragments fit their room (shared/strand_raster.h "One walk"). When the frame needs more pieces than were recorded, the fragments of
+// pieces the frame needs; in the reserved layout (shared/strand_raster.h "One walk") a walk of the
+// segments that spilled, none where every pixel's fragments fit their room. When the frame needs more pieces than were recorded, the fragments of
 // the pixels left out are counted as not drawn (the renderer records more for the next frame).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/strand_raster.h"
@@ -47,8 +47,10 @@ void main()
         bool drawn = r.firstPixel < r.endPixel;
         r.firstRow = drawn ? r.firstPixel / width : 0u;
         r.endRow = drawn ? (r.endPixel - 1u) / width + 1u : 0u;
-        bool walked = drawn && (counters.reservedEnd == kRasterNotReserved || counters.spilled > 0u);
-        uvec2 walk = walked ? rasterLinearGroups(push.segmentCount, kRasterGroupSize) : uvec2(0u);
+        uint walked = counters.reservedEnd == kRasterNotReserved
+                          ? push.segmentCount
+                          : rasterSpillWriteThreads(counters.spilled, push.spillCapacity, push.segmentCount);
+        uvec2 walk = drawn ? rasterLinearGroups(walked, kRasterGroupSize) : uvec2(0u);
         r.walkGroups[0] = walk.x;
         r.walkGroups[1] = walk.y;
         r.walkGroups[2] = 1u;

@@ -64,7 +64,7 @@ void main()
         }
         if (lane == 0u) {
             uint reservedEnd = reserved[push.targetWidth * push.targetHeight];
-            bool inReserved = rasterDrawsReserved(reservedEnd, total, push.fragmentCapacity);
+            bool inReserved = push.reserving != 0u && rasterDrawsReserved(reservedEnd, total, push.fragmentCapacity);
             uint stride =
                 inReserved ? kRasterOnePiece : rasterPieceStride(total, push.fragmentCapacity, counters.maxPixel);
             counters.reservedEnd = inReserved ? reservedEnd : kRasterNotReserved;

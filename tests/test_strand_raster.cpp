@@ -718,11 +718,11 @@ std::vector<std::vector<uvec2Fragment>> sortedPixelLists(const RasterReadback& r
 
 TEST(StrandRaster, TheNextFrameIsWrittenInOneWalkIntoTheRoomTheLastOneReserved)
 {
-    // shared/strand_raster.h "One walk". The first frame finds no room (the reserved layout starts
-    // at zeros): strands.count spills every fragment and strands.write lays them out exactly, as
-    // before. strands.reserve then leaves each pixel its count, an eighth more and a few (its twin
-    // below); the next frame of the same scene fits that room: strands.count writes every fragment,
-    // no second walk is dispatched, and each pixel holds the same fragments, at its reserved slot.
+    // shared/strand_raster.h "One walk". The first frame has no room reserved: strands.count only
+    // counts and strands.write lays the fragments out exactly, as before. strands.reserve then
+    // leaves each pixel its count, an eighth more and a few (its twin below); the next frame of the
+    // same scene fits that room: strands.count writes every fragment, no second walk is dispatched,
+    // and each pixel holds the same fragments, at its reserved slot.
     vk::Context ctx(test::validatedOptions());
     GroomedHead scene = test::smallGroomedHead(150);
     RenderSettings s = test::smallRenderSettings();
@@ -749,8 +749,9 @@ TEST(StrandRaster, TheNextFrameIsWrittenInOneWalkIntoTheRoomTheLastOneReserved)
     std::vector<uint32_t> offsets = first->read<uint32_t>(Buffer::Offsets, pixels + 1);
     gpu::RasterCounters c1 = first->read<gpu::RasterCounters>(Buffer::Counters, 1)[0];
     ASSERT_GT(c1.fragments, 4000u);
-    EXPECT_EQ(c1.reservedEnd, 0u) << "no room yet: the spilled pixels' layout starts at the buffer's start";
-    EXPECT_EQ(c1.spilled, c1.fragments);
+    EXPECT_EQ(renderer.strandRaster()->cameraPush().reserving, 0u) << "a first frame: nothing to reserve from";
+    EXPECT_EQ(c1.reservedEnd, gpu::kRasterNotReserved);
+    EXPECT_EQ(c1.spilled, 0u);
     EXPECT_GT(first->read<gpu::RasterPiece>(Buffer::Pieces, 1)[0].walkGroups[0], 0u);
     std::vector<uint32_t> reserved = first->read<uint32_t>(Buffer::Reserved, pixels + 1);
     EXPECT_EQ(reserved, reference::reservedLayout(offsets)) << "strands.reserve and its twin";
@@ -761,9 +762,11 @@ TEST(StrandRaster, TheNextFrameIsWrittenInOneWalkIntoTheRoomTheLastOneReserved)
 
     std::unique_ptr<RasterReadback> second = run();
     gpu::RasterCounters c2 = second->read<gpu::RasterCounters>(Buffer::Counters, 1)[0];
+    EXPECT_EQ(renderer.strandRaster()->cameraPush().reserving, 1u);
     EXPECT_EQ(c2.fragments, c1.fragments);
     EXPECT_EQ(c2.reservedEnd, reserved[pixels]);
     EXPECT_EQ(c2.spilled, 0u);
+    EXPECT_EQ(c2.spillListed, 0u);
     EXPECT_EQ(c2.pieces, 1u);
     EXPECT_EQ(second->read<gpu::RasterPiece>(Buffer::Pieces, 1)[0].walkGroups[0], 0u) << "no second walk";
     EXPECT_EQ(second->read<uint32_t>(Buffer::Offsets, pixels + 1), offsets);
@@ -779,9 +782,10 @@ TEST(StrandRaster, TheNextFrameIsWrittenInOneWalkIntoTheRoomTheLastOneReserved)
 TEST(StrandRaster, AFrameThatOutgrowsItsRoomWalksAgainOnlyForThePixelsThatDid)
 {
     // After two frames from one camera, the camera turns: the pixels that now hold more than
-    // their reserved room spill, and only theirs are written by the second walk, after the
-    // reserved region; the picture is the one a renderer that never had room draws there. With a
-    // buffer too small for the reserved layout and the exact one after it, the frame is laid out
+    // their reserved room spill, and only theirs are laid out again, after the reserved region,
+    // from the list of spilled fragments (no second walk); the picture is the one a first frame
+    // draws there. The same with a spill list too short for them: the walk again. With a buffer
+    // too small for the reserved layout and the exact one after it, the frame is laid out
     // exactly, as before.
     vk::Context ctx(test::validatedOptions());
     GroomedHead scene = test::smallGroomedHead(150);
@@ -804,9 +808,16 @@ TEST(StrandRaster, AFrameThatOutgrowsItsRoomWalksAgainOnlyForThePixelsThatDid)
     test::HairRenderer fresh(ctx, scene, s);
     Frame freshFrame(ctx, 1);
     Picture exact = renderFrame(ctx, fresh.renderer, freshFrame, turned);
-    EXPECT_EQ(exact.raster.spilled, exact.raster.fragments) << "a first frame: no room";
+    EXPECT_FALSE(exact.raster.reserved) << "a first frame: laid out exactly";
     EXPECT_EQ(moved.raster.fragments, exact.raster.fragments);
     EXPECT_EQ(moved.rgba, exact.rgba);
+
+    hair.renderer.strandRaster()->setSpillCapacity(uint32_t(moved.raster.spilled / 2));
+    renderFrame(ctx, hair.renderer, frame, camera);
+    renderFrame(ctx, hair.renderer, frame, camera);
+    Picture walkedAgain = renderFrame(ctx, hair.renderer, frame, turned);
+    EXPECT_EQ(walkedAgain.raster.spilled, moved.raster.spilled);
+    EXPECT_EQ(walkedAgain.rgba, exact.rgba) << "the spill list too short: the walk again";
 
     hair.renderer.strandRaster()->setFragmentCapacity(moved.raster.fragments + moved.raster.fragments / 8);
     Picture tight = renderFrame(ctx, hair.renderer, frame, turned);
@@ -924,10 +935,7 @@ TEST(StrandRaster, StatsAreDescribedInOneLine)
     reserved.spilled = 40;
     EXPECT_EQ(describeRasterStats(reserved),
               "compute raster: 1200 segments on screen (300 behind the meshes), 5000 hair fragments (at most 17 in a "
-              "pixel), buffer of 16000, 40 without reserved room written by a second walk");
-    reserved.spilled = reserved.fragments; // a first frame: no room anywhere
-    EXPECT_EQ(describeRasterStats(reserved), "compute raster: 1200 segments on screen (300 behind the meshes), 5000 "
-                                             "hair fragments (at most 17 in a pixel), buffer of 16000");
+              "pixel), buffer of 16000, 40 spilled from their reserved room");
 }
 
 TEST(StrandRaster, TheFragmentBudgetSettingDrawsTheSamePicture)

@@ -78,8 +78,8 @@ std::string describeRasterStats(const RasterStats& s)
         text += ", drawn in " + std::to_string(s.pieces) + " pieces";
     if (s.oneWalk())
         text += ", one walk";
-    else if (s.reserved && s.spilled < s.fragments) // (a first frame has no room at all: nothing to say)
-        text += ", " + std::to_string(s.spilled) + " without reserved room written by a second walk";
+    else if (s.reserved)
+        text += ", " + std::to_string(s.spilled) + " spilled from their reserved room";
     if (s.overflow > 0)
         text += ", " + std::to_string(s.overflow) + " not drawn (more pieces are recorded for the next frame)";
     return text;
@@ -127,6 +127,7 @@ StrandRaster::StrandRaster(const vk::Context& ctx, RenderTarget& target, FrameUn
              "strands.counters", nullptr);
     allocate(pieces_, gpu::kRasterMaxPieces * kPieceBytes, vk::kStorage | kIndirect | vk::kTransferSrc,
              "strands.pieces", nullptr);
+    allocate(spillList_, gpu::kRasterSpillList * sizeof(glm::uvec4), vk::kStorage, "strands.spill_list", nullptr);
     for (uint32_t i = 0; i < framesInFlight; ++i) {
         readback_.push_back(ctx.createBuffer({.size = sizeof(gpu::RasterCounters),
                                               .usage = vk::kTransferDst,
@@ -228,9 +229,9 @@ uint64_t StrandRaster::allocatedBytes() const
 {
     uint64_t bytes =
         triangles_.size() + uint64_t(color_.extent().width) * color_.extent().height * vk::formatBytes(color_.format());
-    for (const Storage* s :
-         {&curves_, &vertices_, &colors_, &lightVertices_, &lightColors_, &counts_, &offsets_, &fragments_, &counters_,
-          &depthRange_, &tileDepth_, &blockSums_, &lightDepth_, &lightOpacity_, &meshSamples_, &pieces_, &reserved_})
+    for (const Storage* s : {&curves_, &vertices_, &colors_, &lightVertices_, &lightColors_, &counts_, &offsets_,
+                             &fragments_, &counters_, &depthRange_, &tileDepth_, &blockSums_, &lightDepth_,
+                             &lightOpacity_, &meshSamples_, &pieces_, &reserved_, &spillList_})
         bytes += s->buffer ? s->buffer.size() : 0;
     return bytes;
 }
@@ -323,9 +324,9 @@ void StrandRaster::prepare(FrameContext& frame, const StrandDraw& cameraDraw, co
     if (last.fragments > fragmentCapacity_)
         wanted = std::max(wanted, last.fragments + last.fragments / 4);
     // Room for the reserved layout (an eighth more than the last frame's fragments, and
-    // kRasterReservedPerPixel a pixel) and the exact one after it, an eighth to spare, where the budget allows: the
-    // frame is then written in one walk (shaders/shared/strand_raster.h "One walk").
-    uint64_t reservedLayout = last.fragments * 19 / 8 + gpu::kRasterReservedPerPixel * (uint64_t(e.width) * e.height);
+    // kRasterReservedPerPixel a pixel) and the exact one after it, a sixteenth to spare, where the
+    // budget allows: the frame is then written in one walk (shaders/shared/strand_raster.h "One walk").
+    uint64_t reservedLayout = last.fragments * 35 / 16 + gpu::kRasterReservedPerPixel * (uint64_t(e.width) * e.height);
     if (last.fragments > 0 && reservedLayout <= budget_)
         wanted = std::max(wanted, reservedLayout);
     wanted = std::min(wanted, budget_);
@@ -334,6 +335,9 @@ void StrandRaster::prepare(FrameContext& frame, const StrandDraw& cameraDraw, co
         allocate(fragments_, fragmentCapacity_ * kFragmentBytes, vk::kStorage | vk::kTransferSrc, "strands.fragments",
                  &frame);
     }
+    // strands.count writes into the reserved layout only where the buffer holds it (else its stores
+    // would go to waste: the scan would lay the frame out exactly).
+    bool reserving = last.fragments > 0 && fragmentCapacity_ >= reservedLayout;
     uint64_t neededPieces = last.fragments > fragmentCapacity_ ? std::max<uint64_t>(last.pieces, 2) : 1;
     recordedPieces_ =
         uint32_t(std::min<uint64_t>(neededPieces + std::max<uint64_t>(1, neededPieces / 4), gpu::kRasterMaxPieces));
@@ -356,6 +360,8 @@ void StrandRaster::prepare(FrameContext& frame, const StrandDraw& cameraDraw, co
     camera.fragmentCapacity = uint32_t(fragmentCapacity_);
     camera.scanBlocks = uint32_t((pixels + 1 + gpu::kRasterScanBlock - 1) / gpu::kRasterScanBlock);
     camera.oitK = k;
+    camera.reserving = reserving ? 1u : 0u;
+    camera.spillCapacity = spillCapacity_;
     light.fromLight = 1;
     light.segmentCount = uint32_t(uint64_t(light.guideCount) * light.drawnPerGuide * light.divisions);
     light.targetWidth = lightSize_;
@@ -482,6 +488,7 @@ ComputeStage StrandRaster::stage(Stage stage, uint32_t piece)
                          storageBuffer(kRasterBindingFragments, fragments_.track, ComputeWrite),
                          storageBuffer(kRasterBindingCounters, counters_.track, ComputeWrite),
                          storageBuffer(kRasterBindingReserved, reserved_.track, ComputeRead),
+                         storageBuffer(kRasterBindingSpillList, spillList_.track, write ? ComputeRead : ComputeWrite),
                          storageBuffer(kRasterBindingOffsets, offsets_.track, ComputeRead).when(write),
                          storageBuffer(kRasterBindingPieces, pieces_.track, ComputeRead).when(write),
                          commandUse(pieces_.track, IndirectRead).when(write)},

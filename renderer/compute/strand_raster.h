@@ -24,8 +24,8 @@
 //   strands.pieces        the pieces of the frame that fit the fragment buffer (one where the
 //                         frame fits): each piece's pixels and its two indirect dispatches
 //   strands.write N       (per piece) each of the piece's fragments written to its pixel's slot;
-//                         in the reserved layout only those of the pixels that had no room (no
-//                         walk when none spilled)
+//                         in the reserved layout only the pixels that had no room, from the
+//                         list of the fragments strands.count spilled (no threads when none did)
 //   strands.resolve N     (per piece) per pixel: the nearest k sorted and the rest blended (the
 //                         lists' semantics), one write
 //   strands.reserve       the next frame's reserved layout, from this frame's offsets
@@ -89,14 +89,13 @@ struct RasterStats {
     uint64_t maxPixel = 0;  // the most fragments one pixel held
     uint64_t pieces = 1;    // the pieces the frame took (1: it fit the buffer whole)
     bool reserved = false;  // drawn in the last frame's reserved layout ("One walk")
-    uint64_t spilled = 0;   // of its fragments, those without reserved room, written by a second walk
+    uint64_t spilled = 0;   // of its fragments, those without reserved room (strands.write places them)
     // Whether strands.count wrote every fragment (no second walk).
     bool oneWalk() const { return reserved && spilled == 0; }
 };
 // "compute raster: S segments on screen (H behind the meshes), F hair fragments (at most P in a pixel), buffer of C",
-// ", one walk" or ", K without reserved room written by a second walk" in the reserved layout (unless none
-// had room: a first frame), and ", K not
-// drawn" when some did not fit: the line `wisp render` prints and the window's panel shows.
+// ", one walk" or ", K spilled from their reserved room" in the reserved layout, and ", K not drawn"
+// when some did not fit: the line `wisp render` prints and the window's panel shows.
 std::string describeRasterStats(const RasterStats& stats);
 
 class StrandRaster {
@@ -210,7 +209,8 @@ public:
                bufferBytes(pixels * (s.samples > 1 ? s.samples : 1) * sizeof(uint32_t)) + // the meshes' depth samples
                bufferBytes(texels * kLightDepthBytes) + bufferBytes(texels * kLightOpacityBytes) +
                bufferBytes(initialFragments(segments, s.fragmentBudget) * kFragmentBytes) +
-               gpu::kRasterMaxPieces * kPieceBytes + pixels * vk::formatBytes(kColorFormat);
+               gpu::kRasterMaxPieces * kPieceBytes + gpu::kRasterSpillList * sizeof(glm::uvec4) +
+               pixels * vk::formatBytes(kColorFormat);
     }
 
     // The storage buffers whose size grows with the workload, each of which must fit one buffer's
@@ -297,6 +297,9 @@ public:
     // frames needed forgotten (so the next frame records one piece and one to spare). The device
     // must be idle.
     void setFragmentCapacity(uint64_t fragments);
+    // Test hook: the spill list holds this many fragments (at most kRasterSpillList); past them
+    // strands.write walks every segment again.
+    void setSpillCapacity(uint32_t fragments) { spillCapacity_ = std::min(fragments, gpu::kRasterSpillList); }
 
     // Each stage as the one list of what it touches (binding, resource, access) and its commands
     // (`piece`: which recorded piece strands.write or strands.resolve draws): its pass declares
@@ -330,7 +333,9 @@ private:
     Storage vertices_, colors_;           // the camera's strand vertices
     Storage lightVertices_, lightColors_; // the light's
     Storage counts_, offsets_, fragments_, counters_, depthRange_, tileDepth_, blockSums_, pieces_;
-    Storage reserved_;    // each pixel's reserved first slot (strands.reserve; zeros: no room)
+    Storage reserved_;  // each pixel's reserved first slot (strands.reserve; zeros: no room)
+    Storage spillList_; // the fragments strands.count spilled (strands.write places them)
+    uint32_t spillCapacity_ = gpu::kRasterSpillList;
     Storage meshSamples_; // the depth image's samples, when the meshes are drawn by graphics
     TrackedBuffer* externalSamples_ = nullptr;
     Storage lightDepth_, lightOpacity_;

@@ -208,7 +208,9 @@ std::vector<gpu::RasterPiece> framePieces(const gpu::StrandRasterPush& push, con
                                           const gpu::RasterCounters& counters, uint32_t recorded, uint32_t* notDrawn)
 {
     uint32_t stride = counters.stride, needed = counters.pieces;
-    bool walks = counters.reservedEnd == gpu::kRasterNotReserved || counters.spilled > 0;
+    uint32_t walked = counters.reservedEnd == gpu::kRasterNotReserved
+                          ? push.segmentCount
+                          : gpu::rasterSpillWriteThreads(counters.spilled, push.spillCapacity, push.segmentCount);
     uint32_t width = push.targetWidth;
     uint32_t pixels = width * push.targetHeight;
     auto firstPixelFrom = [&](uint32_t target) {
@@ -226,8 +228,7 @@ std::vector<gpu::RasterPiece> framePieces(const gpu::StrandRasterPush& push, con
         bool drawn = r.firstPixel < r.endPixel;
         r.firstRow = drawn ? r.firstPixel / width : 0u;
         r.endRow = drawn ? (r.endPixel - 1) / width + 1 : 0u;
-        glm::uvec2 walk =
-            drawn && walks ? gpu::rasterLinearGroups(push.segmentCount, gpu::kRasterGroupSize) : glm::uvec2(0);
+        glm::uvec2 walk = drawn ? gpu::rasterLinearGroups(walked, gpu::kRasterGroupSize) : glm::uvec2(0);
         r.walkGroups[0] = walk.x;
         r.walkGroups[1] = walk.y;
         r.walkGroups[2] = 1;

@@ -81,6 +81,7 @@ GPU_CONST uint kRasterBindingTileDepth = 24; // float per kRasterDepthTile^2 pix
 GPU_CONST uint kRasterBindingCurves = 25;    // vec4 x 2 per guide point (guide * (D + 1) + i): position, tangent
 GPU_CONST uint kRasterBindingPieces = 26;    // RasterPiece per recorded piece (strands.pieces)
 GPU_CONST uint kRasterBindingReserved = 27;  // uint per pixel + 1: its first reserved slot (rasterReservedSlot)
+GPU_CONST uint kRasterBindingSpillList = 28; // uvec4 per spilled fragment: pixel, its number there, depth bits, colour
 
 // The coarse depth's tiles: kRasterDepthTile x kRasterDepthTile pixels (strands_depth.comp's workgroup).
 GPU_CONST uint kRasterDepthTile = 8u;
@@ -120,6 +121,8 @@ struct StrandRasterPush {
     uint piece;            // the piece strands.write and strands.resolve draw; strands.pieces: how many are recorded
     float coilRadius;      // render-time coil (strands.h coilAt): helix radius, asset units (0: none)
     float coilFrequency;   // its turns per asset unit of length along the strand
+    uint reserving;        // 1: strands.count writes into the reserved layout (the buffer has room for it)
+    uint spillCapacity;    // spilled fragments the spill list holds (at most kRasterSpillList)
 };
 
 // What the kernels count, copied back to the host each frame.
@@ -134,6 +137,7 @@ struct RasterCounters {
     uint stride;      // the pieces' stride in the scan's offsets (rasterPieceStride)
     uint spilled;     // fragments strands.count found no reserved room for (strands.write writes them)
     uint reservedEnd; // the reserved layout's end when the frame is drawn in it, else kRasterNotReserved
+    uint spillListed; // spilled fragments given a place in the spill list (past spillCapacity: none)
 };
 
 // ---- Pieces: any frame in a bounded fragment buffer --------------------------------------------
@@ -177,14 +181,29 @@ GPU_FN uint rasterPixelCap(uint capacity, uint stride)
 // finds the exact offsets as before; the frame is drawn in the reserved layout when the reserved
 // region and the exact one after it fit the buffer (rasterDrawsReserved): a pixel whose count fit
 // its room is resolved from there, and only a frame with a pixel that did not (its fragments are
-// `spilled`) walks again, strands.write writing those pixels' fragments after the reserved region,
+// `spilled`) is finished by strands.write, which writes those pixels' fragments after the reserved region,
 // at reservedEnd + their exact offsets. Otherwise (the buffer too small for both: a tight budget)
 // the frame is drawn as before, exactly laid out, in pieces. strands.reserve lays out the next
 // frame's room after the resolve. The lists' semantics do not depend on the order fragments
-// arrive in, so the picture is the same byte for byte however it was written. A first frame
-// finds no room (the reserved offsets start at 0): it is written by the second walk, as before.
+// arrive in, so the picture is the same byte for byte however it was written. strands.count lists
+// each fragment it spills (with its pixel and its number there, n >= the room), so strands.write
+// needs no second walk: one thread a listed fragment puts it at reservedEnd + offset + n, and the one
+// numbered the room itself also moves the pixel's first `room` fragments there from the reserved
+// region. Past the list's capacity, strands.write walks every segment again and writes every
+// fragment of the pixels that spilled. The renderer asks strands.count to write (push.reserving)
+// only where the buffer holds both layouts of a frame like its last; a first frame is laid out
+// exactly.
 GPU_CONST uint kRasterNotReserved = 0xffffffffu;
 GPU_CONST uint kRasterReservedPerPixel = 4u;
+GPU_CONST uint kRasterSpillList = 1u << 20;
+
+// strands.write's threads in the reserved layout when `spilled` fragments spilled: one a listed
+// fragment where the list (of `spillCapacity`) held them all, else one a segment (`segmentCount`)
+// to walk again; none where nothing spilled.
+GPU_FN uint rasterSpillWriteThreads(uint spilled, uint spillCapacity, uint segmentCount)
+{
+    return spilled <= spillCapacity ? spilled : segmentCount;
+}
 
 // Pixel `pixel`'s first reserved slot when the last frame's offset there was `offset`: monotone in
 // the pixel (the offsets are), so pixel p's room, reserved[p + 1] - reserved[p], is at least its
@@ -621,8 +640,8 @@ GPU_NAMESPACE_END
 
 #ifdef __cplusplus
 // The layouts GLSL gives these blocks, checked where they are defined (C++ only).
-static_assert(sizeof(gpu::StrandRasterPush) == 88, "StrandRasterPush must fit the 128 bytes of push constants");
-static_assert(sizeof(gpu::RasterCounters) == 40);
+static_assert(sizeof(gpu::StrandRasterPush) == 96, "StrandRasterPush must fit the 128 bytes of push constants");
+static_assert(sizeof(gpu::RasterCounters) == 44);
 static_assert(sizeof(gpu::RasterPiece) == 48 && offsetof(gpu::RasterPiece, walkGroups) == 16 &&
                   offsetof(gpu::RasterPiece, resolveGroups) == 32,
               "RasterPiece must match its std430 layout (its dispatches are read at these offsets)");
