@@ -40,11 +40,7 @@ layout(push_constant) uniform PushBlock { StrandRasterPush push; };
 layout(set = 0, binding = kRasterBindingVertices, std430) readonly buffer Vertices { vec4 vertices[]; };
 layout(set = 0, binding = kRasterBindingColors, std430) readonly buffer Colors { uint colors[]; };
 layout(set = 0, binding = kRasterBindingCounts, std430) buffer Counts { uint counts[]; };
-#ifdef RASTER_WRITE
-layout(set = 0, binding = kRasterBindingFragments, std430) buffer Fragments { uvec2 fragments[]; };
-#else
 layout(set = 0, binding = kRasterBindingFragments, std430) writeonly buffer Fragments { uvec2 fragments[]; };
-#endif
 layout(set = 0, binding = kRasterBindingCounters, std430) buffer Counters { RasterCounters counters; };
 layout(set = 0, binding = kRasterBindingDepthRange, std430) readonly buffer DepthRange { vec2 depthRange[]; };
 layout(set = 0, binding = kRasterBindingMeshSamples, std430) readonly buffer MeshSamples { uint meshSamples[]; };
@@ -116,17 +112,12 @@ void main()
     uint thread = linearInvocation(gl_GlobalInvocationID, gl_NumWorkGroups.x * gl_WorkGroupSize.x);
 #ifdef RASTER_WRITE
     if (inReserved && counters.spilled <= push.spillCapacity) {  // (the same for every thread)
-        // The spilled fragments, listed: each to its pixel's place after the reserved region, and
-        // the pixel's fragments that had room moved there by the one numbered as its room.
+        // The spilled fragments, listed: fragment n of pixel p (n >= its room) to n past the
+        // pixel's offset after the reserved region (strands.resolve reads the first `room` from
+        // the room and the rest from there).
         if (thread < counters.spilled) {
             uvec4 f = spillList[thread];
-            uint p = f.x, n = f.y;
-            uint first = reserved[p], room = reserved[p + 1u] - first;
-            uint to = reservedEnd + offsets[p];
-            fragments[to + n] = f.zw;
-            if (n == room)
-                for (uint i = 0u; i < room; ++i)
-                    fragments[to + i] = fragments[first + i];
+            fragments[reservedEnd + offsets[f.x] + f.y] = f.zw;
         }
         return;
     }

@@ -46,11 +46,25 @@ void main()
     uint p = uint(pixel.y) * push.targetWidth + uint(pixel.x);
     bool inside = pixel.x < int(push.targetWidth) && pixel.y < int(push.targetHeight) && p >= firstPixel && p < endPixel;
     if (inside) {
+        // Fragment i of the list is at address i, or i + jump from `split` on: in the reserved
+        // layout a pixel that spilled has its first `room` in its room and the rest after the
+        // reserved region, as strands.write placed them from the spill list (or all of them
+        // there, where the list was too short and the walk wrote every one).
         uint count = offsets[p + 1u] - offsets[p];
         uint begin = min(offsets[p] - base, push.fragmentCapacity);
-        if (reservedEnd != kRasterNotReserved)  // (within the buffer: rasterDrawsReserved)
-            begin = count <= reserved[p + 1u] - reserved[p] ? reserved[p] : reservedEnd + offsets[p];
         uint end = min(begin + min(count, cap), push.fragmentCapacity);
+        uint split = 0xffffffffu, jump = 0u;
+        if (reservedEnd != kRasterNotReserved) {  // (within the buffer: rasterDrawsReserved)
+            uint first = reserved[p], room = reserved[p + 1u] - first;
+            begin = first;
+            if (count > room && counters.spilled > push.spillCapacity) {
+                begin = reservedEnd + offsets[p];
+            } else if (count > room) {
+                split = first + room;
+                jump = reservedEnd + offsets[p] - first;
+            }
+            end = begin + count;
+        }
         const uint k = kOitK;  // 1 .. kMaxOitK (the renderer clamps it)
         PixelFragments f = emptyPixelFragments();
         // The list in batches of eight, the next batch's loads issued before this one's inserts: a
@@ -60,12 +74,16 @@ void main()
         const uint kAhead = 8u;  // (a batch of 16 measured slower on the H100, one of 4 too)
         bool saturate = end - begin > kTailExactFragments;
         uvec2 batch[kAhead];
-        GPU_UNROLL for (uint j = 0u; j < kAhead; ++j)
-            batch[j] = begin + j < end ? fragments[begin + j] : uvec2(0u);
+        GPU_UNROLL for (uint j = 0u; j < kAhead; ++j) {
+            uint at = begin + j;
+            batch[j] = at < end ? fragments[at < split ? at : at + jump] : uvec2(0u);
+        }
         for (uint i = begin; i < end; i += kAhead) {
             uvec2 ahead[kAhead];
-            GPU_UNROLL for (uint j = 0u; j < kAhead; ++j)
-                ahead[j] = i + kAhead + j < end ? fragments[i + kAhead + j] : uvec2(0u);
+            GPU_UNROLL for (uint j = 0u; j < kAhead; ++j) {
+                uint at = i + kAhead + j;
+                ahead[j] = at < end ? fragments[at < split ? at : at + jump] : uvec2(0u);
+            }
             if (saturate) {
                 GPU_UNROLL for (uint j = 0u; j < kAhead; ++j)
                     if (i + j < end)

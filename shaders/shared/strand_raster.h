@@ -187,12 +187,12 @@ GPU_FN uint rasterPixelCap(uint capacity, uint stride)
 // frame's room after the resolve. The lists' semantics do not depend on the order fragments
 // arrive in, so the picture is the same byte for byte however it was written. strands.count lists
 // each fragment it spills (with its pixel and its number there, n >= the room), so strands.write
-// needs no second walk: one thread a listed fragment puts it at reservedEnd + offset + n, and the one
-// numbered the room itself also moves the pixel's first `room` fragments there from the reserved
-// region. Past the list's capacity, strands.write walks every segment again and writes every
-// fragment of the pixels that spilled. The renderer asks strands.count to write (push.reserving)
-// only where the buffer holds both layouts of a frame like its last; a first frame is laid out
-// exactly.
+// needs no second walk: one thread a listed fragment puts it at reservedEnd + offset + n, and
+// strands.resolve reads such a pixel's first `room` fragments from its room and the rest from
+// there. Past the list's capacity, strands.write walks every segment again and writes every
+// fragment of the pixels that spilled there, which the resolve then reads all from there. The renderer asks
+// strands.count to write (push.reserving) only where the buffer holds both layouts of a frame like its last; a first
+// frame is laid out exactly.
 GPU_CONST uint kRasterNotReserved = 0xffffffffu;
 GPU_CONST uint kRasterReservedPerPixel = 4u;
 GPU_CONST uint kRasterSpillList = 1u << 20;
