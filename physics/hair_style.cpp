@@ -94,11 +94,16 @@ std::array<HairStyle, 6> makeStyles()
     StyleDrawing afroDrawn{
         .coilRadiusMetres = 0.002f, .coilTurnsPerMetre = 100.0f, .divisions = 96, .strandsPerGuide = 32};
 
+    // Each drawn strand is cut from its tip by up to strand_length_jitter of its guide's length
+    // (StyleDrawing's default 0.15: the bob, the bangs, the afro), more where tips should thin out
+    // over more of the length: the long and the wavy hair 0.2, the crop 0.35 (its 5 cm strands end
+    // in tufts, not in one line along the forehead).
     return {{
         {"bob", "chin-length A-line bob with a side parting (the default)", bob, StyleDrawing{}},
-        {"long", "long straight hair with a centre parting, over the shoulders", longHair, StyleDrawing{}},
-        {"wavy", "shoulder-length waves with a side parting", wavy, StyleDrawing{}},
-        {"crop", "a short crop combed back", crop, StyleDrawing{}},
+        {"long", "long straight hair with a centre parting, over the shoulders", longHair,
+         StyleDrawing{.lengthJitter = 0.2f}},
+        {"wavy", "shoulder-length waves with a side parting", wavy, StyleDrawing{.lengthJitter = 0.2f}},
+        {"crop", "a short crop combed back", crop, StyleDrawing{.lengthJitter = 0.35f}},
         {"bangs", "shoulder-length with a side parting and bangs over the forehead", bangs, StyleDrawing{}},
         {"afro", "curly, coily afro-textured hair standing out in a rounded shape", afro, afroDrawn},
     }};

@@ -12,14 +12,16 @@
 
 namespace wisp {
 
-// What a style asks of the drawing (the settings coil_radius, coil_frequency, divisions and
-// strands_per_guide, which `hair_style` sets with the growth): coils finer than the guides' vertices
-// are drawn, not grown (shaders/shared/strands.h coilAt), and need the divisions to draw them.
+// What a style asks of the drawing (the settings coil_radius, coil_frequency, divisions,
+// strands_per_guide and strand_length_jitter, which `hair_style` sets with the growth): coils finer
+// than the guides' vertices are drawn, not grown (shaders/shared/strands.h coilAt), and need the
+// divisions to draw them.
 struct StyleDrawing {
     float coilRadiusMetres = 0.0f;
     float coilTurnsPerMetre = 0.0f;
     uint32_t divisions = 24;       // the renderer's default (renderer/settings.h StrandSettings)
     uint32_t strandsPerGuide = 46; // likewise: about 100,000 strands from 2,200 guides
+    float lengthJitter = 0.15f;    // strand_length_jitter: drawn strands cut from the tip by up to this share
 };
 
 struct HairStyle {

@@ -72,6 +72,7 @@ gpu::FrameParams pack(const RenderSettings& s, const OrbitCamera& camera, VkExte
     p.domSpacing = sh.domSpacingMetres * light.unitsPerMetre / p.lightDepthRange;
     p.domKappa = sh.domKappa;
     p.hairOpacity = s.transparency.hairOpacity;
+    p.strandLengthJitter = s.strands.lengthJitter;
     p.shadowsEnabled = sh.enabled ? 1u : 0u;
 
     const HairLook& look = s.hair;

@@ -57,6 +57,11 @@ struct StrandSettings {
     float lodMinFraction = 0.2f;     // LOD never draws fewer than this share of strands
     float minPixelWidth = 1.0f;      // narrower ribbons are widened, alpha = coverage
     bool showGuides = false;         // also draw the guides as lines
+    // Each drawn strand cut from the tip by up to this share of its guide's length (uniform, its own
+    // hash: shaders/shared/strands.h strandLengthFraction), so a clump's tips thin out; 0: every
+    // strand as long as its guide. The default is the bob's (physics/hair_style.cpp); a loaded
+    // groom is drawn at 0 unless it is given (app/commands/command.cpp).
+    float lengthJitter = 0.15f;
     // Test knobs, not settings: draw the strands last to first (OIT order tests), and how many
     // vertices one patch may emit (shaders/shared/strands.h; lavapipe needs <= ~128).
     bool reverseOrder = false;

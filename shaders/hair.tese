@@ -1,6 +1,6 @@
 #version 460
 // hair.tese: a point of one strand. The guide's C1 Bezier (shared/strands.h) is evaluated at the
-// strand's parameter t; a single-strand strand is offset in the guide's clump disc, a
+// strand's parameter t (along the first strandLengthFraction of it: each strand its own length); a single-strand strand is offset in the guide's clump disc, a
 // multi-strand one blends three guides with barycentric weights (Nalu); random deviations come
 // last, and every generated strand is then pushed out of the head's colliders.
 #extension GL_GOOGLE_include_directive : require
@@ -54,15 +54,17 @@ void main()
     uint s = patchStrandBase + uint(round(gl_TessCoord.y * float(patchLines)));
     float t = (float(patchDivisionBase) + gl_TessCoord.x * float(patchDivisions)) / float(push.divisions);
     uint guide = patchGuide;
+    // The strand's own length (strandLengthFraction): its point t lies at tg along its guide.
+    float tg = strandGuideParameter(t, strandLengthFraction(guide, s, frame.strandLengthJitter));
 
-    CurvePoint g = evaluateGuide(guide, t);
+    CurvePoint g = evaluateGuide(guide, tg);
     CurvePoint g1 = g, g2 = g;
     uvec4 tri = triangles[guide];
     if (strandIsMulti(push.interpolation, s)) {
-        g1 = evaluateGuide(tri.y, t);
-        g2 = evaluateGuide(tri.z, t);
+        g1 = evaluateGuide(tri.y, tg);
+        g2 = evaluateGuide(tri.z, tg);
     }
-    CurvePoint point = placeStrandPoint(g, g1, g2, guide, s, t, push.interpolation, push.clumpRadius, push.deviation,
+    CurvePoint point = placeStrandPoint(g, g1, g2, guide, s, tg, push.interpolation, push.clumpRadius, push.deviation,
                                           guideLength(tri.w), push.coilRadius, push.coilFrequency, push.divisions);
     vec3 p = point.position;
     // Every generated strand is kept out of the head's colliders: blends of two outside points,

@@ -2,7 +2,8 @@
 // strands_generate.comp: the compute path's strands, one thread per strand vertex (D + 1 per
 // strand, strands of a guide side by side, so neighbouring threads read the same guide). Each
 // point is placed as the tessellation path places it (shared/strands.h placeStrandPoint: the
-// guide's C1 Bezier, as strands_curves.comp evaluated it, single or multi interpolation,
+// guide's C1 Bezier, as strands_curves.comp evaluated it, between its samples where the strand is
+// shorter than its guide (strandLengthFraction, curveBetweenSamples), single or multi interpolation,
 // deviations, then out of the colliders), projected, and for the camera shaded there
 // (shared/strand_shading.h, with the light's visibility read from its maps as hair.tese reads it).
 // With STRANDS_FROM_LIGHT (strands_generate_light.comp) the points are projected into the light's
@@ -26,11 +27,19 @@ layout(set = 0, binding = kRasterBindingLut) uniform sampler2DArray hairLut;
 #include "light_visibility.glsl"
 #endif
 
-// The guide's curve at the strand's point i (t = i / D), as strands.curves evaluated it.
+// The guide's curve at its point i (t = i / D), as strands.curves evaluated it.
 CurvePoint guideCurve(uint guide, uint i)
 {
     uint at = 2u * (guide * (push.divisions + 1u) + i);
     return CurvePoint(curves[at].xyz, curves[at + 1u].xyz);
+}
+
+// The guide's curve at x / D (x in [0, D]), between the two points around it (curveBetweenSamples).
+CurvePoint guideCurveAt(uint guide, float x)
+{
+    uint k = curveSampleBelow(x, push.divisions);
+    return curveBetweenSamples(guideCurve(guide, k), guideCurve(guide, k + 1u), x - float(k),
+                               float(push.verticesPerStrand - 1u) / float(push.divisions));
 }
 
 void main()
@@ -44,16 +53,20 @@ void main()
     uint guide = drawn / push.drawnPerGuide;
     uint s = drawn % push.drawnPerGuide;
     float t = float(i) / float(push.divisions);
+    // The strand's own length (strandLengthFraction): its point i lies at x / D along its guide.
+    float fraction = strandLengthFraction(guide, s, frame.strandLengthJitter);
+    float x = float(i) * fraction;
 
-    CurvePoint g = guideCurve(guide, i);
+    CurvePoint g = guideCurveAt(guide, x);
     CurvePoint g1 = g, g2 = g;
     uvec4 tri = triangles[guide];
     if (strandIsMulti(push.interpolation, s)) {
-        g1 = guideCurve(tri.y, i);
-        g2 = guideCurve(tri.z, i);
+        g1 = guideCurveAt(tri.y, x);
+        g2 = guideCurveAt(tri.z, x);
     }
-    CurvePoint point = placeStrandPoint(g, g1, g2, guide, s, t, push.interpolation, push.clumpRadius, push.deviation,
-                                          guideLength(tri.w), push.coilRadius, push.coilFrequency, push.divisions);
+    CurvePoint point = placeStrandPoint(g, g1, g2, guide, s, strandGuideParameter(t, fraction), push.interpolation,
+                                        push.clumpRadius, push.deviation, guideLength(tri.w), push.coilRadius,
+                                        push.coilFrequency, push.divisions);
     vec3 p = point.position;
     if (s != 0u)
         for (uint c = 0u; c < sim.colliderCount; ++c)

@@ -143,4 +143,19 @@ TEST(GroomCommandCli, ALoadedGroomsDensityIsChosenAndSaidUnlessGiven)
     ASSERT_EQ(given.status, 0) << given.err;
     EXPECT_EQ(given.out.find("hair density"), std::string::npos) << given.out;
     EXPECT_NE(given.out.find("4000 guides x 3 strands"), std::string::npos) << given.out;
+
+    // A loaded groom's drawn strands keep their guides' lengths (strand_length_jitter 0) unless
+    // it is given: the same fragments as with 0 given, fewer with strands cut.
+    auto fragments = [](const std::string& out) {
+        size_t at = out.find(" hair fragments");
+        size_t from = out.rfind(", ", at);
+        return at == std::string::npos || from == std::string::npos ? std::string() : out.substr(from, at - from);
+    };
+    RunResult whole = runWisp(render + " --set strand_length_jitter=0");
+    RunResult cut = runWisp(render + " --set strand_length_jitter=0.6");
+    ASSERT_EQ(whole.status, 0) << whole.err;
+    ASSERT_EQ(cut.status, 0) << cut.err;
+    ASSERT_NE(fragments(chosen.out), "") << chosen.out;
+    EXPECT_EQ(fragments(chosen.out), fragments(whole.out)) << chosen.out << whole.out;
+    EXPECT_NE(fragments(cut.out), fragments(whole.out)) << cut.out;
 }

@@ -311,6 +311,16 @@ TEST(SettingsTable, AStyleSetsItsDrawnCoilAndTheDivisionsToDrawIt)
     EXPECT_EQ(s.render.strands.coilRadiusMetres, 0.0f);
     EXPECT_EQ(s.render.strands.divisions, StrandSettings{}.divisions);
     EXPECT_EQ(s.render.strands.strandsPerGuide, StrandSettings{}.strandsPerGuide);
+
+    // The drawn strands' own lengths: the default is the bob's, the crop's short hair thins out
+    // over more of its length, and a style sets it again after a change.
+    EXPECT_EQ(s.render.strands.lengthJitter, StrandSettings{}.lengthJitter);
+    EXPECT_GT(StrandSettings{}.lengthJitter, 0.0f);
+    applySetting(s, "strand_length_jitter=0");
+    EXPECT_EQ(s.render.strands.lengthJitter, 0.0f);
+    applySetting(s, "hair_style=crop");
+    EXPECT_GT(s.render.strands.lengthJitter, StrandSettings{}.lengthJitter);
+    EXPECT_THROW(applySetting(s, "strand_length_jitter=1.5"), UserError);
 }
 
 // The default draws a full head of hair, about 100,000 strands (issue 21), from its guides and the

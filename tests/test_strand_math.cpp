@@ -1,7 +1,8 @@
 // tests/test_strand_math.cpp: the strands' shared math (shaders/shared/strands.h) on the CPU, as the
 // tessellation and the compute strands run it: Bezier C1 joints, interpolation weights and the clump
-// disc, the offset frame, deterministic deviations, level of detail, the guides' neighbours
-// (physics' guideTriangles) and multi-strand points kept out of the colliders.
+// disc, the offset frame, deterministic deviations, the drawn strands' own lengths, level of
+// detail, the guides' neighbours (physics' guideTriangles) and multi-strand points kept out of the
+// colliders.
 #include "physics/colliders.h"
 #include "physics/groomed_head.h"
 #include "shaders/shared/strands.h"
@@ -192,6 +193,99 @@ TEST(StrandMath, TheRenderTimeCoilTurnsAtItsFrequencyAndRadius)
     }
     // At the root the strand leaves its follicle: no offset.
     EXPECT_EQ(glm::length(point(3, 0.0f, divisions).second), 0.0f);
+}
+
+// Drawn strands' own lengths (strand_length_jitter, shaders/shared/strands.h strandLengthFraction):
+// each strand of a guide is drawn along the first 1 - cut of its guide's curve, the cut uniform in
+// [0, jitter] from the strand's own hash, the same every time; 0 keeps every strand whole. The
+// compute path finds the trimmed strand's points between the guide's samples at t = k / D
+// (curveBetweenSamples), close to the curve the tessellation path evaluates, and the drawn strand's
+// length is its fraction of the guide's.
+TEST(StrandMath, DrawnStrandsEndAtLengthsOfTheirOwn)
+{
+    const float jitter = 0.3f;
+    double sum = 0.0, below = 0.0;
+    size_t n = 0;
+    float lo = 1.0f, hi = 0.0f;
+    for (uint32_t guide = 0; guide < 200; ++guide)
+        for (uint32_t s = 0; s < 46; ++s) {
+            float f = gpu::strandLengthFraction(guide, s, jitter);
+            ASSERT_GE(f, 1.0f - jitter);
+            ASSERT_LE(f, 1.0f);
+            ASSERT_EQ(f, gpu::strandLengthFraction(guide, s, jitter));  // deterministic
+            ASSERT_EQ(gpu::strandLengthFraction(guide, s, 0.0f), 1.0f); // 0: every strand whole
+            sum += f;
+            below += f < 1.0f - jitter / 2.0f ? 1.0 : 0.0;
+            lo = std::min(lo, f);
+            hi = std::max(hi, f);
+            ++n;
+        }
+    EXPECT_NEAR(sum / double(n), 1.0 - jitter / 2.0, 0.005) << "uniform in [0, jitter]: the mean cut is half";
+    EXPECT_NEAR(below / double(n), 0.5, 0.02);
+    EXPECT_LT(lo, 1.0f - 0.99f * jitter); // the whole range is used
+    EXPECT_GT(hi, 1.0f - 0.01f * jitter);
+    EXPECT_NE(gpu::strandLengthFraction(3, 1, jitter), gpu::strandLengthFraction(3, 2, jitter));
+    EXPECT_NE(gpu::strandLengthFraction(3, 1, jitter), gpu::strandLengthFraction(4, 1, jitter));
+    EXPECT_EQ(gpu::strandGuideParameter(1.0f, 0.8f), 0.8f);
+    EXPECT_EQ(gpu::strandGuideParameter(0.0f, 0.8f), 0.0f);
+
+    // A bent guide of 16 vertices 2 cm apart (as the solver keeps them), sampled at D = 24 as
+    // strands_curves.comp samples it.
+    const uint32_t V = 16, D = 24;
+    std::vector<glm::vec3> guide(V);
+    for (uint32_t i = 1; i < V; ++i) {
+        float a = 0.15f * float(i), b = 0.3f * std::sin(0.4f * float(i));
+        guide[i] = guide[i - 1] + 0.02f * glm::vec3(std::sin(a) * std::cos(b), -std::cos(a) * std::cos(b), std::sin(b));
+    }
+    auto exact = [&](float t) {
+        uint32_t seg = gpu::curveSegment(t, V);
+        return gpu::guideCurvePoint(guide[seg == 0 ? 0 : seg - 1], guide[seg], guide[seg + 1],
+                                    guide[std::min(seg + 2, V - 1)], gpu::curveLocal(t, V, seg));
+    };
+    std::vector<gpu::CurvePoint> samples(D + 1);
+    for (uint32_t k = 0; k <= D; ++k)
+        samples[k] = exact(float(k) / float(D));
+    float spacing = float(V - 1) / float(D);
+    auto between = [&](float x) {
+        uint32_t k = gpu::curveSampleBelow(x, D);
+        return gpu::curveBetweenSamples(samples[k], samples[k + 1], x - float(k), spacing);
+    };
+    float guideLength = 0.0f;
+    for (uint32_t i = 0; i + 1 < V; ++i)
+        guideLength += glm::length(guide[i + 1] - guide[i]);
+    float worst = 0.0f, worstTangent = 0.0f;
+    for (uint32_t j = 0; j <= 2400; ++j) {
+        float x = float(j) / 100.0f;
+        gpu::CurvePoint a = between(x), b = exact(x / float(D));
+        worst = std::max(worst, glm::length(a.position - b.position));
+        worstTangent = std::max(worstTangent, glm::length(glm::normalize(a.tangent) - glm::normalize(b.tangent)));
+    }
+    // (Within 0.1% of the strand's length, 0.3 mm over 30 cm; here 0.15 mm: the guide's Bezier
+    // segments join with C1, not C2, so a cubic across a joint differs from them a little.)
+    EXPECT_LT(worst, 1e-3f * guideLength) << "the Hermite between samples follows the curve";
+    EXPECT_GT(worst, 0.0f);
+    EXPECT_LT(worstTangent, 0.04f);
+    for (uint32_t k = 0; k <= D; ++k) { // on a sample: the sample itself, bit for bit (jitter 0 is today)
+        EXPECT_EQ(between(float(k)).position, samples[k].position);
+        EXPECT_EQ(between(float(k)).tangent, samples[k].tangent);
+    }
+    // The drawn strand's length (its curve, measured finely): its fraction of the guide's, within
+    // the curve's own unevenness (its speed along t falls a little in the end segments).
+    auto drawnLength = [&](float fraction) {
+        float length = 0.0f;
+        glm::vec3 previous = between(0.0f).position;
+        for (uint32_t i = 1; i <= 10 * D; ++i) {
+            glm::vec3 p = between(float(i) * fraction / 10.0f).position;
+            length += glm::length(p - previous);
+            previous = p;
+        }
+        return length;
+    };
+    float whole = drawnLength(1.0f);
+    for (uint32_t s = 0; s < 46; ++s) {
+        float f = gpu::strandLengthFraction(7, s, jitter);
+        EXPECT_NEAR(drawnLength(f) / whole, f, 0.01f) << "strand " << s;
+    }
 }
 
 TEST(StrandMath, LodFadesTheLastStrandInstead)

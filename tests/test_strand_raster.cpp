@@ -370,6 +370,62 @@ TEST(StrandRaster, TheRenderTimeCoilIsGeneratedAsItsTwinGeneratesIt)
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 
+// Drawn strands of their own lengths (strand_length_jitter, shaders/shared/strands.h
+// strandLengthFraction) in strands.generate as in its twin: each strand's root where it was, its
+// points along the first 1 - cut of its guide (between the guide's samples: curveBetweenSamples),
+// and fewer fragments for the shorter strands.
+TEST(StrandRaster, StrandsOfTheirOwnLengthsAreGeneratedAsTheTwinGeneratesThem)
+{
+    vk::Context ctx(test::validatedOptions());
+    GroomedHead scene = test::smallGroomedHead(60);
+    RenderSettings s = test::smallRenderSettings();
+    s.shadows.enabled = false; // the twin shades with the light unoccluded
+    s.strands.lengthJitter = 0.0f;
+    RasterFrame whole = renderRasterFrame(ctx, scene, s);
+    s.strands.lengthJitter = 0.5f;
+    RasterFrame trimmed = renderRasterFrame(ctx, scene, s);
+    EXPECT_EQ(whole.frame.strandLengthJitter, 0.0f);
+    EXPECT_EQ(trimmed.frame.strandLengthJitter, 0.5f);
+    reference::StrandVertices gpuStrands = trimmed.strands(false);
+    expectSameStrands(
+        gpuStrands,
+        reference::generateStrands(trimmed.camera, trimmed.frame, trimmed.sim, trimmed.guides, trimmed.triangles),
+        true);
+    reference::StrandVertices before = whole.strands(false);
+    ASSERT_EQ(before.positions.size(), gpuStrands.positions.size());
+    // In world space (the twin's placeStrands, which the path tracer draws): each strand's length is
+    // its fraction of the whole strand's, its root the same point.
+    reference::DrawnStrands a =
+        reference::placeStrands(whole.camera, whole.frame, whole.sim, whole.guides, whole.triangles);
+    reference::DrawnStrands b =
+        reference::placeStrands(trimmed.camera, trimmed.frame, trimmed.sim, trimmed.guides, trimmed.triangles);
+    uint32_t perStrand = trimmed.camera.divisions + 1;
+    size_t strands = a.positions.size() / perStrand;
+    ASSERT_GE(strands, 480u); // 60 guides x 8
+    double ratios = 0.0;
+    for (size_t k = 0; k < strands; ++k) {
+        uint32_t guide = uint32_t(k / trimmed.camera.drawnPerGuide),
+                 sIndex = uint32_t(k % trimmed.camera.drawnPerGuide);
+        float fraction = gpu::strandLengthFraction(guide, sIndex, 0.5f);
+        ASSERT_GE(fraction, 0.5f);
+        ASSERT_EQ(a.positions[k * perStrand], b.positions[k * perStrand]) << "strand " << k << "'s root";
+        float la = 0.0f, lb = 0.0f;
+        for (uint32_t i = 0; i + 1 < perStrand; ++i) {
+            la += glm::length(a.positions[k * perStrand + i + 1] - a.positions[k * perStrand + i]);
+            lb += glm::length(b.positions[k * perStrand + i + 1] - b.positions[k * perStrand + i]);
+        }
+        // Within a few percent: the clump disc and the deviations follow the guide's t, not its length.
+        EXPECT_NEAR(lb / la, fraction, 0.05f) << "strand " << k;
+        ratios += double(lb / la);
+    }
+    EXPECT_NEAR(ratios / double(strands), 0.75, 0.02) << "the mean cut is half the jitter";
+    gpu::RasterCounters c0 = whole.readback->read<gpu::RasterCounters>(Buffer::Counters, 1)[0];
+    gpu::RasterCounters c1 = trimmed.readback->read<gpu::RasterCounters>(Buffer::Counters, 1)[0];
+    EXPECT_LT(double(c1.fragments), 0.9 * double(c0.fragments)) << "shorter strands draw fewer fragments";
+    EXPECT_GT(double(c1.fragments), 0.5 * double(c0.fragments));
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
 TEST(StrandRaster, ThePiecesKernelMatchesItsCpuTwin)
 {
     // strands.pieces from the GPU's own scan, with the buffer held to a quarter of the frame's
@@ -633,6 +689,8 @@ INSTANTIATE_TEST_SUITE_P(
                             s.strands.coilRadiusMetres = 0.003f;
                             s.strands.coilTurnsPerMetre = 40.0f;
                         }},
+        EquivalenceCase{"trimmed", [](RenderSettings& s) { s.strands.lengthJitter = 0.5f; }},
+        EquivalenceCase{"whole", [](RenderSettings& s) { s.strands.lengthJitter = 0.0f; }},
         EquivalenceCase{"kajiya", [](RenderSettings& s) { s.hair.model = ShadingModel::Kajiya; }},
         EquivalenceCase{"lut", [](RenderSettings& s) { s.hair.model = ShadingModel::Lut; }},
         EquivalenceCase{"backlit",

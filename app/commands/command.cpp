@@ -86,6 +86,9 @@ GroomedHead buildCheckedHead(const GlobalOptions& g, const SessionOptions& o, Re
     if (!h.noHair && !h.hairFiles.empty()) {
         // A loaded groom is drawn at a density chosen from it, unless strands_per_guide is given.
         uint64_t strands = scene.strands.strandCount();
+        // An artist's groom has the lengths it was given: its drawn strands are not trimmed unless asked.
+        if (render && !o.settingGiven("strand_length_jitter"))
+            render->strands.lengthJitter = 0.0f;
         if (render && !o.settingGiven("strands_per_guide")) {
             render->strands.strandsPerGuide = loadedStrandsPerGuide(strands, render->strands.strandsPerGuide);
             scene.notes.push_back("hair density: " + std::to_string(strands) + " strands in the file" +

@@ -184,7 +184,7 @@ std::vector<SettingSpec> buildSpecs()
     auto grown = [&](SettingSpec spec, auto ref) { add(field(std::move(spec), ref)); };
     SettingSpec style = choice("hair_style", {}, kRestart, "--style",
                                "a named style: sets every growth parameter below but the seed, and the drawn "
-                               "strands' coil, divisions and count (custom: none of the styles' own)");
+                               "strands' coil, divisions, count and length jitter (custom: none of the styles' own)");
     for (const HairStyle& h : hairStyles())
         style.choices.push_back(h.name);
     style.choices.push_back("custom");
@@ -205,6 +205,7 @@ std::vector<SettingSpec> buildSpecs()
             x.render.strands.coilTurnsPerMetre = h.drawn.coilTurnsPerMetre;
             x.render.strands.divisions = h.drawn.divisions;
             x.render.strands.strandsPerGuide = h.drawn.strandsPerGuide;
+            x.render.strands.lengthJitter = h.drawn.lengthJitter;
         }
     };
     add(style);
@@ -411,6 +412,11 @@ std::vector<SettingSpec> buildSpecs()
                "render-time coil: its turns per metre along the strand (a turn needs 6 of the divisions; with fewer "
                "it fades out)"),
         [](Settings & x) -> auto& { return x.render.strands.coilTurnsPerMetre; }));
+    add(field(
+        number("strand_length_jitter", "", {0.0, 0.9}, kLive, "",
+               "each drawn strand cut from the tip by a share of its guide's length, uniform up to this, its own "
+               "(0: every strand as long as its guide; a loaded groom is drawn at 0 unless given)"),
+        [](Settings & x) -> auto& { return x.render.strands.lengthJitter; }));
     add(field(
         number("width", "m", {0.00001, 0.01}, kLive, "", "strand width at the root"),
         [](Settings & x) -> auto& { return x.render.strands.widthMetres; }));

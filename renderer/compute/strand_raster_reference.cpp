@@ -43,7 +43,8 @@ std::vector<gpu::CurvePoint> guideCurves(const gpu::StrandRasterPush& push, cons
 namespace {
 
 // Vertex `id` of the drawn strands as strands_generate.comp places it: which guide, which of its
-// strands and how far along (t = i / D), the point (pushed out of the colliders), its tangent and
+// strands and how far along (t = i / D of the strand, which lies along the first
+// strandLengthFraction of its guide), the point (pushed out of the colliders), its tangent and
 // its world width. `curves`: guideCurves().
 struct PlacedVertex {
     uint32_t guide = 0;
@@ -65,15 +66,23 @@ PlacedVertex placeVertex(const gpu::StrandRasterPush& push, const gpu::FramePara
     v.guide = drawn / push.drawnPerGuide;
     v.s = drawn % push.drawnPerGuide;
     v.t = float(i) / float(push.divisions);
-    gpu::CurvePoint g = curves[size_t(v.guide) * perStrand + i];
+    float fraction = gpu::strandLengthFraction(v.guide, v.s, frame.strandLengthJitter);
+    float x = float(i) * fraction;
+    auto curveAt = [&](uint32_t guide) { // the kernel's guideCurveAt
+        uint32_t k = gpu::curveSampleBelow(x, push.divisions);
+        const gpu::CurvePoint* c = &curves[size_t(guide) * perStrand];
+        return gpu::curveBetweenSamples(c[k], c[k + 1], x - float(k),
+                                        float(push.verticesPerStrand - 1) / float(push.divisions));
+    };
+    gpu::CurvePoint g = curveAt(v.guide);
     gpu::CurvePoint g1 = g, g2 = g;
     if (gpu::strandIsMulti(push.interpolation, v.s)) {
-        g1 = curves[size_t(triangles[v.guide].y) * perStrand + i];
-        g2 = curves[size_t(triangles[v.guide].z) * perStrand + i];
+        g1 = curveAt(triangles[v.guide].y);
+        g2 = curveAt(triangles[v.guide].z);
     }
-    gpu::CurvePoint point = gpu::placeStrandPoint(g, g1, g2, v.guide, v.s, v.t, push.interpolation, push.clumpRadius,
-                                                  push.deviation, gpu::guideLength(triangles[v.guide].w),
-                                                  push.coilRadius, push.coilFrequency, push.divisions);
+    gpu::CurvePoint point = gpu::placeStrandPoint(
+        g, g1, g2, v.guide, v.s, gpu::strandGuideParameter(v.t, fraction), push.interpolation, push.clumpRadius,
+        push.deviation, gpu::guideLength(triangles[v.guide].w), push.coilRadius, push.coilFrequency, push.divisions);
     v.position = point.position;
     if (v.s != 0)
         for (uint32_t c = 0; c < sim.colliderCount; ++c)

@@ -67,7 +67,7 @@ struct FrameParams {
     HairMaterial hair;
     FrameLight unshadowed[kFrameLights - 1u]; // the fill and the rim (frameLight 1 and 2)
     vec3 backgroundBottom;                    // the backdrop's colour at the bottom row (linear RGB)
-    float pad1;
+    float strandLengthJitter; // drawn strands' cut from the tip, at most (strands.h strandLengthFraction)
     vec4 hairVolume; // the hair's rest bounds as a sphere, posed this frame: xyz centre (world), w radius (0: no hair)
 };
 

@@ -3,8 +3,8 @@
 // C1 cubic Bezier segments from the guide polyline (uniform Catmull-Rom tangents), strands around
 // a guide (single-strand interpolation: a tapered disc, i.e. clumps) or between three guides
 // (multi-strand interpolation, barycentric, Nalu), random deviations (Rapp 2014's five profiles),
-// render-time coils finer than the simulated vertices, and continuous level of detail. (The
-// shading models are in hair_shading.h.)
+// render-time coils finer than the simulated vertices, each drawn strand's own length along its
+// guide, and continuous level of detail. (The shading models are in hair_shading.h.)
 // Conventions: world space in the head's units; t in [0, 1] runs root to tip.
 #ifndef WISP_SHARED_STRANDS_H
 #define WISP_SHARED_STRANDS_H
@@ -308,6 +308,55 @@ GPU_FN CurvePoint placeStrandPoint(CurvePoint g, CurvePoint g1, CurvePoint g2, u
     placed.position = p + coilOffset(coil, f);
     placed.tangent = coil.radius > 0.0f ? coilTangent(coil, f) : T;
     return placed;
+}
+
+// ---- Drawn strands' own lengths ----------------------------------------------------------------
+// Hair around a guide is not cut to one length: strand s of a guide is drawn along the first
+// strandLengthFraction() of its guide's curve, cut from the tip by a share uniform in [0, jitter]
+// from the strand's own hash (strand_length_jitter; 0: every strand as long as its guide), so a
+// clump's tips thin out toward its end instead of stopping together. Its D + 1 points stay evenly
+// spread over what is left (the strand's own t, which its width and shading read, still runs 0..1):
+// point i lies at the guide's parameter i / D x the fraction (strandGuideParameter).
+GPU_FN float strandLengthFraction(uint guide, uint s, float jitter)
+{
+    return 1.0f - jitter * hashToUnit(hashUint(guide * 4517u + s * 8263u + 71u));
+}
+
+// Where point t of a strand (its own t, 0..1 root to tip) lies along its guide's curve.
+GPU_FN float strandGuideParameter(float t, float lengthFraction)
+{
+    return t * lengthFraction;
+}
+
+// The sample at or below x / D (x in [0, D]) of a curve sampled at t = k / D: curveBetweenSamples
+// blends it with the next at f = x - k.
+GPU_FN uint curveSampleBelow(float x, uint D)
+{
+    return min(uint(max(x, 0.0f)), D - 1u);
+}
+
+// The guide's curve between two of its points sampled D apart (a at t = k / D, b at (k + 1) / D,
+// as strands_curves.comp samples it), at f in [0, 1] of the way: the cubic Hermite of the two
+// points and their tangents (guideCurvePoint's, per unit of a guide segment: `segmentsPerSample` =
+// (V - 1) / D of them per sample step), the tangent mixed. This is how the compute path finds a
+// trimmed strand's points between the samples: within about 0.05% of the guide's length of the
+// curve itself, which the tessellation path evaluates (the guide's segments join with C1, not C2),
+// and exactly a and b at f = 0 and 1 (so a strand of its guide's length is drawn as before).
+GPU_FN CurvePoint curveBetweenSamples(CurvePoint a, CurvePoint b, float f, float segmentsPerSample)
+{
+    if (f <= 0.0f)
+        return a;
+    if (f >= 1.0f)
+        return b;
+    float f2 = f * f;
+    float f3 = f2 * f;
+    vec3 m0 = a.tangent * segmentsPerSample;
+    vec3 m1 = b.tangent * segmentsPerSample;
+    CurvePoint c;
+    c.position = (2.0f * f3 - 3.0f * f2 + 1.0f) * a.position + (f3 - 2.0f * f2 + f) * m0 +
+                 (3.0f * f2 - 2.0f * f3) * b.position + (f3 - f2) * m1;
+    c.tangent = a.tangent * (1.0f - f) + b.tangent * f;
+    return c;
 }
 
 // The drawn width of a strand at t (asset units): tapering to 15% at the tip.
