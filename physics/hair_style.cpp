@@ -37,16 +37,21 @@ std::array<HairStyle, 6> makeStyles()
     wavy.frizzMetres = 0.003f;
     wavy.localStiffness = 0.2f;
 
+    // Brushed up and back from a short front: lifted more and combed back harder than it was
+    // (22 degrees, fall_back 1.2), shorter at the hairline over a wider band (0.35 of the length
+    // over 1.2 cm) and lying closer (volume 4 mm), its front read as a cap's rim from the front (a
+    // smooth dark band along the forehead); now as short tufts.
     GrowthSettings crop;
     crop.parting = Parting::None;
-    crop.fallBack = 1.2f;
+    crop.fallBack = 1.6f;
     crop.lengthMetres = 0.055f;
     crop.lengthVariation = 0.2f;
     crop.trimLevelMetres = 0.0f;
-    crop.rootLiftDeg = 22.0f;
+    crop.rootLiftDeg = 26.0f;
     crop.styleGravity = 0.4f;
-    crop.volumeMetres = 0.004f;
-    crop.hairlineLength = 0.35f;
+    crop.volumeMetres = 0.002f;
+    crop.hairlineBandMetres = 0.02f;
+    crop.hairlineLength = 0.2f;
     crop.clumpSizeMetres = 0.008f;
     crop.clumpStrength = 0.3f;
     crop.frizzMetres = 0.001f;
