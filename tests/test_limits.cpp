@@ -207,18 +207,19 @@ TEST(Workload, ComputeRasterMemoryByHand)
     GpuMemory m = estimateGpuMemory(w);
     uint64_t byHand = 10u * 16u                    // a triangle of guides (uvec4) each
                       + 10u * 4u * 32u             // each guide's curve at its strands' 4 points: position, tangent
-                      + 32u                        // the counters
+                      + 44u                        // the counters
                       + 10u * 4u * 4u * (16u + 4u) // 40 camera strands x 4 vertices: a vec4 and a packed colour
                       + 10u * 1u * 4u * (16u + 4u) // 10 light strands x 4 vertices
-                      + 2u * 5001u * 4u            // counts and offsets per pixel, and one past the last
-                      + 5000u * 8u                 // each pixel's depth range
-                      + 13u * 7u * 4u              // each 8 x 8 tile's farthest mesh depth (100 x 50 pixels)
-                      + 5u * 4u                    // the scan's block sums: ceil(5001 / 1024)
-                      + 64u * 64u * (4u + 16u)     // the light's depth and opacity layers per texel
-                      + (1u << 18) * 8u            // at least 2^18 fragments of 8 bytes (120 segments x 8 is fewer)
-                      + 64u * 48u                  // the pieces the frame may record: their pixels and dispatches
-                      + 5000u * 8u                 // the hair image, RGBA16F
-                      + 5000u * 4u * 4u            // the meshes' depth samples the strands test against
+                      + 3u * 5001u * 4u        // counts, offsets and reserved slots per pixel, and one past the last
+                      + 5000u * 8u             // each pixel's depth range
+                      + 13u * 7u * 4u          // each 8 x 8 tile's farthest mesh depth (100 x 50 pixels)
+                      + 5u * 4u                // the scan's block sums: ceil(5001 / 1024)
+                      + 64u * 64u * (4u + 16u) // the light's depth and opacity layers per texel
+                      + (1u << 18) * 8u        // at least 2^18 fragments of 8 bytes (120 segments x 8 is fewer)
+                      + 64u * 48u              // the pieces the frame may record: their pixels and dispatches
+                      + (1u << 20) * 16u       // the spill list: 2^20 fragments with their pixel and number
+                      + 5000u * 8u             // the hair image, RGBA16F
+                      + 5000u * 4u * 4u        // the meshes' depth samples the strands test against
                       // the meshes in compute: each sample's depth and triangle, their colour
                       // (RGBA16F) and the frame (RGBA8)
                       + 5000u * (4u * 8u + 8u + 4u);
