@@ -137,11 +137,11 @@ TEST(ComputeStage, TheLayoutRefusesOneBindingOfTwoTypes)
 
 TEST(ComputeStage, KernelsKnowTheBindingsTheirShadersUse)
 {
-    // strands_scan.comp declares four buffers; each of its three phases (a specialization
-    // constant) uses some, but the shader uses all four statically, so every phase binds them.
+    // strands_scan.comp declares five buffers; each of its three phases (a specialization
+    // constant) uses some, but the shader uses all five statically, so every phase binds them.
     EXPECT_EQ(vk::shaderBindings("strands_scan.comp"),
               (std::vector<uint32_t>{gpu::kRasterBindingCounts, gpu::kRasterBindingOffsets, gpu::kRasterBindingCounters,
-                                     gpu::kRasterBindingBlockSums}));
+                                     gpu::kRasterBindingBlockSums, gpu::kRasterBindingReserved}));
     EXPECT_THROW(vk::spirvBindings(std::vector<uint32_t>{1, 2, 3, 4, 5}), std::runtime_error);
 }
 
