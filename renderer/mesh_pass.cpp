@@ -220,6 +220,7 @@ MeshPass::GpuMesh MeshPass::upload(const Mesh& mesh, const char* name, const std
 void MeshPass::setMesh(const Mesh& mesh, const std::vector<float>& scalp)
 {
     head_ = upload(mesh, "mesh.head", scalp);
+    ++meshVersion_;
     if (sphereMesh_.indexCount == 0)
         sphereMesh_ = upload(makeSphereMesh(), "mesh.sphere", {});
 }

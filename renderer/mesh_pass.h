@@ -84,6 +84,8 @@ public:
     };
     Buffers headBuffers() const { return {head_.vertices, head_.indices, head_.indexCount / 3}; }
     Buffers sphereBuffers() const { return {sphereMesh_.vertices, sphereMesh_.indices, sphereMesh_.indexCount / 3}; }
+    // How many times setMesh has uploaded a head: what was drawn of an earlier one no longer holds.
+    uint64_t meshVersion() const { return meshVersion_; }
     const glm::vec4& marker() const { return marker_; }
     const glm::vec3& albedo() const { return albedo_; }
     float roughness() const { return roughness_; }
@@ -127,6 +129,7 @@ private:
     glm::mat4 headTransform_{1.0f};
     glm::vec4 sphere_{0.0f};
     glm::vec4 marker_{0.0f};
+    uint64_t meshVersion_ = 0;
     glm::vec3 albedo_{0.6f};
     float roughness_ = 0.5f;
     glm::vec3 scalpAlbedo_{0.0f};

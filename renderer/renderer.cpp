@@ -185,6 +185,7 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
         if (!meshRaster_)
             meshRaster_ = std::make_unique<MeshRaster>(ctx_, *target_, uniforms_, *lightMaps_, *meshPass_);
         meshRaster_->setHair(nullptr, nullptr);
+        meshRaster_->setVisibility(frameParams.viewProjection, headTransform_);
     }
     if (!solver_)
         return;
@@ -360,7 +361,8 @@ std::vector<Pass*> Renderer::passes()
     auto meshes = [&] {
         if (meshesInCompute) {
             for (MeshRaster::Stage stage : MeshRaster::kMeshStages)
-                list.push_back(meshRaster_->pass(stage));
+                if (stage == MeshRaster::Stage::Shade || meshRaster_->visibilityStale())
+                    list.push_back(meshRaster_->pass(stage)); // (a still camera keeps the samples)
         } else {
             list.push_back(meshPass_->depthPass());
             list.push_back(meshPass_->shadowMaskPass());

@@ -545,6 +545,53 @@ TEST(MeshRaster, MatchesTheGraphicsMeshes)
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 
+TEST(MeshRaster, AStillCameraKeepsTheSamplesAnEarlierFrameDrew)
+{
+    // meshes.clear, meshes.raster and meshes.ids run only when what the samples depend on has
+    // changed (MeshVisibilityKey): a second frame from the same camera keeps the first's samples
+    // and draws the same picture; a sphere moved in, or the camera turned, draws them again, and
+    // the picture is the one a fresh renderer draws there.
+    vk::Context ctx(test::validatedOptions());
+    GroomedHead scene = test::smallGroomedHead(60);
+    RenderSettings s = test::smallRenderSettings();
+    s.hairRaster = HairRaster::Compute;
+    s.samples = 4;
+    test::HairRenderer hair(ctx, scene, s);
+    Frame frame(ctx, 1);
+    OrbitCamera camera = OrbitCamera::framing(hair.renderer.sceneBounds(), float(s.width) / float(s.height));
+    auto ran = [&](const std::string& pass) {
+        const std::vector<vk::ScopeTime>& t = frame.timings();
+        return std::any_of(t.begin(), t.end(), [&](const vk::ScopeTime& x) { return x.name == pass; });
+    };
+    auto rasterized = [&] { return ran("meshes.clear") && ran("meshes.raster") && ran("meshes.ids"); };
+    Picture first = renderFrame(ctx, hair.renderer, frame, camera);
+    EXPECT_TRUE(rasterized()) << "a first frame draws its samples";
+    Picture still = renderFrame(ctx, hair.renderer, frame, camera);
+    EXPECT_FALSE(ran("meshes.clear") || ran("meshes.raster") || ran("meshes.ids")) << "nothing moved";
+    EXPECT_TRUE(ran("meshes.shade")) << "the shading (the hair's shadows) every frame";
+    EXPECT_EQ(still.rgba, first.rgba);
+
+    Bounds bounds = hair.renderer.sceneBounds();
+    glm::vec4 sphere(bounds.center() + glm::vec3(0.3f, 0.0f, 0.3f) * bounds.diagonal(), 0.15f * bounds.diagonal());
+    hair.renderer.setSphere(sphere);
+    Picture withSphere = renderFrame(ctx, hair.renderer, frame, camera);
+    EXPECT_TRUE(rasterized()) << "the sphere moved in";
+    EXPECT_NE(withSphere.rgba, still.rgba) << "the sphere is in the picture";
+    test::HairRenderer fresh(ctx, scene, s);
+    fresh.renderer.setSphere(sphere);
+    Frame freshFrame(ctx, 1);
+    EXPECT_EQ(withSphere.rgba, renderFrame(ctx, fresh.renderer, freshFrame, camera).rgba);
+
+    OrbitCamera turned = camera;
+    turned.orbit(4.0f, 1.0f);
+    Picture moved = renderFrame(ctx, hair.renderer, frame, turned);
+    EXPECT_TRUE(rasterized()) << "the camera turned";
+    EXPECT_EQ(moved.rgba, renderFrame(ctx, fresh.renderer, freshFrame, turned).rgba);
+    renderFrame(ctx, hair.renderer, frame, turned);
+    EXPECT_FALSE(ran("meshes.raster")) << "still again";
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
 TEST(StrandRaster, LightKernelsMatchTheirCpuTwin)
 {
     vk::Context ctx(test::validatedOptions());

@@ -13,6 +13,7 @@
 #include "shaders/shared/shadows.h"
 
 #include <algorithm>
+#include <cstring>
 #include <stdexcept>
 
 namespace wisp {
@@ -86,6 +87,22 @@ void MeshRaster::resize()
                                .name = "meshes.frame"});
     colorTrack_ = {.image = color_.get()};
     frameTrack_ = {.image = frame_.get()};
+    stale_ = true; // new buffers: nothing drawn in them yet
+}
+
+void MeshRaster::setVisibility(const glm::mat4& viewProjection, const glm::mat4& headTransform)
+{
+    VkExtent2D e = target_.extent();
+    key_ = MeshVisibilityKey{.viewProjection = viewProjection,
+                             .headTransform = headTransform,
+                             .sphere = meshes_.sphere(),
+                             .marker = meshes_.marker(),
+                             .meshVersion = meshes_.meshVersion(),
+                             .width = e.width,
+                             .height = e.height,
+                             .samples = uint32_t(target_.samples()),
+                             .pad = 0};
+    stale_ = stale_ || std::memcmp(&key_, &drawnKey_, sizeof(key_)) != 0;
 }
 
 uint64_t MeshRaster::allocatedBytes() const
@@ -135,7 +152,13 @@ ComputeStage MeshRaster::stage(Stage stage)
                          constantBuffer(kMeshRasterBindingIndices, head.indices),
                          storageBuffer(kMeshRasterBindingDepth, depthTrack_, ids ? ComputeRead : ComputeWrite),
                          storageBuffer(kMeshRasterBindingIds, idTrack_, ids ? ComputeWrite : ComputeRead)},
-                .record = [this, ids](StageCommands& c) { rasterize(c, ids ? idKernel_ : depthKernel_); }};
+                .record = [this, ids](StageCommands& c) {
+                    rasterize(c, ids ? idKernel_ : depthKernel_);
+                    if (ids) { // the samples now hold this frame's key
+                        drawnKey_ = key_;
+                        stale_ = false;
+                    }
+                }};
     }
     case Stage::Shade: {
         ComputeStage s{.uses = {frame, constantBuffer(kMeshRasterBindingVertices, head.vertices),

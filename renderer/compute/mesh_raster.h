@@ -8,6 +8,8 @@
 //   meshes.clear    transfer: every sample's depth to 1, its triangle to none
 //   meshes.raster   each sample's nearest depth (mesh_raster.comp, kPhase 0)
 //   meshes.ids      the triangle holding it (kPhase 1)
+//     (these three only when the samples would change: the camera, a mesh or the target moved,
+//     MeshVisibilityKey; a still camera keeps the samples an earlier frame drew)
 //   meshes.shade    the resolved colour of the meshes per pixel (mesh_shade.comp)
 //     (then the strands, which read the samples' depth buffer)
 //   hair.composite  the hair over the meshes, sRGB-encoded (hair_compose.comp)
@@ -21,6 +23,8 @@
 #include "gpu/resources.h"
 #include "shaders/shared/mesh_raster.h"
 
+#include <glm/glm.hpp>
+
 #include <memory>
 #include <vector>
 
@@ -33,6 +37,22 @@ class RenderTarget;
 class FrameUniforms;
 class LightMaps;
 class MeshPass;
+
+// What the meshes' samples (each one's depth and triangle) depend on. While it stays the same, the
+// samples an earlier frame drew still hold: the meshes are rigid, so a frame whose camera, head,
+// sphere and light marker have not moved has nothing new to rasterize (its shading, which the
+// hair's shadows change, is done every frame).
+struct MeshVisibilityKey {
+    glm::mat4 viewProjection{1.0f};
+    glm::mat4 headTransform{1.0f};
+    glm::vec4 sphere{0.0f};
+    glm::vec4 marker{0.0f};
+    uint64_t meshVersion = 0; // MeshPass::meshVersion
+    uint32_t width = 0;
+    uint32_t height = 0;
+    uint32_t samples = 0;
+    uint32_t pad = 0;
+};
 
 class MeshRaster {
 public:
@@ -63,6 +83,10 @@ public:
     }
 
     Pass* pass(Stage stage) { return passes_[size_t(stage)].get(); }
+    // This frame's camera and head (before its passes are listed): whether the samples must be
+    // drawn again (meshes.clear, meshes.raster and meshes.ids), or those of an earlier frame hold.
+    void setVisibility(const glm::mat4& viewProjection, const glm::mat4& headTransform);
+    bool visibilityStale() const { return stale_; }
     // The samples' depth (float bits, pixel * samples + s), which the compute strands test against.
     TrackedBuffer& depthSamples() { return depthTrack_; }
     const vk::Buffer& depthBuffer() const { return depth_; }
@@ -99,6 +123,8 @@ private:
     TrackedImage* hairTrack_ = nullptr;
     const vk::Image* hairImage_ = nullptr;
     std::vector<std::unique_ptr<ComputeStagePass>> passes_;
+    MeshVisibilityKey key_{}, drawnKey_{}; // this frame's; the one the samples were last drawn for
+    bool stale_ = true;
 };
 
 } // namespace wisp
