@@ -4,6 +4,7 @@
 
 #include "app/session/headless.h"
 #include "assets/head.h"
+#include "gpu/frame.h"
 #include "physics/gpu_solver.h"
 #include "physics/groomed_head.h"
 #include "renderer/renderer.h"
@@ -37,18 +38,23 @@ inline Picture renderHair(const vk::Context& ctx, const GroomedHead& scene, cons
 }
 
 // A renderer with the scene's head and its hair attached (unsimulated: the solver holds the rest
-// pose), for the tests that run its passes themselves, one frame in flight.
+// pose), for the tests that run its passes themselves: its frame (one in flight) and the camera
+// that frames the scene at the settings' aspect.
 struct HairRenderer {
     HairRenderer(const vk::Context& ctx, const GroomedHead& scene, const RenderSettings& s)
         : renderer(ctx, s, 1),
           solver(ctx, scene.strands,
-                 makeSimSetup(SimSettings{}, scene.strands, scene.gpuColliders, scene.unitsPerMetre), glm::mat4(1.0f))
+                 makeSimSetup(SimSettings{}, scene.strands, scene.gpuColliders, scene.unitsPerMetre), glm::mat4(1.0f)),
+          frame(ctx, 1)
     {
         renderer.setHead(scene.head);
         renderer.attachHair(solver, scene.strands, scene.unitsPerMetre);
+        camera = OrbitCamera::framing(renderer.sceneBounds(), float(s.width) / float(s.height));
     }
     Renderer renderer;
     GpuSolver solver;
+    Frame frame; // (destroyed first: it waits for the device)
+    OrbitCamera camera;
 };
 
 } // namespace wisp::test

@@ -159,8 +159,8 @@ bool renderScanWithout(uint32_t dropBinding, std::string& error)
     test::HairRenderer hair(ctx, scene, s);
     Renderer& renderer = hair.renderer;
     StrandRaster& raster = *renderer.strandRaster();
-    Frame frame(ctx, 1);
-    OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(s.width) / float(s.height));
+    Frame& frame = hair.frame;
+    OrbitCamera camera = hair.camera;
     FrameContext& fc = frame.begin(renderer.transientImages());
     renderer.prepare(fc, camera, 0.0f);
 

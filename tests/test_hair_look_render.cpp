@@ -141,8 +141,8 @@ TEST(HairLookRender, TheLookupTablesFollowTheLook)
     applyHairPreset(s.hair, "blonde");
     test::HairRenderer hair(ctx, scene, s);
     Renderer& renderer = hair.renderer;
-    Frame frame(ctx, 1);
-    OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(s.width) / float(s.height));
+    Frame& frame = hair.frame;
+    OrbitCamera camera = hair.camera;
     Picture bald = renderPicture(ctx, scene.head, s);
     Picture blonde = renderFrame(ctx, renderer, frame, camera);
     applyHairPreset(renderer.settings().hair, "black");

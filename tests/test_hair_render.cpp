@@ -85,8 +85,8 @@ HairFrame renderHairFrame(const vk::Context& ctx, const GroomedHead& scene, cons
 {
     test::HairRenderer hair(ctx, scene, settings);
     Renderer& renderer = hair.renderer;
-    Frame frame(ctx, 1);
-    OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(settings.width) / float(settings.height));
+    Frame& frame = hair.frame;
+    OrbitCamera camera = hair.camera;
     camera.distance *= cameraDistanceScale;
     camera.fitPlanes(); // the hair stays between the planes (as the window's zoom keeps it)
     Picture picture = renderFrame(ctx, renderer, frame, camera);

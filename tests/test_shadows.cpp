@@ -161,8 +161,8 @@ TEST_P(ShadowsBoth, DeepOpacityLayersHoldTheHairAndTransmittanceFallsWithDepth)
     s.light.elevationDeg = 80.0f; // from above: light crosses the whole thickness of the hair
     test::HairRenderer hair(ctx, scene, s);
     Renderer& renderer = hair.renderer;
-    Frame frame(ctx, 1);
-    OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(s.width) / float(s.height));
+    Frame& frame = hair.frame;
+    OrbitCamera camera = hair.camera;
     LightMapsReadback readback(ctx, renderer.lightMaps());
     FrameContext& fc = frame.begin(renderer.transientImages());
     renderer.prepare(fc, camera, 0.0f);

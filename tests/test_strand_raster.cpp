@@ -173,8 +173,8 @@ RasterFrame renderRasterFrame(const vk::Context& ctx, const GroomedHead& scene, 
     test::HairRenderer hair(ctx, scene, s);
     Renderer& renderer = hair.renderer;
     GpuSolver& solver = hair.solver;
-    Frame frame(ctx, 1);
-    OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(s.width) / float(s.height));
+    Frame& frame = hair.frame;
+    OrbitCamera camera = hair.camera;
     if (fragmentBudget > 0)
         renderer.strandRaster()->setFragmentCapacity(fragmentBudget);
     FrameContext& fc = frame.begin(renderer.transientImages());
@@ -557,8 +557,8 @@ TEST(MeshRaster, AStillCameraKeepsTheSamplesAnEarlierFrameDrew)
     s.hairRaster = HairRaster::Compute;
     s.samples = 4;
     test::HairRenderer hair(ctx, scene, s);
-    Frame frame(ctx, 1);
-    OrbitCamera camera = OrbitCamera::framing(hair.renderer.sceneBounds(), float(s.width) / float(s.height));
+    Frame& frame = hair.frame;
+    const OrbitCamera& camera = hair.camera;
     auto ran = [&](const std::string& pass) {
         const std::vector<vk::ScopeTime>& t = frame.timings();
         return std::any_of(t.begin(), t.end(), [&](const vk::ScopeTime& x) { return x.name == pass; });
@@ -579,14 +579,13 @@ TEST(MeshRaster, AStillCameraKeepsTheSamplesAnEarlierFrameDrew)
     EXPECT_NE(withSphere.rgba, still.rgba) << "the sphere is in the picture";
     test::HairRenderer fresh(ctx, scene, s);
     fresh.renderer.setSphere(sphere);
-    Frame freshFrame(ctx, 1);
-    EXPECT_EQ(withSphere.rgba, renderFrame(ctx, fresh.renderer, freshFrame, camera).rgba);
+    EXPECT_EQ(withSphere.rgba, renderFrame(ctx, fresh.renderer, fresh.frame, camera).rgba);
 
     OrbitCamera turned = camera;
     turned.orbit(4.0f, 1.0f);
     Picture moved = renderFrame(ctx, hair.renderer, frame, turned);
     EXPECT_TRUE(rasterized()) << "the camera turned";
-    EXPECT_EQ(moved.rgba, renderFrame(ctx, fresh.renderer, freshFrame, turned).rgba);
+    EXPECT_EQ(moved.rgba, renderFrame(ctx, fresh.renderer, fresh.frame, turned).rgba);
     renderFrame(ctx, hair.renderer, frame, turned);
     EXPECT_FALSE(ran("meshes.raster")) << "still again";
     EXPECT_EQ(ctx.validationMessages(), 0u);
@@ -779,8 +778,8 @@ TEST(StrandRaster, ASmallBudgetDrawsTheSamePictureInPieces)
 
     test::HairRenderer hair(ctx, scene, s);
     Renderer& renderer = hair.renderer;
-    Frame frame(ctx, 1);
-    OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(s.width) / float(s.height));
+    Frame& frame = hair.frame;
+    OrbitCamera camera = hair.camera;
     Picture whole = renderFrame(ctx, renderer, frame, camera);
     EXPECT_EQ(whole.rgba, reference.rgba);
     uint64_t budget = whole.raster.fragments / 5;
@@ -835,8 +834,8 @@ TEST(StrandRaster, TheNextFrameIsWrittenInOneWalkIntoTheRoomTheLastOneReserved)
     s.samples = 1;
     test::HairRenderer hair(ctx, scene, s);
     Renderer& renderer = hair.renderer;
-    Frame frame(ctx, 1);
-    OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(s.width) / float(s.height));
+    Frame& frame = hair.frame;
+    OrbitCamera camera = hair.camera;
     auto run = [&] {
         FrameContext& fc = frame.begin(renderer.transientImages());
         renderer.prepare(fc, camera, 0.0f);
@@ -897,8 +896,8 @@ TEST(StrandRaster, AFrameThatOutgrowsItsRoomWalksAgainOnlyForThePixelsThatDid)
     RenderSettings s = test::smallRenderSettings();
     s.hairRaster = HairRaster::Compute;
     test::HairRenderer hair(ctx, scene, s);
-    Frame frame(ctx, 1);
-    OrbitCamera camera = OrbitCamera::framing(hair.renderer.sceneBounds(), float(s.width) / float(s.height));
+    Frame& frame = hair.frame;
+    const OrbitCamera& camera = hair.camera;
     renderFrame(ctx, hair.renderer, frame, camera);
     Picture still = renderFrame(ctx, hair.renderer, frame, camera);
     EXPECT_TRUE(still.raster.oneWalk());
@@ -911,8 +910,7 @@ TEST(StrandRaster, AFrameThatOutgrowsItsRoomWalksAgainOnlyForThePixelsThatDid)
     EXPECT_EQ(moved.raster.overflow, 0u);
 
     test::HairRenderer fresh(ctx, scene, s);
-    Frame freshFrame(ctx, 1);
-    Picture exact = renderFrame(ctx, fresh.renderer, freshFrame, turned);
+    Picture exact = renderFrame(ctx, fresh.renderer, fresh.frame, turned);
     EXPECT_FALSE(exact.raster.reserved) << "a first frame: laid out exactly";
     EXPECT_EQ(moved.raster.fragments, exact.raster.fragments);
     EXPECT_EQ(moved.rgba, exact.rgba);
@@ -957,14 +955,12 @@ TEST(StrandRaster, PiecesDrawEveryCaseByteForByte)
         s.hairRaster = HairRaster::Compute;
         c.set(s);
         test::HairRenderer hair(ctx, scene, s);
-        Frame frame(ctx, 1);
-        OrbitCamera camera = OrbitCamera::framing(hair.renderer.sceneBounds(), float(s.width) / float(s.height));
-        Picture whole = renderFrame(ctx, hair.renderer, frame, camera);
+        Picture whole = renderFrame(ctx, hair.renderer, hair.frame, hair.camera);
         ASSERT_EQ(whole.raster.pieces, 1u);
         hair.renderer.strandRaster()->setFragmentCapacity(
             std::max(whole.raster.fragments / 3, 2 * whole.raster.maxPixel));
-        renderFrame(ctx, hair.renderer, frame, camera); // records the pieces the next one needs
-        Picture pieces = renderFrame(ctx, hair.renderer, frame, camera);
+        renderFrame(ctx, hair.renderer, hair.frame, hair.camera); // records the pieces the next one needs
+        Picture pieces = renderFrame(ctx, hair.renderer, hair.frame, hair.camera);
         EXPECT_GE(pieces.raster.pieces, 2u);
         EXPECT_EQ(pieces.raster.overflow, 0u);
         EXPECT_EQ(pieces.rgba, whole.rgba);
@@ -987,9 +983,7 @@ TEST(StrandRaster, DeviceBytesIsWhatItAllocates)
         s.shadows.enabled = shadows;
         test::HairRenderer hair(ctx, scene, s);
         Renderer& renderer = hair.renderer;
-        Frame frame(ctx, 1);
-        OrbitCamera camera = OrbitCamera::framing(renderer.sceneBounds(), float(s.width) / float(s.height));
-        Picture picture = renderFrame(ctx, renderer, frame, camera);
+        Picture picture = renderFrame(ctx, renderer, hair.frame, hair.camera);
         ASSERT_GT(picture.raster.fragments, 0u);
         StrandRaster& raster = *renderer.strandRaster();
         const gpu::StrandRasterPush& cam = raster.cameraPush();

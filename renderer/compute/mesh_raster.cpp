@@ -13,7 +13,6 @@
 #include "shaders/shared/shadows.h"
 
 #include <algorithm>
-#include <cstring>
 #include <stdexcept>
 
 namespace wisp {
@@ -87,7 +86,7 @@ void MeshRaster::resize()
                                .name = "meshes.frame"});
     colorTrack_ = {.image = color_.get()};
     frameTrack_ = {.image = frame_.get()};
-    stale_ = true; // new buffers: nothing drawn in them yet
+    drawnKey_ = MeshVisibilityKey{}; // new buffers: nothing drawn in them yet
 }
 
 void MeshRaster::setVisibility(const glm::mat4& viewProjection, const glm::mat4& headTransform)
@@ -102,7 +101,6 @@ void MeshRaster::setVisibility(const glm::mat4& viewProjection, const glm::mat4&
                              .height = e.height,
                              .samples = uint32_t(target_.samples()),
                              .pad = 0};
-    stale_ = stale_ || std::memcmp(&key_, &drawnKey_, sizeof(key_)) != 0;
 }
 
 uint64_t MeshRaster::allocatedBytes() const
@@ -154,10 +152,8 @@ ComputeStage MeshRaster::stage(Stage stage)
                          storageBuffer(kMeshRasterBindingIds, idTrack_, ids ? ComputeWrite : ComputeRead)},
                 .record = [this, ids](StageCommands& c) {
                     rasterize(c, ids ? idKernel_ : depthKernel_);
-                    if (ids) { // the samples now hold this frame's key
-                        drawnKey_ = key_;
-                        stale_ = false;
-                    }
+                    if (ids)
+                        drawnKey_ = key_; // the samples now hold this frame's key
                 }};
     }
     case Stage::Shade: {

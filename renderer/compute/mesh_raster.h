@@ -25,6 +25,7 @@
 
 #include <glm/glm.hpp>
 
+#include <cstring>
 #include <memory>
 #include <vector>
 
@@ -86,7 +87,7 @@ public:
     // This frame's camera and head (before its passes are listed): whether the samples must be
     // drawn again (meshes.clear, meshes.raster and meshes.ids), or those of an earlier frame hold.
     void setVisibility(const glm::mat4& viewProjection, const glm::mat4& headTransform);
-    bool visibilityStale() const { return stale_; }
+    bool visibilityStale() const { return drawnKey_.width == 0 || std::memcmp(&key_, &drawnKey_, sizeof(key_)) != 0; }
     // The samples' depth (float bits, pixel * samples + s), which the compute strands test against.
     TrackedBuffer& depthSamples() { return depthTrack_; }
     const vk::Buffer& depthBuffer() const { return depth_; }
@@ -123,8 +124,7 @@ private:
     TrackedImage* hairTrack_ = nullptr;
     const vk::Image* hairImage_ = nullptr;
     std::vector<std::unique_ptr<ComputeStagePass>> passes_;
-    MeshVisibilityKey key_{}, drawnKey_{}; // this frame's; the one the samples were last drawn for
-    bool stale_ = true;
+    MeshVisibilityKey key_{}, drawnKey_{}; // this frame's; the samples' (none drawn: width 0)
 };
 
 } // namespace wisp
