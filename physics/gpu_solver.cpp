@@ -195,11 +195,17 @@ void GpuSolver::declare(PassIo& io)
         stage(s, {}, turn_).declare(io);
 }
 
+uint32_t GpuSolver::takeTurn()
+{
+    uint32_t turn = turn_;
+    turn_ = 1 - turn_;
+    return turn;
+}
+
 void GpuSolver::recordStep(VkCommandBuffer cmd, const gpu::SimStep& step, vk::GpuTimer* timer)
 {
     // This step splats into grids_[turn_]; its gather reads them and zeroes the other set.
-    uint32_t turn = turn_;
-    turn_ = 1 - turn_;
+    uint32_t turn = takeTurn();
     for (Stage s : kStages) {
         const char* scope = s == Stage::Integrate ? "integrate" : "grid_gather";
         if (timer)

@@ -35,6 +35,10 @@ public:
     // timer, each kernel's dispatch is a timed scope: integrate (all substeps and the splat) and
     // grid_gather.
     void recordStep(VkCommandBuffer cmd, const gpu::SimStep& step, vk::GpuTimer* timer = nullptr);
+    // The sums the next recorded step splats into (0 or 1); takeTurn returns it and flips it, as
+    // recordStep does, for a step recorded stage by stage (stage(), layout()).
+    uint32_t turn() const { return turn_; }
+    uint32_t takeTurn();
     // What the steps of a frame touch: each stage's list declared (both sets of grid sums written).
     void declare(PassIo& io);
 

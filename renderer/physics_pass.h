@@ -6,6 +6,7 @@
 #include "gpu/pass.h"
 #include "physics/gpu_solver.h"
 
+#include <stdexcept>
 #include <vector>
 
 namespace wisp {
@@ -27,6 +28,43 @@ public:
 private:
     GpuSolver& solver_;
     std::vector<gpu::SimStep> steps_;
+};
+
+// One kernel of one step, recorded in front of another pass of the frame (the host) with no
+// barrier between them: one barrier covers what both touch, then the kernel's few workgroups take
+// their places on the GPU first and the host's fill the rest around them, so that the physics,
+// latency-bound on a few warps an SM, runs beside the host instead of before it (the Renderer's
+// steps ahead). Timed as the host (its name), or as "physics" without one.
+class PhysicsKernelPass : public Pass {
+public:
+    PhysicsKernelPass(GpuSolver& solver, GpuSolver::Stage stage, const gpu::SimStep& step, uint32_t turn, Pass* host)
+        : solver_(solver), stage_(stage), step_(step), turn_(turn), host_(host)
+    {
+    }
+    const char* name() const override { return host_ ? host_->name() : "physics"; }
+    void declare(PassIo& io) override
+    {
+        solver_.stage(stage_, step_, turn_).declare(io);
+        if (host_)
+            host_->declare(io);
+    }
+    void record(VkCommandBuffer cmd, FrameContext& frame) override
+    {
+        // The step's turn, taken as it is recorded (steps recorded before it took theirs).
+        if (stage_ == GpuSolver::Stage::Integrate && solver_.takeTurn() != turn_)
+            throw std::logic_error("physics: a step ahead recorded out of turn");
+        solver_.layout().record(solver_.stage(stage_, step_, turn_), cmd, 0,
+                                stage_ == GpuSolver::Stage::Integrate ? "integrate" : "grid_gather");
+        if (host_)
+            host_->record(cmd, frame);
+    }
+
+private:
+    GpuSolver& solver_;
+    GpuSolver::Stage stage_;
+    gpu::SimStep step_;
+    uint32_t turn_;
+    Pass* host_;
 };
 
 } // namespace wisp

@@ -413,7 +413,64 @@ std::vector<Pass*> Renderer::passes()
     }
     if (guidePass_ && settings_.strands.showGuides)
         list.push_back(guidePass_.get());
+    if (solver_ && !stepsAhead_.empty())
+        placeStepsAhead(list);
     return list;
+}
+
+void Renderer::placeStepsAhead(std::vector<Pass*>& list)
+{
+    // Each step's integrate in front of one of the compute path's long passes after the curves,
+    // its gather in front of the pass after that one; kernels without a host run at the end, one
+    // after another. (Measured on the H100: the light's opacity and the count hide an integrate
+    // whole, the generate half, the resolve none of it, so a fourth step costs there what it cost
+    // first: docs/drawing.md.)
+    struct Kernel {
+        GpuSolver::Stage stage;
+        gpu::SimStep step;
+        uint32_t turn;
+        Pass* host = nullptr;
+    };
+    // Each step's turn of the grid's sums, as the solver will take them: after this frame's own
+    // steps, recorded first, one after another.
+    std::vector<Kernel> kernels;
+    uint32_t turn = solver_->turn() ^ (physicsPass_ ? uint32_t(physicsPass_->stepCount() & 1u) : 0u);
+    for (const gpu::SimStep& step : stepsAhead_) {
+        for (GpuSolver::Stage stage : GpuSolver::kStages)
+            kernels.push_back({stage, step, turn});
+        turn ^= 1u;
+    }
+    stepsAhead_.clear();
+    aheadPasses_.clear();
+    if (hairRaster() == HairRaster::Compute && strandRaster_ && !settings_.strands.showGuides) {
+        using Stage = StrandRaster::Stage;
+        std::vector<Pass*> heavy = {strandRaster_->pass(Stage::LightOpacity), strandRaster_->pass(Stage::Generate),
+                                    strandRaster_->pass(Stage::Count)};
+        if (strandRaster_->recordedPieces() > 0)
+            heavy.push_back(strandRaster_->piecePass(Stage::Resolve, 0));
+        auto curves = std::find(list.begin(), list.end(), strandRaster_->pass(Stage::Curves));
+        size_t k = 0;
+        for (auto it = curves == list.end() ? curves : curves + 1; it != list.end() && k < kernels.size(); ++it)
+            if (kernels[k].stage != GpuSolver::Stage::Integrate || std::ranges::find(heavy, *it) != heavy.end())
+                kernels[k++].host = *it;
+    }
+    std::vector<Pass*> placed;
+    size_t k = 0;
+    for (Pass* pass : list) {
+        if (k < kernels.size() && kernels[k].host == pass) {
+            aheadPasses_.push_back(std::make_unique<PhysicsKernelPass>(*solver_, kernels[k].stage, kernels[k].step,
+                                                                       kernels[k].turn, pass));
+            pass = aheadPasses_.back().get();
+            ++k;
+        }
+        placed.push_back(pass);
+    }
+    for (; k < kernels.size(); ++k) {
+        aheadPasses_.push_back(
+            std::make_unique<PhysicsKernelPass>(*solver_, kernels[k].stage, kernels[k].step, kernels[k].turn, nullptr));
+        placed.push_back(aheadPasses_.back().get());
+    }
+    list = std::move(placed);
 }
 
 } // namespace wisp

@@ -66,6 +66,14 @@ public:
     void showLightMarker(bool show) { showLightMarker_ = show; }
     // The simulation steps to record in the next frame (none: the hair holds still).
     void setSteps(std::vector<gpu::SimStep> steps);
+    // The steps of the frame after the next one, known now (a fixed clock), or the next frame's own
+    // where its picture may show the hair a frame late (the window): recorded after the next
+    // frame's guide curves, which are the last to read the solver's buffers, each kernel in front
+    // of one of the compute path's passes, so that the physics runs beside the drawing instead of
+    // before it; the frame after then takes no steps of its own (setSteps({})). With the graphics
+    // path, or the guides drawn, they run at the frame's end. Recorded once (a frame drawn again
+    // does not run them again).
+    void setStepsAhead(std::vector<gpu::SimStep> steps) { stepsAhead_ = std::move(steps); }
     PhysicsPass* physics() { return physicsPass_.get(); }
     HairPass* hair() { return hairPass_.get(); }
     // Recreates the size-dependent images; call while the device is idle.
@@ -107,6 +115,8 @@ private:
     std::unique_ptr<RenderTarget> target_;
     std::unique_ptr<MeshPass> meshPass_;
     std::unique_ptr<PhysicsPass> physicsPass_;
+    std::vector<gpu::SimStep> stepsAhead_;
+    std::vector<std::unique_ptr<PhysicsKernelPass>> aheadPasses_; // the last frame's steps ahead
     std::unique_ptr<GuidePass> guidePass_;
     std::unique_ptr<HairPass> hairPass_;
     std::unique_ptr<HairLutImage> hairLut_; // the lookup mode's tables, sampled by both paths
@@ -127,6 +137,7 @@ private:
     GpuSolver* solver_ = nullptr;
     std::vector<glm::uvec4> guideTriangles_;
     void makeStrandRaster();
+    void placeStepsAhead(std::vector<Pass*>& list);
     void makeOit();
     uint32_t guideCount_ = 0;
     uint32_t verticesPerStrand_ = 0;

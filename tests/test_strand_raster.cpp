@@ -14,10 +14,12 @@
 #include "renderer/compute/mesh_raster_reference.h"
 #include "renderer/compute/strand_raster.h"
 #include "renderer/compute/strand_raster_reference.h"
+#include "renderer/render_target.h"
 #include "renderer/renderer.h"
 #include "small_groomed_head.h"
 #include "test_support.h"
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/packing.hpp>
 #include <gtest/gtest.h>
 
@@ -880,6 +882,89 @@ TEST(StrandRaster, TheNextFrameIsWrittenInOneWalkIntoTheRoomTheLastOneReserved)
                 sortedPixelLists(*first, offsets, exact, c1.capacity))
         << "each pixel's fragments, at its reserved slot";
     EXPECT_EQ(second->color(), first->color());
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
+// The next frame's steps recorded beside this frame's passes (Renderer::setStepsAhead) leave each
+// frame's picture and the solver's state as recording every frame's steps first does, byte for
+// byte, with the hair moving (a turning head, wind, the sphere): the compute path, whose kernels go
+// in front of its passes after the curves (four steps a frame: every kernel hosted, no pass more;
+// seven: the ones left over at the end), and the graphics path, which runs them at the end.
+TEST(StrandRaster, StepsAheadBesideTheFrameDrawWhatStepsFirstDraw)
+{
+    vk::Context ctx(test::validatedOptions());
+    GroomedHead scene = test::smallGroomedHead(120);
+    struct Case {
+        HairRaster raster;
+        uint32_t stepsPerFrame;
+        size_t passesMore; // in a frame with steps ahead, over the same frame with its steps first
+    };
+    for (Case c :
+         {Case{HairRaster::Compute, 4, 0}, Case{HairRaster::Compute, 7, 6}, Case{HairRaster::Graphics, 3, 6}}) {
+        RenderSettings s = test::smallRenderSettings();
+        s.hairRaster = c.raster;
+        struct Run {
+            std::vector<std::vector<uint8_t>> pictures;
+            std::vector<size_t> passCounts;
+            SimState state;
+        };
+        auto run = [&](bool ahead) {
+            test::HairRenderer hair(ctx, scene, s);
+            Renderer& renderer = hair.renderer;
+            const SimSetup& setup = hair.solver.setup();
+            uint32_t taken = 0;
+            auto steps = [&] {
+                std::vector<gpu::SimStep> list;
+                for (uint32_t k = 0; k < c.stepsPerFrame; ++k, ++taken) {
+                    float t = float(taken) / 120.0f;
+                    glm::mat4 head = glm::rotate(glm::mat4(1.0f), 0.8f * std::sin(6.0f * t), glm::vec3(0, 1, 0));
+                    list.push_back(makeStep(setup, head, glm::vec4(0.08f - 0.5f * t, 0.1f, 0.08f, 0.05f), t,
+                                            glm::vec3(4.0f, 0.0f, 1.0f)));
+                }
+                return list;
+            };
+            Run out;
+            constexpr uint32_t kFrames = 3;
+            for (uint32_t f = 0; f < kFrames; ++f) {
+                if (ahead) {
+                    renderer.setSteps(f == 0 ? steps() : std::vector<gpu::SimStep>{});
+                    renderer.setStepsAhead(f + 1 < kFrames ? steps() : std::vector<gpu::SimStep>{});
+                } else {
+                    renderer.setSteps(steps());
+                }
+                FrameContext& fc = hair.frame.begin(renderer.transientImages());
+                renderer.prepare(fc, hair.camera, 0.0f);
+                ReadbackPass readback(ctx, renderer.target());
+                std::vector<Pass*> passes = renderer.passes();
+                out.passCounts.push_back(passes.size());
+                passes.push_back(&readback);
+                hair.frame.run(fc, passes);
+                hair.frame.submit(fc);
+                hair.frame.waitIdle();
+                out.pictures.push_back(readback.pixels());
+            }
+            out.state = hair.solver.readState();
+            return out;
+        };
+        Run first = run(false), ahead = run(true);
+        std::string what = std::string(c.raster == HairRaster::Compute ? "compute" : "graphics") + ", " +
+                           std::to_string(c.stepsPerFrame) + " steps a frame";
+        ASSERT_EQ(ahead.pictures.size(), first.pictures.size());
+        for (size_t f = 0; f < first.pictures.size(); ++f) {
+            EXPECT_TRUE(ahead.pictures[f] == first.pictures[f]) << what << ": frame " << f;
+            size_t more = f + 1 < first.pictures.size() ? c.passesMore : 0;
+            EXPECT_EQ(ahead.passCounts[f], first.passCounts[f] + more) << what << ": frame " << f;
+        }
+        EXPECT_FALSE(first.pictures.front() == first.pictures.back()) << what << ": the hair moves";
+        EXPECT_EQ(std::memcmp(ahead.state.positions.data(), first.state.positions.data(),
+                              first.state.positions.size() * sizeof(glm::vec4)),
+                  0)
+            << what;
+        EXPECT_EQ(std::memcmp(ahead.state.velocities.data(), first.state.velocities.data(),
+                              first.state.velocities.size() * sizeof(glm::vec4)),
+                  0)
+            << what;
+    }
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 

@@ -494,11 +494,15 @@ void Window::drawFrame()
               : scripted       ? session_.clock().stepsPerFrame(kScriptedFps)
                                : session_.clock().stepsDue(elapsed, kMaxStepsPerFrame);
     StepPose pose{.head = viewer_.headTransform(), .sphere = viewer_.sphere(), .wind = viewer_.wind()};
-    renderer_->setSteps(session_.nextSteps(due, pose));
+    // This frame's steps run beside its drawing (Renderer::setStepsAhead), so its picture shows the
+    // hair as the last frame's steps left it: a frame late, and the physics off the frame's time.
+    float drawn = session_.clock().stepStart(session_.clock().stepsDone()); // the moment the picture shows
+    renderer_->setSteps({});
+    renderer_->setStepsAhead(session_.nextSteps(due, pose));
     renderer_->settings().light = viewer_.light();
     renderer_->setHeadTransform(pose.head);
     renderer_->setSphere(pose.sphere);
-    renderer_->prepare(fc, viewer_.camera(), session_.clock().stepStart(session_.clock().stepsDone()));
+    renderer_->prepare(fc, viewer_.camera(), drawn);
     std::string title = "Wisp - " + viewer_.status() + (viewer_.helpShown() ? "  |  " + viewerHelp() : "");
     if (title != title_) {
         title_ = title;
