@@ -5,6 +5,7 @@
 
 #include "gpu/handle.h"
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,21 @@ struct ScopeTime {
     std::string name;
     double milliseconds = 0.0;
 };
+
+// A frame's scopes with those of one name added up, in the order their names first appear (the
+// physics' kernels recorded beside several passes time as one `physics`).
+inline std::vector<ScopeTime> timingsByName(const std::vector<ScopeTime>& scopes)
+{
+    std::vector<ScopeTime> out;
+    for (const ScopeTime& s : scopes) {
+        auto same = std::find_if(out.begin(), out.end(), [&](const ScopeTime& o) { return o.name == s.name; });
+        if (same != out.end())
+            same->milliseconds += s.milliseconds;
+        else
+            out.push_back(s);
+    }
+    return out;
+}
 
 class GpuTimer {
 public:

@@ -6,6 +6,7 @@
 #include "gpu/check.h"
 #include "gpu/context.h"
 #include "gpu/frame.h"
+#include "gpu/timestamps.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -211,6 +212,23 @@ TEST(FrameBarriers, DeclaredAccessesAreSynchronized)
     EXPECT_EQ(times[1].name, "copy");
     for (const vk::ScopeTime& t : times)
         EXPECT_GE(t.milliseconds, 0.0);
+}
+
+TEST(Timestamps, ScopesOfOneNameAddUpInTheOrderTheyFirstCame)
+{
+    // The physics' kernels recorded beside several passes are scopes of one name: a frame's
+    // profile and the window's panel show them as one line, their sum, where the first one came.
+    std::vector<vk::ScopeTime> scopes = {
+        {"physics", 0.25}, {"light.opacity", 0.5}, {"physics", 0.125}, {"strands.count", 1.0}, {"physics", 0.0625}};
+    std::vector<vk::ScopeTime> byName = vk::timingsByName(scopes);
+    ASSERT_EQ(byName.size(), 3u);
+    EXPECT_EQ(byName[0].name, "physics");
+    EXPECT_DOUBLE_EQ(byName[0].milliseconds, 0.4375);
+    EXPECT_EQ(byName[1].name, "light.opacity");
+    EXPECT_DOUBLE_EQ(byName[1].milliseconds, 0.5);
+    EXPECT_EQ(byName[2].name, "strands.count");
+    EXPECT_DOUBLE_EQ(byName[2].milliseconds, 1.0);
+    EXPECT_TRUE(vk::timingsByName({}).empty());
 }
 
 TEST(FrameBarriers, UndeclaredReadIsCaughtBySyncValidation)

@@ -3,6 +3,7 @@
 #include "app/session/headless.h"
 
 #include "core/host_memory.h"
+#include "gpu/timestamps.h"
 
 #include <algorithm>
 #include <cmath>
@@ -166,15 +167,12 @@ std::vector<PassTiming> profileFrames(const vk::Context& ctx, HairSession& sessi
         if (n < warmup)
             continue;
         double total = 0.0;
-        std::map<std::string, double> perName; // passes of one name in a frame (the physics' kernels) add up
-        for (const vk::ScopeTime& t : frame.timings()) {
-            if (!samples.count(t.name) && !perName.count(t.name))
+        for (const vk::ScopeTime& t : vk::timingsByName(frame.timings())) {
+            if (!samples.count(t.name))
                 order.push_back(t.name);
-            perName[t.name] += t.milliseconds;
+            samples[t.name].push_back(t.milliseconds);
             total += t.milliseconds;
         }
-        for (const auto& [name, ms] : perName)
-            samples[name].push_back(ms);
         totals.push_back(total);
     }
     auto stats = [](const std::string& name, std::vector<double> v) {

@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "gpu/check.h"
 #include "gpu/frame.h"
+#include "gpu/timestamps.h"
 #include "renderer/renderer.h"
 
 #define GLFW_INCLUDE_VULKAN
@@ -383,13 +384,8 @@ void Window::buildPanel(const std::vector<std::string>& scriptedSets)
                                    std::to_string(oit.capacity) + ", dropped " + std::to_string(oit.overflow));
         }
     }
-    for (const vk::ScopeTime& t : frame_.timings()) { // passes of one name (the physics' kernels) add up
-        auto same = std::ranges::find(panel.passes, t.name, &std::pair<std::string, double>::first);
-        if (same != panel.passes.end())
-            same->second += t.milliseconds;
-        else
-            panel.passes.emplace_back(t.name, t.milliseconds);
-    }
+    for (const vk::ScopeTime& t : vk::timingsByName(frame_.timings()))
+        panel.passes.emplace_back(t.name, t.milliseconds);
     // What the panel shows: the settings as they are now (the viewer's light and wind included).
     pending_ = Settings{.growth = options_.settings.growth, .sim = sim_, .render = renderer_->settings()};
     pending_.render.light = viewer_.light();
