@@ -207,7 +207,7 @@ void GpuSolver::recordStep(VkCommandBuffer cmd, const gpu::SimStep& step, vk::Gp
     // This step splats into grids_[turn_]; its gather reads them and zeroes the other set.
     uint32_t turn = takeTurn();
     for (Stage s : kStages) {
-        const char* scope = s == Stage::Integrate ? "integrate" : "grid_gather";
+        const char* scope = scopeName(s);
         if (timer)
             timer->begin(cmd, scope);
         layout_.record(stage(s, step, turn), cmd, 0, scope);

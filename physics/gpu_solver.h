@@ -39,6 +39,8 @@ public:
     // recordStep does, for a step recorded stage by stage (stage(), layout()).
     uint32_t turn() const { return turn_; }
     uint32_t takeTurn();
+    // A stage's timed scope: integrate (all substeps and the splat) or grid_gather.
+    static const char* scopeName(Stage stage) { return stage == Stage::Integrate ? "integrate" : "grid_gather"; }
     // What the steps of a frame touch: each stage's list declared (both sets of grid sums written).
     void declare(PassIo& io);
 

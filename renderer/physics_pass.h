@@ -53,8 +53,7 @@ public:
         // The step's turn, taken as it is recorded (steps recorded before it took theirs).
         if (stage_ == GpuSolver::Stage::Integrate && solver_.takeTurn() != turn_)
             throw std::logic_error("physics: a step ahead recorded out of turn");
-        solver_.layout().record(solver_.stage(stage_, step_, turn_), cmd, 0,
-                                stage_ == GpuSolver::Stage::Integrate ? "integrate" : "grid_gather");
+        solver_.layout().record(solver_.stage(stage_, step_, turn_), cmd, 0, GpuSolver::scopeName(stage_));
         if (host_)
             host_->record(cmd, frame);
     }

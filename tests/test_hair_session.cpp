@@ -47,6 +47,26 @@ TEST(HairSession, StepsArePosedByTheTimelineAtTheirEnd)
     EXPECT_EQ(ctx.validationMessages(), 0u);
 }
 
+// A profile steps its warm-up's frames and, unless still, its timed frames (each frame the next
+// one's steps beside its drawing); a still profile's timed frames take none.
+TEST(HairSession, AStillProfileStepsOnlyInItsWarmUp)
+{
+    vk::Context ctx(test::validatedOptions());
+    RenderSettings s;
+    s.width = 64;
+    s.height = 48;
+    s.shadows.mapSize = 256;
+    s.strands.strandsPerGuide = 2;
+    for (bool timedSteps : {true, false}) {
+        HairSession session(ctx, smallScene(8), SimSettings{}, stillTimeline(glm::vec4(0.0f), glm::vec3(0.0f)));
+        uint64_t perFrame = session.clock().stepsPerFrame(30.0f);
+        std::vector<PassTiming> t = profileFrames(ctx, session, s, 30.0f, 2, 3, nullptr, nullptr, timedSteps);
+        EXPECT_EQ(session.clock().stepsDone(), perFrame * (timedSteps ? 5u : 2u)) << timedSteps;
+        EXPECT_FALSE(t.empty());
+    }
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
+
 TEST(HairSession, TheSolverIsRebuiltOnlyWhenWhatItPacksChanges)
 {
     vk::Context ctx(test::validatedOptions());

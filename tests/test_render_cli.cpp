@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -101,6 +102,30 @@ TEST(BadInput, OutputNotPng)
 {
     TempDir dir;
     expectUserError(runWisp("render --out '" + (dir / "a.jpg").string() + "'"), ".png");
+}
+
+TEST(BadInput, StillWithoutProfileIsRefused)
+{
+    TempDir dir;
+    expectUserError(runWisp("render --still --out '" + (dir / "a.png").string() + "'"),
+                    "--still is an option of --profile");
+    EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
+}
+
+// --still: the timed frames take no steps, said in the profile's JSON (what the physics costs a
+// frame is the difference from a profile without it; HairSession.AStillProfileStepsOnlyInItsWarmUp
+// counts the steps).
+TEST(Cli, AStillProfileSaysItsTimedFramesTookNoSteps)
+{
+    for (bool still : {false, true}) {
+        auto r = runWisp(std::string("render --profile 2 --warmup 1 --width 64 --height 48 --guides 20 "
+                                     "--set strands_per_guide=2") +
+                         (still ? " --still" : ""));
+        ASSERT_EQ(r.status, 0) << r.err;
+        nlohmann::json j = nlohmann::json::parse(r.out);
+        EXPECT_EQ(j["timed_steps"].get<bool>(), !still);
+        EXPECT_TRUE(j["ms"].contains("frame"));
+    }
 }
 
 namespace {

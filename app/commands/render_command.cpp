@@ -35,6 +35,7 @@ struct RenderCommand {
     float fps = 30.0f;
     uint32_t profileFrames = 0; // > 0: time this many frames (after profileWarmup) instead of writing a picture
     uint32_t profileWarmup = 60;
+    bool still = false;     // --still: the timed frames take no steps
     bool reference = false; // path-trace the frame instead (app/session/reference_render.h)
     ReferenceOptions referenceOptions;
     CLI::Option* spp = nullptr;
@@ -94,7 +95,7 @@ int runProfile(const GlobalOptions& g, SessionOptions& o, const RenderCommand& c
     OitStats oit;
     RasterStats raster;
     std::vector<PassTiming> timings =
-        profileFrames(ctx, session, settings, c.fps, c.profileWarmup, c.profileFrames, &oit, &raster);
+        profileFrames(ctx, session, settings, c.fps, c.profileWarmup, c.profileFrames, &oit, &raster, !c.still);
     HairRaster path = resolveHairRaster(settings.hairRaster, ctx.report().type);
     HairDrawCounts counts = hairDrawCounts(uint32_t(session.scene().strands.strandCount()), settings.strands);
     nlohmann::json out = {{"device", ctx.report().name},
@@ -109,6 +110,7 @@ int runProfile(const GlobalOptions& g, SessionOptions& o, const RenderCommand& c
                           {"samples", settings.samples},
                           {"warmup_frames", c.profileWarmup},
                           {"timed_frames", c.profileFrames},
+                          {"timed_steps", !c.still},
                           {"transparency", settings.transparency.mode == Transparency::Oit ? "oit" : "msaa"},
                           {"oit_fragments", oit.fragments},
                           {"oit_overflow", oit.overflow},
@@ -132,6 +134,8 @@ int run(const GlobalOptions& g, const RenderCommand& c)
         throw UserError("render: --out FILE.png is required (or --profile N to time frames)");
     if (!c.reference && (*c.spp || *c.seed || *c.bounces))
         throw UserError("render: --spp, --sample-seed and --bounces are options of --reference");
+    if (c.still && c.profileFrames == 0)
+        throw UserError("render: --still is an option of --profile");
     if (c.reference && c.profileFrames > 0)
         throw UserError("render: --reference renders a picture; it cannot be timed with --profile");
     SessionOptions o = c.shared->resolve();
@@ -195,6 +199,9 @@ CommandRun addRenderCommand(CLI::App& app, const GlobalOptions& global)
     cmd->add_option("--warmup", c->profileWarmup, "frames before timing with --profile")
         ->check(CLI::Range(0u, 100000u))
         ->capture_default_str();
+    cmd->add_flag("--still", c->still,
+                  "with --profile: the timed frames take no simulation steps (the hair holds where the "
+                  "warm-up left it); against a profile without it, what the physics costs a frame");
     cmd->add_option("--frames", c->frames, "simulated frames before the picture (each 1/fps seconds of fixed steps)")
         ->check(CLI::Range(0u, 100000u))
         ->capture_default_str();

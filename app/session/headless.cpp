@@ -128,7 +128,8 @@ Picture renderPicture(const vk::Context& ctx, const Head& head, const RenderSett
 }
 
 std::vector<PassTiming> profileFrames(const vk::Context& ctx, HairSession& session, const RenderSettings& settings,
-                                      float fps, uint32_t warmup, uint32_t frames, OitStats* oit, RasterStats* raster)
+                                      float fps, uint32_t warmup, uint32_t frames, OitStats* oit, RasterStats* raster,
+                                      bool timedSteps)
 {
     // The scene's first pose (its camera, head and light), held: what is timed is the drawing.
     PosedFrame posed(ctx, session, settings);
@@ -140,13 +141,16 @@ std::vector<PassTiming> profileFrames(const vk::Context& ctx, HairSession& sessi
     std::vector<std::string> order;
     std::vector<double> totals;
     // The clock is fixed, so each frame records the next frame's steps beside its own drawing
-    // (Renderer::setStepsAhead): every frame draws the moment it would with its steps first.
-    bool ranAhead = false;
+    // (Renderer::setStepsAhead): every frame draws the moment it would with its steps first. The
+    // first frame takes its own.
+    auto stepsOf = [&](uint32_t n) {
+        bool steps = n < warmup + frames && (timedSteps || n < warmup);
+        return steps ? session.nextSteps(stepsPerFrame) : std::vector<gpu::SimStep>{};
+    };
     for (uint32_t n = 0; n < warmup + frames; ++n) {
-        renderer.setSteps(ranAhead ? std::vector<gpu::SimStep>{} : session.nextSteps(stepsPerFrame));
+        renderer.setSteps(n == 0 ? stepsOf(0) : std::vector<gpu::SimStep>{});
         float now = session.clock().stepStart(session.clock().stepsDone());
-        ranAhead = n + 1 < warmup + frames;
-        renderer.setStepsAhead(ranAhead ? session.nextSteps(stepsPerFrame) : std::vector<gpu::SimStep>{});
+        renderer.setStepsAhead(stepsOf(n + 1));
         std::vector<TrackedImage*> transient = renderer.transientImages();
         FrameContext& fc = frame.begin(transient);
         renderer.prepare(fc, camera, now);

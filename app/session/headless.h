@@ -85,8 +85,10 @@ struct PassTiming {
     double p95Ms = 0.0;
 };
 // `oit` and `raster`, when given, receive the last frame's OIT and compute-path counts.
+// `timedSteps` false: the timed frames take no steps (the hair holds where the warm-up left it),
+// so the difference from a profile with them is what the physics costs a frame.
 std::vector<PassTiming> profileFrames(const vk::Context& ctx, HairSession& session, const RenderSettings& settings,
                                       float fps, uint32_t warmup, uint32_t frames, OitStats* oit = nullptr,
-                                      RasterStats* raster = nullptr);
+                                      RasterStats* raster = nullptr, bool timedSteps = true);
 
 } // namespace wisp
