@@ -225,7 +225,6 @@ void main()
                 float alpha = c.w * hit.x * float(front) / float(samples);
                 if (alpha < 0.5 / 255.0)
                     continue;  // below what the fragment's 8 bits of alpha hold
-                uvec2 fragment = uvec2(floatBitsToUint(depth), packFragmentColor(c.rgb, alpha));
 #ifdef RASTER_WRITE
                 if (p < firstPixel || p >= endPixel)
                     continue;  // another piece's pixel
@@ -236,7 +235,7 @@ void main()
                     continue;
                 uint slot = inReserved ? reservedEnd + cursor : cursor - base;
                 if (slot < push.fragmentCapacity)
-                    fragments[slot] = fragment;
+                    fragments[slot] = uvec2(floatBitsToUint(depth), packFragmentColor(c.rgb, alpha));
 #else
                 uint n = atomicAdd(counts[p], 1u);
                 if (pending)
@@ -246,7 +245,7 @@ void main()
                 pendingN = n;
                 pendingFirst = first;
                 pendingEnd = end;
-                pendingFragment = fragment;
+                pendingFragment = uvec2(floatBitsToUint(depth), packFragmentColor(c.rgb, alpha));
 #endif
             }
 #ifndef RASTER_WRITE
