@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <numbers>
+#include <random>
 
 using namespace wisp::shading;
 
@@ -174,6 +175,30 @@ TEST(HairShading, KarisMultipleScatteringSaturatesWithDepth)
     glm::vec3 combined = gpu::hairKarisLit(kT, wi, wo, m, 0.25f);
     glm::vec3 expected = 0.75f * (gpu::hairKaris(kT, wi, wo, m) + gpu::hairKarisMultiple(kT, wi, wo, m, 0.25f));
     EXPECT_NEAR(combined.x, expected.x, 1e-6f);
+}
+
+// hairAngles takes cos(theta_d) from the sines alone (no arcsine, no cosine): the definition's value,
+// cos((asin(sin_o) - asin(sin_i)) / 2), over directions spread on the sphere, grazing ones included;
+// and beta_m's longitudinal width, its 20th power taken by products, as pow gives it.
+TEST(HairShading, AnglesMatchTheirTrigonometricDefinitions)
+{
+    std::mt19937 rng(7);
+    std::normal_distribution<float> normal;
+    auto direction = [&] { return glm::normalize(glm::vec3(normal(rng), normal(rng), normal(rng))); };
+    double worst = 0.0;
+    for (int i = 0; i < 20000; ++i) {
+        glm::vec3 t = direction();
+        glm::vec3 wi = direction();
+        glm::vec3 wo = i % 10 == 0 ? t : direction(); // (along the fibre: theta_o = 90 degrees)
+        gpu::HairAngles a = gpu::hairAngles(t, wi, wo);
+        double expected = std::cos(0.5 * (std::asin(double(a.sinThetaO)) - std::asin(double(a.sinThetaI))));
+        worst = std::max(worst, std::abs(double(a.cosThetaD) - expected));
+    }
+    EXPECT_LT(worst, 2e-6);
+    for (float b : {0.05f, 0.3f, 0.6f, 0.9f, 1.0f}) {
+        double expected = 0.726 * b + 0.812 * b * b + 3.7 * std::pow(double(b), 20.0);
+        EXPECT_NEAR(gpu::hairLongitudinalWidth(b), expected, 2e-6 * expected) << b;
+    }
 }
 
 TEST(HairShading, MaterialPacksTheParameters)

@@ -53,7 +53,12 @@ GPU_FN HairAngles hairAngles(vec3 t, vec3 wi, vec3 wo)
     vec3 po = wo - t * a.sinThetaO;
     float d = dot(pi, pi) * dot(po, po);
     a.cosPhi = d > 1e-12f ? clamp(dot(pi, po) / sqrt(d), -1.0f, 1.0f) : 1.0f;
-    a.cosThetaD = cos(0.5f * (asin(a.sinThetaO) - asin(a.sinThetaI)));
+    // cos((theta_o - theta_i) / 2) = sqrt((1 + cos(theta_o - theta_i)) / 2), the half angle within
+    // [-pi/2, pi/2]; cos(theta_o - theta_i) = cos(theta_o) cos(theta_i) + sin(theta_o) sin(theta_i),
+    // each cosine sqrt(1 - sin^2) (theta within [-pi/2, pi/2]): no arcsine, no cosine.
+    float cosI = sqrt(max(1.0f - a.sinThetaI * a.sinThetaI, 0.0f));
+    float cosO = sqrt(max(1.0f - a.sinThetaO * a.sinThetaO, 0.0f));
+    a.cosThetaD = sqrt(clamp(0.5f * (1.0f + cosO * cosI + a.sinThetaO * a.sinThetaI), 0.0f, 1.0f));
     return a;
 }
 
@@ -61,7 +66,9 @@ GPU_FN HairAngles hairAngles(vec3 t, vec3 wi, vec3 wo)
 // 0.726 beta_m + 0.812 beta_m^2 + 3.7 beta_m^20 radians. TT is half as wide, TRT twice.
 GPU_FN float hairLongitudinalWidth(float betaM)
 {
-    return 0.726f * betaM + 0.812f * betaM * betaM + 3.7f * pow(betaM, 20.0f);
+    float b4 = betaM * betaM * (betaM * betaM);
+    float b16 = b4 * b4 * (b4 * b4);
+    return 0.726f * betaM + 0.812f * betaM * betaM + 3.7f * (b16 * b4); // (beta_m^20 by products, not pow)
 }
 
 // ---- Karis 2016 ("Physically Based Hair Shading in Unreal", SIGGRAPH course) --------------------
