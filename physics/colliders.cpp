@@ -5,7 +5,10 @@
 #include "core/rotation.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
+#include <map>
 
 namespace wisp {
 
@@ -88,6 +91,67 @@ std::vector<Ellipsoid> fitColliders(const Mesh& mesh)
     std::vector<Ellipsoid> out = {cranium, fitBand(mesh, neckTop, neckBottom, 0.9f, "neck")};
     if (neckBottom > b.min.y + 1e-6f * b.size().y) // a bust: its shoulders
         out.push_back(fitBand(mesh, neckBottom, b.min.y, 0.0f, "shoulders"));
+    return out;
+}
+
+std::vector<std::string> fittedColliderWarnings(const Mesh& mesh)
+{
+    std::vector<std::string> out;
+    if (mesh.positions.empty())
+        return out;
+    char text[256];
+    // Signed volume (the divergence theorem over the triangles, counter-clockwise seen from outside).
+    double volume = 0.0;
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        glm::dvec3 a = mesh.positions[mesh.indices[t]], b = mesh.positions[mesh.indices[t + 1]],
+                   c = mesh.positions[mesh.indices[t + 2]];
+        volume += glm::dot(a, glm::cross(b, c)) / 6.0;
+    }
+    Bounds bounds = mesh.bounds();
+    double box = double(bounds.size().x) * bounds.size().y * bounds.size().z;
+    if (volume < -1e-3 * box) {
+        std::snprintf(text, sizeof text,
+                      "the mesh is inside-out (its signed volume is %.3g, negative: its triangles face inward); "
+                      "the scalp and the colliders take its inside for its outside",
+                      volume);
+        out.push_back(text);
+    }
+    // Edges of one triangle only, by position (the mesh's vertices are split by normal), on the upper
+    // half of the head: a hole there as long as a quarter of the mesh's width lets hair through (a
+    // bust's neck or a few stray edges are no such hole).
+    HeadRegion region = headRegion(mesh);
+    float upper = region.neck + 0.5f * (region.top - region.neck);
+    std::map<std::array<float, 3>, uint32_t> weld;
+    std::vector<uint32_t> id(mesh.positions.size());
+    for (size_t v = 0; v < mesh.positions.size(); ++v) {
+        const glm::vec3& p = mesh.positions[v];
+        id[v] = weld.emplace(std::array<float, 3>{p.x, p.y, p.z}, uint32_t(weld.size())).first->second;
+    }
+    std::map<std::pair<uint32_t, uint32_t>, int> edges;
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
+        for (size_t k = 0; k < 3; ++k) {
+            uint32_t a = id[mesh.indices[t + k]], b = id[mesh.indices[t + (k + 1) % 3]];
+            ++edges[{std::min(a, b), std::max(a, b)}];
+        }
+    size_t openAbove = 0;
+    double openLength = 0.0;
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
+        for (size_t k = 0; k < 3; ++k) {
+            uint32_t va = mesh.indices[t + k], vb = mesh.indices[t + (k + 1) % 3];
+            uint32_t a = id[va], b = id[vb];
+            const glm::vec3 &pa = mesh.positions[va], &pb = mesh.positions[vb];
+            if (a != b && edges[{std::min(a, b), std::max(a, b)}] == 1 && std::min(pa.y, pb.y) > upper) {
+                ++openAbove;
+                openLength += double(glm::length(pa - pb));
+            }
+        }
+    if (openLength > 0.25 * double(bounds.size().x)) {
+        std::snprintf(text, sizeof text,
+                      "the mesh is open on the upper half of its head (%zu edges of one triangle only, %.3g long in "
+                      "all): hair passes through the hole",
+                      openAbove, openLength);
+        out.push_back(text);
+    }
     return out;
 }
 

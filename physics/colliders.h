@@ -6,6 +6,7 @@
 #include "physics/strand_set.h"
 #include "shaders/shared/sim.h"
 
+#include <string>
 #include <vector>
 
 namespace wisp {
@@ -23,6 +24,12 @@ float penetrationDepth(const std::vector<gpu::Ellipsoid>& colliders, const glm::
 //  - "neck": the vertices around the neck, fitted the same way to hold 90% of them;
 //  - "shoulders" (a bust): everything below, fitted the same way but not scaled up.
 std::vector<Ellipsoid> fitColliders(const Mesh& mesh);
+
+// What makes `mesh` a poor head for colliders fitted to it, one line each (none for a head): it is
+// inside-out (its signed volume is negative: its triangles face inward), or open on the upper half
+// of its head (edges of one triangle only, as long in all as a quarter of its width: hair falls
+// through). How well fitted colliders hold a mesh that is no head (a cube) is not measured here.
+std::vector<std::string> fittedColliderWarnings(const Mesh& mesh);
 
 // Hair grows from the scalp, so the scalp must lie outside every collider, or grown roots start
 // inside one and the solver pushes their first segments against FTL from the first step (loose

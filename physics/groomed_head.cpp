@@ -26,9 +26,17 @@ void prepareHead(GroomedHead& scene)
     }
     scene.scalp =
         scene.head.description.scalp ? *scene.head.description.scalp : defaultScalpRule(scene.colliders.front());
-    if (scene.collidersFitted) // the scalp outside them, within a quarter of a percent of the head
-        inscribeColliders(scene.colliders, scene.head.mesh, scalpTriangles(scene.head.mesh, scene.scalp),
+    if (scene.collidersFitted) {
+        // The scalp outside them, within a quarter of a percent of the head.
+        std::vector<uint32_t> scalp = scalpTriangles(scene.head.mesh, scene.scalp);
+        inscribeColliders(scene.colliders, scene.head.mesh, scalp,
                           kInscribedTolerance * scene.head.mesh.bounds().diagonal());
+        // A mesh that is no head is said to be one, naming it.
+        std::string mesh = scene.head.description.meshPath.empty() ? scene.head.description.name
+                                                                   : scene.head.description.meshPath.string();
+        for (const std::string& w : fittedColliderWarnings(scene.head.mesh))
+            scene.warnings.push_back(mesh + ": " + w);
+    }
     scene.gpuColliders.clear();
     for (const Ellipsoid& e : scene.colliders)
         scene.gpuColliders.push_back(toGpu(e));
@@ -47,6 +55,10 @@ GroomedHead buildGrownHead(Head head, const GrowthSettings& growth)
     scene.head = std::move(head);
     prepareHead(scene);
     scene.strands = growGuides(scene.head.mesh, scene.scalp, scene.gpuColliders, growth, scene.unitsPerMetre);
+    // Counted as a loaded groom's are: a rigid strand is pinned at every vertex.
+    scene.loaded.shortThreshold = kRigidStrandMetres * scene.unitsPerMetre;
+    for (const gpu::StrandInfo& info : scene.strands.strands)
+        scene.loaded.rigid += info.pinnedRoot >= scene.strands.verticesPerStrand ? 1 : 0;
     return scene;
 }
 
@@ -101,6 +113,32 @@ GroomedHead buildLoadedHead(Head head, const std::vector<HairPartSource>& parts,
                 ", more than the " + std::to_string(kMaxGuides) + " guides Wisp simulates");
     }
 
+    // Parts of other formats than the groom's first (a cyHair export beside a TressFX one): each is
+    // brought into the first one's axes (its own format's turn, then the first's undone), so that
+    // one placement puts every part where its own format says.
+    auto firstPlaced = std::find_if(parts.begin(), parts.end(), [](const HairPartSource& p) { return !p.placement; });
+    if (firstPlaced != parts.end()) {
+        const bool firstZUp = assets[size_t(firstPlaced - parts.begin())].zUp;
+        const bool firstMirrored = assets[size_t(firstPlaced - parts.begin())].mirroredZ;
+        for (size_t index = 0; index < parts.size(); ++index) {
+            HairAsset& asset = assets[index];
+            if (parts[index].placement || (asset.zUp == firstZUp && asset.mirroredZ == firstMirrored))
+                continue;
+            HairPlacement own{.zUpToYUp = asset.zUp, .mirrorZ = asset.mirroredZ};
+            for (HairStrand& strand : asset.strands)
+                for (glm::vec3& p : strand.points) {
+                    glm::vec3 q = applyPlacement(own, p); // y-up, right-handed
+                    if (firstZUp)
+                        q = glm::vec3(q.x, -q.z, q.y); // (x, z, -y) undone
+                    if (firstMirrored)
+                        q.z = -q.z;
+                    p = q;
+                }
+            asset.zUp = firstZUp;
+            asset.mirroredZ = firstMirrored;
+        }
+    }
+
     // One placement for the whole groom, from the roots of the parts that have none of their own
     // (and a sample of their strands, which tells the groom's front from its back).
     GroomShape shape{.roots = {}, .strands = {}, .headFront = scene.head.description.front};
@@ -139,7 +177,11 @@ GroomedHead buildLoadedHead(Head head, const std::vector<HairPartSource>& parts,
         std::string where = "the groom's roots are not on the head: " + placed.describe() + " leaves " +
                             percent(1.0f - placed.fit.onSurface) + " of them farther than " + percent(kRootOnSurface) +
                             " of the head's size from its surface (median " + percent(placed.fit.median) + ")";
-        const std::string& file = parts.front().file.string();
+        // The parts it is about: those placed together (a part with its own placement is not).
+        std::string file;
+        for (const HairPartSource& part : parts)
+            if (!part.placement)
+                file += (file.empty() ? "" : " + ") + part.file.string();
         if (placed.method != GroomPlacement::Method::Given && !placed.fit.onHead())
             throw UserError(file + ": " + where +
                             "; place it by hand with --hair-scale S, --hair-offset X,Y,Z, --hair-z-up true|false, "
@@ -185,7 +227,12 @@ GroomedHead buildLoadedHead(Head head, const std::vector<HairPartSource>& parts,
             bool rigid = length < scene.loaded.shortThreshold;
             scene.loaded.rigid += rigid ? 1 : 0;
             scene.loaded.pinnedTips += strand.pinnedTip && !rigid ? 1 : 0;
-            std::vector<glm::vec3> points = resampleStrand(placed, verticesPerStrand);
+            // A strand that already has its vertex count (a groom Wisp wrote, read back) keeps its
+            // points where they were; others are resampled evenly.
+            bool kept = placed.size() == verticesPerStrand;
+            for (size_t i = 1; kept && i < placed.size(); ++i)
+                kept = glm::length(placed[i] - placed[i - 1]) > 0.0f;
+            std::vector<glm::vec3> points = kept ? placed : resampleStrand(placed, verticesPerStrand);
             for (size_t i = 1; i < points.size(); ++i)
                 if (!(glm::length(points[i] - points[i - 1]) > 0.0f))
                     throw UserError(source.file.string() + ": strand " + std::to_string(s) + " (of " +
@@ -204,11 +251,25 @@ GroomedHead buildLoadedHead(Head head, const std::vector<HairPartSource>& parts,
     return scene;
 }
 
+std::string describeRigidStrands(const GroomedHead& scene)
+{
+    if (scene.placement || scene.loaded.rigid == 0)
+        return "";
+    char threshold[32];
+    std::snprintf(threshold, sizeof(threshold), "%.3g", double(kRigidStrandMetres * 100.0f));
+    return "hair strands: " + std::to_string(scene.loaded.rigid) + " of " +
+           std::to_string(scene.strands.strandCount()) + " grown guides rigid (shorter than " + threshold +
+           " cm: they follow the head, not simulated)";
+}
+
 std::vector<std::string> describeLoadedHair(const GroomedHead& scene)
 {
     std::vector<std::string> out;
-    if (!scene.placement)
+    if (!scene.placement) {
+        if (std::string rigid = describeRigidStrands(scene); !rigid.empty())
+            out.push_back(rigid);
         return out;
+    }
     const RootFit& fit = scene.placement->fit;
     out.push_back("hair placement: " + scene.placement->describe() + "; roots: median " + percent(fit.median) +
                   " of the head's size from its surface, " + percent(fit.onSurface) + " within " +
@@ -221,6 +282,13 @@ std::vector<std::string> describeLoadedHair(const GroomedHead& scene)
                   std::to_string(scene.loaded.pinnedTips) + " pinned at both ends");
     out.insert(out.end(), scene.notes.begin(), scene.notes.end());
     return out;
+}
+
+nlohmann::json rigidStrandsJson(const GroomedHead& scene)
+{
+    return {{"count", scene.loaded.rigid},
+            {"of", scene.strands.strandCount()},
+            {"shorter_than", scene.loaded.shortThreshold}};
 }
 
 nlohmann::json loadedHairJson(const GroomedHead& scene)

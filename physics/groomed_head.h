@@ -19,7 +19,8 @@
 
 namespace wisp {
 
-// What loading a groom did with its strands (zero for grown hair).
+// What loading a groom did with its strands; of grown hair, only its rigid strands (shorter than
+// kRigidStrandMetres, physics/growth.h) and that threshold.
 struct LoadedStrands {
     size_t dropped = 0;          // of no length at all: nothing to draw or simulate
     size_t rigid = 0;            // shorter than shortThreshold: kept rigid (assets/hair_asset.h)
@@ -67,12 +68,15 @@ GroomedHead buildLoadedHead(const std::filesystem::path& headFile, const std::ve
 GroomedHead buildLoadedHead(Head head, const std::vector<HairPartSource>& parts, uint32_t verticesPerStrand,
                             const PlacementRequest& request = {});
 
-// What loading did, for a person, one line each (none for grown hair): "hair placement: fitted to
+// What loading did, for a person, one line each (grown hair: a line only when some of its guides
+// are rigid, "hair strands: 120 of 400 grown guides rigid (shorter than 4 cm: ...)"): "hair placement: fitted to
 // the scalp: scale 0.4, offset (...), y-up; roots: median 0.3% of the head's size from its
 // surface, 98.2% within 2%" and "hair strands: 12 kept rigid (shorter than 0.9 head units), ...".
 std::vector<std::string> describeLoadedHair(const GroomedHead& scene);
 // The same as JSON (null for grown hair).
 nlohmann::json loadedHairJson(const GroomedHead& scene);
+// The guides kept rigid and why, as JSON, grown or loaded: {"count", "shorter_than" (head units)}.
+nlohmann::json rigidStrandsJson(const GroomedHead& scene);
 
 // The default parameters of a loaded (styled) part: it keeps its shape more than grown hair.
 PartSettings styledPartDefaults();

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 
 namespace wisp {
@@ -73,8 +74,6 @@ float valueNoise(float x, uint32_t seed)
 
 // How far from the root a strand takes to come out of the colliders to its clearance.
 constexpr float kEmergeMetres = 0.02f;
-// Grown strands shorter than this are rigid (they would not sway visibly, and lie within the emergence).
-constexpr float kRigidStrandMetres = 0.04f;
 
 // The colliders' margin for a strand point `run` along from a root `rootDepth` inside them: as deep
 // as the root at the root (the colliders are fitted inside the scalp, so roots lie inside them),
@@ -376,12 +375,29 @@ void checkGrowth(const GrowthSettings& s)
     if (s.curlRadiusMetres > 0.0f) {
         float turns = s.curlTurns * (1.0f + 0.5f * s.curlRandomness);
         uint32_t needed = uint32_t(std::ceil(4.0f * turns)) + 1u;
-        if (needed > s.verticesPerStrand)
-            throw UserError("curl_turns " + std::to_string(int(std::round(s.curlTurns))) +
-                            " needs about 4 vertices a turn: " + "vertices_per_strand " +
-                            std::to_string(s.verticesPerStrand) + " holds " +
-                            std::to_string((s.verticesPerStrand - 1) / 4) + " turns (raise vertices_per_strand to " +
-                            std::to_string(std::min(needed, kMaxVerticesPerStrand)) + " or lower curl_turns)");
+        if (needed > s.verticesPerStrand) {
+            char given[64];
+            std::snprintf(given, sizeof(given), "curl_turns %g", double(s.curlTurns));
+            std::string randomness;
+            if (s.curlRandomness > 0.0f) {
+                char r[64];
+                std::snprintf(r, sizeof(r), " with curl_randomness %g", double(s.curlRandomness));
+                randomness = r;
+            }
+            std::string head = std::string(given) + randomness + " needs about " + std::to_string(needed) +
+                               " vertices a strand (4 a turn): ";
+            if (needed <= kMaxVerticesPerStrand)
+                throw UserError(head + "vertices_per_strand is " + std::to_string(s.verticesPerStrand) +
+                                " (raise vertices_per_strand to " + std::to_string(needed) + " or lower curl_turns)");
+            // Past what any strand holds: only fewer turns (or less randomness) can do.
+            float most = float(kMaxVerticesPerStrand - 1) / 4.0f / (1.0f + 0.5f * s.curlRandomness);
+            char advice[160];
+            std::snprintf(advice, sizeof(advice),
+                          "at most %u vertices a strand hold %.1f such turns (lower curl_turns%s)",
+                          kMaxVerticesPerStrand, double(std::floor(most * 10.0f) / 10.0f),
+                          s.curlRandomness > 0.0f ? " or curl_randomness" : "");
+            throw UserError(head + advice);
+        }
     }
     if (s.trimLevelMetres > 0.0f && s.trimLevelMetres < 0.02f)
         throw UserError("trim_level " + std::to_string(s.trimLevelMetres) +

@@ -150,6 +150,13 @@ float polylineLength(const std::vector<glm::vec3>& points);
 // can hold, a trim at the top of the head).
 void checkGrowth(const GrowthSettings& settings);
 
+// Grown strands shorter than this are rigid: they follow the head and are drawn, not simulated
+// (GroomedHead::loaded.rigid counts them, and the commands report it). It is the length a strand
+// takes to come out of the colliders (the emergence, growth.cpp): a shorter one lies all within
+// it. Longer ones simulate with their first segment pinned: the stability trials' "fur" (the crop
+// at 4 cm, tests/test_sim_stability.cpp) runs every physics setting's extremes with them.
+inline constexpr float kRigidStrandMetres = 0.02f;
+
 // Grows guides; `colliders` (head space) keep them off the head. The strand set also carries the
 // head's painted scalp (StrandSet::scalpPaint) from the same field.
 StrandSet growGuides(const Mesh& mesh, const ScalpRule& scalp, const std::vector<gpu::Ellipsoid>& colliders,

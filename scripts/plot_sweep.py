@@ -5,6 +5,7 @@ stacked. The passes are the CSV's (every X_ms_median column but the frame's), ea
 its own name, so a pass keeps its colour from one chart and one sweep to the next.
 Usage: plot_sweep.py results.csv OUT_DIR   (writes fps.png, frame.png and passes.png)"""
 import csv
+import os
 import sys
 import zlib
 
@@ -37,6 +38,29 @@ def pass_colours(passes):
     return colours
 
 
+def save(fig, path):
+    """The chart written whole or not at all: under a temporary name beside it, flushed to the disk,
+    then renamed over it. A full disk (or any failure to write) says so in wisp's one line, naming
+    the chart, removes the temporary file and exits 3, which `wisp sweep` reads as bad
+    environment."""
+    temp = f"{path}.partial-{os.getpid()}.png"
+    try:
+        with open(temp, "wb") as f:
+            fig.savefig(f, format="png", dpi=120, bbox_inches="tight")
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(temp, path)
+    except OSError as e:
+        try:
+            os.remove(temp)
+        except OSError:
+            pass
+        print(f"wisp: cannot write {path}: {e.strerror or e}", file=sys.stderr)
+        sys.exit(3)
+    finally:
+        plt.close(fig)
+
+
 def outside_legend(ax, entries):
     """The legend to the right of the axes, small, in two columns past 16 entries."""
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=6, ncol=2 if entries > 16 else 1,
@@ -65,8 +89,7 @@ def line_chart(rows, x_name, others, column, ylabel, title, path):
     ax.grid(True, alpha=0.3)
     if any(groups.keys()):
         outside_legend(ax, len(groups))
-    fig.savefig(path, dpi=120, bbox_inches="tight")
-    plt.close(fig)
+    save(fig, path)
 
 
 def main():
@@ -111,8 +134,7 @@ def main():
     handles, names = ax.get_legend_handles_labels()
     ax.legend(handles[::-1], names[::-1], loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=6,
               ncol=2 if len(passes) > 16 else 1, frameon=False, borderaxespad=0.0)
-    fig.savefig(f"{out}/passes.png", dpi=120, bbox_inches="tight")
-    plt.close(fig)
+    save(fig, f"{out}/passes.png")
 
 
 if __name__ == "__main__":

@@ -80,7 +80,7 @@ TEST(Cli, GroomRefusesBadOutputsAndWritesNothing)
     for (const Case& c : std::vector<Case>{
              {"--out " + quoted(dir / "g.obj"), "unknown groom format '.obj'"},
              {"--out " + quoted(dir / "missing" / "g.hair"), "does not exist"},
-             {"--out " + quoted(dir.path()), "unknown groom format"},
+             {"--out " + quoted(dir.path()), "is a folder"},
              {"--out " + quoted(dir / "g.hair") + " --frames 100001", "--frames"},
              {"--out " + quoted(dir / "g.hair") + " --frames -1", "--frames"},
              {"--guides 10", "--out"},

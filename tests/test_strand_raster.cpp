@@ -1102,23 +1102,28 @@ TEST(StrandRaster, StatsAreDescribedInOneLine)
 {
     // The line `wisp render` prints and the window's panel shows.
     RasterStats s{.segments = 1200, .hidden = 300, .fragments = 5000, .capacity = 8000, .overflow = 0, .maxPixel = 17};
-    EXPECT_EQ(describeRasterStats(s), "compute raster: 1200 segments on screen (300 behind the meshes), 5000 hair "
+    EXPECT_EQ(describeRasterStats(s), "compute raster: 1200 segments on screen (300 skipped whole: behind the meshes "
+                                      "in every 8 x 8 tile they cross), 5000 hair "
                                       "fragments (at most 17 in a pixel), buffer of 8000");
     s.capacity = 2000;
     s.pieces = 3;
-    EXPECT_EQ(describeRasterStats(s), "compute raster: 1200 segments on screen (300 behind the meshes), 5000 hair "
+    EXPECT_EQ(describeRasterStats(s), "compute raster: 1200 segments on screen (300 skipped whole: behind the meshes "
+                                      "in every 8 x 8 tile they cross), 5000 hair "
                                       "fragments (at most 17 in a pixel), buffer of 2000, drawn in 3 pieces");
     s.overflow = 1000;
-    EXPECT_EQ(describeRasterStats(s), "compute raster: 1200 segments on screen (300 behind the meshes), 5000 hair "
+    EXPECT_EQ(describeRasterStats(s), "compute raster: 1200 segments on screen (300 skipped whole: behind the meshes "
+                                      "in every 8 x 8 tile they cross), 5000 hair "
                                       "fragments (at most 17 in a pixel), buffer of 2000, drawn in 3 pieces, 1000 not "
                                       "drawn (more pieces are recorded for the next frame)");
     RasterStats reserved{.segments = 1200, .hidden = 300, .fragments = 5000, .capacity = 16000, .maxPixel = 17};
     reserved.reserved = true;
-    EXPECT_EQ(describeRasterStats(reserved), "compute raster: 1200 segments on screen (300 behind the meshes), 5000 "
+    EXPECT_EQ(describeRasterStats(reserved), "compute raster: 1200 segments on screen (300 skipped whole: behind the "
+                                             "meshes in every 8 x 8 tile they cross), 5000 "
                                              "hair fragments (at most 17 in a pixel), buffer of 16000, one walk");
     reserved.spilled = 40;
     EXPECT_EQ(describeRasterStats(reserved),
-              "compute raster: 1200 segments on screen (300 behind the meshes), 5000 hair fragments (at most 17 in a "
+              "compute raster: 1200 segments on screen (300 skipped whole: behind the meshes in every 8 x 8 tile they "
+              "cross), 5000 hair fragments (at most 17 in a "
               "pixel), buffer of 16000, 40 spilled from their reserved room");
 }
 

@@ -3,12 +3,17 @@
 
 #include <array>
 #include <atomic>
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
 #include <fstream>
 #include <new>
 #include <random>
+#include <sys/mount.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace {
 
@@ -129,6 +134,38 @@ TempDir::~TempDir()
 {
     std::error_code ec;
     std::filesystem::remove_all(path_, ec);
+}
+
+SmallDisk::SmallDisk(size_t bytes)
+{
+    std::string options = "size=" + std::to_string(bytes);
+    if (::mount("tmpfs", dir_.path().c_str(), "tmpfs", MS_NOSUID | MS_NODEV, options.c_str()) == 0)
+        mounted_ = true;
+    else
+        whyNot_ = std::string("mount: ") + std::strerror(errno);
+}
+
+SmallDisk::~SmallDisk()
+{
+    if (mounted_)
+        ::umount2(dir_.path().c_str(), MNT_DETACH);
+}
+
+size_t SmallDisk::fill() const
+{
+    int fd = ::open((dir_ / "filler").c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+    if (fd < 0)
+        return 0;
+    std::string block(512, 'x');
+    size_t held = 0;
+    for (;;) {
+        ssize_t n = ::write(fd, block.data(), block.size());
+        if (n <= 0)
+            break;
+        held += size_t(n);
+    }
+    ::close(fd);
+    return held;
 }
 
 void writeFile(const std::filesystem::path& path, const std::string& text)

@@ -33,6 +33,28 @@ private:
     std::filesystem::path path_;
 };
 
+// A small file system of its own (tmpfs, `bytes` large) mounted on a fresh folder, to be filled:
+// a real full disk. Mounting needs root (CAP_SYS_ADMIN); where it is refused, mounted() is false
+// and whyNot() says why (WISP_REQUIRE_SMALL_DISK skips with it). Unmounted when the object dies.
+class SmallDisk {
+public:
+    explicit SmallDisk(size_t bytes);
+    ~SmallDisk();
+    SmallDisk(const SmallDisk&) = delete;
+    SmallDisk& operator=(const SmallDisk&) = delete;
+    bool mounted() const { return mounted_; }
+    const std::string& whyNot() const { return whyNot_; }
+    const std::filesystem::path& path() const { return dir_.path(); }
+    std::filesystem::path operator/(const std::string& name) const { return dir_ / name; }
+    // Writes a file "filler" until the disk is full (a write fails); returns the bytes it holds.
+    size_t fill() const;
+
+private:
+    TempDir dir_;
+    bool mounted_ = false;
+    std::string whyNot_;
+};
+
 void writeFile(const std::filesystem::path& path, const std::string& text);
 // The whole file as bytes ("" when it cannot be read).
 std::string readFile(const std::filesystem::path& path);
@@ -54,3 +76,11 @@ size_t largestAllocation();
     GTEST_SKIP() << "../shared/data/" << (relative)                                                                    \
                  << " is absent: this test needs the shared "                                                          \
                     "third-party assets beside the checkout"
+
+// A SmallDisk named `var`, or the test skipped saying why it could not be mounted (not root): the
+// injected write failures (WISP_INJECT_WRITE_FAILURE) test the same paths everywhere.
+#define WISP_REQUIRE_SMALL_DISK(var, bytes)                                                                            \
+    ::wisp::test::SmallDisk var(bytes);                                                                                \
+    if (!var.mounted())                                                                                                \
+    GTEST_SKIP() << "cannot mount a " << (bytes) << "-byte tmpfs to fill (" << var.whyNot()                            \
+                 << "): the injected write failures cover the same paths"

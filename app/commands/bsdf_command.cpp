@@ -2,6 +2,7 @@
 // the directions' checks, and the three outputs (f, a model's S / |wi.z|, the comparison table).
 #include "app/commands/bsdf_command.h"
 
+#include "app/scene/session_options.h"
 #include "core/error.h"
 #include "shading/hair_models.h"
 
@@ -44,7 +45,7 @@ glm::vec3 direction(const std::vector<float>& v, const char* option)
 
 CLI::Validator range(Range r)
 {
-    return CLI::Range(r.min, r.max);
+    return within(r.min, r.max);
 }
 
 void applyAbsorption(BsdfOptions& o)

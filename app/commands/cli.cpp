@@ -10,10 +10,49 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <iostream>
+#include <regex>
+#include <string>
+#include <unistd.h>
 #include <vector>
 
 namespace wisp {
+
+namespace {
+
+// What a command printed (a JSON report, a table, the files it wrote) reaches its reader only if
+// standard output takes it: on a full disk or /dev/full the flush fails, and the run fails with it.
+int finishStandardOutput(int status)
+{
+    int why = 0;
+    if (std::fflush(stdout) != 0)
+        why = errno;
+    else if (std::ferror(stdout) || !std::cout) {
+        // An earlier write failed (the buffer filled and was flushed mid-print): the output is
+        // already short, and one more byte written straight to it says why.
+        why = ::write(STDOUT_FILENO, "\n", 1) < 0 ? errno : EIO;
+    } else {
+        return status;
+    }
+    std::fprintf(stderr, "wisp: cannot write the standard output: %s\n", std::strerror(why));
+    return status == 0 ? kExitUserError : status;
+}
+
+// CLI11's own words for what it refuses itself, in the project's form: an option given more often
+// than it takes ("--style: At Most 1 required but received 2") says so and how often.
+std::string parseErrorText(const std::string& text)
+{
+    static const std::regex atMost(R"((\S+): At Most 1 required but received (\d+))");
+    std::smatch m;
+    if (std::regex_match(text, m, atMost))
+        return m[1].str() + ": given " + m[2].str() + " times; it takes one value (give it once)";
+    return text + " (see 'wisp --help')";
+}
+
+} // namespace
 
 int runCli(int argc, char** argv)
 {
@@ -66,15 +105,19 @@ int runCli(int argc, char** argv)
         return app.exit(e);
     } catch (const CLI::CallForAllHelp& e) {
         return app.exit(e);
+    } catch (const CLI::ValidationError& e) {
+        // A value refused by the project's validators: "--spp: 0 is out of range: allowed 1 .. 1000000".
+        std::fprintf(stderr, "wisp: %s\n", e.what());
+        return kExitUserError;
     } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "wisp: %s (see 'wisp --help')\n", e.what());
+        std::fprintf(stderr, "wisp: %s\n", parseErrorText(e.what()).c_str());
         return kExitUserError;
     }
 
     try {
         for (const CommandRun& run : commands)
             if (int status = run(); status >= 0)
-                return status;
+                return finishStandardOutput(status);
     } catch (const UserError& e) {
         std::fprintf(stderr, "wisp: %s\n", e.what());
         return kExitUserError;

@@ -32,23 +32,6 @@ int validationStatus(const vk::Context& ctx)
     return kExitInternalError;
 }
 
-CLI::Validator within(double lo, double hi)
-{
-    std::ostringstream text;
-    text << "in [" << lo << " - " << hi << "]";
-    return CLI::Validator(
-        [lo, hi](std::string& input) {
-            double value = 0.0;
-            if (!CLI::detail::lexical_cast(input, value) || !(value >= lo && value <= hi)) {
-                std::ostringstream why;
-                why << "Value " << input << " not in range " << lo << " to " << hi;
-                return why.str();
-            }
-            return std::string();
-        },
-        text.str());
-}
-
 std::string useDeviceSamples(RenderSettings& render, const vk::DeviceReport& device)
 {
     uint32_t asked = std::max(render.samples, 1u);

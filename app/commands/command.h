@@ -29,10 +29,6 @@ using CommandRun = std::function<int()>;
 vk::ContextOptions contextOptions(const GlobalOptions& global);
 // With validation on, any message is a bug: the run fails (exit 1, the count on stderr).
 int validationStatus(const vk::Context& ctx);
-// A closed range for a floating-point option. CLI::Range lets "nan" through (every comparison with
-// NaN is false); this one asks for lo <= value <= hi, which NaN and the infinities fail.
-CLI::Validator within(double lo, double hi);
-
 // The head and the hair `options` describe, built once the workload is checked (counts that must
 // fit 32 bits, GPU memory against the device it will run on): before guides are grown, and for hair
 // files once they are loaded (only then is their strand count known). Nothing is allocated on the

@@ -34,6 +34,9 @@ struct GroomCommand {
 // The output's format and folder, before any work (messages as render's --out).
 HairFormat checkGroomOutput(const std::filesystem::path& path)
 {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw UserError("--out " + path.string() + ": is a folder; name the groom file in it (FILE.hair or FILE.tfx)");
     HairFormat format;
     try {
         format = hairFormatForOutput(path);
@@ -41,13 +44,10 @@ HairFormat checkGroomOutput(const std::filesystem::path& path)
         throw UserError(std::string("--out ") + e.what());
     }
     std::filesystem::path dir = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
-    std::error_code ec;
     if (!std::filesystem::is_directory(dir, ec))
         throw UserError("--out " + path.string() + ": folder '" + dir.string() + "' does not exist");
     if (access(dir.c_str(), W_OK) != 0)
         throw UserError("--out " + path.string() + ": folder '" + dir.string() + "' is not writable");
-    if (std::filesystem::is_directory(path, ec))
-        throw UserError("--out " + path.string() + ": is a directory");
     return format;
 }
 
@@ -70,6 +70,34 @@ GroomToWrite groomOf(const StrandSet& strands, const std::vector<glm::vec3>& pos
     return groom;
 }
 
+// cyHair has no pinning: read back, every strand pins its root vertex alone. One line on stderr
+// says what of the groom's pinning the file lost (nothing when every strand pins only its root).
+void noteCyHairLosses(const std::filesystem::path& out, HairFormat format, const StrandSet& strands)
+{
+    if (format != HairFormat::CyHair)
+        return;
+    size_t rootSegment = 0, rigid = 0, tips = 0;
+    for (const gpu::StrandInfo& s : strands.strands) {
+        rigid += s.pinnedRoot >= strands.verticesPerStrand ? 1 : 0;
+        rootSegment += s.pinnedRoot > 1 && s.pinnedRoot < strands.verticesPerStrand ? 1 : 0;
+        tips += s.pinnedTip != 0u ? 1 : 0;
+    }
+    if (rootSegment + rigid + tips == 0)
+        return;
+    std::string lost;
+    auto add = [&](size_t n, const std::string& what) {
+        if (n > 0)
+            lost += (lost.empty() ? "" : ", ") + std::to_string(n) + " " + what;
+    };
+    add(rootSegment, "strands pinned at their first segment");
+    add(rigid, "rigid strands");
+    add(tips, "pinned tips");
+    std::fprintf(stderr,
+                 "wisp: note: %s: cyHair carries no pinning (read back, every strand pins its root vertex alone): "
+                 "lost %s; .tfx keeps them\n",
+                 out.c_str(), lost.c_str());
+}
+
 int run(const GlobalOptions& g, const GroomCommand& c)
 {
     std::filesystem::path out = c.out;
@@ -82,6 +110,7 @@ int run(const GlobalOptions& g, const GroomCommand& c)
         if (scene.strands.strandCount() == 0)
             throw UserError("groom: the groom has no strands to write (every strand of its files has no length)");
         writeHairFile(out, groomOf(scene.strands, scene.strands.rest, scene.unitsPerMetre, format, 0));
+        noteCyHairLosses(out, format, scene.strands);
         std::printf("%s: %zu guides x %u vertices at rest, %s\n", out.c_str(), scene.strands.strandCount(),
                     scene.strands.verticesPerStrand,
                     format == HairFormat::CyHair ? "cyHair (z-up)" : "TressFX 4 (y-up)");
@@ -103,6 +132,7 @@ int run(const GlobalOptions& g, const GroomCommand& c)
     for (const glm::vec4& p : r.state.positions)
         positions.push_back(glm::vec3(toHead * glm::vec4(glm::vec3(p), 1.0f)));
     writeHairFile(out, groomOf(strands, positions, hair.scene().unitsPerMetre, format, c.frames));
+    noteCyHairLosses(out, format, strands);
     std::printf("%s: %zu guides x %u vertices after %u frames (%u steps), %s\n", out.c_str(), strands.strandCount(),
                 strands.verticesPerStrand, c.frames, steps,
                 format == HairFormat::CyHair ? "cyHair (z-up)" : "TressFX 4 (y-up)");
@@ -123,7 +153,7 @@ CommandRun addGroomCommand(CLI::App& app, const GlobalOptions& global)
         ->required();
     cmd->add_option("--frames", c->frames,
                     "simulated frames before writing (each 1/fps seconds of fixed steps; 0: the rest pose, no GPU)")
-        ->check(CLI::Range(0u, 100000u))
+        ->check(wholeWithin(0, 100000))
         ->capture_default_str();
     cmd->add_option("--fps", c->fps, "simulated frames per second")->check(within(1.0, 1000.0))->capture_default_str();
     c->shared = std::make_unique<SessionCommandLine>(

@@ -139,7 +139,7 @@ std::function<int()> addInspectCommand(CLI::App& app)
                     "head description (.json) or mesh to place the groom on (default with --hair: models/head.json)");
     cmd->add_option("--vertices", o->verticesPerStrand,
                     "vertices per strand after resampling (what short strands are measured against)")
-        ->check(CLI::Range(kMinVerticesPerStrand, kMaxVerticesPerStrand))
+        ->check(wholeWithin(kMinVerticesPerStrand, kMaxVerticesPerStrand))
         ->capture_default_str();
     auto placement = std::make_shared<PlacementOptions>(cmd); // as render places a groom
     return [o, cmd, placement]() -> int {

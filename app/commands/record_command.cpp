@@ -56,7 +56,7 @@ CommandRun addRecordCommand(CLI::App& app, const GlobalOptions& global)
     cmd->add_option("--video", c->video, "also encode the frames into this video file (H.264 through ffmpeg)");
     c->frames = cmd->add_option("--frames", c->options.frames,
                                 "frames to record (with --scene, by default as many as the scene lasts)")
-                    ->check(CLI::Range(1u, 1000000u))
+                    ->check(wholeWithin(1, 1000000))
                     ->capture_default_str();
     cmd->add_option("--fps", c->options.fps,
                     "frames per simulated second (each frame is round(step_hz / fps) fixed steps)")

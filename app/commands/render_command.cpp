@@ -68,12 +68,8 @@ int runReference(const GlobalOptions& g, SessionOptions& o, const RenderCommand&
     ReferenceRender reference;
     try {
         HairSession session(ctx, std::move(scene), o.settings.sim, o.timeline, o.source);
-        auto start = std::chrono::steady_clock::now();
-        reference = renderReference(
-            ctx, session, settings, c.frames, c.fps, c.referenceOptions, [start](uint32_t done, uint32_t total) {
-                referenceProgress(done, total,
-                                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-            });
+        // The bar's time is the tracing's, as the summary's is.
+        reference = renderReference(ctx, session, settings, c.frames, c.fps, c.referenceOptions, referenceProgress);
     } catch (const vk::DeviceLost& e) {
         throw vk::DeviceLost(e.what() + std::string("; ") + c.outFile + " was not written");
     }
@@ -195,30 +191,31 @@ CommandRun addRenderCommand(CLI::App& app, const GlobalOptions& global)
            "--profile", c->profileFrames,
            "time this many frames (physics and every pass, after --warmup frames) and print per-pass GPU ms as "
            "JSON, instead of writing a picture")
-        ->check(CLI::Range(1u, 100000u));
+        ->check(wholeWithin(1, 100000));
     cmd->add_option("--warmup", c->profileWarmup, "frames before timing with --profile")
-        ->check(CLI::Range(0u, 100000u))
+        ->check(wholeWithin(0, 100000))
         ->capture_default_str();
     cmd->add_flag("--still", c->still,
                   "with --profile: the timed frames take no simulation steps (the hair holds where the "
                   "warm-up left it); against a profile without it, what the physics costs a frame");
     cmd->add_option("--frames", c->frames, "simulated frames before the picture (each 1/fps seconds of fixed steps)")
-        ->check(CLI::Range(0u, 100000u))
+        ->check(wholeWithin(0, 100000))
         ->capture_default_str();
     cmd->add_option("--fps", c->fps, "simulated frames per second")->check(within(1.0, 1000.0))->capture_default_str();
     cmd->add_flag("--reference", c->reference,
                   "path-trace the frame instead (the same scene, camera, lights and look; the exact fibre BSDF of "
                   "Chiang et al. 2016): the reference a real-time picture is compared with");
     c->spp = cmd->add_option("--spp", c->referenceOptions.samples, "with --reference: samples per pixel")
-                 ->check(CLI::Range(1u, 1000000u))
+                 ->check(wholeWithin(1, 1000000))
                  ->capture_default_str();
     c->seed = cmd->add_option("--sample-seed", c->referenceOptions.seed,
                               "with --reference: the random sequence (the same seed, the same picture)")
+                  ->check(wholeWithin(0, 4294967295.0))
                   ->capture_default_str();
     c->bounces = cmd->add_option("--bounces", c->referenceOptions.maxBounces,
                                  "with --reference: the most scattering events of a path (Russian roulette ends "
                                  "most paths sooner)")
-                     ->check(CLI::Range(1u, 1000u))
+                     ->check(wholeWithin(1, 1000))
                      ->capture_default_str();
     c->shared = std::make_unique<SessionCommandLine>(cmd, SessionCommandLine::Uses{});
     return [c, &global] { return c->command->parsed() ? run(global, *c) : -1; };

@@ -38,17 +38,17 @@ CommandRun addSimulateCommand(CLI::App& app, const GlobalOptions& global)
     c->command = cmd;
     SimulateOptions& o = c->options;
     cmd->add_option("--steps", o.steps, "fixed simulation steps to run")
-        ->check(CLI::Range(1u, 10000000u))
+        ->check(wholeWithin(1, 10000000))
         ->capture_default_str();
     cmd->add_flag("--json", o.json, "print one JSON object");
     cmd->add_option("--sample-every", o.sampleEvery,
                     "steps between samples of the kinetic energy (each reads the state back)")
-        ->check(CLI::Range(1u, 10000000u))
+        ->check(wholeWithin(1, 10000000))
         ->capture_default_str();
     cmd->add_flag("--profile", o.profile,
                   "time each kernel: --warmup steps, then --steps steps each timed on its own (median and p95)");
     cmd->add_option("--warmup", o.warmup, "steps before timing with --profile")
-        ->check(CLI::Range(0u, 100000u))
+        ->check(wholeWithin(0, 100000))
         ->capture_default_str();
     c->shared = std::make_unique<SessionCommandLine>(
         cmd, SessionCommandLine::Uses{.scene = true, .noHair = false, .draws = false});

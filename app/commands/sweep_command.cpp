@@ -5,6 +5,8 @@
 
 #include "app/session/sweep.h"
 #include "app/settings/workload.h"
+#include "core/error.h"
+#include "physics/growth.h"
 
 #include <CLI/CLI.hpp>
 
@@ -22,30 +24,39 @@ struct SweepCommand {
     SweepOptions options;
 };
 
-// Every point of a sweep's grid of grown hair, checked before the first one runs.
+// Every point of a sweep's grid, checked before the first one runs: the growth's contradictions
+// (curl_turns against vertices_per_strand, ...) and, of grown hair, the device's memory. A failure
+// names the point.
 void checkSweepGrid(const vk::DeviceReport& device, const std::vector<SweepAxis>& axes, const SessionOptions& base)
 {
-    if (!base.source.hairFiles.empty())
-        return; // loaded per point; the solver checks its own memory
-    std::vector<size_t> at(axes.size(), 0);
-    for (size_t axis = 0; axis < axes.size();) {
+    size_t points = 1;
+    for (const SweepAxis& a : axes)
+        points *= a.values.size();
+    for (size_t index = 0; index < points; ++index) {
+        std::vector<std::string> values;
+        std::string named;
+        size_t rest = index;
+        for (const SweepAxis& a : axes) {
+            values.push_back(a.values[rest % a.values.size()]);
+            rest /= a.values.size();
+            named += (named.empty() ? "" : ", ") + a.name + "=" + values.back();
+        }
         Settings s = base.settings;
-        for (size_t a = 0; a < axes.size(); ++a)
-            applySetting(s, axes[a].name + "=" + axes[a].values[at[a]]);
-        checkWorkload({.guides = s.growth.guides,
-                       .verticesPerStrand = s.growth.verticesPerStrand,
-                       .sim = s.sim,
-                       .render = &s.render},
-                      device);
-        for (axis = 0; axis < axes.size() && ++at[axis] == axes[axis].values.size(); ++axis)
-            at[axis] = 0; // the next point, odometer-wise
+        try {
+            applyPointSettings(s, base, axes, values);
+            if (!base.source.hairFiles.empty())
+                continue; // loaded per point; the solver checks its own memory
+            checkGrowth(s.growth);
+            checkWorkload({.guides = s.growth.guides,
+                           .verticesPerStrand = s.growth.verticesPerStrand,
+                           .sim = s.sim,
+                           .render = &s.render},
+                          device);
+        } catch (const UserError& e) {
+            throw UserError("sweep: point " + std::to_string(index + 1) + "/" + std::to_string(points) + " (" + named +
+                            "), before any point ran: " + e.what());
+        }
     }
-    if (axes.empty())
-        checkWorkload({.guides = base.settings.growth.guides,
-                       .verticesPerStrand = base.settings.growth.verticesPerStrand,
-                       .sim = base.settings.sim,
-                       .render = &base.settings.render},
-                      device);
 }
 
 int run(const GlobalOptions& g, SweepCommand& c)
@@ -70,10 +81,10 @@ CommandRun addSweepCommand(CLI::App& app, const GlobalOptions& global)
     cmd->add_option("--vary", c->varies, "NAME=V1,V2,... for a setting from 'wisp settings'; several make a grid")
         ->required();
     cmd->add_option("--warmup", c->options.warmup, "frames before timing each point")
-        ->check(CLI::Range(0u, 100000u))
+        ->check(wholeWithin(0, 100000))
         ->capture_default_str();
     cmd->add_option("--frames", c->options.frames, "frames timed at each point (median and p95)")
-        ->check(CLI::Range(1u, 100000u))
+        ->check(wholeWithin(1, 100000))
         ->capture_default_str();
     c->shared = std::make_unique<SessionCommandLine>(
         cmd, SessionCommandLine::Uses{.scene = false, .noHair = false, .draws = true});

@@ -52,7 +52,7 @@ CommandRun addViewCommand(CLI::App& app, const GlobalOptions& global)
     c->shared = std::make_unique<SessionCommandLine>(cmd, SessionCommandLine::Uses{});
     WindowOptions& o = c->options;
     cmd->add_option("--frames", o.maxFrames, "close after this many frames (0 = run until closed)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(wholeWithin(0, 4294967295.0));
     cmd->add_option("--screenshot", o.screenshot, "write the last frame to this PNG when closing");
     cmd->add_flag("--screenshot-panel", o.screenshotPanel, "the --screenshot includes the ImGui panel");
     cmd->add_option(

@@ -1,4 +1,5 @@
-// app/image/image_io.cpp: PNG writing through Debian's stb_image_write, made atomic by core/atomic_file.h,
+// app/image/image_io.cpp: PNG writing through Debian's stb_image_write (encoded in memory), written
+// atomically and checked by core/atomic_file.h,
 // and PNG reading through its stb_image.
 #include "app/image/image_io.h"
 
@@ -15,6 +16,7 @@
 #include <iterator>
 #include <limits>
 #include <memory>
+#include <string>
 
 namespace wisp {
 
@@ -51,10 +53,16 @@ void writePng(const std::filesystem::path& path, uint32_t width, uint32_t height
 {
     checkPngOutput(path);
     int stride = static_cast<int>(width * 4);
-    writeAtomically(path, [&](const std::filesystem::path& temp) {
-        return stbi_write_png(temp.c_str(), static_cast<int>(width), static_cast<int>(height), 4, rgba.data(),
-                              stride) != 0;
-    });
+    // Encoded in memory, then written by core/atomic_file.h's checked writes: stbi_write_png's own
+    // file writing ignores fwrite's and fclose's results, so a full disk would pass unnoticed.
+    std::string bytes;
+    auto append = [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
+    };
+    if (stbi_write_png_to_func(append, &bytes, static_cast<int>(width), static_cast<int>(height), 4, rgba.data(),
+                               stride) == 0)
+        throw UserError("cannot write " + path.string() + ": the PNG could not be encoded");
+    writeFileAtomically(path, bytes);
 }
 
 PngImage readPng(const std::filesystem::path& path, const std::string& what)

@@ -2,13 +2,45 @@
 // table, the hair's source, --scene, --set) and their resolution, scene first.
 #include "app/scene/session_options.h"
 
+#include "app/settings/value_text.h"
 #include "core/error.h"
 
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cmath>
 
 namespace wisp {
+
+namespace {
+
+CLI::Validator numberWithin(double lo, double hi, bool whole)
+{
+    return CLI::Validator(
+        [lo, hi, whole](std::string& input) {
+            try {
+                double v = parseNumber(input, Range{lo, hi}, "", "-");
+                if (whole && v != std::floor(v))
+                    return input + " is not a whole number";
+            } catch (const UserError& e) {
+                return std::string(e.what()).substr(3); // past parseNumber's "-: "
+            }
+            return std::string();
+        },
+        (whole ? "INT in " : "in ") + rangeText(Range{lo, hi}, ""));
+}
+
+} // namespace
+
+CLI::Validator within(double lo, double hi)
+{
+    return numberWithin(lo, hi, false);
+}
+
+CLI::Validator wholeWithin(double lo, double hi)
+{
+    return numberWithin(lo, hi, true);
+}
 
 namespace {
 
@@ -91,7 +123,7 @@ SessionCommandLine::SessionCommandLine(CLI::App* cmd, Uses uses) : command_(cmd)
     if (uses.noHair)
         cmd->add_flag("--no-hair", noHair_, "the head alone");
     if (uses.draws) {
-        auto size = CLI::Range(uint32_t(kImageSizeRange.min), uint32_t(kImageSizeRange.max));
+        auto size = wholeWithin(kImageSizeRange.min, kImageSizeRange.max);
         cmd->add_option("--width", width_, "image width in pixels")->check(size)->capture_default_str();
         cmd->add_option("--height", height_, "image height in pixels")->check(size)->capture_default_str();
     }
@@ -142,30 +174,41 @@ SessionOptions SessionCommandLine::resolve() const
         o.settings.render.height = height_;
     }
 
-    // The settings: their options, then --set.
+    // The settings: a style first, however it is given (--style, --set hair_style=), since it sets
+    // every growth parameter; then the other options, then the other --set values: whatever is given
+    // explicitly wins over the style (--set hair_style=afro --guides 60 grows 60 guides).
     std::vector<std::string> explicitSettings;
-    for (const SettingSpec& spec : settingSpecs()) {
-        if (spec.option.empty() || !given(spec.option))
-            continue;
-        SettingValue v = spec.type == SettingType::OnOff
-                             ? SettingValue{.number = settingFlags_.at(spec.option) ? 1.0 : 0.0}
-                             : parseSetting(spec, settingOptions_.at(spec.option), spec.option);
-        setSetting(o.settings, spec, v, spec.option);
-        explicitSettings.push_back(spec.name);
-    }
-    // A style sets every growth parameter: it goes first, so that --set curl=... after it (or before) refines it.
     std::vector<std::string> sets = sets_;
     std::stable_partition(sets.begin(), sets.end(),
                           [](const std::string& a) { return a.substr(0, a.find('=')) == "hair_style"; });
-    for (const std::string& assignment : sets) {
+    auto applySet = [&](const std::string& assignment) {
         std::string name = assignment.substr(0, assignment.find('='));
         if (const SettingSpec* spec = findSetting(name); spec && !uses_.draws && drawsOnly(spec->group))
             throw UserError("--set " + name + ": this command does not use it (it draws nothing)");
         applySetting(o.settings, assignment);
         explicitSettings.push_back(name);
-    }
+    };
+    auto applyOptions = [&](bool styles) {
+        for (const SettingSpec& spec : settingSpecs()) {
+            if (spec.option.empty() || !given(spec.option) || (spec.name == "hair_style") != styles)
+                continue;
+            SettingValue v = spec.type == SettingType::OnOff
+                                 ? SettingValue{.number = settingFlags_.at(spec.option) ? 1.0 : 0.0}
+                                 : parseSetting(spec, settingOptions_.at(spec.option), spec.option);
+            setSetting(o.settings, spec, v, spec.option);
+            explicitSettings.push_back(spec.name);
+        }
+    };
+    applyOptions(true);
+    size_t styleSets = 0;
+    for (; styleSets < sets.size() && sets[styleSets].substr(0, sets[styleSets].find('=')) == "hair_style"; ++styleSets)
+        applySet(sets[styleSets]);
+    applyOptions(false);
+    for (size_t i = styleSets; i < sets.size(); ++i)
+        applySet(sets[i]);
 
     o.givenSettings = explicitSettings;
+    o.commandLineSettings = explicitSettings;
     if (o.scene)
         for (const auto& [name, value] : o.scene->settings)
             o.givenSettings.push_back(name);

@@ -18,9 +18,19 @@
 
 namespace CLI {
 class App;
-}
+class Validator;
+} // namespace CLI
 
 namespace wisp {
+
+// A closed range for a floating-point option. CLI::Range lets "nan" through (every comparison with
+// NaN is false); this one asks for lo <= value <= hi, which NaN and the infinities fail. Refusals
+// read as the settings table's ("--fps: 0 is out of range: allowed 1 .. 1000", "'x' is not a
+// number"), checked before CLI11 converts the text, so its own words never show.
+CLI::Validator within(double lo, double hi);
+// The same for a whole-number option (a value past the type's range, -1 for an unsigned one, is
+// out of range, not "could not convert").
+CLI::Validator wholeWithin(double lo, double hi);
 
 // What a command runs with, once resolved.
 struct SessionOptions {
@@ -34,6 +44,9 @@ struct SessionOptions {
     SceneTimeline timeline;
     // The settings the command line or the scene gave a value (the rest are the defaults).
     std::vector<std::string> givenSettings;
+    // Those the command line gave (its options and --set), in the order applied: a sweep's style
+    // axis applies its style under them, as --style does.
+    std::vector<std::string> commandLineSettings;
     bool settingGiven(const std::string& name) const
     {
         return std::find(givenSettings.begin(), givenSettings.end(), name) != givenSettings.end();

@@ -71,7 +71,7 @@ ReferenceFrame prepareReference(const vk::Context& ctx, HairSession& session, Re
 
 ReferenceRender renderReference(const vk::Context& ctx, HairSession& session, RenderSettings settings, uint32_t frames,
                                 float fps, const ReferenceOptions& options,
-                                const std::function<void(uint32_t, uint32_t)>& progress)
+                                const std::function<void(uint32_t, uint32_t, double)>& progress)
 {
     ReferenceFrame f = prepareReference(ctx, session, settings, frames, fps, options);
     ReferenceRender out;
@@ -80,7 +80,10 @@ ReferenceRender renderReference(const vk::Context& ctx, HairSession& session, Re
     out.nodes = f.scene.bvh.nodes.size();
     ReferenceTracer tracer(ctx, f.scene, f.params);
     auto start = std::chrono::steady_clock::now();
-    tracer.render(options.samples, options.perPass, progress);
+    tracer.render(options.samples, options.perPass, [&](uint32_t done, uint32_t total) {
+        if (progress)
+            progress(done, total, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    });
     std::vector<glm::vec4> sums = tracer.sums();
     out.rays = tracer.raysCast();
     out.traceSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -40,10 +40,11 @@ ReferenceFrame prepareReference(const vk::Context& ctx, HairSession& session, Re
                                 float fps, const ReferenceOptions& options);
 
 // Renders the reference of the frame renderPicture(ctx, session, settings, frames, fps) draws;
-// `progress(done, total)` after each pass of samples.
+// `progress(done, total, seconds)` after each pass of samples, `seconds` since the tracing began (the
+// time describeReference reports, the simulation and the scene's building before it not counted).
 ReferenceRender renderReference(const vk::Context& ctx, HairSession& session, RenderSettings settings, uint32_t frames,
                                 float fps, const ReferenceOptions& options,
-                                const std::function<void(uint32_t, uint32_t)>& progress = {});
+                                const std::function<void(uint32_t, uint32_t, double)>& progress = {});
 
 // "reference: 64 samples per pixel at WxH in 3.2 s (... samples/s, ... rays/s); ... segments, ...", noise
 std::string describeReference(const ReferenceRender& r, const ReferenceOptions& options);

@@ -294,6 +294,7 @@ int runSimulate(const vk::Context& ctx, HairSession& session, const SimulateOpti
                           {"colliders", scene.colliders.size()},
                           {"colliders_fitted", scene.collidersFitted},
                           {"loaded_hair", loadedHairJson(scene)},
+                          {"rigid_strands", rigidStrandsJson(scene)},
                           {"device", ctx.report().name},
                           {"settings", settingsJson(o.settings)}};
     if (o.json) {

@@ -121,7 +121,8 @@ struct SweepPoint {
     RasterStats raster;
     HairRaster drawn = HairRaster::Graphics; // hair_raster as resolved for the device (auto: compute)
     uint32_t samples = 1;                    // the samples drawn (the device's, of those asked)
-    uint64_t strands = 0;
+    uint64_t guides = 0;                     // the guides simulated (grown or loaded)
+    uint64_t strands = 0;                    // the strands drawn from them
     uint64_t segments = 0;
     uint32_t width = 0;
     uint32_t height = 0;
@@ -148,7 +149,7 @@ std::string resultsCsv(const vk::Context& ctx, const std::vector<SweepAxis>& axe
         csv << a.name << ",";
     for (const std::string& p : passes)
         csv << p << "_ms_median," << p << "_ms_p95,";
-    csv << "fps,strands,segments,oit_fragments,oit_overflow,raster_segments,raster_fragments,raster_overflow,"
+    csv << "fps,guides,strands,segments,oit_fragments,oit_overflow,raster_segments,raster_fragments,raster_overflow,"
            "hair_raster_drawn,samples_drawn,width,height,device,driver\n";
     for (const SweepPoint& point : points) {
         for (const std::string& v : point.values)
@@ -162,9 +163,9 @@ std::string resultsCsv(const vk::Context& ctx, const std::vector<SweepAxis>& axe
             if (p == "frame" && ran)
                 frameMs = t->medianMs;
         }
-        csv << (frameMs > 0.0 ? 1000.0 / frameMs : 0.0) << "," << point.strands << "," << point.segments << ","
-            << point.oit.fragments << "," << point.oit.overflow << "," << point.raster.segments << ","
-            << point.raster.fragments << "," << point.raster.overflow << ","
+        csv << (frameMs > 0.0 ? 1000.0 / frameMs : 0.0) << "," << point.guides << "," << point.strands << ","
+            << point.segments << "," << point.oit.fragments << "," << point.oit.overflow << "," << point.raster.segments
+            << "," << point.raster.fragments << "," << point.raster.overflow << ","
             << (point.drawn == HairRaster::Compute ? "compute" : "graphics") << "," << point.samples << ","
             << point.width << "," << point.height << ",\"" << ctx.report().name << "\",\"" << ctx.report().driverInfo
             << "\"\n";
@@ -173,6 +174,29 @@ std::string resultsCsv(const vk::Context& ctx, const std::vector<SweepAxis>& axe
 }
 
 } // namespace
+
+void applyPointSettings(Settings& settings, const SessionOptions& base, const std::vector<SweepAxis>& axes,
+                        const std::vector<std::string>& values)
+{
+    auto varied = [&](const std::string& name) {
+        return std::any_of(axes.begin(), axes.end(), [&](const SweepAxis& a) { return a.name == name; });
+    };
+    // A style sets every growth parameter: it goes first, then the command line's own values come
+    // back over it (--guides 60 --vary hair_style=bob,afro grows 60 guides at both points), then
+    // the other axes.
+    for (size_t i = 0; i < axes.size(); ++i)
+        if (axes[i].name == "hair_style") {
+            applySetting(settings, axes[i].name + "=" + values[i]);
+            for (const std::string& name : base.commandLineSettings)
+                if (name != "hair_style" && !varied(name)) {
+                    const SettingSpec& spec = settingSpec(name);
+                    spec.put(settings, spec.get(base.settings));
+                }
+        }
+    for (size_t i = 0; i < axes.size(); ++i)
+        if (axes[i].name != "hair_style")
+            applySetting(settings, axes[i].name + "=" + values[i]);
+}
 
 int runSweep(const vk::Context& ctx, const SweepOptions& o, const SessionOptions& base)
 {
@@ -191,8 +215,8 @@ int runSweep(const vk::Context& ctx, const SweepOptions& o, const SessionOptions
         for (const SweepAxis& a : o.axes) {
             point.values.push_back(a.values[rest % a.values.size()]);
             rest /= a.values.size();
-            applySetting(settings, a.name + "=" + point.values.back());
         }
+        applyPointSettings(settings, base, o.axes, point.values);
         std::fprintf(stderr, "sweep: point %zu/%zu:", index + 1, points);
         for (size_t i = 0; i < o.axes.size(); ++i)
             std::fprintf(stderr, " %s=%s", o.axes[i].name.c_str(), point.values[i].c_str());
@@ -205,7 +229,8 @@ int runSweep(const vk::Context& ctx, const SweepOptions& o, const SessionOptions
                             stillTimeline(base.source.sphere, settings.sim.wind, render.light), base.source);
         point.timings = profileFrames(ctx, session, render, 30.0f, o.warmup, o.frames, &point.oit, &point.raster);
         point.drawn = resolveHairRaster(render.hairRaster, ctx.report().type);
-        HairDrawCounts counts = hairDrawCounts(uint32_t(session.scene().strands.strandCount()), render.strands);
+        point.guides = session.scene().strands.strandCount();
+        HairDrawCounts counts = hairDrawCounts(uint32_t(point.guides), render.strands);
         point.strands = counts.strands();
         point.segments = counts.segments();
         point.width = render.width;
@@ -229,6 +254,8 @@ int runSweep(const vk::Context& ctx, const SweepOptions& o, const SessionOptions
     std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
     std::string command = python + " '" + plot.string() + "' '" + csvPath.string() + "' '" + o.outDir.string() + "'";
     int status = std::system(command.c_str());
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 3)
+        return kExitUserError; // a chart could not be written: the script has said which, in one line
     if (status != 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
         throw UserError("sweep: the results are in " + csvPath.string() +
                         " but the charts failed (python3 with python3-matplotlib runs scripts/plot_sweep.py)");

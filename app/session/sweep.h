@@ -33,6 +33,12 @@ struct SweepOptions {
     uint32_t frames = 300;
 };
 
+// The settings of one point of the grid (`values` one per axis) over `base`'s: a style axis first,
+// under the command line's own values (an explicit --guides wins over it, as over --style), then
+// the other axes.
+void applyPointSettings(Settings& settings, const SessionOptions& base, const std::vector<SweepAxis>& axes,
+                        const std::vector<std::string>& values);
+
 // Runs every point of the grid; `base` holds the head, the hair and the settings every point
 // starts from.
 int runSweep(const vk::Context& ctx, const SweepOptions& options, const SessionOptions& base);

@@ -301,7 +301,9 @@ std::vector<SettingSpec> buildSpecs()
         number("curl", "m", {0.0, 0.1}, kRestart, "--curl", "curl (helix) radius of grown strands (0: straight)"),
         [](Settings & x) -> auto& { return x.growth.curlRadiusMetres; });
     grown(
-        number("curl_turns", "", {0.0, 20.0}, kRestart, "", "helix turns along a strand of the mean length"),
+        number("curl_turns", "", {0.0, 15.0}, kRestart, "",
+               "helix turns along a strand of the mean length (4 vertices a turn, more with curl_randomness: 15 "
+               "fill the most, 64, without it)"),
         [](Settings & x) -> auto& { return x.growth.curlTurns; });
     grown(
         number("curl_randomness", "", fraction, kRestart, "", "per-strand spread of the curl's radius and frequency"),
@@ -794,7 +796,20 @@ SettingValue parseSetting(const SettingSpec& spec, std::string_view text, const 
     switch (spec.type) {
     case SettingType::Number:
     case SettingType::Integer:
-        v.number = readNumber(text, where);
+        if (spec.optional()) {
+            // Not only a number: the message says what else it takes ("part": each part's own value).
+            try {
+                v.number = readNumber(text, where);
+            } catch (const UserError& e) {
+                std::string also =
+                    spec.unsetText == "part"
+                        ? ", one part's value by --part PART:" + spec.name.substr(0, spec.name.find('_')) + "=VALUE"
+                        : std::string();
+                throw UserError(e.what() + std::string(" (a number, or '") + spec.unsetText + "'" + also + ")");
+            }
+        } else {
+            v.number = readNumber(text, where);
+        }
         break;
     case SettingType::OnOff:
         if (text == "on" || text == "true" || text == "1")

@@ -71,9 +71,10 @@ constexpr VkBufferUsageFlags kIndirect = VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
 std::string describeRasterStats(const RasterStats& s)
 {
     std::string text = "compute raster: " + std::to_string(s.segments) + " segments on screen (" +
-                       std::to_string(s.hidden) + " behind the meshes), " + std::to_string(s.fragments) +
-                       " hair fragments (at most " + std::to_string(s.maxPixel) + " in a pixel), buffer of " +
-                       std::to_string(s.capacity);
+                       std::to_string(s.hidden) + " skipped whole: behind the meshes in every " +
+                       std::to_string(gpu::kRasterDepthTile) + " x " + std::to_string(gpu::kRasterDepthTile) +
+                       " tile they cross), " + std::to_string(s.fragments) + " hair fragments (at most " +
+                       std::to_string(s.maxPixel) + " in a pixel), buffer of " + std::to_string(s.capacity);
     if (s.pieces > 1)
         text += ", drawn in " + std::to_string(s.pieces) + " pieces";
     if (s.oneWalk())
