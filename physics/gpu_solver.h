@@ -64,11 +64,9 @@ public:
 
     const SimSetup& setup() const { return setup_; }
     const vk::Buffer& positions() const { return positions_; }
-    const vk::Buffer& tangents() const { return tangents_; }
     const vk::Buffer& params() const { return params_; } // the SimParams uniform block (colliders)
     // For passes that read the simulation's output in the same frame.
     TrackedBuffer& positionsTrack() { return positionsTrack_; }
-    TrackedBuffer& tangentsTrack() { return tangentsTrack_; }
     uint32_t vertexCount() const { return vertexCount_; }
     uint64_t deviceBytes() const { return deviceBytes_; }
     // True when the grid sums in 64-bit fixed point (deterministic), false for float atomics.

@@ -37,10 +37,11 @@ std::array<HairStyle, 6> makeStyles()
     wavy.frizzMetres = 0.003f;
     wavy.localStiffness = 0.2f;
 
-    // Brushed up and back from a short front: lifted more and combed back harder than it was
-    // (22 degrees, fall_back 1.2), shorter at the hairline over a wider band (0.35 of the length
-    // over 1.2 cm) and lying closer (volume 4 mm), its front read as a cap's rim from the front (a
-    // smooth dark band along the forehead); now as short tufts.
+    // Brushed up and back from a short front: lifted (26 degrees) and combed back hard (fall_back
+    // 1.6), short at the hairline over a wide band (a fifth of the length over 2 cm) and lying close
+    // (volume 2 mm), so that its front reads from the front as short tufts. Lifted less, combed back
+    // less or longer at the hairline (22 degrees, fall_back 1.2, 0.35 of the length over 1.2 cm),
+    // the front reads as a cap's rim: a smooth dark band along the forehead.
     GrowthSettings crop;
     crop.parting = Parting::None;
     crop.fallBack = 1.6f;

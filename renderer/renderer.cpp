@@ -280,7 +280,7 @@ void Renderer::makeStrandRaster()
 
 HairRaster Renderer::hairRaster() const
 {
-    return resolveHairRaster(settings_.hairRaster, ctx_.report().type);
+    return resolveHairRaster(settings_.hairRaster);
 }
 
 bool Renderer::computeMeshes() const
@@ -424,7 +424,7 @@ void Renderer::placeStepsAhead(std::vector<Pass*>& list)
     // its gather in front of the pass after that one; kernels without a host run at the end, one
     // after another. (Measured on the H100: the light's opacity and the count hide an integrate
     // whole, the generate half, the resolve none of it, so a fourth step costs there what it cost
-    // first: docs/drawing.md.)
+    // first: docs/experiments.md, "The physics beside the frame's passes".)
     struct Kernel {
         GpuSolver::Stage stage;
         gpu::SimStep step;

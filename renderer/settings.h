@@ -41,7 +41,8 @@ inline constexpr LightSettings kDefaultRim{
 
 enum class Interpolation { Single, Multi, Mixed };
 
-// How the simulated guides become drawn strands (renderer/graphics/hair_pass.cpp, shaders/hair.*).
+// How the simulated guides become drawn strands, on both paths (shaders/shared/strands.h: the compute
+// path's strands.generate, the tessellation path's hair.tese).
 struct StrandSettings {
     // Strands drawn per guide (the guide is one of them): the default's 2,200 guides x 46 draw 101,200,
     // a full head (more drawn strands cost the raster alone; more guides would cost the physics too).
@@ -62,13 +63,13 @@ struct StrandSettings {
     // strand as long as its guide. The default is the bob's (physics/hair_style.cpp); a loaded
     // groom is drawn at 0 unless it is given (app/commands/command.cpp).
     float lengthJitter = 0.15f;
-    // Test knobs, not settings: draw the strands last to first (OIT order tests), and how many
-    // vertices one patch may emit (shaders/shared/strands.h; lavapipe needs <= ~128).
+    // The tessellation path's test knobs, not settings: draw the strands last to first (OIT order
+    // tests), and how many vertices one patch may emit (shaders/shared/strands.h; lavapipe needs
+    // <= ~128).
     bool reverseOrder = false;
     uint32_t maxPatchVertices = gpu::kMaxPatchVertices;
 };
 
-// The key light's shadows (renderer/light_maps.cpp, shaders/light_visibility.glsl).
 // strands_per_guide for a loaded groom when none is given: about kLoadedGroomStrands drawn in all
 // (a head of hair has 100,000 to 150,000), so a file that holds every strand of a groom draws each
 // once or a few times and a file of sparse guides draws more, at most `most` (the default).
@@ -81,6 +82,7 @@ constexpr uint32_t loadedStrandsPerGuide(uint64_t strandsInFiles, uint32_t most)
     return uint32_t(perStrand < 1 ? 1 : perStrand > most ? most : perStrand);
 }
 
+// The key light's shadows, on both paths (renderer/light_maps.cpp, shaders/light_visibility.glsl).
 struct ShadowSettings {
     bool enabled = true;
     uint32_t mapSize = 2048;         // shadow and deep opacity maps, texels per side
@@ -94,27 +96,29 @@ struct ShadowSettings {
 
 enum class Transparency { Oit, Msaa };
 
-// How hair fragments become pixels (renderer/graphics/oit.cpp, shaders/oit_resolve.comp).
+// How hair fragments become pixels. oitK and hairOpacity serve both paths (the compute path's
+// strands.resolve, the tessellation path's oit_resolve.comp: shaders/shared/strand_raster.h); the mode and
+// the node pool are the tessellation path's (renderer/graphics/oit.cpp): the compute path always
+// keeps per-pixel lists, in a buffer sized by RenderSettings::fragmentBudgetMiB.
 struct TransparencySettings {
-    Transparency mode = Transparency::Oit;
-    uint32_t oitK = 8;             // nearest fragments sorted per pixel; the rest blended unsorted
-    uint32_t oitNodesPerPixel = 0; // fragment pool size per pixel of the target; 0: automatic (24 per pixel, at least
-                                   // 8M nodes, grown when a frame overflows, within the device's limits)
+    Transparency mode = Transparency::Oit; // the tessellation path: lists, or opaque coverage with MSAA
+    uint32_t oitK = 8;                     // nearest fragments sorted per pixel; the rest blended unsorted
+    uint32_t oitNodesPerPixel = 0; // the tessellation path's fragment pool per pixel of the target; 0: automatic (24
+                                   // per pixel, at least 8M nodes, grown when a frame overflows, within the limits)
     uint64_t oitAutoNodes = 0; // where the automatic pool starts, in nodes (0: the rule above; tests start it small)
     float hairOpacity = 0.85f; // opacity of a strand that covers its pixel (oit, deep opacity)
 };
 
-// How the hair is drawn: the tessellation and geometry stages (hair_pass.cpp), or entirely in
-// compute (renderer/compute/strand_raster.cpp); auto picks the faster on the device (resolveHairRaster).
+// How the hair is drawn: the tessellation and geometry stages (renderer/graphics/hair_pass.cpp), or
+// entirely in compute (renderer/compute/strand_raster.cpp); auto picks the faster (resolveHairRaster).
 enum class HairRaster { Graphics, Compute, Auto };
 
-// What hair_raster=auto draws with on a device of this type: compute, the faster on every device
-// measured (README, "Two ways to draw strands": the H100 8 to 23 times, lavapipe about 19 times,
-// whatever the workload). Here, not in renderer.cpp, so that the workload's memory (app/settings/workload.cpp,
-// without a device) counts the path that will draw.
-constexpr HairRaster resolveHairRaster(HairRaster setting, VkPhysicalDeviceType deviceType)
+// What hair_raster=auto draws with: compute, the faster on every device measured, whatever the
+// workload (docs/drawing.md, "Two ways to draw strands": lavapipe and an NVIDIA H100). Here, not in
+// renderer.cpp, so that the workload's memory (app/settings/workload.cpp, without a device) counts
+// the path that will draw.
+constexpr HairRaster resolveHairRaster(HairRaster setting)
 {
-    (void)deviceType;
     return setting == HairRaster::Auto ? HairRaster::Compute : setting;
 }
 

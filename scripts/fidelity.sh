@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The fidelity table of issue 24: how far each real-time frame is from the path-traced reference of
+# The fidelity table: how far each real-time frame is from the path-traced reference of
 # the same frame. For each case (groom x key light x hair colour) it renders the reference once
 # (`wisp render --reference`), the frame without hair (compare's mask) and every real-time variant
 # (the product of the --vary lists: by default shading=karis,kajiya,lut x dom_layers=4,0), measures

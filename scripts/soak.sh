@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The soak (issue 7): the looping soak scene (wind gusts, a sphere sweeping through the hair, the
+# The soak: the looping soak scene (wind gusts, a sphere sweeping through the hair, the
 # head turning) simulated for 100,000 steps, then recorded for 10,000 frames at 160 x 120. Each
 # reports the worst physics metrics or its memory (host RSS and Wisp's device allocations) at the
 # start and the end.

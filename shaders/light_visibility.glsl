@@ -39,11 +39,10 @@ float hairTransmittanceAt(vec3 coords)
 }
 
 // Transmittance through the hair in front of the point (deep opacity map), averaged over the same
-// Vogel disk as PCF. One lookup point-sampled the map, whose texels are finer than a strand's
-// shadow and than the receiver's pixel at a portrait's distance (2048 texels over the scene: about
-// 0.4 mm, against 1.4 mm a pixel at 480 x 360 and 0.5 mm at 1920 x 1080): the shadow of a sparse
-// curtain of strands on the face or the neck was drawn as dots, the texels each pixel happened to
-// hit (issue 21: "strands drawn dotted" against the skin were this, not strands inside the mesh).
+// Vogel disk as PCF. The map's texels are finer than a strand's shadow and than the receiver's
+// pixel at a portrait's distance (2048 texels over the scene: about 0.4 mm, against 1.4 mm a pixel
+// at 480 x 360 and 0.5 mm at 1920 x 1080): one point-sampled lookup would draw the shadow of a
+// sparse curtain of strands on the face or the neck as dots, the texels each pixel happened to hit.
 float hairTransmittance(vec3 coords, float radius, float angle)
 {
     uint n = min(frame.pcfSamples, kMaxPcfSamples);

@@ -181,7 +181,7 @@ void main()
             // room) is loaded while this one is worked out, and strands.count stores a fragment
             // only once the next fragment's atomic is on its way, so that a lane waits on memory
             // about once a fragment rather than three times (count 0.127 -> 0.100 ms on the seed's
-            // workload on the H100, 1.160 -> 1.121 on the bob: docs/drawing.md).
+            // workload on the H100, 1.160 -> 1.121 on the bob: docs/experiments.md).
             int y = bounds.y - 1, x = 0, x1 = -1;
             bool more = nextPixel(s, bounds.w, y, x, x1);
             uint nextP = more ? uint(y) * push.targetWidth + uint(x) : 0u;

@@ -26,7 +26,7 @@ struct HairLut {
 };
 
 // The tables for these parameters (params.h is ignored: the tables average over h). Validates.
-// About 9 ms for the default 64^2 x 5 with 64 h samples on one core (README, "Hair shading").
+// About 9 ms for the default 64^2 x 5 with 64 h samples on one core (docs/shading.md).
 HairLut buildHairLut(const HairParams& p, uint32_t size = gpu::kHairLutSize, int hSamples = kHairLutHSamples);
 
 // One layer read at normalised uv as VK_FILTER_LINEAR with VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE

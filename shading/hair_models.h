@@ -48,7 +48,7 @@ struct ModelError {
 // Each model against the reference averaged over h (fiberAveragedFsum). Validates.
 std::vector<ModelError> compareModels(const HairParams& p, const CompareOptions& o = {});
 
-// The typical parameters the README and the tests quote: brown hair (eumelanin 1.3), beta_m 0.3,
+// The typical parameters docs/shading.md and the tests quote: brown hair (eumelanin 1.3), beta_m 0.3,
 // beta_n 0.3, alpha 2 degrees, eta 1.55.
 HairParams typicalHair();
 

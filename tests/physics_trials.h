@@ -1,4 +1,4 @@
-// tests/physics_trials.h: what the stability tests share (issue 23): the physics settings as the
+// tests/physics_trials.h: what the stability tests share: the physics settings as the
 // settings table lists them, the values a trial gives each (its minimum, midpoint and maximum, or
 // every choice), the small grooms they run on, a trial's settings applied as a session applies
 // them (the per-part values written onto the scene's parts, as HairSession does through partsFor),

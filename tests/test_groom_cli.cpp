@@ -179,8 +179,9 @@ TEST(GroomCli, RootsOffTheHeadAreRefusedOrPlacedByHandWithAWarning)
 
 TEST(GroomCli, SimulateKeepsAGroomPinnedAtBothEndsFromStretching)
 {
-    // TressFX 3 with bothEndsImmovable: a ponytail part stretched 2 to 7.5 with kinetic energy
-    // about 1e7 within 10 steps. Every segment now keeps its length, and it moves gently.
+    // TressFX 3 with bothEndsImmovable: a ponytail part pinned at both ends must keep every
+    // segment's length and move gently (a solver that pulls only from the root stretches it 2 to
+    // 7.5, kinetic energy about 1e7, within 10 steps).
     TempDir dir;
     test::writeTfx3(dir / "loops.tfx", loops(60), true);
     auto r = runWisp("--validation simulate --hair " + quoted(dir / "loops.tfx") + " --steps 60 --wind 4,0,2 --json");

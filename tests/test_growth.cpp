@@ -127,8 +127,8 @@ TEST(ScalpField, RootsLieInsideTheFieldAndThinAcrossTheBand)
 
 TEST(ScalpField, RootsAreInsideTrianglesNotOnTheirEdges)
 {
-    // The sawtooth came from whole triangles: roots now fall anywhere inside them, so a triangle cut
-    // by the hairline holds roots on its inner side only.
+    // Roots fall anywhere inside the scalp's triangles, not on whole triangles (a sawtooth along the
+    // hairline), so a triangle cut by the hairline holds roots on its inner side only.
     const GroomedHead& scene = defaultHeadOnly();
     ScalpField f = defaultField();
     std::vector<RootSample> roots = sampleScalpRoots(scene.head.mesh, f, 3000, true, 9);

@@ -754,7 +754,7 @@ TEST(HairErrors, Tfx2HeaderTransformToNonFinitePointsNamesTheLine)
     EXPECT_NE(e.find("not finite once scaled"), std::string::npos) << e;
 }
 
-// ---- text as people's tools write it (issue 23) -------------------------------------------------
+// ---- text as people's tools write it -------------------------------------------------
 
 TEST(HairText, TrailingNulsAndWhiteSpaceArePadding)
 {

@@ -183,9 +183,9 @@ TEST(ScalpPaint, CoverageIsFullAmongTheRootsAndFadesPastTheHairline)
 
 TEST(ScalpPaint, SeenFromAboveTheGroomShowsNoBareScalp)
 {
-    // From the default camera the parting was a wide white band and the crown showed white skull
-    // between strands. Where the scalp shows between strands seen from above (the pixels the
-    // painting changes), bare it was bright skin; painted a darkened hair colour, it is not.
+    // Bare, the scalp shows from the default camera as a wide white band along the parting and as
+    // white skull between the crown's strands. Where it shows between strands seen from above (the
+    // pixels the painting changes), painted a darkened hair colour it is not bright skin.
     vk::Context ctx(test::validatedOptions());
     GroomedHead scene = smallGroomedHead(400);
     RenderSettings s = smallRenderSettings();

@@ -265,7 +265,7 @@ TEST(Mesh, HugeCoordinatesStillGiveUnitNormals)
     EXPECT_NEAR(mesh.normals[0].x, std::sqrt(0.5f), 1e-6f);
 }
 
-// ---- text as people's tools write it (issue 23) -------------------------------------------------
+// ---- text as people's tools write it -------------------------------------------------
 
 namespace {
 

@@ -138,7 +138,7 @@ TEST(SceneCli, CommandLineOptionsOverrideTheScene)
     EXPECT_NE(readFile(dir / "plain-over.png"), readFile(dir / "straight.png")); // the head is turned
 }
 
-// The soak (issue 7) shortened: the looping soak scene (wind gusts, a sphere sweeping through
+// The soak shortened: the looping soak scene (wind gusts, a sphere sweeping through
 // the hair, the head turning) for 2,400 steps, 20 s of simulated time, two and a half loops. The
 // full run (100,000 steps, and 10,000 recorded frames) is in docs/hardening.md with its figures.
 TEST(Soak, SimulateKeepsThePhysicsBoundsAndItsMemory)

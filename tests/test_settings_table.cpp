@@ -6,11 +6,15 @@
 #include "app/scene/session_options.h"
 #include "app/settings/settings_table.h"
 #include "core/error.h"
+#include "physics/hair_style.h"
+#include "shading/hair_look.h"
 #include "test_support.h"
 
 #include <CLI/CLI.hpp>
 #include <gtest/gtest.h>
 
+#include <functional>
+#include <map>
 #include <set>
 
 using namespace wisp;
@@ -323,7 +327,99 @@ TEST(SettingsTable, AStyleSetsItsDrawnCoilAndTheDivisionsToDrawIt)
     EXPECT_THROW(applySetting(s, "strand_length_jitter=1.5"), UserError);
 }
 
-// The default draws a full head of hair, about 100,000 strands (issue 21), from its guides and the
+// Every word of every choice setting, set by --set, lands in its field as the value it names
+// (written out here, not read from the table: a choice listed in an order other than its enum's, or
+// a word bound to the wrong value, fails), and reads back as the same word. A choice setting with
+// no case here fails too, so a new one comes with its own.
+TEST(SettingsTable, EveryChoiceParsesToTheValueItNames)
+{
+    using GridAtomics = SimSettings::GridAtomics;
+    // setting -> (word -> a check that `s` holds the value the word names)
+    using Check = std::function<bool(const Settings&)>;
+    std::map<std::string, std::map<std::string, Check>> cases;
+    auto is = [](auto field, auto value) -> Check { return [=](const Settings& s) { return field(s) == value; }; };
+    auto parting = [](const Settings& s) { return s.growth.parting; };
+    cases["parting"] = {{"none", is(parting, Parting::None)},
+                        {"centre", is(parting, Parting::Centre)},
+                        {"side", is(parting, Parting::Side)}};
+    auto atomics = [](const Settings& s) { return s.sim.gridAtomics; };
+    cases["grid_atomics"] = {{"fixed", is(atomics, GridAtomics::Fixed)}, {"float", is(atomics, GridAtomics::Float)}};
+    auto interpolation = [](const Settings& s) { return s.render.strands.interpolation; };
+    cases["interpolation"] = {{"single", is(interpolation, Interpolation::Single)},
+                              {"multi", is(interpolation, Interpolation::Multi)},
+                              {"mixed", is(interpolation, Interpolation::Mixed)}};
+    auto raster = [](const Settings& s) { return s.render.hairRaster; };
+    cases["hair_raster"] = {{"graphics", is(raster, HairRaster::Graphics)},
+                            {"compute", is(raster, HairRaster::Compute)},
+                            {"auto", is(raster, HairRaster::Auto)}};
+    auto transparency = [](const Settings& s) { return s.render.transparency.mode; };
+    cases["transparency"] = {{"oit", is(transparency, Transparency::Oit)},
+                             {"msaa", is(transparency, Transparency::Msaa)}};
+    auto model = [](const Settings& s) { return s.render.hair.model; };
+    cases["shading"] = {{"karis", is(model, ShadingModel::Karis)},
+                        {"kajiya", is(model, ShadingModel::Kajiya)},
+                        {"lut", is(model, ShadingModel::Lut)}};
+    auto samples = [](const Settings& s) { return s.render.samples; };
+    cases["samples"] = {{"1", is(samples, 1u)}, {"2", is(samples, 2u)}, {"4", is(samples, 4u)}, {"8", is(samples, 8u)}};
+    // The named styles and presets: the word sets that style's growth, or that preset's melanins.
+    for (const HairStyle& h : hairStyles()) {
+        std::string name = h.name;
+        cases["hair_style"][name] = [name](const Settings& s) {
+            for (const HairStyle& style : hairStyles())
+                if (style.name == name)
+                    return isHairStyle(s.growth, style);
+            return false;
+        };
+    }
+    for (const HairPreset& p : kHairPresets) {
+        float eumelanin = p.eumelanin, pheomelanin = p.pheomelanin;
+        cases["hair_preset"][p.name] = [=](const Settings& s) {
+            return !s.render.hair.useColor && s.render.hair.eumelanin == eumelanin &&
+                   s.render.hair.pheomelanin == pheomelanin;
+        };
+    }
+    // "custom" keeps what is set: the field as the defaults have it.
+    cases["hair_style"]["custom"] = [](const Settings& s) { return s.growth == Settings{}.growth; };
+    cases["hair_preset"]["custom"] = [](const Settings& s) {
+        const HairLook &look = s.render.hair, defaults = Settings{}.render.hair;
+        return look.useColor == defaults.useColor && look.eumelanin == defaults.eumelanin &&
+               look.pheomelanin == defaults.pheomelanin;
+    };
+
+    std::set<std::string> choiceSettings;
+    for (const SettingSpec& spec : settingSpecs()) {
+        if (spec.type != SettingType::Choice)
+            continue;
+        choiceSettings.insert(spec.name);
+        ASSERT_TRUE(cases.count(spec.name)) << spec.name << ": a choice setting with no case in this test";
+        const std::map<std::string, Check>& words = cases.at(spec.name);
+        EXPECT_EQ(std::set<std::string>(spec.choices.begin(), spec.choices.end()).size(), spec.choices.size())
+            << spec.name << ": a word listed twice";
+        EXPECT_EQ(spec.choices.size(), words.size()) << spec.name;
+        for (const std::string& word : spec.choices) {
+            ASSERT_TRUE(words.count(word)) << spec.name << "=" << word << ": a word with no case in this test";
+            Settings s;
+            applySetting(s, spec.name + "=" + word);
+            EXPECT_TRUE(words.at(word)(s)) << spec.name << "=" << word << " set another value";
+            if (word != "custom") { // "custom" reads back as the style (or preset) the defaults are
+                EXPECT_EQ(settingText(spec, spec.get(s)), word) << spec.name;
+            }
+            // Another word first, then this one: the value does not depend on what was there.
+            for (const std::string& other : spec.choices) {
+                if (other == "custom" || word == "custom")
+                    continue;
+                Settings t;
+                applySetting(t, spec.name + "=" + other);
+                applySetting(t, spec.name + "=" + word);
+                EXPECT_TRUE(words.at(word)(t)) << spec.name << "=" << other << " then " << word;
+            }
+        }
+    }
+    for (const auto& [name, words] : cases)
+        EXPECT_TRUE(choiceSettings.count(name)) << name << ": not a choice setting of the table";
+}
+
+// The default draws a full head of hair, about 100,000 strands, from its guides and the
 // strands drawn around each.
 TEST(SettingsTable, TheDefaultDrawsAboutAHundredThousandStrands)
 {

@@ -317,7 +317,7 @@ TEST(CpuReference, GrownGroomKeepsItsInvariantsUnderEveryTerm)
         ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
 }
 
-// ---- The hair-hair grid's settings at every allowed value (issue 23) -----------------------------
+// ---- The hair-hair grid's settings at every allowed value -----------------------------
 
 namespace {
 

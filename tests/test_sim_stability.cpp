@@ -1,6 +1,6 @@
 // tests/test_sim_stability.cpp: every physics setting of the settings table at its minimum,
 // midpoint and maximum (every choice), the others at their defaults, on two small grooms on the
-// CPU reference solver for two simulated seconds (issue 23): the hair stays finite and
+// CPU reference solver for two simulated seconds: the hair stays finite and
 // unstretched, goes no deeper into the head's colliders than its rest pose does plus the default
 // margin, keeps its kinetic energy within a bound set by the defaults' run, settles once the head
 // stops, and each value really reaches the solver. (The GPU against the CPU on a handful of them:

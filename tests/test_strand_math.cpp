@@ -298,8 +298,8 @@ TEST(StrandMath, LodFadesTheLastStrandInstead)
 TEST(StrandMath, GuideNeighboursOfFewGuidesOnALine)
 {
     // Two guides whose roots differ along x only: the search grid is one cell thick and about a
-    // thousand long, and the second neighbour never exists. The search grew its ring to the whole
-    // grid through every cell of a cube (hours); now it ends once every other guide was seen.
+    // thousand long, and the second neighbour never exists. The search must end once every other
+    // guide was seen, not grow its ring to the whole grid through every cell of a cube (hours).
     StrandSet set;
     set.verticesPerStrand = 4;
     for (int s = 0; s < 2; ++s)

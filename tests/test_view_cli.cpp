@@ -145,7 +145,7 @@ TEST(Window, ThePanelAppliesSettingsLiveAndDrawsOverTheScene)
 TEST(Window, SamplesTheDeviceLacksAreSaidWhenThePanelSetsThem)
 {
     // The command line says what a device draws of --samples it lacks; the panel drew them as fewer
-    // without a word (issue 23, point 11). A script sets them as the panel does.
+    // without a word. A script sets them as the panel does.
     WISP_REQUIRE_XVFB();
     auto info = runWisp("info --json");
     ASSERT_EQ(info.status, 0) << info.err;

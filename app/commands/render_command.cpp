@@ -92,7 +92,7 @@ int runProfile(const GlobalOptions& g, SessionOptions& o, const RenderCommand& c
     RasterStats raster;
     std::vector<PassTiming> timings =
         profileFrames(ctx, session, settings, c.fps, c.profileWarmup, c.profileFrames, &oit, &raster, !c.still);
-    HairRaster path = resolveHairRaster(settings.hairRaster, ctx.report().type);
+    HairRaster path = resolveHairRaster(settings.hairRaster);
     HairDrawCounts counts = hairDrawCounts(uint32_t(session.scene().strands.strandCount()), settings.strands);
     nlohmann::json out = {{"device", ctx.report().name},
                           {"width", settings.width},

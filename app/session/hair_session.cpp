@@ -36,11 +36,6 @@ SimSetup HairSession::makeSetup() const
     return makeSimSetup(sim, scene_.strands, scene_.gpuColliders, scene_.unitsPerMetre);
 }
 
-void HairSession::setTimeline(SceneTimeline timeline)
-{
-    timeline_ = std::move(timeline);
-}
-
 glm::mat4 HairSession::headTransformAt(double seconds) const
 {
     return poses_ ? poses_(seconds).head : headYawTransform(headBounds_, timeline_.at(seconds).headYawDeg);

@@ -53,7 +53,6 @@ public:
     StepClock& clock() { return clock_; }
     const StepClock& clock() const { return clock_; }
     const SceneTimeline& timeline() const { return timeline_; }
-    void setTimeline(SceneTimeline timeline);
     // Poses the steps by `poses` instead of the timeline (a test's scripted motion).
     void setPoses(PoseAt poses) { poses_ = std::move(poses); }
     // The head's transform the timeline gives at `seconds` (a turn about the head's centre).

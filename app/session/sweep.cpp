@@ -228,7 +228,7 @@ int runSweep(const vk::Context& ctx, const SweepOptions& o, const SessionOptions
         HairSession session(ctx, base.source.buildGroomedHead(settings), settings.sim,
                             stillTimeline(base.source.sphere, settings.sim.wind, render.light), base.source);
         point.timings = profileFrames(ctx, session, render, 30.0f, o.warmup, o.frames, &point.oit, &point.raster);
-        point.drawn = resolveHairRaster(render.hairRaster, ctx.report().type);
+        point.drawn = resolveHairRaster(render.hairRaster);
         point.guides = session.scene().strands.strandCount();
         HairDrawCounts counts = hairDrawCounts(uint32_t(point.guides), render.strands);
         point.strands = counts.strands();

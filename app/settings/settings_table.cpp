@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <type_traits>
 
 namespace wisp {
@@ -88,13 +89,12 @@ void checkNumber(const SettingSpec& spec, double v, const std::string& where, si
 
 template <typename T> SettingValue valueOf(const T& field)
 {
+    static_assert(!std::is_enum_v<T>, "an enum is a choice: bind it by name with choiceField()");
     SettingValue v;
     if constexpr (std::is_same_v<T, float>)
         v.number = shortest(field);
     else if constexpr (std::is_same_v<T, bool>)
         v.number = field ? 1.0 : 0.0;
-    else if constexpr (std::is_enum_v<T>)
-        v.number = double(static_cast<int>(field));
     else if constexpr (std::is_same_v<T, glm::vec3>)
         v.vector = glm::dvec3(shortest(field.x), shortest(field.y), shortest(field.z));
     else if constexpr (std::is_same_v<T, std::optional<float>>)
@@ -108,8 +108,6 @@ template <typename T> void store(T& field, const SettingValue& v)
 {
     if constexpr (std::is_same_v<T, bool>)
         field = v.number != 0.0;
-    else if constexpr (std::is_enum_v<T>)
-        field = static_cast<T>(int(v.number));
     else if constexpr (std::is_same_v<T, glm::vec3>)
         field = glm::vec3(v.vector);
     else if constexpr (std::is_same_v<T, std::optional<float>>)
@@ -123,6 +121,33 @@ template <typename Ref> SettingSpec field(SettingSpec spec, Ref ref)
 {
     spec.get = [ref](const Settings& s) { return valueOf(ref(const_cast<Settings&>(s))); };
     spec.put = [ref](Settings& s, const SettingValue& v) { store(ref(s), v); };
+    return spec;
+}
+
+// One choice of an enum setting: the word a person writes and the enum value it stands for.
+template <typename E> struct NamedChoice {
+    const char* name;
+    E value;
+};
+
+// A choice spec reading and writing the enum field `ref` returns (ref: Settings& -> E&). The spec's
+// choices are the table's names in its order (the order `wisp settings` and the panel list them);
+// each name is bound to its value here, so the enum's own order does not matter.
+template <typename E, typename Ref>
+SettingSpec choiceField(SettingSpec spec, std::vector<NamedChoice<E>> table, Ref ref)
+{
+    static_assert(std::is_enum_v<E>);
+    spec.choices.clear();
+    for (const NamedChoice<E>& c : table)
+        spec.choices.push_back(c.name);
+    spec.get = [table, ref](const Settings& s) {
+        E value = ref(const_cast<Settings&>(s));
+        for (size_t i = 0; i < table.size(); ++i)
+            if (table[i].value == value)
+                return SettingValue{.number = double(i)};
+        throw std::logic_error("a value of the choice setting's enum has no name in its table");
+    };
+    spec.put = [table, ref](Settings& s, const SettingValue& v) { ref(s) = table[size_t(v.number)].value; };
     return spec;
 }
 
@@ -226,9 +251,11 @@ std::vector<SettingSpec> buildSpecs()
         number("hairline_band", "m", {0.001, 0.05}, kRestart, "",
                "the root density rises from 0 to full over this inside the hairline"),
         [](Settings & x) -> auto& { return x.growth.hairlineBandMetres; });
-    grown(
-        choice("parting", {"none", "centre", "side"}, kRestart, "", "where the hair on top is parted"),
-        [](Settings & x) -> auto& { return x.growth.parting; });
+    add(choiceField(
+        choice("parting", {}, kRestart, "", "where the hair on top is parted"),
+        std::vector<NamedChoice<Parting>>{
+            {"none", Parting::None}, {"centre", Parting::Centre}, {"side", Parting::Side}},
+        [](Settings & x) -> auto& { return x.growth.parting; }));
     grown(
         number("parting_offset", "m", {-0.08, 0.08}, kRestart, "",
                "a side parting's distance from the middle (+: the head's left)"),
@@ -347,9 +374,11 @@ std::vector<SettingSpec> buildSpecs()
     add(field(
         integer("grid", {8, 256}, kSolver, "--grid", "hair-hair grid nodes per axis"),
         [](Settings & x) -> auto& { return x.sim.gridResolution; }));
-    add(field(
-        choice("grid_atomics", {"fixed", "float"}, kSolver, "--grid-atomics",
+    using GridAtomics = SimSettings::GridAtomics;
+    add(choiceField(
+        choice("grid_atomics", {}, kSolver, "--grid-atomics",
                "hair grid sums: 64-bit fixed point (deterministic) or float atomics"),
+        std::vector<NamedChoice<GridAtomics>>{{"fixed", GridAtomics::Fixed}, {"float", GridAtomics::Float}},
         [](Settings & x) -> auto& { return x.sim.gridAtomics; }));
     add(field(
         number("friction", "", fraction, kSolver, "--friction", "hair-hair friction: blend toward the grid velocity"),
@@ -389,14 +418,15 @@ std::vector<SettingSpec> buildSpecs()
     // ---- Strands drawn from the guides ----
     group = SettingGroup::Strands;
     add(field(
-        integer("strands_per_guide", {1, 4096}, kLive, "", "strands drawn per guide (more than 64 through instancing)"),
+        integer("strands_per_guide", {1, 4096}, kLive, "", "strands drawn per guide"),
         [](Settings & x) -> auto& { return x.render.strands.strandsPerGuide; }));
     add(field(
-        integer("divisions", {1, 1024}, kLive, "", "segments per drawn strand (more than 64 through more patches)"),
+        integer("divisions", {1, 1024}, kLive, "", "segments per drawn strand"),
         [](Settings & x) -> auto& { return x.render.strands.divisions; }));
-    add(field(
-        choice("interpolation", {"single", "multi", "mixed"}, kLive, "",
-               "strands around one guide (clumps), between three, or both"),
+    add(choiceField(
+        choice("interpolation", {}, kLive, "", "strands around one guide (clumps), between three, or both"),
+        std::vector<NamedChoice<Interpolation>>{
+            {"single", Interpolation::Single}, {"multi", Interpolation::Multi}, {"mixed", Interpolation::Mixed}},
         [](Settings & x) -> auto& { return x.render.strands.interpolation; }));
     add(field(
         number("deviation", "m", {0.0, 0.1}, kLive, "", "strength of random strand deviations"),
@@ -436,11 +466,13 @@ std::vector<SettingSpec> buildSpecs()
     add(field(
         onOff("show_guides", kLive, "", "also draw the simulated guides as lines"),
         [](Settings & x) -> auto& { return x.render.strands.showGuides; }));
-    add(field(
-        choice("hair_raster", {"graphics", "compute", "auto"}, kLive, "",
+    add(choiceField(
+        choice("hair_raster", {}, kLive, "",
                "how the hair is drawn: tessellation and geometry shaders, or compute (analytic coverage, fragments "
                "binned per pixel, the nearest oit_k sorted; the meshes too); auto: the faster on the device "
                "(compute on every device measured)"),
+        std::vector<NamedChoice<HairRaster>>{
+            {"graphics", HairRaster::Graphics}, {"compute", HairRaster::Compute}, {"auto", HairRaster::Auto}},
         [](Settings & x) -> auto& { return x.render.hairRaster; }));
 
     // ---- The target, the light and the shadows ----
@@ -551,9 +583,11 @@ std::vector<SettingSpec> buildSpecs()
 
     // ---- Transparency ----
     group = SettingGroup::Transparency;
-    add(field(
-        choice("transparency", {"oit", "msaa"}, kRenderer, "",
-               "hair blending: sorted per-pixel lists, or opaque coverage with MSAA"),
+    add(choiceField(
+        choice("transparency", {}, kRenderer, "",
+               "the tessellation path's hair blending: sorted per-pixel lists, or opaque coverage with MSAA "
+               "(the compute path always keeps lists)"),
+        std::vector<NamedChoice<Transparency>>{{"oit", Transparency::Oit}, {"msaa", Transparency::Msaa}},
         [](Settings & x) -> auto& { return x.render.transparency.mode; }));
     add(field(
         integer("oit_k", {1, gpu::kMaxOitK}, kLive, "",
@@ -561,7 +595,8 @@ std::vector<SettingSpec> buildSpecs()
         [](Settings & x) -> auto& { return x.render.transparency.oitK; }));
     add(field(
         integer("oit_nodes_per_pixel", {0, 256}, kRenderer, "",
-                "OIT fragment pool per pixel, 0 = automatic (up to 24 as memory allows; fragments past it are "
+                "the tessellation path's fragment pool per pixel, 0 = automatic (up to 24 as memory allows; fragments "
+                "past it are "
                 "dropped and counted)"),
         [](Settings & x) -> auto& { return x.render.transparency.oitNodesPerPixel; }));
     add(field(
@@ -576,9 +611,10 @@ std::vector<SettingSpec> buildSpecs()
 
     // ---- The hair's look (shading/hair_look.h) ----
     group = SettingGroup::Look;
-    add(field(
-        choice("shading", {"karis", "kajiya", "lut"}, kLive, "",
-               "hair shading model (lut: tables from the reference BSDF)"),
+    add(choiceField(
+        choice("shading", {}, kLive, "", "hair shading model (lut: tables from the reference BSDF)"),
+        std::vector<NamedChoice<ShadingModel>>{
+            {"karis", ShadingModel::Karis}, {"kajiya", ShadingModel::Kajiya}, {"lut", ShadingModel::Lut}},
         [](Settings & x) -> auto& { return x.render.hair.model; }));
     add(field(
         onOff("multiple_scattering", kLive, "",

@@ -70,7 +70,7 @@ struct SettingSpec {
     SettingType type = SettingType::Number;
     std::string unit;                 // "" for counts, fractions and choices
     Range range{0.0, 0.0};            // Number and Integer; each component of Vector and Color
-    std::vector<std::string> choices; // Choice, in the order of the enum (or the values) it stands for
+    std::vector<std::string> choices; // Choice: the words, as listed (an enum's bound to its values by name)
     std::string help;
     SettingChange change = SettingChange::Live;
     std::string option;    // the command-line option that sets it too ("--step-hz"), or ""

@@ -35,9 +35,9 @@ std::string mib(uint64_t bytes)
     return std::to_string(mebibytes(bytes)) + " MiB";
 }
 
-bool drawnInCompute(const Workload& w, const vk::DeviceReport& device)
+bool drawnInCompute(const Workload& w)
 {
-    return w.render && w.guides > 0 && resolveHairRaster(w.render->hairRaster, device.type) == HairRaster::Compute;
+    return w.render && w.guides > 0 && resolveHairRaster(w.render->hairRaster) == HairRaster::Compute;
 }
 
 // What the compute path allocates for a first frame: every strand at full detail (LOD draws
@@ -84,9 +84,9 @@ GpuMemory estimateGpuMemory(const Workload& w, const vk::DeviceReport& device)
         HairPass::deviceBytes(w.guides) + HairLutImage::kBytes + GuidePass::deviceBytes(w.guides, w.verticesPerStrand);
     m.target = RenderTarget::deviceBytes(extent, std::max<uint32_t>(r.samples, 1));
     m.lightMaps = LightMaps::deviceBytes(r.shadows.mapSize);
-    if (r.transparency.mode == Transparency::Oit && w.guides > 0 && !drawnInCompute(w, device))
+    if (r.transparency.mode == Transparency::Oit && w.guides > 0 && !drawnInCompute(w))
         m.oit = Oit::deviceBytes(extent, r.transparency.oitNodesPerPixel); // (only the graphics path's hair uses it)
-    if (drawnInCompute(w, device)) {
+    if (drawnInCompute(w)) {
         // Every strand at full detail (LOD draws fewer); the light's share as Renderer::prepare
         // draws them: at least one a guide, none with shadows off.
         m.raster = StrandRaster::deviceBytes(rasterSizes(w, device));
@@ -120,7 +120,7 @@ void checkWorkload(const Workload& w, const vk::DeviceReport& device)
     GpuMemory m = estimateGpuMemory(w, device);
     if (m.total() <= device.deviceLocalBytes) {
         // It fits the memory; each buffer must fit one storage buffer's range too.
-        if (drawnInCompute(w, device)) {
+        if (drawnInCompute(w)) {
             for (const StrandRaster::SizedBuffer& b : StrandRaster::growingBuffers(rasterSizes(w, device)))
                 if (b.bytes > device.maxStorageBufferRange)
                     throw UserError("the compute path's " + std::string(b.name) + " needs " + std::to_string(b.bytes) +
@@ -148,7 +148,7 @@ void checkWorkload(const Workload& w, const vk::DeviceReport& device)
         if (m.oit > 0)
             parts += ", OIT " + mib(m.oit);
         lower += ", the size, samples or shadow_size" + oit;
-        if (drawnInCompute(w, device)) {
+        if (drawnInCompute(w)) {
             const StrandSettings& s = w.render->strands;
             parts += ", compute raster " + mib(m.raster) + " (" + std::to_string(w.guides * s.strandsPerGuide) +
                      " strands x " + std::to_string(s.divisions) + " divisions)";

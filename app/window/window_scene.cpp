@@ -17,7 +17,7 @@ Scene windowScene(const std::filesystem::path& path, const HairSource& source, c
     if (source.hairFiles.empty()) {
         // The grown hair: every setting that shapes it as it grows, in the table's order (the style
         // first: it sets the others again, and a shape stiffness that is no setting of its own), so
-        // that the scene grows the same groom. (Seven of them only, before: a style was lost.)
+        // that the scene grows the same groom (a subset would lose a style's parameters).
         const std::vector<SceneSectionKey>& keys = sceneSectionKeys(SceneSection::Hair);
         // (The pair whole, not a structured binding: clang, which builds the sanitizer round, does
         // not let a lambda capture a binding.)

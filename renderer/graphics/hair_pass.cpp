@@ -192,18 +192,11 @@ void HairPass::draw(VkCommandBuffer cmd, FrameContext& frame, VkPipeline pipelin
     VkDescriptorBufferInfo simInfo{solver_.params(), 0, VK_WHOLE_SIZE};
     VkDescriptorBufferInfo positionsInfo{solver_.positions(), 0, VK_WHOLE_SIZE};
     VkDescriptorBufferInfo trianglesInfo{triangles_, 0, VK_WHOLE_SIZE};
-    auto write = [](uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* info) {
-        return VkWriteDescriptorSet{.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-                                    .dstBinding = binding,
-                                    .descriptorCount = 1,
-                                    .descriptorType = type,
-                                    .pBufferInfo = info};
-    };
     std::vector<VkWriteDescriptorSet> writes = {
-        write(gpu::kHairBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frameInfo),
-        write(gpu::kHairBindingSim, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &simInfo),
-        write(gpu::kHairBindingPositions, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &positionsInfo),
-        write(gpu::kHairBindingTriangles, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &trianglesInfo)};
+        vk::bufferWrite(gpu::kHairBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frameInfo),
+        vk::bufferWrite(gpu::kHairBindingSim, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &simInfo),
+        vk::bufferWrite(gpu::kHairBindingPositions, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &positionsInfo),
+        vk::bufferWrite(gpu::kHairBindingTriangles, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &trianglesInfo)};
     writes.insert(writes.end(), extra.begin(), extra.end());
     ctx_.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, uint32_t(writes.size()), writes.data());
     push.samples = uint32_t(target_.samples());

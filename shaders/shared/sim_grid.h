@@ -15,8 +15,8 @@ GPU_NAMESPACE_BEGIN
 // d(density)/d(cell coordinates) at a point of `cell` in a grid of n nodes per axis: central
 // differences at the cell's 8 corner nodes (one-sided at the grid's faces), interpolated
 // trilinearly. A continuous field, so hair moved down it comes to rest where it vanishes; the
-// trilinear interpolant's own derivative jumps at every cell face, and hair in a valley of the
-// density was pushed across the face and back every step.
+// trilinear interpolant's own derivative jumps at every cell face, and would push hair in a valley
+// of the density across the face and back every step.
 GPU_FN vec3 gridDensityGradient(GridRef grid, GridCell cell, uint n)
 {
     vec3 gradient = vec3(0.0f);

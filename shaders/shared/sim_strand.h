@@ -36,12 +36,12 @@ GPU_NAMESPACE_BEGIN
 // (`restHead`, head space; restDepth: how deep it lies inside collider c, <= 0 outside): pushed
 // from the shell's surface instead, those vertices were pushed against their pinned roots every
 // step, k * margin up to 20 g at the 5 cm margin, which the FTL correction turned into sideways
-// velocity. Measured on the bob's 160 guides, CPU, two seconds, worst kinetic energy: 4,677 at
-// margin 0.05 m against 64 at the default 0.003 m (a5c4863); now 52 against 50
+// velocity (the bob's 160 guides on the CPU for two seconds, worst kinetic energy: 4,677 at margin
+// 0.05 m against 64 at 0.003 m). Measured from the rest depth, 52 against 50
 // (tests/test_sim_stability.cpp, after a quarter of a second's settling).
-// (The push-out still moves a rest vertex inside a collider out at the first steps: measured
-// against its rest depth too it popped nothing, but fur's crown strands, no longer held off the
-// head, kept moving 1 to 3 mm a step once the head stopped; docs/physics.md.)
+// The push-out moves a rest vertex inside a collider out at the first steps. It is not measured
+// against the rest depth too: that popped nothing, but fur's crown strands, then not held off the
+// head, kept moving 1 to 3 mm a step once the head stopped (docs/physics.md).
 GPU_FN float restDepth(Ellipsoid e, vec3 restHead)
 {
     return ellipsoidContact(e, restHead, 0.0f).depth;

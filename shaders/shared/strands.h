@@ -18,8 +18,8 @@ GPU_NAMESPACE_BEGIN
 GPU_CONST uint kMaxTessLevel = 64u;
 // By default a patch emits at most this many vertices (its lines x (divisions + 1); the tests' knob
 // StrandSettings::maxPatchVertices changes it, no setting does). Bigger patches hardly help on the
-// H100 (docs/drawing.md); on lavapipe they draw the same picture once draws keep within
-// kMaxTessVerticesPerDraw (the strands once lost from bigger patches were that limit, not the
+// H100 (docs/drawing.md, "The tessellation path"); on lavapipe they draw the same picture once
+// draws keep within kMaxTessVerticesPerDraw (what bigger patches lose there is that limit, not the
 // patch's size).
 GPU_CONST uint kMaxPatchVertices = 128u;
 // The tessellated vertices one instance of one draw may produce. Mesa's draw module (lavapipe)
