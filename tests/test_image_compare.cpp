@@ -12,7 +12,11 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <string>
+#include <vector>
 
 using namespace wisp;
 using wisp::test::TempDir;
@@ -243,4 +247,56 @@ TEST(PngInput, BadFilesNameTheFileAndWhy)
     wisp::test::writeFile(dir / "cut.png", bytes.substr(0, 40));
     std::string cut = message(dir / "cut.png");
     EXPECT_NE(cut.find("cut.png: cannot decode the PNG"), std::string::npos) << cut;
+}
+
+// The linear output is an OpenEXR file an independent decoder reads: ffmpeg's (libavcodec's own
+// EXR decoder) gives back every channel's float exactly, the rows in order, alpha apart.
+TEST(ExrOutput, FfmpegReadsBackEveryFloat)
+{
+    TempDir dir;
+    constexpr uint32_t kW = 5, kH = 3;
+    std::vector<float> rgba(kW * kH * 4);
+    for (size_t i = 0; i < rgba.size(); ++i)
+        rgba[i] = float(i % 4 == 3 ? double(i) / double(rgba.size()) : 0.37 * double(i) + 1e-3 * double(i * i));
+    rgba[0] = 123456.5f; // beyond 8 and 16 bits' range: floats
+    rgba[5] = 2.5e-6f;
+    writeExr(dir / "frame.exr", kW, kH, rgba);
+    std::filesystem::path raw = dir / "frame.raw";
+    std::string command = "ffmpeg -v error -y -i '" + (dir / "frame.exr").string() +
+                          "' -f rawvideo -pix_fmt gbrapf32le '" + raw.string() + "' 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    std::string bytes = wisp::test::readFile(raw);
+    ASSERT_EQ(bytes.size(), rgba.size() * 4); // planes G, B, R, A, each kW x kH
+    auto plane = [&](int p, size_t pixel) {
+        float f = 0.0f;
+        std::memcpy(&f, bytes.data() + (size_t(p) * kW * kH + pixel) * 4, 4);
+        return f;
+    };
+    for (size_t i = 0; i < size_t(kW) * kH; ++i) {
+        EXPECT_EQ(plane(2, i), rgba[i * 4 + 0]) << i;
+        EXPECT_EQ(plane(0, i), rgba[i * 4 + 1]) << i;
+        EXPECT_EQ(plane(1, i), rgba[i * 4 + 2]) << i;
+        EXPECT_EQ(plane(3, i), rgba[i * 4 + 3]) << i;
+    }
+}
+
+TEST(ExrOutput, BadPathsAreRefusedAndNothingIsLeft)
+{
+    TempDir dir;
+    auto message = [](const std::filesystem::path& path) {
+        try {
+            writeExr(path, 1, 1, {1.0f, 2.0f, 3.0f, 1.0f});
+        } catch (const UserError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_NE(message(dir / "missing" / "a.exr").find("does not exist"), std::string::npos);
+    EXPECT_NE(message(dir / "a.tiff").find("must be a .png or an .exr"), std::string::npos);
+    std::filesystem::create_directory(dir / "folder.exr");
+    EXPECT_NE(message(dir / "folder.exr").find("is a directory"), std::string::npos);
+    size_t entries = 0;
+    for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path()))
+        ++entries;
+    EXPECT_EQ(entries, 1u); // the folder made above: no temporary, no file
 }

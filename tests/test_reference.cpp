@@ -3,6 +3,7 @@
 // tracer's kernel against its CPU twin over the same shared header, pixel by pixel; the same
 // picture for the same seed; the error against a many-sample picture falling as 1/sqrt(samples);
 // and `wisp render --reference`'s bad input and a render stopped midway.
+#include "app/image/image_io.h"
 #include "app/session/reference_render.h"
 #include "cli_support.h"
 #include "fiber_bsdf_cases.h"
@@ -222,6 +223,59 @@ TEST(Cli, RenderReferenceWritesAPngAndItsNoise)
     EXPECT_NE(r.out.find("reference: 2 samples per pixel at 32x24"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("noise: "), std::string::npos) << r.out;
     EXPECT_NE(r.err.find("reference ["), std::string::npos) << r.err; // the progress bar
+}
+
+// --out F.exr: the same render's linear radiance and coverage (decoded by ffmpeg), which the PNG of
+// the same seed is: where every sample met the scene, the PNG is the EXR's radiance exposed,
+// tone-mapped and sRGB-encoded; where none did, the EXR is 0 with alpha 0. A real-time frame has no
+// linear output: refused, nothing written.
+TEST(Cli, RenderReferenceWritesLinearRadianceAndCoverageAsExr)
+{
+    test::TempDir dir;
+    std::string args = "--validation render --reference --spp 4 --width 32 --height 24 --guides 30 "
+                       "--set strands_per_guide=2 --set exposure=1.5 --out '";
+    auto png = test::runWisp(args + (dir / "ref.png").string() + "'");
+    ASSERT_EQ(png.status, 0) << png.err;
+    auto exr = test::runWisp(args + (dir / "ref.exr").string() + "'");
+    ASSERT_EQ(exr.status, 0) << exr.err;
+    std::string command = "ffmpeg -v error -y -i '" + (dir / "ref.exr").string() +
+                          "' -f rawvideo -pix_fmt gbrapf32le '" + (dir / "ref.raw").string() + "' 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    std::string raw = test::readFile(dir / "ref.raw");
+    constexpr size_t kPixels = 32 * 24;
+    ASSERT_EQ(raw.size(), kPixels * 16);
+    auto plane = [&](int p, size_t i) {
+        float f = 0.0f;
+        std::memcpy(&f, raw.data() + (size_t(p) * kPixels + i) * 4, 4);
+        return f;
+    };
+    PngImage picture = readPng(dir / "ref.png", "test");
+    int covered = 0, empty = 0;
+    for (size_t i = 0; i < kPixels; ++i) {
+        glm::vec3 rgb(plane(2, i), plane(0, i), plane(1, i));
+        float alpha = plane(3, i);
+        ASSERT_GE(alpha, 0.0f);
+        ASSERT_LE(alpha, 1.0f);
+        if (alpha == 0.0f) {
+            EXPECT_EQ(rgb, glm::vec3(0.0f)) << i;
+            ++empty;
+        } else if (alpha == 1.0f) {
+            glm::vec3 display = gpu::toneMapAces(rgb * 1.5f);
+            for (int k = 0; k < 3; ++k)
+                EXPECT_NEAR(picture.rgba[i * 4 + size_t(k)] / 257.0, 255.0 * gpu::encodeSrgb(display[k]), 0.51)
+                    << i << " channel " << k;
+            ++covered;
+        }
+    }
+    EXPECT_GT(covered, 20);
+    EXPECT_GT(empty, 20);
+    auto realTime = test::runWisp("render --width 32 --height 24 --out '" + (dir / "frame.exr").string() + "'");
+    EXPECT_EQ(realTime.status, 2);
+    EXPECT_NE(realTime.err.find("linear output (.exr) is written by --reference"), std::string::npos) << realTime.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "frame.exr"));
+    auto missing = test::runWisp("render --reference --out '" + (dir / "no" / "ref.exr").string() + "'");
+    EXPECT_EQ(missing.status, 2);
+    EXPECT_NE(missing.err.find("does not exist"), std::string::npos) << missing.err;
 }
 
 // Bad --spp (and its options without --reference): one line naming it, exit 2, no file.

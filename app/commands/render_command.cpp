@@ -61,7 +61,7 @@ void referenceProgress(uint32_t done, uint32_t total, double elapsed)
 
 int runReference(const GlobalOptions& g, SessionOptions& o, const RenderCommand& c)
 {
-    checkPngOutput(c.outFile); // fail before any GPU work
+    checkImageOutput(c.outFile); // fail before any GPU work
     RenderSettings& settings = o.settings.render;
     GroomedHead scene = buildCheckedHead(g, o, &settings);
     vk::Context ctx(contextOptions(g));
@@ -76,7 +76,10 @@ int runReference(const GlobalOptions& g, SessionOptions& o, const RenderCommand&
     int status = validationStatus(ctx);
     if (status != 0)
         return status; // nothing written
-    writePng(c.outFile, reference.picture.width, reference.picture.height, reference.picture.rgba);
+    if (isExrPath(c.outFile))
+        writeExr(c.outFile, reference.picture.width, reference.picture.height, reference.picture.linear);
+    else
+        writePng(c.outFile, reference.picture.width, reference.picture.height, reference.picture.rgba);
     std::cout << c.outFile << "\n" << describeReference(reference, c.referenceOptions) << "\n";
     return 0;
 }
@@ -139,6 +142,10 @@ int run(const GlobalOptions& g, const RenderCommand& c)
         return runProfile(g, o, c);
     if (c.reference)
         return runReference(g, o, c);
+    if (isExrPath(c.outFile))
+        throw UserError("render: --out " + c.outFile +
+                        ": linear output (.exr) is written by --reference; the real-time frame is tone-mapped as "
+                        "it is shaded, so it is written as a .png");
     checkPngOutput(c.outFile); // fail before any GPU work
     RenderSettings& settings = o.settings.render;
     GroomedHead scene = buildCheckedHead(g, o, &settings);
@@ -186,7 +193,9 @@ CommandRun addRenderCommand(CLI::App& app, const GlobalOptions& global)
     CLI::App* cmd = app.add_subcommand(
         "render", "render one frame offscreen into a PNG: the head and its simulated hair, shaded and shadowed");
     c->command = cmd;
-    c->out = cmd->add_option("--out", c->outFile, "output PNG file (its folder must exist)");
+    c->out = cmd->add_option("--out", c->outFile,
+                             "output PNG file (its folder must exist); with --reference also .exr: linear radiance "
+                             "before exposure and tone mapping, coverage as alpha");
     cmd->add_option(
            "--profile", c->profileFrames,
            "time this many frames (physics and every pass, after --warmup frames) and print per-pass GPU ms as "

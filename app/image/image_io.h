@@ -18,6 +18,17 @@ void checkPngOutput(const std::filesystem::path& path);
 // Writes tightly packed RGBA8 pixels as a PNG; atomic.
 void writePng(const std::filesystem::path& path, uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba);
 
+// Is `path` named .exr (linear output)?
+bool isExrPath(const std::filesystem::path& path);
+// As checkPngOutput, for a .png or an .exr.
+void checkImageOutput(const std::filesystem::path& path);
+// The bytes of an OpenEXR file (the format's public file layout: version 2, one part, scanlines,
+// no compression, FLOAT channels A, B, G, R, one scanline a chunk) of tightly packed linear RGBA
+// floats, top row first (the data window's y = 0), RGB premultiplied by A as OpenEXR's are.
+std::string encodeExr(uint32_t width, uint32_t height, const std::vector<float>& rgba);
+// The same written to `path`; atomic.
+void writeExr(const std::filesystem::path& path, uint32_t width, uint32_t height, const std::vector<float>& rgba);
+
 // A PNG as read: RGBA, 16 bits a channel (an 8-bit file's value v reads as v * 257), top row first.
 struct PngImage {
     uint32_t width = 0, height = 0;

@@ -164,8 +164,10 @@ Bvh buildBvh(std::span<const gpu::TraceSegment> segments, std::span<const gpu::T
     for (size_t i = 0; i < segments.size(); ++i) {
         const gpu::TraceSegment& s = segments[i];
         Prim p{.box = {}, .centre = 0.5f * (s.a + s.b), .id = uint32_t(i)};
-        p.box.grow(glm::min(s.a, s.b) - glm::vec3(s.radius));
-        p.box.grow(glm::max(s.a, s.b) + glm::vec3(s.radius));
+        // Rounded outward: a capsule far thinner than its coordinates' size stays inside its box.
+        glm::vec3 lo = glm::min(s.a, s.b), hi = glm::max(s.a, s.b);
+        p.box.grow(lo - s.radius - (glm::abs(lo) + s.radius) * 2.4e-7f);
+        p.box.grow(hi + s.radius + (glm::abs(hi) + s.radius) * 2.4e-7f);
         prims.push_back(p);
     }
     for (size_t i = 0; i < triangles.size(); ++i) {

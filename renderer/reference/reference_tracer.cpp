@@ -151,6 +151,7 @@ ReferencePicture resolveReference(const std::vector<glm::vec4>& sums, const gpu:
     out.height = uint32_t(frame.viewportHeight);
     size_t pixels = size_t(out.width) * out.height;
     out.rgba.resize(pixels * 4);
+    out.linear.resize(pixels * 4);
     float even = float((samples + 1) / 2), odd = float(samples / 2);
     double squares = 0.0;
     for (size_t i = 0; i < pixels; ++i) {
@@ -159,6 +160,10 @@ ReferencePicture resolveReference(const std::vector<glm::vec4>& sums, const gpu:
         for (int k = 0; k < 3; ++k)
             out.rgba[i * 4 + size_t(k)] = uint8_t(std::lround(255.0f * gpu::encodeSrgb(c[k])));
         out.rgba[i * 4 + 3] = 255;
+        glm::vec4 all = sums[i] + sums[pixels + i];
+        for (int k = 0; k < 3; ++k)
+            out.linear[i * 4 + size_t(k)] = all[k] / float(samples);
+        out.linear[i * 4 + 3] = 1.0f - all.w / float(samples);
         if (odd > 0.0f) {
             glm::vec3 a = displayColor(sums[i], even, frame, y), b = displayColor(sums[pixels + i], odd, frame, y);
             for (int k = 0; k < 3; ++k) {

@@ -55,6 +55,10 @@ struct ReferencePicture {
     uint32_t width = 0;
     uint32_t height = 0;
     std::vector<uint8_t> rgba;
+    // The same in linear radiance before exposure and tone mapping, RGBA floats, top row first: RGB
+    // the mean over all the pixel's samples (those that met nothing bring 0: premultiplied), A the
+    // share of samples that met the scene (coverage). `wisp render --reference --out F.exr`.
+    std::vector<float> linear;
     // The noise left: the RMS over pixels and channels, in 8-bit levels, of half the difference of
     // the even and odd samples' pictures (each the mean of half the samples: their difference has
     // twice the variance of either, four times the whole mean's). -1 with fewer than 2 samples.

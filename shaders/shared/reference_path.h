@@ -17,8 +17,9 @@
 // The path: next-event estimation of each light at every hit, then the BSDF sampled (the fibre's
 // importance sampling; the meshes' cosine-weighted), Russian roulette after kReferenceRouletteStart
 // bounces (blonde hair scatters light through many fibres: paths end by roulette, not by a count,
-// up to maxBounces). A path leaving a fibre starts on its axis: inside its own capsule, so neither it
-// nor the neighbouring segments overlapping it at the joint are hit again (trace.h: hits are entries).
+// up to maxBounces). A path leaving a fibre starts on its axis: inside its own capsule, which it is not
+// hit by again (trace.h: hits are entries), and the neighbouring segments it passes through at a joint
+// before it leaves the strand are no hits either (trace_bvh.h traceThroughJoint).
 // Units: radiance as the real-time frame's (a light of intensity E and colour c gives a surface
 // facing it the irradiance E c), tone-mapped the same way (exposure, ACES) once the samples are
 // averaged (renderer/reference/reference_tracer.cpp).
@@ -86,10 +87,11 @@ GPU_FN vec3 referenceSky(FrameParams frame, vec3 d)
     return frame.ambientIntensity * hemisphereAmbient(d, frame.skyColor, frame.groundColor);
 }
 
-GPU_FN bool referenceOccluded(TraceBuffers scene, vec3 o, vec3 wi, GPU_INOUT(uint) rays)
+// fromStrand: the strand the shadow ray leaves from its axis, or kTraceNoHit (trace_bvh.h).
+GPU_FN bool referenceOccluded(TraceBuffers scene, vec3 o, vec3 wi, uint fromStrand, GPU_INOUT(uint) rays)
 {
     rays += 1u;
-    return traceScene(scene, o, wi, 0.0f, kTraceInfinity, true).prim != kTraceNoHit;
+    return traceScene(scene, o, wi, 0.0f, kTraceInfinity, true, fromStrand).prim != kTraceNoHit;
 }
 
 // ---- Camera ----------------------------------------------------------------------------------------
@@ -118,9 +120,10 @@ GPU_FN vec4 referenceSample(TraceBuffers scene, ReferenceParams P, uvec2 pixel, 
 
     vec3 radiance = vec3(0.0f);
     vec3 throughput = vec3(1.0f);
+    uint fromStrand = kTraceNoHit; // the strand the path leaves, if it leaves one
     for (uint bounce = 0u; bounce < P.maxBounces; ++bounce) {
         rays += 1u;
-        TraceHit hit = traceScene(scene, o, d, 0.0f, kTraceInfinity, false);
+        TraceHit hit = traceScene(scene, o, d, 0.0f, kTraceInfinity, false, fromStrand);
         if (hit.prim == kTraceNoHit) {
             if (bounce == 0u)
                 return vec4(0.0f, 0.0f, 0.0f, 1.0f);
@@ -134,7 +137,7 @@ GPU_FN vec4 referenceSample(TraceBuffers scene, ReferenceParams P, uvec2 pixel, 
             TraceSegment s = traceSegment(scene, hit.prim);
             vec3 axis = mix(s.a, s.b, hit.u);
             FiberFrame f = makeFiberFrame(normalize(s.b - s.a), d);
-            float h = clamp(dot(p - axis, f.y) / s.radius, -1.0f, 1.0f);
+            float h = clamp(hit.v, -1.0f, 1.0f); // capsuleEntry's, from the ray and the axis (not from p)
             float t = (float(hit.prim % P.divisions) + hit.u) / float(P.divisions);
             HairMaterial hm = P.frame.hair;
             FiberBsdf b = makeFiberBsdf(makeFiberMaterial(vec3(hm.sigmaA) * strandAbsorptionScale(P.frame, s.strand, t),
@@ -145,7 +148,7 @@ GPU_FN vec4 referenceSample(TraceBuffers scene, ReferenceParams P, uvec2 pixel, 
                 FrameLight light = frameLight(P.frame, i);
                 vec2 ul = referenceNext2(rng);
                 vec3 wi = sampleLightCone(light.direction, cosMax, ul.x, ul.y);
-                if (light.intensity > 0.0f && !referenceOccluded(scene, axis, wi, rays))
+                if (light.intensity > 0.0f && !referenceOccluded(scene, axis, wi, s.strand, rays))
                     radiance +=
                         throughput * vec3(fiberLobeSum(b, fo, fiberToLocal(f, wi))) * light.color * light.intensity;
             }
@@ -155,6 +158,7 @@ GPU_FN vec4 referenceSample(TraceBuffers scene, ReferenceParams P, uvec2 pixel, 
             throughput *= fs.fsum / fs.pdf;
             o = axis;
             d = normalize(fiberToWorld(f, fs.wi));
+            fromStrand = s.strand;
         } else {
             // A mesh: its interpolated normal facing the viewer (as the real-time shading flips
             // back faces), the head's or the sphere's surface, the scalp painted on the head.
@@ -182,7 +186,8 @@ GPU_FN vec4 referenceSample(TraceBuffers scene, ReferenceParams P, uvec2 pixel, 
                 FrameLight light = frameLight(P.frame, i);
                 vec2 ul = referenceNext2(rng);
                 vec3 wi = sampleLightCone(light.direction, cosMax, ul.x, ul.y);
-                if (light.intensity > 0.0f && dot(ng, wi) > 0.0f && !referenceOccluded(scene, off, wi, rays))
+                if (light.intensity > 0.0f && dot(ng, wi) > 0.0f &&
+                    !referenceOccluded(scene, off, wi, kTraceNoHit, rays))
                     radiance += throughput * surfaceRadiance(n, wi, wo, a, r, light.color * light.intensity);
             }
             // Cosine-weighted around n: the weight f cos / pdf = pi f = a + pi * highlight.
@@ -199,6 +204,7 @@ GPU_FN vec4 referenceSample(TraceBuffers scene, ReferenceParams P, uvec2 pixel, 
             throughput *= surfaceRadiance(n, wi, wo, a, r, vec3(1.0f)) * (kFiberPi / c);
             o = off;
             d = wi;
+            fromStrand = kTraceNoHit;
         }
         // Russian roulette: a path continues with the probability of its largest throughput.
         if (bounce + 1u >= kReferenceRouletteStart) {

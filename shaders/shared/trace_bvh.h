@@ -44,15 +44,42 @@ GPU_FN vec3 tracePrimitive(TraceBuffers scene, uint prim, vec3 o, vec3 d, float 
 {
     if (prim < scene.segmentCount) {
         TraceSegment s = traceSegment(scene, prim);
-        vec2 e = capsuleEntry(o, d, s.a, s.b, s.radius, tMin, tMax);
-        return vec3(e.x, e.y, 0.0f);
+        return capsuleEntry(o, d, s.a, s.b, s.radius, tMin, tMax);
     }
     TraceTriangle tri = traceTriangle(scene, prim - scene.segmentCount);
     return triangleEntry(o, d, vec3(tri.p0), vec3(tri.p1), vec3(tri.p2), tMin, tMax);
 }
 
+// Is p inside the capsule of segment i (a joint's neighbour: i may be any number, or none)?
+GPU_FN bool traceInsideSegment(TraceBuffers scene, uint i, uint strand, vec3 p)
+{
+    if (i >= scene.segmentCount)
+        return false;
+    TraceSegment s = traceSegment(scene, i);
+    vec3 w = s.b - s.a;
+    vec3 pa = p - s.a;
+    float ww = dot(w, w);
+    vec3 e = pa - (ww > 0.0f ? clamp(dot(pa, w) / ww, 0.0f, 1.0f) : 0.0f) * w;
+    return s.strand == strand && dot(e, e) < s.radius * s.radius;
+}
+
+// Does the entry of the ray into segment `prim` at t pass through a joint of strand `strand` from
+// inside it? A path leaving a fibre starts on its axis, inside the strand: its capsules overlap at
+// every joint, and a ray still inside one of them enters its neighbour's end sphere there without
+// entering the strand. Such entries are no hits (left alone, they would scatter the path again
+// and shadow the fibre's own light, more the more the ray runs along the strand).
+GPU_FN bool traceThroughJoint(TraceBuffers scene, uint prim, uint strand, vec3 o, vec3 d, float t)
+{
+    if (strand == kTraceNoHit || prim >= scene.segmentCount || traceSegment(scene, prim).strand != strand)
+        return false;
+    vec3 p = o + t * d;
+    return traceInsideSegment(scene, prim - 1u, strand, p) || traceInsideSegment(scene, prim + 1u, strand, p);
+}
+
 // The closest entry along the ray within (tMin, tMax); with anyHit, the first found (shadow rays).
-GPU_FN TraceHit traceScene(TraceBuffers scene, vec3 o, vec3 d, float tMin, float tMax, bool anyHit)
+// `fromStrand`: the strand whose fibre the ray leaves (its origin inside it: traceThroughJoint), or
+// kTraceNoHit.
+GPU_FN TraceHit traceScene(TraceBuffers scene, vec3 o, vec3 d, float tMin, float tMax, bool anyHit, uint fromStrand)
 {
     TraceHit hit = traceMiss();
     if (scene.nodeCount == 0u)
@@ -71,7 +98,7 @@ GPU_FN TraceHit traceScene(TraceBuffers scene, vec3 o, vec3 d, float tMin, float
             for (uint i = 0u; i < n.count; ++i) {
                 uint prim = tracePrimIndex(scene, n.first + i);
                 vec3 e = tracePrimitive(scene, prim, o, d, tMin, closest);
-                if (e.x > 0.0f) {
+                if (e.x > 0.0f && !traceThroughJoint(scene, prim, fromStrand, o, d, e.x)) {
                     closest = e.x;
                     hit.t = e.x;
                     hit.prim = prim;
