@@ -418,6 +418,7 @@ MeshDistance::Closest MeshDistance::closest(glm::vec3 p) const
                 if (d2 < best2) {
                     best2 = d2;
                     best.point = q;
+                    best.triangle = t;
                 }
             }
             continue;

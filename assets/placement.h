@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json_fwd.hpp>
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -33,6 +34,7 @@ public:
     struct Closest {
         glm::vec3 point{0.0f};
         float distance = 0.0f;
+        uint32_t triangle = UINT32_MAX; // the triangle holding `point` (UINT32_MAX: an empty mesh)
     };
     Closest closest(glm::vec3 p) const;
 

@@ -1,10 +1,14 @@
 // physics/groom_metrics.cpp: the side standoff (segments and triangle edges clipped to horizontal
 // bands, their z extents per band) and the tip lag meter (least-squares yaw of the tips about the
-// head's turn axis against the head's own yaw).
+// head's turn axis against the head's own yaw), and the hair inside the mesh (each vertex's exact
+// signed distance).
 #include "physics/groom_metrics.h"
+
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 
@@ -157,6 +161,51 @@ void TipLagMeter::sample(double seconds, const std::vector<glm::vec4>& positions
     }
     lag_.finalDeg = lag;
     ++lag_.samples;
+}
+
+// ---- Inside the mesh -------------------------------------------------------------------------------
+
+InsideMesh insideMesh(const MeshSignedDistance& head, float diagonal, const std::vector<glm::vec3>& positions,
+                      uint32_t verticesPerStrand)
+{
+    InsideMesh out;
+    uint32_t V = verticesPerStrand;
+    if (V == 0 || !(diagonal > 0.0f))
+        return out;
+    out.strands = positions.size() / V;
+    float depthLimit = kInsideDepth * diagonal;
+    for (size_t s = 0; s < out.strands; ++s) {
+        bool inside = false;
+        for (uint32_t i = kInsideSkippedVertices; i < V; ++i) {
+            float depth = -head(positions[s * V + i]);
+            ++out.vertices;
+            out.deepest = std::max(out.deepest, double(depth) / double(diagonal));
+            if (depth > depthLimit) {
+                ++out.verticesInside;
+                inside = true;
+            }
+        }
+        out.strandsInside += inside;
+    }
+    return out;
+}
+
+nlohmann::json InsideMesh::toJson() const
+{
+    return {{"strands", strandShare()}, {"vertices", vertexShare()}, {"deepest", deepest}};
+}
+
+std::string InsideMesh::describe() const
+{
+    char text[160];
+    std::snprintf(text, sizeof text, "%.1f%% of strands, %.2f%% of vertices, deepest %.3g of the diagonal",
+                  100.0 * strandShare(), 100.0 * vertexShare(), deepest);
+    return text;
+}
+
+InsideMesh insideMesh(const MeshSignedDistance& head, float diagonal, const StrandSet& strands)
+{
+    return insideMesh(head, diagonal, strands.rest, strands.verticesPerStrand);
 }
 
 } // namespace wisp

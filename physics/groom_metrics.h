@@ -1,15 +1,19 @@
 // physics/groom_metrics.h: figures of a groom's shape and motion against its head, on the CPU:
 // the side standoff (how far the hair stands off the head's silhouette seen from the side, as a
 // fraction of the head's width: a wig-like wedge scores high, hair lying on the head low) and the
-// tips' lag behind a turn of the head (degrees about the turn axis: a rigid shell lags about 0).
+// tips' lag behind a turn of the head (degrees about the turn axis: a rigid shell lags about 0),
+// and the hair inside the head's mesh itself (not its colliders).
 #pragma once
 
 #include "assets/mesh.h"
+#include "assets/signed_distance.h"
 #include "physics/strand_set.h"
 
 #include <glm/glm.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace wisp {
@@ -40,6 +44,36 @@ SideStandoff sideStandoff(const Mesh& head, const std::vector<glm::vec3>& positi
                           float unitsPerMetre);
 // The rest pose of `strands`.
 SideStandoff sideStandoff(const Mesh& head, const StrandSet& strands, float unitsPerMetre);
+
+// ---- Inside the mesh -------------------------------------------------------------------------------
+// The hair against the head's mesh itself (its exact signed distance, assets/signed_distance.h),
+// not the colliders the solver pushes it out of. A vertex counts when it lies past the first
+// kInsideSkippedVertices of its strand (the roots, which sit on the scalp) and deeper inside the mesh
+// than kInsideDepth of the mesh's bounding-box diagonal; a strand counts when any of its vertices
+// does. `deepest` is the largest depth of any vertex past the roots (0 when none is inside), as a
+// fraction of the diagonal.
+inline constexpr uint32_t kInsideSkippedVertices = 2;
+inline constexpr float kInsideDepth = 0.005f;
+
+struct InsideMesh {
+    size_t strands = 0;
+    size_t vertices = 0; // those past the first kInsideSkippedVertices of each strand
+    size_t strandsInside = 0;
+    size_t verticesInside = 0;
+    double deepest = 0.0;
+    double strandShare() const { return strands > 0 ? double(strandsInside) / double(strands) : 0.0; }
+    double vertexShare() const { return vertices > 0 ? double(verticesInside) / double(vertices) : 0.0; }
+    // {"strands": share, "vertices": share, "deepest": fraction of the diagonal}
+    nlohmann::json toJson() const;
+    std::string describe() const; // "12.5% of strands, 1.3% of vertices, deepest 0.021 of the diagonal"
+};
+
+// `positions`: strands of `verticesPerStrand` points each, root first, in head space;
+// `diagonal`: the mesh's bounding-box diagonal.
+InsideMesh insideMesh(const MeshSignedDistance& head, float diagonal, const std::vector<glm::vec3>& positions,
+                      uint32_t verticesPerStrand);
+// The rest pose of `strands`.
+InsideMesh insideMesh(const MeshSignedDistance& head, float diagonal, const StrandSet& strands);
 
 // ---- Tip lag --------------------------------------------------------------------------------------
 // The turn axis is the head's up axis (head-space y, as the head is posed at the first sample)

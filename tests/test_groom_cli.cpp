@@ -220,3 +220,26 @@ TEST(GroomCli, GrownHairStaysOutOfTheCollidersFittedToAnyClosedHead)
         EXPECT_EQ(j["nonfinite_resets"], 0) << head;
     }
 }
+
+TEST(GroomCli, InspectCountsTheStrandsInsideTheMesh)
+{
+    // A groom grown on the default head lies on it: almost no strand inside the mesh. The same
+    // groom sunk 4 cm into the head by hand: many strands run inside it, centimetres deep.
+    TempDir dir;
+    test::writeTfx4(dir / "g.tfx", test::grownStrands(100, 8, [](glm::vec3 p) { return p; }));
+    auto r = runWisp("inspect --hair " + quoted(dir / "g.tfx") + " --vertices 8");
+    ASSERT_EQ(r.status, 0) << r.err;
+    nlohmann::json j = nlohmann::json::parse(r.out)["inside_mesh"];
+    EXPECT_LE(j["strands"].get<double>(), 0.02) << j;
+    EXPECT_LE(j["vertices"].get<double>(), j["strands"].get<double>()) << j;
+    EXPECT_LT(j["deepest"].get<double>(), 0.01) << j;
+    r = runWisp("inspect --hair " + quoted(dir / "g.tfx") + " --vertices 8 --hair-scale 1 --hair-offset 0,-0.04,0");
+    ASSERT_EQ(r.status, 0) << r.err;
+    j = nlohmann::json::parse(r.out)["inside_mesh"];
+    EXPECT_GE(j["strands"].get<double>(), 0.2) << j;   // 0.29 measured
+    EXPECT_GE(j["vertices"].get<double>(), 0.03) << j; // 0.062 measured
+    EXPECT_LE(j["vertices"].get<double>(), j["strands"].get<double>()) << j;
+    // 4 cm into a head of diagonal about 0.6 m (the default head's bust).
+    EXPECT_GT(j["deepest"].get<double>(), 0.02) << j;
+    EXPECT_LT(j["deepest"].get<double>(), 0.2) << j;
+}

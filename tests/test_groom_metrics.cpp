@@ -152,3 +152,37 @@ TEST(GroomMetrics, TipLagAgainstAHeadTurn)
     EXPECT_NEAR(half.result().peakDeg, 100.0, 1e-3);
     EXPECT_NEAR(half.result().finalDeg, 75.0, 1e-3);
 }
+
+TEST(GroomMetrics, InsideTheMeshPastTheRootsAndDeeperThanTheThreshold)
+{
+    // On the box head (diagonal 0.325 m): one strand outside, one dipping 3 cm into the top at its
+    // third vertex, one whose second vertex dips 1 cm (a root's, not counted) and whose tip dips
+    // 1 mm (less than 0.5% of the diagonal: not counted, but the deepest of its strand). In
+    // centimetres the shares and the depth as a fraction of the diagonal are the same.
+    for (float scale : {1.0f, 100.0f}) {
+        Mesh head = boxHead(scale);
+        float diagonal = head.bounds().diagonal();
+        MeshSignedDistance sdf(head);
+        std::vector<glm::vec3> p;
+        auto strand = [&](std::initializer_list<float> ys) {
+            for (float y : ys)
+                p.push_back(scale * glm::vec3(0.01f * float(p.size() / 4), y, 0.0f));
+        };
+        strand({0.2f, 0.23f, 0.26f, 0.3f});
+        strand({0.2f, 0.19f, 0.17f, 0.25f});
+        strand({0.2f, 0.19f, 0.22f, 0.199f});
+        InsideMesh m = insideMesh(sdf, diagonal, p, 4);
+        EXPECT_EQ(m.strands, 3u);
+        EXPECT_EQ(m.vertices, 6u);
+        EXPECT_EQ(m.strandsInside, 1u);
+        EXPECT_EQ(m.verticesInside, 1u);
+        EXPECT_NEAR(m.strandShare(), 1.0 / 3.0, 1e-9);
+        EXPECT_NEAR(m.vertexShare(), 1.0 / 6.0, 1e-9);
+        EXPECT_NEAR(m.deepest, 0.03 / (diagonal / scale), 1e-4);
+        // The tip 1 mm inside is below the threshold, 0.31% of the diagonal.
+        std::vector<glm::vec3> shallow(p.begin() + 8, p.end());
+        InsideMesh s = insideMesh(sdf, diagonal, shallow, 4);
+        EXPECT_EQ(s.strandsInside, 0u);
+        EXPECT_NEAR(s.deepest, 0.001 / (diagonal / scale), 1e-4);
+    }
+}

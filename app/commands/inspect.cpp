@@ -69,24 +69,26 @@ int inspectGroomOnHead(const InspectOptions& o, const PlacementRequest& request)
     float diagonal = b.diagonal();
     // The scene render and simulate build: the same placement, the same treatment of strands.
     GroomedHead scene = buildLoadedHead(std::move(head), parts, o.verticesPerStrand, request);
-    nlohmann::json out = {{"kind", "groom_on_head"},
-                          {"head",
-                           {{"file", o.head.empty() ? defaultHeadPath().string() : o.head},
-                            {"diagonal", diagonal},
-                            {"bbox", {{b.min.x, b.min.y, b.min.z}, {b.max.x, b.max.y, b.max.z}}}}},
-                          {"files", files},
-                          {"strands", scene.strands.strandCount()},
-                          {"vertices_per_strand", o.verticesPerStrand},
-                          {"placement", scene.placement->toJson()},
-                          {"short_strands",
-                           {{"shorter_than", scene.loaded.shortThreshold},
-                            {"reference", "head diagonal"},
-                            {"kept_rigid", scene.loaded.rigid},
-                            {"dropped_zero_length", scene.loaded.dropped},
-                            {"treatment", kTreatment}}},
-                          {"pinned_tips", scene.loaded.pinnedTips},
-                          {"side_standoff", sideStandoff(scene.head.mesh, scene.strands, scene.unitsPerMetre).value},
-                          {"warnings", scene.warnings}};
+    nlohmann::json out = {
+        {"kind", "groom_on_head"},
+        {"head",
+         {{"file", o.head.empty() ? defaultHeadPath().string() : o.head},
+          {"diagonal", diagonal},
+          {"bbox", {{b.min.x, b.min.y, b.min.z}, {b.max.x, b.max.y, b.max.z}}}}},
+        {"files", files},
+        {"strands", scene.strands.strandCount()},
+        {"vertices_per_strand", o.verticesPerStrand},
+        {"placement", scene.placement->toJson()},
+        {"short_strands",
+         {{"shorter_than", scene.loaded.shortThreshold},
+          {"reference", "head diagonal"},
+          {"kept_rigid", scene.loaded.rigid},
+          {"dropped_zero_length", scene.loaded.dropped},
+          {"treatment", kTreatment}}},
+        {"pinned_tips", scene.loaded.pinnedTips},
+        {"side_standoff", sideStandoff(scene.head.mesh, scene.strands, scene.unitsPerMetre).value},
+        {"inside_mesh", insideMesh(MeshSignedDistance(scene.head.mesh), diagonal, scene.strands).toJson()},
+        {"warnings", scene.warnings}};
     std::cout << out.dump() << "\n";
     return 0;
 }

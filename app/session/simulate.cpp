@@ -256,6 +256,10 @@ int runSimulate(const vk::Context& ctx, HairSession& session, const SimulateOpti
         finalPositions.push_back(glm::vec3(toHead * glm::vec4(glm::vec3(p), 1.0f)));
     SideStandoff finalStandoff =
         sideStandoff(scene.head.mesh, finalPositions, scene.strands.verticesPerStrand, scene.unitsPerMetre);
+    // The hair against the mesh itself, beside the colliders' penetration.
+    MeshSignedDistance headDistance(scene.head.mesh);
+    InsideMesh restInside = insideMesh(headDistance, diagonal, scene.strands);
+    InsideMesh finalInside = insideMesh(headDistance, diagonal, finalPositions, scene.strands.verticesPerStrand);
     nlohmann::json tipLag = nullptr;
     if (r.tipLag)
         tipLag = {{"peak", r.tipLag->peakDeg},
@@ -277,6 +281,12 @@ int runSimulate(const vk::Context& ctx, HairSession& session, const SimulateOpti
                           {"root_drift", r.last.rootDrift},
                           {"nonfinite_resets", r.nonfiniteResets},
                           {"side_standoff", {{"rest", restStandoff.value}, {"final", finalStandoff.value}}},
+                          {"inside_mesh",
+                           {{"rest", restInside.toJson()},
+                            {"final", finalInside.toJson()},
+                            {"depth", kInsideDepth},
+                            {"skipped_root_vertices", kInsideSkippedVertices},
+                            {"reference", "head diagonal"}}},
                           {"tip_lag_deg", tipLag},
                           {"worst",
                            {{"max_stretch", r.worst.maxStretch},
@@ -311,6 +321,8 @@ int runSimulate(const vk::Context& ctx, HairSession& session, const SimulateOpti
         std::printf("  side standoff     %.3f at rest, %.3f at the end (hair beyond the head seen from the side, "
                     "of its width)\n",
                     restStandoff.value, finalStandoff.value);
+        std::printf("  inside the mesh   %s at the end (%s at rest)\n", finalInside.describe().c_str(),
+                    restInside.describe().c_str());
         if (r.tipLag)
             std::printf("  tip lag           %.2f degrees at most (at %.2f s), %.2f at the end, behind a head turning "
                         "up to %.1f degrees\n",
