@@ -6,8 +6,8 @@
 #include "app/session/headless.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "renderer/graphics/hair_pass.h"
 #include "renderer/settings.h"
+#include "renderer/strand_draw.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -205,7 +205,7 @@ int runSweep(const vk::Context& ctx, const SweepOptions& o, const SessionOptions
                             stillTimeline(base.source.sphere, settings.sim.wind, render.light), base.source);
         point.timings = profileFrames(ctx, session, render, 30.0f, o.warmup, o.frames, &point.oit, &point.raster);
         point.drawn = resolveHairRaster(render.hairRaster, ctx.report().type);
-        HairDrawCounts counts = hairDrawCounts(uint32_t(session.scene().strands.strandCount()), render.strands);
+        StrandCounts counts = strandCounts(uint32_t(session.scene().strands.strandCount()), render.strands);
         point.strands = counts.strands();
         point.segments = counts.segments();
         point.width = render.width;
