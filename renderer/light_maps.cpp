@@ -5,7 +5,6 @@
 #include "gpu/context.h"
 #include "gpu/frame.h"
 #include "gpu/pipeline.h"
-#include "renderer/graphics/hair_pass.h"
 #include "renderer/mesh_pass.h"
 #include "shaders/shared/shadows.h"
 
@@ -155,7 +154,7 @@ void ShadowPass::declare(PassIo& io)
         return;
     io.use(maps_.hairDepth(), Access::DepthAttachment);
     if (hair_)
-        hair_->declareGuides(io);
+        hair_->declareFromLight(io);
 }
 
 void ShadowPass::record(VkCommandBuffer cmd, FrameContext& frame)
@@ -171,7 +170,7 @@ void ShadowPass::record(VkCommandBuffer cmd, FrameContext& frame)
         return;
     maps_.beginDepth(cmd, maps_.hairDepthImage());
     if (enabled_ && hair_)
-        hair_->recordFromLight(cmd, frame, HairPass::LightDraw::Depth);
+        hair_->recordFromLight(cmd, frame, LightMap::Depth);
     vkCmdEndRendering(cmd);
 }
 
@@ -180,14 +179,14 @@ void OpacityPass::declare(PassIo& io)
     io.use(maps_.hairDepth(), Access::FragmentSampled);
     io.use(maps_.opacity(), Access::ColorAttachment);
     if (hair_)
-        hair_->declareGuides(io);
+        hair_->declareFromLight(io);
 }
 
 void OpacityPass::record(VkCommandBuffer cmd, FrameContext& frame)
 {
     maps_.beginOpacity(cmd);
     if (enabled_ && hair_)
-        hair_->recordFromLight(cmd, frame, HairPass::LightDraw::Opacity);
+        hair_->recordFromLight(cmd, frame, LightMap::Opacity);
     vkCmdEndRendering(cmd);
 }
 

@@ -2,9 +2,10 @@
 // depth maps (the shadow pass) and the hair's deep opacity layers (the opacity pass), and the
 // samplers the mesh and hair shaders read them through (shaders/light_visibility.glsl).
 //   shadow:  head depth  <- meshes from the light (depth only, slope-scaled bias)
-//            hair depth  <- hair from the light (the same tessellated ribbons, facing the light)
+//            hair depth  <- hair from the light (the path's own draw: LightHairDraw)
 //   opacity: layers      <- hair from the light again, additive, each fragment into the layer its
 //                           depth falls in behind the texel's first hair depth (Yuksel & Keyser 2008)
+// The compute path writes the hair's maps from its own kernels (renderer/compute/strand_raster.h).
 #pragma once
 
 #include "gpu/compute_stage.h"
@@ -23,7 +24,21 @@ namespace vk {
 class Context;
 }
 class MeshPass;
-class HairPass;
+
+// The maps a path's hair is drawn into by the light's graphics passes.
+enum class LightMap { Depth, Opacity };
+
+// What draws the hair into the light's maps inside the shadow and opacity passes' rendering: the
+// graphics path's tessellation (renderer/graphics/hair_pass.h). The compute path writes the maps
+// from its own kernels and gives these passes none.
+class LightHairDraw {
+public:
+    virtual ~LightHairDraw() = default;
+    // What the draw reads (the guides), declared into the pass that draws it.
+    virtual void declareFromLight(PassIo& io) = 0;
+    // Draws the hair into `map`, whose rendering the pass has begun.
+    virtual void recordFromLight(VkCommandBuffer cmd, FrameContext& frame, LightMap map) = 0;
+};
 
 // What the head's depth from the light depends on: while it stays the same, the map drawn for an
 // earlier frame still holds (the head is rigid; its shadow map is kept, as engines keep static
@@ -115,18 +130,19 @@ private:
 // The light's depth maps: the head, then the hair.
 class ShadowPass : public Pass {
 public:
-    ShadowPass(LightMaps& maps, MeshPass& meshes, HairPass* hair) : maps_(maps), meshes_(meshes), hair_(hair) {}
+    ShadowPass(LightMaps& maps, MeshPass& meshes) : maps_(maps), meshes_(meshes) {}
     const char* name() const override { return "shadow"; }
     void declare(PassIo& io) override;
     void record(VkCommandBuffer cmd, FrameContext& frame) override;
     void setEnabled(bool enabled) { enabled_ = enabled; } // off: the maps are only cleared
+    void setHair(LightHairDraw* hair) { hair_ = hair; }   // null: the head alone
     // Off: the hair's depth map is left alone (the compute path writes it).
     void setHairDepth(bool drawn) { hairDepth_ = drawn; }
 
 private:
     LightMaps& maps_;
     MeshPass& meshes_;
-    HairPass* hair_;
+    LightHairDraw* hair_ = nullptr;
     bool enabled_ = true;
     bool hairDepth_ = true;
 };
@@ -134,15 +150,16 @@ private:
 // The hair's deep opacity layers.
 class OpacityPass : public Pass {
 public:
-    OpacityPass(LightMaps& maps, HairPass* hair) : maps_(maps), hair_(hair) {}
+    explicit OpacityPass(LightMaps& maps) : maps_(maps) {}
     const char* name() const override { return "opacity"; }
     void declare(PassIo& io) override;
     void record(VkCommandBuffer cmd, FrameContext& frame) override;
     void setEnabled(bool enabled) { enabled_ = enabled; }
+    void setHair(LightHairDraw* hair) { hair_ = hair; } // null: the layers are only cleared
 
 private:
     LightMaps& maps_;
-    HairPass* hair_;
+    LightHairDraw* hair_ = nullptr;
     bool enabled_ = true;
 };
 

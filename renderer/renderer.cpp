@@ -1,8 +1,11 @@
-// renderer/renderer.cpp: settings packing and the pass list.
+// renderer/renderer.cpp: settings packing and the pass list: the one file outside renderer/graphics/
+// that knows the graphics path's classes (tests/test_layers.cpp checks the includes).
 #include "renderer/renderer.h"
 
 #include "gpu/context.h"
 #include "gpu/frame.h"
+#include "renderer/graphics/hair_pass.h"
+#include "renderer/graphics/oit.h"
 #include "shading/hair_look.h"
 #include "shading/hair_models.h"
 
@@ -92,10 +95,12 @@ Renderer::Renderer(const vk::Context& ctx, const RenderSettings& settings, uint3
     target_ = std::make_unique<RenderTarget>(ctx, VkExtent2D{settings.width, settings.height}, settings.samples);
     lightMaps_ = std::make_unique<LightMaps>(ctx, settings.shadows.mapSize);
     meshPass_ = std::make_unique<MeshPass>(ctx_, *target_, uniforms_, *lightMaps_);
-    shadowPass_ = std::make_unique<ShadowPass>(*lightMaps_, *meshPass_, nullptr);
-    opacityPass_ = std::make_unique<OpacityPass>(*lightMaps_, nullptr);
+    shadowPass_ = std::make_unique<ShadowPass>(*lightMaps_, *meshPass_);
+    opacityPass_ = std::make_unique<OpacityPass>(*lightMaps_);
     meshPass_->setSurface(settings_.headAlbedo, settings_.headRoughness);
 }
+
+Renderer::~Renderer() = default;
 
 void Renderer::setHead(const Head& head)
 {
@@ -190,7 +195,7 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
     if (!solver_)
         return;
     const StrandSettings& s = settings_.strands;
-    HairDrawCounts counts = hairCounts();
+    StrandCounts counts = hairCounts();
     // LOD (TressFX): beyond the default framing distance the strand count falls with the square of
     // the distance (the screen area the head covers), continuously, and the width grows to keep
     // the coverage; never below lodMinFraction of the strands.
@@ -222,10 +227,11 @@ void Renderer::prepare(FrameContext& frame, const OrbitCamera& camera, float tim
     light.lodStrands = lightLodStrands(draw.lodStrands, settings_.shadows.strandFraction);
     light.lodWidthScale = draw.lodWidthScale * std::sqrt(draw.lodStrands / light.lodStrands);
     if (hairRaster() != HairRaster::Compute) {
+        makeHairPass();
         makeOit();
         if (oitResolve_)
             oitResolve_->setK(settings_.transparency.oitK, frame);
-        hairPass_->setDraw(draw, light, counts);
+        hairPass_->setDraw(draw, light, hairDrawCounts(guideCount_, s));
         lightMaps_->useHairDepthValues(false);
         return;
     }
@@ -264,7 +270,23 @@ void Renderer::makeOit()
     oitComposite_ = std::make_unique<CompositePass>(ctx_, *target_, "oit.composite");
     oitComposite_->setSource(&oit_->color(), &oit_->colorImage());
     oitStats_ = std::make_unique<OitStatsPass>(*oit_);
-    hairPass_->setOit(oit_.get());
+    if (hairPass_)
+        hairPass_->setOit(oit_.get());
+}
+
+void Renderer::makeHairPass()
+{
+    // The tessellation's pipelines only where the graphics path draws: the compute path's default
+    // frame builds none of them.
+    if (hairPass_ || !solver_)
+        return;
+    hairPass_ = std::make_unique<HairPass>(ctx_, *target_, uniforms_, *solver_, guideTriangles_);
+    hairPass_->setLightMaps(lightMaps_.get());
+    hairPass_->setLut(hairLut_.get());
+    if (oit_)
+        hairPass_->setOit(oit_.get());
+    shadowPass_->setHair(hairPass_.get());
+    opacityPass_->setHair(hairPass_.get());
 }
 
 void Renderer::makeStrandRaster()
@@ -273,7 +295,7 @@ void Renderer::makeStrandRaster()
         return;
     strandRaster_ = std::make_unique<StrandRaster>(ctx_, *target_, uniforms_, *lightMaps_, *solver_, guideTriangles_,
                                                    framesInFlight_);
-    headShadowPass_ = std::make_unique<ShadowPass>(*lightMaps_, *meshPass_, nullptr);
+    headShadowPass_ = std::make_unique<ShadowPass>(*lightMaps_, *meshPass_);
     headShadowPass_->setHairDepth(false);
     strandComposite_ = std::make_unique<CompositePass>(ctx_, *target_, "hair.composite");
 }
@@ -299,16 +321,9 @@ void Renderer::attachHair(GpuSolver& solver, const StrandSet& strands, float uni
     physicsPass_ = std::make_unique<PhysicsPass>(solver);
     guidePass_ = std::make_unique<GuidePass>(ctx_, *target_, uniforms_, solver, uint32_t(strands.strandCount()),
                                              strands.verticesPerStrand);
-    hairPass_ = std::make_unique<HairPass>(ctx_, *target_, uniforms_, solver, strands);
-    hairPass_->setLightMaps(lightMaps_.get());
     lutParams_ = hairParams(settings_.hair);
     hairLut_ = std::make_unique<HairLutImage>(ctx_);
     hairLut_->upload(shading::buildHairLut(lutParams_), nullptr);
-    hairPass_->setLut(hairLut_.get());
-    shadowPass_ = std::make_unique<ShadowPass>(*lightMaps_, *meshPass_, hairPass_.get());
-    opacityPass_ = std::make_unique<OpacityPass>(*lightMaps_, hairPass_.get());
-    if (hairRaster() == HairRaster::Graphics)
-        makeOit(); // (else made the first time a frame draws with the graphics path)
     // The light's view holds the head and the hair at rest, with room for the hair to swing.
     glm::vec3 lo = lightFit_.scene.min, hi = lightFit_.scene.max;
     for (const glm::vec3& p : strands.rest) {
@@ -330,8 +345,13 @@ void Renderer::attachHair(GpuSolver& solver, const StrandSet& strands, float uni
     verticesPerStrand_ = strands.verticesPerStrand;
     solver_ = &solver;
     guideTriangles_ = guideTriangles(strands);
-    if (hairRaster() == HairRaster::Compute)
-        makeStrandRaster(); // (else made the first time a frame draws with it)
+    // Each path's objects now where it draws, else the first time a frame draws with it.
+    if (hairRaster() == HairRaster::Compute) {
+        makeStrandRaster();
+    } else {
+        makeHairPass();
+        makeOit();
+    }
     unitsPerMetre_ = unitsPerMetre;
 }
 
@@ -341,9 +361,16 @@ void Renderer::setHeadTransform(const glm::mat4& transform)
     meshPass_->setHeadTransform(transform);
 }
 
-HairDrawCounts Renderer::hairCounts() const
+StrandCounts Renderer::hairCounts() const
 {
-    return hairDrawCounts(guideCount_, settings_.strands);
+    return strandCounts(guideCount_, settings_.strands);
+}
+
+std::string Renderer::describeHairDraw() const
+{
+    if (hairRaster() == HairRaster::Compute)
+        return "drawn in compute (hair_raster=compute)";
+    return wisp::describeHairDraw(hairDrawCounts(guideCount_, settings_.strands));
 }
 
 void Renderer::setSteps(std::vector<gpu::SimStep> steps)

@@ -4,6 +4,9 @@
 //   opacity layers) | [oit.clear] | meshes (head) | hair (tessellated strands) | [oit.resolve
 //   (compute) | oit.composite | oit.stats] | guides (lines, optional)
 // The bracketed passes run in OIT mode (transparency=oit); in MSAA mode the hair writes coverage.
+// With hair_raster=compute the strands' and meshes' compute passes replace the shadow's hair,
+// the opacity, the meshes and the hair (renderer.cpp's passes()). Each path's objects are made the
+// first time a frame draws with it; this header names the graphics path's classes only.
 // A front end begins a Frame, calls prepare(), runs passes() plus its own tail (readback or
 // present), and submits.
 #pragma once
@@ -14,19 +17,20 @@
 #include "renderer/compute/mesh_raster.h"
 #include "renderer/compute/strand_raster.h"
 #include "renderer/frame_uniforms.h"
-#include "renderer/graphics/guide_pass.h"
-#include "renderer/graphics/hair_pass.h"
-#include "renderer/graphics/oit.h"
+#include "renderer/guide_pass.h"
 #include "renderer/hair_lut_image.h"
 #include "renderer/light_maps.h"
 #include "renderer/mesh_pass.h"
+#include "renderer/oit_stats.h"
 #include "renderer/physics_pass.h"
 #include "renderer/render_target.h"
 #include "renderer/settings.h"
+#include "renderer/strand_draw.h"
 #include "shading/hair_bsdf.h"
 
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace wisp {
@@ -35,6 +39,12 @@ namespace vk {
 class Context;
 }
 struct FrameContext;
+// The graphics path (renderer/graphics/): only renderer.cpp, which makes the pass list, knows it.
+class HairPass;
+class Oit;
+class OitClearPass;
+class OitResolvePass;
+class OitStatsPass;
 
 // What the light's view is fitted to: the scene's bounds (head and hair at rest, with room for
 // the hair to move) and the scene's units.
@@ -51,14 +61,19 @@ gpu::FrameParams pack(const RenderSettings& settings, const OrbitCamera& camera,
 class Renderer {
 public:
     Renderer(const vk::Context& ctx, const RenderSettings& settings, uint32_t framesInFlight);
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
 
     // Uploads the head mesh; call while the device is idle.
     void setHead(const Head& head);
     // Simulates `strands` with `solver` (which must outlive the renderer) and draws them as hair;
     // unitsPerMetre converts the strand settings' metres into the head's units.
     void attachHair(GpuSolver& solver, const StrandSet& strands, float unitsPerMetre);
-    // The draw the current settings make (for the CLI and UI to report).
-    HairDrawCounts hairCounts() const;
+    // The strands the current settings draw (for the CLI and UI to report), and how the path that
+    // draws them splits them ("drawn in compute ..." or the tessellation's patches and draws).
+    StrandCounts hairCounts() const;
+    std::string describeHairDraw() const;
     // Where the head is (rigid; the hair's colliders follow it), the user's sphere (xyz, radius; 0:
     // none) to draw, and whether to draw a marker where the light comes from (the window does).
     void setHeadTransform(const glm::mat4& transform);
@@ -75,6 +90,8 @@ public:
     // does not run them again).
     void setStepsAhead(std::vector<gpu::SimStep> steps) { stepsAhead_ = std::move(steps); }
     PhysicsPass* physics() { return physicsPass_.get(); }
+    // The tessellation's pass: made the first time a frame draws with the graphics path (null
+    // until then: no tessellation pipeline is built while compute draws).
     HairPass* hair() { return hairPass_.get(); }
     // Recreates the size-dependent images; call while the device is idle.
     void resize(VkExtent2D extent);
@@ -139,6 +156,7 @@ private:
     void makeStrandRaster();
     void placeStepsAhead(std::vector<Pass*>& list);
     void makeOit();
+    void makeHairPass();
     uint32_t guideCount_ = 0;
     uint32_t verticesPerStrand_ = 0;
     float unitsPerMetre_ = 1.0f;

@@ -1,14 +1,37 @@
-// renderer/strand_draw.h: the strands a frame draws, as both hair paths take them: the guides,
-// how many strands each one grows and how they are placed (interpolation, clumps, deviations),
-// and LOD's continuous strand count with the width that keeps their coverage. The Renderer fills
-// one for the camera and one for the light's maps; the graphics path turns it into the
-// tessellation's push constants (renderer/graphics/hair_pass.h), the compute path into its
-// kernels' (renderer/compute/strand_raster.h).
+// renderer/strand_draw.h: the strands a frame draws, as both hair paths take them: how many (the
+// guides, strands per guide, segments per strand: what the commands and the panel report), how
+// they are placed (interpolation, clumps, deviations), and LOD's continuous strand count with the
+// width that keeps their coverage. The Renderer fills one draw for the camera and one for the
+// light's maps; each path turns it into its own push constants (the tessellation's patches and
+// instances are the graphics path's own arithmetic, renderer/graphics/).
 #pragma once
+
+#include "renderer/settings.h"
 
 #include <cstdint>
 
 namespace wisp {
+
+// What a frame draws for given settings, whichever path draws it: every strand at full detail
+// (before LOD), each cut into `divisions` segments.
+struct StrandCounts {
+    uint32_t guides = 0;
+    uint32_t strandsPerGuide = 0; // as drawn (before LOD)
+    uint32_t divisions = 0;       // segments per strand
+    uint64_t strands() const { return uint64_t(guides) * strandsPerGuide; }
+    uint64_t segments() const { return strands() * divisions; }
+};
+// The device memory of the guides' triangles (each guide with the two it interpolates between), of
+// which the path that draws the strands uploads its own copy.
+constexpr uint64_t guideTriangleBytes(uint64_t guides)
+{
+    return guides * 4 * sizeof(uint32_t);
+}
+
+inline StrandCounts strandCounts(uint32_t guides, const StrandSettings& settings)
+{
+    return {.guides = guides, .strandsPerGuide = settings.strandsPerGuide, .divisions = settings.divisions};
+}
 
 struct StrandDraw {
     uint32_t guides = 0;

@@ -7,6 +7,7 @@
 #include "gpu/frame.h"
 #include "physics/colliders.h"
 #include "physics/groomed_head.h"
+#include "renderer/graphics/hair_pass.h"
 #include "renderer/renderer.h"
 #include "shaders/shared/strands.h"
 #include "small_groomed_head.h"
@@ -102,6 +103,38 @@ GroomedHead smallScene(uint32_t guides)
 }
 
 } // namespace
+
+// The compute path's frames build no tessellation pipeline (no HairPass); switching hair_raster to
+// graphics, as the window's panel does, builds it for the next frame, which draws every line.
+TEST(HairRender, TheComputePathBuildsNoTessellationPipelines)
+{
+    vk::Context ctx(test::validatedOptions());
+    GroomedHead scene = smallScene(7);
+    RenderSettings s;
+    s.hairRaster = HairRaster::Compute;
+    s.width = 96;
+    s.height = 64;
+    s.shadows.mapSize = 256;
+    s.strands.strandsPerGuide = 3;
+    s.strands.divisions = 5;
+    s.strands.lod = false;
+    test::HairRenderer hair(ctx, scene, s);
+    Picture compute = renderFrame(ctx, hair.renderer, hair.frame, hair.camera);
+    EXPECT_EQ(hair.renderer.hairRaster(), HairRaster::Compute);
+    EXPECT_EQ(hair.renderer.hair(), nullptr);
+    EXPECT_GT(compute.raster.segments, 0u); // the compute path drew the strands
+    EXPECT_NE(hair.renderer.describeHairDraw().find("compute"), std::string::npos);
+
+    hair.renderer.settings().hairRaster = HairRaster::Graphics;
+    Picture graphics = renderFrame(ctx, hair.renderer, hair.frame, hair.camera);
+    ASSERT_NE(hair.renderer.hair(), nullptr);
+    EXPECT_EQ(graphics.raster.capacity, 0u); // drawn by the tessellation now
+    EXPECT_NE(hair.renderer.describeHairDraw().find("patches"), std::string::npos);
+    if (ctx.report().pipelineStatisticsQuery) {
+        EXPECT_EQ(hair.renderer.hair()->statistics().geometryInvocations, 7ull * 3 * 5);
+    }
+    EXPECT_EQ(ctx.validationMessages(), 0u);
+}
 
 TEST(HairRender, PipelineStatisticsCountWhatTheSettingsAsk)
 {

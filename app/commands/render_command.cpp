@@ -10,7 +10,6 @@
 #include "app/settings/settings_table.h"
 #include "core/error.h"
 #include "gpu/check.h"
-#include "renderer/graphics/hair_pass.h"
 #include "renderer/renderer.h"
 
 #include <CLI/CLI.hpp>
@@ -96,7 +95,7 @@ int runProfile(const GlobalOptions& g, SessionOptions& o, const RenderCommand& c
     std::vector<PassTiming> timings =
         profileFrames(ctx, session, settings, c.fps, c.profileWarmup, c.profileFrames, &oit, &raster, !c.still);
     HairRaster path = resolveHairRaster(settings.hairRaster);
-    HairDrawCounts counts = hairDrawCounts(uint32_t(session.scene().strands.strandCount()), settings.strands);
+    StrandCounts counts = strandCounts(uint32_t(session.scene().strands.strandCount()), settings.strands);
     nlohmann::json out = {{"device", ctx.report().name},
                           {"width", settings.width},
                           {"height", settings.height},

@@ -93,16 +93,10 @@ PosedFrame::PosedFrame(const vk::Context& ctx, HairSession& session, const Rende
 
 std::string describeHairCounts(const Renderer& renderer)
 {
-    HairDrawCounts c = renderer.hairCounts();
-    std::string text = "hair: " + std::to_string(c.guides) + " guides x " + std::to_string(c.strandsPerGuide) +
-                       " strands x " + std::to_string(c.divisions) + " divisions = " + std::to_string(c.segments()) +
-                       " segments, ";
-    if (renderer.hairRaster() == HairRaster::Compute)
-        return text + "drawn in compute (hair_raster=compute)";
-    return text + "drawn as " + std::to_string(uint64_t(c.guides) * c.lengthChunks * c.strandChunks) +
-           " patches of up to " + std::to_string(c.strandsPerPatch) + " strands x " +
-           std::to_string((c.divisions + c.lengthChunks - 1) / c.lengthChunks) + " divisions (" +
-           std::to_string(c.strandChunks) + " instances, " + std::to_string(c.draws()) + " draws)";
+    StrandCounts c = renderer.hairCounts();
+    return "hair: " + std::to_string(c.guides) + " guides x " + std::to_string(c.strandsPerGuide) + " strands x " +
+           std::to_string(c.divisions) + " divisions = " + std::to_string(c.segments()) + " segments, " +
+           renderer.describeHairDraw();
 }
 
 Picture renderPicture(const vk::Context& ctx, HairSession& session, const RenderSettings& settings, uint32_t frames,

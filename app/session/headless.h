@@ -11,8 +11,7 @@
 #include "physics/simulation.h"
 #include "renderer/camera.h"
 #include "renderer/compute/strand_raster.h"
-#include "renderer/graphics/hair_pass.h"
-#include "renderer/graphics/oit.h"
+#include "renderer/oit_stats.h"
 #include "renderer/renderer.h"
 #include "renderer/settings.h"
 

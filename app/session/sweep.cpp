@@ -6,8 +6,8 @@
 #include "app/session/headless.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "renderer/graphics/hair_pass.h"
 #include "renderer/settings.h"
+#include "renderer/strand_draw.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -230,7 +230,7 @@ int runSweep(const vk::Context& ctx, const SweepOptions& o, const SessionOptions
         point.timings = profileFrames(ctx, session, render, 30.0f, o.warmup, o.frames, &point.oit, &point.raster);
         point.drawn = resolveHairRaster(render.hairRaster);
         point.guides = session.scene().strands.strandCount();
-        HairDrawCounts counts = hairDrawCounts(uint32_t(point.guides), render.strands);
+        StrandCounts counts = strandCounts(uint32_t(point.guides), render.strands);
         point.strands = counts.strands();
         point.segments = counts.segments();
         point.width = render.width;

@@ -1,18 +1,19 @@
 // app/settings/workload.cpp: a workload's 32-bit counts and its GPU memory, summed from what each owner
-// says it allocates (solverDeviceBytes, HairPass, GuidePass, RenderTarget, LightMaps, Oit and
-// StrandRaster's deviceBytes, each in its own formats) and checked against the device up front.
+// says it allocates (solverDeviceBytes; GuidePass, RenderTarget, LightMaps and StrandRaster's
+// deviceBytes; the graphics path's through neutral headers: guideTriangleBytes, oitDeviceBytes;
+// each in its own formats) and checked against the device up front.
 #include "app/settings/workload.h"
 
 #include "core/error.h"
 #include "gpu/context.h"
 #include "renderer/compute/mesh_raster.h"
 #include "renderer/compute/strand_raster.h"
-#include "renderer/graphics/guide_pass.h"
-#include "renderer/graphics/hair_pass.h"
-#include "renderer/graphics/oit.h"
+#include "renderer/guide_pass.h"
 #include "renderer/hair_lut_image.h"
 #include "renderer/light_maps.h"
+#include "renderer/oit_stats.h"
 #include "renderer/render_target.h"
+#include "renderer/strand_draw.h"
 
 #include <algorithm>
 #include <cmath>
@@ -80,12 +81,13 @@ GpuMemory estimateGpuMemory(const Workload& w, const vk::DeviceReport& device)
         return m;
     const RenderSettings& r = *w.render;
     VkExtent2D extent{r.width, r.height};
-    m.hair =
-        HairPass::deviceBytes(w.guides) + HairLutImage::kBytes + GuidePass::deviceBytes(w.guides, w.verticesPerStrand);
+    // The tessellation's guide triangles only where it draws (the compute path counts its own).
+    m.hair = (drawnInCompute(w) ? 0 : guideTriangleBytes(w.guides)) + HairLutImage::kBytes +
+             GuidePass::deviceBytes(w.guides, w.verticesPerStrand);
     m.target = RenderTarget::deviceBytes(extent, std::max<uint32_t>(r.samples, 1));
     m.lightMaps = LightMaps::deviceBytes(r.shadows.mapSize);
     if (r.transparency.mode == Transparency::Oit && w.guides > 0 && !drawnInCompute(w))
-        m.oit = Oit::deviceBytes(extent, r.transparency.oitNodesPerPixel); // (only the graphics path's hair uses it)
+        m.oit = oitDeviceBytes(extent, r.transparency.oitNodesPerPixel); // (only the graphics path's hair uses it)
     if (drawnInCompute(w)) {
         // Every strand at full detail (LOD draws fewer); the light's share as Renderer::prepare
         // draws them: at least one a guide, none with shadows off.

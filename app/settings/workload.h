@@ -27,7 +27,7 @@ struct Workload {
 // owner allocates; the render parts are device-local images and buffers only.
 struct GpuMemory {
     uint64_t simulation = 0; // the solver's buffers: solverDeviceBytes (fixed-point grid, the larger)
-    uint64_t hair = 0;       // the hair pass's guide triangles and lookup tables, the guide lines' indices
+    uint64_t hair = 0;       // the tessellation's guide triangles, the lookup tables, the guides' lines
     uint64_t target = 0;     // MSAA colour and depth, the resolved colour
     uint64_t lightMaps = 0;  // the light's two depth maps and its opacity layers
     uint64_t oit = 0;        // list heads, resolved colour, and the node pool when its size is set

@@ -363,7 +363,7 @@ void Window::buildPanel(const std::vector<std::string>& scriptedSets)
 {
     PanelData panel{.status = viewer_.status(), .help = viewerHelp(), .counts = {}, .passes = {}};
     if (session_.hasHair()) {
-        HairDrawCounts c = renderer_->hairCounts();
+        StrandCounts c = renderer_->hairCounts();
         OitStats oit = renderer_->oitStats(framesDrawn_ % kFramesInFlight);
         if (oit.overflow > 0 && oit.automatic && oit.capacity < oit.limit) {
             frame_.waitIdle(); // the automatic pool grows for the next frame

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <string>
 #include <vector>
 
 namespace wisp {
@@ -42,8 +43,16 @@ HairDrawCounts hairDrawCounts(uint32_t guides, const StrandSettings& s)
     return c;
 }
 
+std::string describeHairDraw(const HairDrawCounts& c)
+{
+    return "drawn as " + std::to_string(c.patches() * c.strandChunks) + " patches of up to " +
+           std::to_string(c.strandsPerPatch) + " strands x " +
+           std::to_string((c.divisions + c.lengthChunks - 1) / c.lengthChunks) + " divisions (" +
+           std::to_string(c.strandChunks) + " instances, " + std::to_string(c.draws()) + " draws)";
+}
+
 HairPass::HairPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& uniforms, GpuSolver& solver,
-                   const StrandSet& strands)
+                   const std::vector<glm::uvec4>& triangles)
     : ctx_(ctx), target_(target), uniforms_(uniforms), solver_(solver)
 {
     if (ctx.report().pipelineStatisticsQuery) {
@@ -56,7 +65,6 @@ HairPass::HairPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& 
         ctx.setName(pool, VK_OBJECT_TYPE_QUERY_POOL, "hair.statistics");
         statistics_ = vk::QueryPool(ctx.device(), pool);
     }
-    std::vector<glm::uvec4> triangles = guideTriangles(strands);
     triangles_ = ctx.createBufferWithData(
         {.size = triangles.size() * sizeof(glm::uvec4), .usage = vk::kStorage, .name = "hair.triangles"},
         triangles.data(), triangles.size() * sizeof(glm::uvec4));
@@ -151,14 +159,14 @@ void HairPass::setDraw(const StrandDraw& camera, const StrandDraw& light, const 
     lightPush_ = push(light);
 }
 
-void HairPass::declareGuides(PassIo& io)
+void HairPass::declareFromLight(PassIo& io)
 {
     io.use(solver_.positionsTrack(), Access::VertexShaderRead); // tessellation reads the guides
 }
 
 void HairPass::declare(PassIo& io)
 {
-    declareGuides(io);
+    declareFromLight(io);
     lightMaps_->declareRead(io);
     if (oit_) {
         io.use(oit_->heads(), Access::FragmentStorageWrite);
@@ -212,9 +220,9 @@ void HairPass::draw(VkCommandBuffer cmd, FrameContext& frame, VkPipeline pipelin
         vkCmdDraw(cmd, std::min(counts_.patchesPerDraw, patches - first), counts_.strandChunks, first, 0);
 }
 
-void HairPass::recordFromLight(VkCommandBuffer cmd, FrameContext& frame, LightDraw which)
+void HairPass::recordFromLight(VkCommandBuffer cmd, FrameContext& frame, LightMap map)
 {
-    if (which == LightDraw::Depth)
+    if (map == LightMap::Depth)
         draw(cmd, frame, depthPipeline_, {}, lightPush_);
     else
         draw(cmd, frame, opacityPipeline_, {lightMaps_->hairDepthWrite()}, lightPush_); // z0: where the layers start

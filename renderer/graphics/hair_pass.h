@@ -8,10 +8,12 @@
 #include "gpu/pass.h"
 #include "gpu/resources.h"
 #include "physics/strand_set.h"
+#include "renderer/light_maps.h"
 #include "renderer/settings.h"
 #include "renderer/strand_draw.h"
 #include "shaders/shared/strands.h"
 
+#include <string>
 #include <vector>
 
 namespace wisp {
@@ -22,16 +24,12 @@ class Context;
 class RenderTarget;
 class FrameUniforms;
 class GpuSolver;
-class LightMaps;
 class Oit;
 class HairLutImage;
 
-// What a draw produces for given settings: the Vulkan limits split it into patches and instances,
-// never cap it (the CLI and UI report these).
-struct HairDrawCounts {
-    uint32_t guides = 0;
-    uint32_t strandsPerGuide = 0; // as drawn (before LOD)
-    uint32_t divisions = 0;       // segments per strand
+// How the tessellation draws given counts: the Vulkan limits split them into patches and
+// instances, never cap them.
+struct HairDrawCounts : StrandCounts {
     uint32_t lengthChunks = 0;    // patches along a strand: ceil(divisions / 64)
     uint32_t strandsPerPatch = 0; // lines a patch holds: <= 64 and <= maxPatchVertices / (divisions + 1)
     uint32_t strandChunks = 0;    // instances: ceil(strands per guide / strandsPerPatch)
@@ -39,18 +37,17 @@ struct HairDrawCounts {
                                   // stay within gpu::kMaxTessVerticesPerDraw
     uint64_t patches() const { return uint64_t(guides) * lengthChunks; }
     uint64_t draws() const { return patchesPerDraw ? (patches() + patchesPerDraw - 1) / patchesPerDraw : 0; }
-    uint64_t strands() const { return uint64_t(guides) * strandsPerGuide; }
-    uint64_t segments() const { return strands() * divisions; }
 };
 HairDrawCounts hairDrawCounts(uint32_t guides, const StrandSettings& settings);
+// "drawn as P patches of up to N strands x D divisions (I instances, K draws)": what the
+// tessellation made of the strands, for `wisp render` to print.
+std::string describeHairDraw(const HairDrawCounts& counts);
 
-class HairPass : public Pass {
+class HairPass : public Pass, public LightHairDraw {
 public:
-    // The device memory for `guides` guides: a triangle of guides each.
-    static constexpr uint64_t deviceBytes(uint64_t guides) { return guides * sizeof(glm::uvec4); }
-
+    // `triangles`: each guide's triangle of guides (guideTriangles, physics/strand_set.h).
     HairPass(const vk::Context& ctx, RenderTarget& target, FrameUniforms& uniforms, GpuSolver& solver,
-             const StrandSet& strands);
+             const std::vector<glm::uvec4>& triangles);
     const char* name() const override { return "hair"; }
     void declare(PassIo& io) override;
     void record(VkCommandBuffer cmd, FrameContext& frame) override;
@@ -61,11 +58,10 @@ public:
     void setOit(Oit* oit) { oit_ = oit; }
     // The lookup mode's tables (the Renderer's, shared with the compute path). Set before the first frame.
     void setLut(const HairLutImage* lut) { lut_ = lut; }
-    // The guides the tessellation reads, for the passes that draw the hair from the light.
-    void declareGuides(PassIo& io);
-    enum class LightDraw { Depth, Opacity };
-    // Draws the same hair from the light into the rendering the caller has begun.
-    void recordFromLight(VkCommandBuffer cmd, FrameContext& frame, LightDraw draw);
+    // The light's maps' hair (LightHairDraw): the guides the tessellation reads, and the same hair
+    // drawn from the light into the rendering the caller has begun.
+    void declareFromLight(PassIo& io) override;
+    void recordFromLight(VkCommandBuffer cmd, FrameContext& frame, LightMap map) override;
 
     // This frame's strands for the camera and for the light's maps (fewer, wider: see
     // shadow_strands), drawn in `counts`' patches and instances.

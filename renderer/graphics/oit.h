@@ -15,6 +15,7 @@
 #include "gpu/handle.h"
 #include "gpu/pass.h"
 #include "gpu/resources.h"
+#include "renderer/oit_stats.h"
 #include "shaders/shared/shadows.h"
 
 #include <string>
@@ -27,34 +28,12 @@ class Context;
 }
 class RenderTarget;
 
-struct OitStats {
-    uint64_t fragments = 0; // fragments the hair produced last frame (stored + dropped)
-    uint64_t overflow = 0;  // of those, dropped because the pool was full
-    uint64_t capacity = 0;  // nodes in the pool
-    uint64_t limit = 0;     // the most nodes the device allows the pool (one buffer, half its memory)
-    bool automatic = true;  // sized by Wisp (oit_nodes_per_pixel=0), so it grows when a frame overflows
-};
-
-// What to tell a person whose frame dropped fragments: a pool of their own (oit_nodes_per_pixel)
-// that the device could make large enough: the value that would hold them; one the device cannot
-// make large enough (or the automatic pool at the device's limit): transparency=msaa or a
-// smaller picture.
-std::string oitOverflowAdvice(const OitStats& stats, uint32_t width, uint32_t height);
-
 class Oit {
 public:
     // Nodes per pixel when the setting is 0 (automatic) and the device has room.
     static constexpr uint32_t kAutoNodesPerPixel = 24;
     static constexpr uint64_t kAutoMinNodes = 8u << 20;
-    static constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT; // the resolved lists
-    // The device memory per pixel of `extent`: a list head, the resolved colour, and the node pool
-    // (`nodesPerPixel`; an automatic pool, 0, counts one node a pixel, the least it takes).
-    static constexpr uint64_t deviceBytes(VkExtent2D extent, uint32_t nodesPerPixel)
-    {
-        uint64_t nodes = nodesPerPixel > 0 ? nodesPerPixel : 1;
-        return uint64_t(extent.width) * extent.height *
-               (sizeof(uint32_t) + vk::formatBytes(kColorFormat) + nodes * sizeof(gpu::OitNode));
-    }
+    static constexpr VkFormat kColorFormat = kOitColorFormat; // the resolved lists (oitDeviceBytes: their memory)
 
     // nodesPerPixel 0: automatic (kAutoNodesPerPixel, at least kAutoMinNodes, as the device allows;
     // `autoNodes` > 0 starts it at that many nodes instead, for tests).

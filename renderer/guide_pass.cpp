@@ -1,5 +1,5 @@
-// renderer/graphics/guide_pass.cpp: a line list over every strand's segments.
-#include "renderer/graphics/guide_pass.h"
+// renderer/guide_pass.cpp: a line list over every strand's segments.
+#include "renderer/guide_pass.h"
 
 #include "gpu/context.h"
 #include "gpu/frame.h"

@@ -1,4 +1,4 @@
-// renderer/graphics/guide_pass.h: draws the simulated guide strands as lines over the head, straight from
+// renderer/guide_pass.h: draws the simulated guide strands as lines over the head, straight from
 // the solver's positions buffer (the physics' view until the strands renderer takes over).
 #pragma once
 
