@@ -377,6 +377,7 @@ TEST(HostileMessages, OptionsTheParserChecksSpeakTheProjectsForm)
               "wisp: --error-scale: 'nan' is not a finite number\n"},
              {"render --style afro --style bob" + out,
               "wisp: --style: given 2 times; it takes one value (give it once)\n"},
+             {"bsdf --melanin 1,2,3 --compare", "wisp: --melanin: 3 values given; it takes at most 2\n"},
          }) {
         auto r = runWisp(c.args);
         EXPECT_EQ(r.status, 2) << c.args << "\n" << r.err;

@@ -42,13 +42,15 @@ int finishStandardOutput(int status)
 }
 
 // CLI11's own words for what it refuses itself, in the project's form: an option given more often
-// than it takes ("--style: At Most 1 required but received 2") says so and how often.
+// than it takes ("--style: At Most 1 required but received 2"), or with more values than it
+// takes, says so and how often.
 std::string parseErrorText(const std::string& text)
 {
-    static const std::regex atMost(R"((\S+): At Most 1 required but received (\d+))");
+    static const std::regex atMost(R"((\S+): At Most (\d+) required but received (\d+))");
     std::smatch m;
     if (std::regex_match(text, m, atMost))
-        return m[1].str() + ": given " + m[2].str() + " times; it takes one value (give it once)";
+        return m[2].str() == "1" ? m[1].str() + ": given " + m[3].str() + " times; it takes one value (give it once)"
+                                 : m[1].str() + ": " + m[3].str() + " values given; it takes at most " + m[2].str();
     return text + " (see 'wisp --help')";
 }
 
