@@ -8,7 +8,6 @@
 #include "shading/hair_look.h"
 
 #include <glm/glm.hpp>
-#include <vulkan/vulkan_core.h>
 
 #include <cstdint>
 #include <string>
