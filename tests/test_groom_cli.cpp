@@ -1,4 +1,4 @@
-// tests/test_groom_command_cli.cpp: `wisp groom` through the real binary (the grown guides written
+// tests/test_groom_cli.cpp: `wisp groom` through the real binary (the grown guides written
 // as cyHair and TressFX 4, at rest and after simulated frames, read back by `wisp inspect` with the
 // same strands; every bad input refused with one line, exit 2 and no file), and the groom's figures
 // in `wisp simulate --json`: the side standoff, and the tips' lag behind a head turn (above 0 for

@@ -1,4 +1,4 @@
-// tests/test_groom_cli.cpp: a user's own groom through the real binary: `inspect` reports its units,
+// tests/test_groom_files_cli.cpp: a user's own groom through the real binary: `inspect` reports its units,
 // up axis, pinned tips and short strands, and with --head the placement and the roots' distance to
 // the surface; `render` prints the same placement, refuses roots it cannot put on the head (exit 2,
 // naming the options that place a groom by hand) and warns about roots placed off it by hand;
