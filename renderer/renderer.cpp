@@ -472,7 +472,7 @@ void Renderer::placeStepsAhead(std::vector<Pass*>& list)
     if (hairRaster() == HairRaster::Compute && strandRaster_ && !settings_.strands.showGuides) {
         using Stage = StrandRaster::Stage;
         std::vector<Pass*> heavy = {strandRaster_->pass(Stage::LightOpacity), strandRaster_->pass(Stage::Generate),
-                                    strandRaster_->pass(Stage::Count)};
+                                    strandRaster_->pass(Stage::CountFragments)};
         if (strandRaster_->recordedPieces() > 0)
             heavy.push_back(strandRaster_->piecePass(Stage::Resolve, 0));
         auto curves = std::find(list.begin(), list.end(), strandRaster_->pass(Stage::Curves));

@@ -1,16 +1,29 @@
 #!/usr/bin/env bash
-# Installs the Debian packages Wisp builds, runs and tests with. Idempotent: packages already
-# installed are skipped, and nothing is done when all are present. Uses sudo when not root.
+# Installs the Debian packages Wisp needs. Idempotent: packages already installed are skipped, and
+# nothing is done when all are present. Uses sudo when not root.
+#   scripts/setup.sh          what the wisp executable builds and runs with (scripts/demo.sh)
+#   scripts/setup.sh --test   that, and what scripts/test.sh adds: GoogleTest, the validation layers,
+#                             Xvfb, ffmpeg, matplotlib (the tests of `record --video` and `sweep`'s
+#                             charts), clang-format, clang for the sanitizer build and the fuzz targets
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config
+  build-essential cmake ninja-build pkg-config
   libvulkan-dev glslang-tools libglm-dev libassimp-dev libtinyobjloader-dev
-  libglfw3-dev libimgui-dev libstb-dev nlohmann-json3-dev libcli11-dev libgtest-dev
-  mesa-vulkan-drivers vulkan-validationlayers ffmpeg xvfb xauth python3-matplotlib
-  clang-format  # the format check of scripts/test.sh --ci (scripts/format.sh)
-  clang libclang-rt-dev  # the sanitizer build and the fuzz targets (scripts/sanitize.sh, scripts/fuzz.sh)
+  libglfw3-dev libimgui-dev libstb-dev nlohmann-json3-dev libcli11-dev
+  mesa-vulkan-drivers  # lavapipe: a Vulkan device on machines without a GPU
 )
+if [ "${1:-}" = "--test" ]; then
+  packages+=(
+    libgtest-dev vulkan-validationlayers xvfb xauth
+    ffmpeg python3-matplotlib  # `wisp record --video`, `wisp sweep`'s charts
+    clang-format  # the format check of scripts/test.sh --ci (scripts/format.sh)
+    clang libclang-rt-dev  # the sanitizer build and the fuzz targets (scripts/sanitize.sh, scripts/fuzz.sh)
+  )
+elif [ $# -gt 0 ]; then
+  echo "setup: unknown option '$1' (scripts/setup.sh [--test])" >&2
+  exit 2
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -33,7 +33,7 @@ step() {
   times+=("$name $(($(date +%s) - start))s")
 }
 
-step setup "$root/scripts/setup.sh"
+step setup "$root/scripts/setup.sh" --test
 if [ "$ci" = 1 ]; then
   step format "$root/scripts/format.sh" --check
 fi

@@ -252,6 +252,11 @@ int runSweep(const vk::Context& ctx, const SweepOptions& o, const SessionOptions
         plot = exe.parent_path() / "plot_sweep.py";
     // Debian's python3 (where python3-matplotlib installs), not whichever python3 is first on PATH.
     std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+    // matplotlib is installed with the tests' packages, not the demo's: without it, say how to get it.
+    if (std::system((python + " -c 'import matplotlib' >/dev/null 2>&1").c_str()) != 0)
+        throw UserError("sweep: the results are in " + csvPath.string() +
+                        "; the charts need python3's matplotlib, which is not installed (Debian package "
+                        "python3-matplotlib: apt-get install python3-matplotlib, or scripts/setup.sh --test)");
     std::string command = python + " '" + plot.string() + "' '" + csvPath.string() + "' '" + o.outDir.string() + "'";
     int status = std::system(command.c_str());
     if (WIFEXITED(status) && WEXITSTATUS(status) == 3)

@@ -41,7 +41,7 @@ const char* stageName(StrandRaster::Stage stage)
         return "strands.generate";
     case StrandRaster::Stage::Depth:
         return "strands.depth";
-    case StrandRaster::Stage::Count:
+    case StrandRaster::Stage::CountFragments:
         return "strands.count";
     case StrandRaster::Stage::ScanBlocks:
         return "strands.scan.blocks";
@@ -477,7 +477,7 @@ ComputeStage StrandRaster::stage(Stage stage, uint32_t piece)
                 c.dispatch(externalSamples_ ? depthBufferKernel_ : depthKernel_, camera_,
                            vk::groupCount(camera_.targetWidth, 8), vk::groupCount(camera_.targetHeight, 8));
             }};
-    case Stage::Count: // (the walk of strands.write: it binds, never touches, the fragments)
+    case Stage::CountFragments: // (the walk of strands.write: it binds, never touches, the fragments)
     case Stage::Write: {
         bool write = stage == Stage::Write;
         return {.uses = {storageBuffer(kRasterBindingVertices, vertices_.track, ComputeRead),

@@ -110,7 +110,7 @@ public:
         LightCopy,
         Generate,
         Depth,
-        Count,
+        CountFragments,
         ScanBlocks,
         ScanTotals,
         ScanOffsets,
@@ -125,7 +125,7 @@ public:
                                                           Stage::LightDepth, Stage::LightOpacity, Stage::LightResolve,
                                                           Stage::LightCopy};
     // (Then strands.write and strands.resolve for each recorded piece, piecePass, and strands.reserve.)
-    static constexpr std::array<Stage, 7> kCameraStages = {Stage::Generate,   Stage::Depth,      Stage::Count,
+    static constexpr std::array<Stage, 7> kCameraStages = {Stage::Generate,   Stage::Depth,      Stage::CountFragments,
                                                            Stage::ScanBlocks, Stage::ScanTotals, Stage::ScanOffsets,
                                                            Stage::Pieces};
     // The fragment buffer holds at least this many fragments, and starts at
