@@ -183,7 +183,8 @@ TEST(ReferencePath, BackLitFibreGivesTheLightsSingleScatteringAtEveryTilt)
             double sum = 0.0;
             for (int i = 0; i < 8; ++i)
                 for (int j = 0; j < 8; ++j) {
-                    glm::vec3 wi = gpu::sampleLightCone(toLight, cosMax, (float(i) + 0.5f) / 8.0f, (float(j) + 0.5f) / 8.0f);
+                    glm::vec3 wi =
+                        gpu::sampleLightCone(toLight, cosMax, (float(i) + 0.5f) / 8.0f, (float(j) + 0.5f) / 8.0f);
                     sum += gpu::fiberLobeSum(b, o, gpu::fiberToLocal(f, wi)).y;
                 }
             return sum / 64.0;
