@@ -254,3 +254,24 @@ TEST(SceneCli, AnExactCameraIsTheSameFromTheCommandLineAndTheScene)
         EXPECT_FALSE(std::filesystem::exists(dir / "bad.png"));
     }
 }
+
+// absorption_along=0 changes the hair's picture on both real-time paths and in the reference (all
+// three take the absorption from strandAbsorptionScale), and the head alone not at all.
+TEST(SceneCli, AbsorptionAlongChangesTheHairOnEveryPath)
+{
+    TempDir dir;
+    const std::string common = " --guides 20 --set strands_per_guide=2 --width 64 --height 48 --out ";
+    for (std::string mode :
+         {"--set hair_raster=graphics", "--set hair_raster=compute", "--reference --spp 1", "--no-hair"}) {
+        std::string name = std::to_string(mode.size());
+        auto along = runWisp("render " + mode + common + "'" + (dir / ("a" + name + ".png")).string() + "'");
+        auto flat = runWisp("render " + mode + " --set absorption_along=0" + common + "'" +
+                            (dir / ("f" + name + ".png")).string() + "'");
+        ASSERT_EQ(along.status, 0) << along.err;
+        ASSERT_EQ(flat.status, 0) << flat.err;
+        if (mode == "--no-hair")
+            EXPECT_EQ(readFile(dir / ("a" + name + ".png")), readFile(dir / ("f" + name + ".png")));
+        else
+            EXPECT_NE(readFile(dir / ("a" + name + ".png")), readFile(dir / ("f" + name + ".png"))) << mode;
+    }
+}
