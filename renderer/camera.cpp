@@ -9,6 +9,8 @@ namespace wisp {
 
 glm::vec3 OrbitCamera::position() const
 {
+    if (exact)
+        return eye;
     float yaw = glm::radians(yawDeg);
     float pitch = glm::radians(pitchDeg);
     glm::vec3 offset(std::sin(yaw) * std::cos(pitch), std::sin(pitch), std::cos(yaw) * std::cos(pitch));
@@ -17,7 +19,7 @@ glm::vec3 OrbitCamera::position() const
 
 glm::mat4 OrbitCamera::view() const
 {
-    return glm::lookAtRH(position(), target, glm::vec3(0.0f, 1.0f, 0.0f));
+    return glm::lookAtRH(position(), target, exact ? up : glm::vec3(0.0f, 1.0f, 0.0f));
 }
 
 glm::mat4 OrbitCamera::projection(float aspect) const
@@ -27,24 +29,38 @@ glm::mat4 OrbitCamera::projection(float aspect) const
     return p;
 }
 
+void OrbitCamera::leaveExact()
+{
+    if (!exact)
+        return;
+    exact = false;
+    glm::vec3 offset = eye - target;
+    distance = std::max(glm::length(offset), 1e-6f);
+    pitchDeg = std::clamp(glm::degrees(std::asin(std::clamp(offset.y / distance, -1.0f, 1.0f))), -85.0f, 85.0f);
+    yawDeg = glm::degrees(std::atan2(offset.x, offset.z));
+}
+
 void OrbitCamera::orbit(float dYawDeg, float dPitchDeg)
 {
+    leaveExact();
     yawDeg = std::fmod(yawDeg + dYawDeg, 360.0f);
     pitchDeg = std::clamp(pitchDeg + dPitchDeg, -85.0f, 85.0f);
 }
 
 void OrbitCamera::zoom(float factor)
 {
+    leaveExact();
     distance = std::clamp(distance * factor, 0.05f * sceneRadius, 50.0f * sceneRadius);
     fitPlanes();
 }
 
 void OrbitCamera::pan(float dxUnits, float dyUnits)
 {
+    leaveExact();
     glm::mat4 v = view();
     glm::vec3 right(v[0][0], v[1][0], v[2][0]);
-    glm::vec3 up(v[0][1], v[1][1], v[2][1]);
-    target += right * dxUnits + up * dyUnits;
+    glm::vec3 screenUp(v[0][1], v[1][1], v[2][1]);
+    target += right * dxUnits + screenUp * dyUnits;
 }
 
 OrbitCamera OrbitCamera::framing(const Bounds& bounds, float aspect)

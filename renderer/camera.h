@@ -19,6 +19,12 @@ struct OrbitCamera {
     float nearPlane = 0.01f;
     float farPlane = 100.0f;
     float sceneRadius = 1.0f; // the framed bounds' half diagonal: the planes and the zoom follow it
+    // An exact camera (a scene's or the command line's eye, target and up): it looks from `eye` at
+    // `target`, `up` giving its roll, and `distance` is |eye - target|. Orbiting, zooming or panning
+    // it makes it an orbit camera again, from where it was (the roll dropped).
+    bool exact = false;
+    glm::vec3 eye{0.0f, 0.0f, 1.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
 
     glm::vec3 position() const;
     glm::mat4 view() const;
@@ -27,6 +33,7 @@ struct OrbitCamera {
     void orbit(float dYawDeg, float dPitchDeg);
     void zoom(float factor); // distance *= factor, kept within sensible bounds
     void pan(float dxUnits, float dyUnits);
+    void leaveExact(); // an exact camera made an orbit camera with the same eye and target
 
     // Near and far planes around a scene of sceneRadius whose centre is `targetOffset` from the
     // target: near just short of the scene's front (what depth precision depends on is far / near,

@@ -84,6 +84,7 @@ gpu::FrameParams pack(const RenderSettings& s, const OrbitCamera& camera, VkExte
                                                           : gpu::kShadingLut;
     p.hairVariation = look.variation;
     p.hairStreaks = look.streaks;
+    p.hairAlong = glm::vec4(look.along, 0.0f, 0.0f, 0.0f);
     p.hairAmbientOcclusion = 0.6f;
     p.multipleScattering = look.multipleScattering ? 1u : 0u;
     return p;

@@ -29,6 +29,7 @@ struct HairLook {
     float eta = 1.55f;
     float variation = 0.3f;         // per-strand spread of absorption (0: every strand alike)
     float streaks = 0.35f;          // strength of lighter and darker streaks along strands
+    float along = 1.0f;             // the absorption's fall from root to tip: 1 from 1.25 to 0.75 times, 0 none
     bool multipleScattering = true; // karis and lut add Karis's multiple scattering (kajiya has none)
 };
 

@@ -3,6 +3,7 @@
 // setting.
 #include "app/settings/settings_table.h"
 #include "core/error.h"
+#include "shaders/shared/strand_shading.h"
 #include "shading/hair_look.h"
 
 #include <gtest/gtest.h>
@@ -60,4 +61,26 @@ TEST(HairLook, BadLookSettingsAreRefusedNamingTheSetting)
     EXPECT_EQ(s.hair.color, glm::vec3(0.5f, 0.3f, 0.1f));
     EXPECT_EQ(message("hair_preset=blonde"), "accepted");
     EXPECT_FALSE(s.hair.useColor);
+}
+
+// absorption_along: at 1 a strand's absorption falls from 1.25 times at the root to 0.75 at the tip
+// (the drawn hair's lighter tips), at 0 it is the same all along; the per-strand factor and the
+// streaks ride on top either way. Every renderer takes it from this one function.
+TEST(HairLook, AbsorptionAlongAStrandCanBeTurnedOff)
+{
+    gpu::FrameParams frame{};
+    frame.hairVariation = 0.3f;
+    frame.hairStreaks = 0.0f;
+    for (uint32_t strand : {0u, 7u, 1234u}) {
+        frame.hairAlong.x = 1.0f;
+        float root = gpu::strandAbsorptionScale(frame, strand, 0.0f);
+        float tip = gpu::strandAbsorptionScale(frame, strand, 1.0f);
+        EXPECT_NEAR(root / tip, 1.25f / 0.75f, 1e-5f) << strand;
+        frame.hairAlong.x = 0.0f;
+        float flat = gpu::strandAbsorptionScale(frame, strand, 0.0f);
+        EXPECT_EQ(gpu::strandAbsorptionScale(frame, strand, 0.5f), flat) << strand;
+        EXPECT_EQ(gpu::strandAbsorptionScale(frame, strand, 1.0f), flat) << strand;
+        EXPECT_NEAR(flat, root / 1.25f, 1e-6f) << strand; // the per-strand factor alone
+    }
+    EXPECT_EQ(HairLook{}.along, 1.0f);
 }

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -219,4 +220,58 @@ TEST(SceneCli, BadScenesAreOneLineAndWriteNothing)
     expectUserError(runWisp("render --scene /nonexistent/s.json --out '" + (dir / "a.png").string() + "'"),
                     "/nonexistent/s.json: the scene file does not exist");
     EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
+}
+
+// An exact camera (eye, target, up, field of view) given on the command line or in a scene's key
+// gives the same picture on both real-time paths and in the reference, and not the default
+// framing's; a half-given or degenerate camera is one line and exit status 2.
+TEST(SceneCli, AnExactCameraIsTheSameFromTheCommandLineAndTheScene)
+{
+    TempDir dir;
+    writeFile(
+        dir / "cam.json",
+        R"({"keys": [{"time": 0, "camera": {"eye": [0.25, 0.2, 0.6], "target": [0, 0.1, 0], "up": [0.1, 1, 0], "fov": 35}}]})");
+    const std::string camera = " --camera-eye 0.25,0.2,0.6 --camera-target 0,0.1,0 --camera-up 0.1,1,0 --fov 35";
+    const std::string common = " --guides 20 --set strands_per_guide=2 --width 64 --height 48 --out ";
+    for (std::string mode : {"--set hair_raster=graphics", "--set hair_raster=compute", "--reference --spp 1"}) {
+        std::string name = std::to_string(mode.size());
+        auto fromScene = runWisp("render " + mode + " --scene '" + (dir / "cam.json").string() + "'" + common + "'" +
+                                 (dir / ("s" + name + ".png")).string() + "'");
+        auto fromOptions =
+            runWisp("render " + mode + camera + common + "'" + (dir / ("o" + name + ".png")).string() + "'");
+        auto framing = runWisp("render " + mode + common + "'" + (dir / ("d" + name + ".png")).string() + "'");
+        for (const auto* r : {&fromScene, &fromOptions, &framing})
+            ASSERT_EQ(r->status, 0) << mode << "\n" << r->err;
+        EXPECT_EQ(readFile(dir / ("s" + name + ".png")), readFile(dir / ("o" + name + ".png"))) << mode;
+        EXPECT_NE(readFile(dir / ("s" + name + ".png")), readFile(dir / ("d" + name + ".png"))) << mode;
+    }
+    for (const char* bad :
+         {"--camera-up 0,1,0", "--camera-eye 1,2", "--fov 0", "--camera-eye 0,0.1,0 --camera-target 0,0.1,0",
+          "--camera-eye 0,0,1 --camera-target 0,0,0 --camera-up 0,0,3"}) {
+        auto r = runWisp(std::string("render --no-hair ") + bad + " --out '" + (dir / "bad.png").string() + "'");
+        EXPECT_EQ(r.status, 2) << bad << "\n" << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(dir / "bad.png"));
+    }
+}
+
+// absorption_along=0 changes the hair's picture on both real-time paths and in the reference (all
+// three take the absorption from strandAbsorptionScale), and the head alone not at all.
+TEST(SceneCli, AbsorptionAlongChangesTheHairOnEveryPath)
+{
+    TempDir dir;
+    const std::string common = " --guides 20 --set strands_per_guide=2 --width 64 --height 48 --out ";
+    for (std::string mode :
+         {"--set hair_raster=graphics", "--set hair_raster=compute", "--reference --spp 1", "--no-hair"}) {
+        std::string name = std::to_string(mode.size());
+        auto along = runWisp("render " + mode + common + "'" + (dir / ("a" + name + ".png")).string() + "'");
+        auto flat = runWisp("render " + mode + " --set absorption_along=0" + common + "'" +
+                            (dir / ("f" + name + ".png")).string() + "'");
+        ASSERT_EQ(along.status, 0) << along.err;
+        ASSERT_EQ(flat.status, 0) << flat.err;
+        if (mode == "--no-hair")
+            EXPECT_EQ(readFile(dir / ("a" + name + ".png")), readFile(dir / ("f" + name + ".png")));
+        else
+            EXPECT_NE(readFile(dir / ("a" + name + ".png")), readFile(dir / ("f" + name + ".png"))) << mode;
+    }
 }

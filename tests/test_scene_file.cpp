@@ -408,6 +408,14 @@ TEST(SceneErrors, OutOfRangeValuesNameTheRange)
            "/keys/0/camera/distance: 0 is out of range: allowed 0.1 .. 10");
     expect(R"({"keys": [{"time": 0, "camera": {"pitch": 90}}]})",
            "/keys/0/camera/pitch: 90 is out of range: allowed -85 .. 85");
+    expect(R"({"keys": [{"time": 0, "camera": {"fov": 0.5}}]})",
+           "/keys/0/camera/fov: 0.5 is out of range: allowed 1 .. 170");
+    expect(R"({"keys": [{"time": 0, "camera": {"eye": [0, 0, 1], "up": [0, 0, 0]}}]})",
+           "/keys/0/camera/up: is [0, 0, 0]");
+    expect(R"({"keys": [{"time": 0, "camera": {"eye": [0, 0, 1], "target": [0, 0, 1]}}]})",
+           "/keys/0/camera/eye: is the target");
+    expect(R"({"keys": [{"time": 0, "camera": {"eye": [0, 0, 1], "target": [0, 0, 0], "up": [0, 0, 2]}}]})",
+           "/keys/0/camera/up: is along the line of sight");
     // JSON has no NaN or infinity, but it has huge numbers.
     expect(R"({"keys": [{"time": 0, "wind": [1e300, 0, 0]}]})",
            "/keys/0/wind/0: 1e+300 is out of range: allowed -100 .. 100");
@@ -431,6 +439,23 @@ TEST(SceneErrors, OutOfRangeValuesNameTheRange)
            "/settings/interpolation: 'cubic' is not allowed: single | multi | mixed");
     expect(R"({"interpolation": "cubic"})", "/interpolation: 'cubic' is not allowed: linear | smooth");
     expect(R"({"version": 2})", "/version: 2 is not a version this Wisp reads (it reads 1)");
+}
+
+// An exact camera in a key: eye, target, up and field of view read and written back.
+TEST(Scene, AnExactCameraReadsAndSaves)
+{
+    TempDir dir;
+    writeFile(
+        dir / "s.json",
+        R"({"keys": [{"time": 0, "camera": {"eye": [0.1, 0.2, 1.5], "target": [0, 0.1, 0], "up": [0, 1, 0.5], "fov": 24}}]})");
+    Scene s = loadScene(dir / "s.json");
+    ASSERT_EQ(s.keys.size(), 1u);
+    EXPECT_EQ(s.keys[0].cameraEye, glm::vec3(0.1f, 0.2f, 1.5f));
+    EXPECT_EQ(s.keys[0].cameraTarget, glm::vec3(0.0f, 0.1f, 0.0f));
+    EXPECT_EQ(s.keys[0].cameraUp, glm::vec3(0.0f, 1.0f, 0.5f));
+    EXPECT_EQ(s.keys[0].cameraFovDeg, 24.0f);
+    saveScene(dir / "t.json", s);
+    EXPECT_TRUE(loadScene(dir / "t.json") == s);
 }
 
 TEST(SceneErrors, ContradictionsAreNamed)

@@ -3,7 +3,10 @@
 // between its own keys, looping), and the posed camera.
 #include "app/scene/scene_timeline.h"
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 using namespace wisp;
 
@@ -114,4 +117,48 @@ TEST(SceneTimeline, ALoopingScenePlaysItsKeysAgain)
     EXPECT_FLOAT_EQ(looped.at(4.5).headYawDeg, 10.0f); // the second time round
     EXPECT_FLOAT_EQ(looped.at(4000.5).headYawDeg, 10.0f);
     EXPECT_FLOAT_EQ(once.at(4.5).headYawDeg, 40.0f); // without the loop: held
+}
+
+// An eye: the exact camera, looking from it at the target with its up and field of view; the
+// timeline carries the eye, the up and the field of view between keys like any channel.
+TEST(SceneTimeline, AnEyeGivesTheExactCamera)
+{
+    Bounds head{glm::vec3(-0.2f, -0.1f, -0.1f), glm::vec3(0.2f, 0.3f, 0.1f)};
+    OrbitCamera framing = OrbitCamera::framing(head, 1.5f);
+    CameraPose pose{.target = glm::vec3(0.0f, 0.1f, 0.0f),
+                    .eye = glm::vec3(0.3f, 0.2f, -1.2f),
+                    .up = glm::vec3(0.2f, 1.0f, 0.0f),
+                    .fovDeg = 20.0f};
+    OrbitCamera c = poseCamera(framing, pose);
+    EXPECT_TRUE(c.exact);
+    EXPECT_EQ(c.position(), glm::vec3(0.3f, 0.2f, -1.2f));
+    glm::mat4 want =
+        glm::lookAtRH(glm::vec3(0.3f, 0.2f, -1.2f), glm::vec3(0.0f, 0.1f, 0.0f), glm::vec3(0.2f, 1.0f, 0.0f));
+    EXPECT_EQ(c.view(), want);
+    EXPECT_EQ(c.fovYDeg, 20.0f);
+    EXPECT_NEAR(1.0f / std::abs(c.projection(1.5f)[1][1]), std::tan(glm::radians(10.0f)), 1e-6f);
+    EXPECT_FLOAT_EQ(c.distance, glm::length(glm::vec3(0.3f, 0.1f, -1.2f)));
+    // The whole head between the planes.
+    float radius = 0.5f * glm::length(head.size());
+    float far = glm::length(c.eye - head.center()) + radius;
+    EXPECT_LT(c.nearPlane, glm::length(c.eye - head.center()) - radius);
+    EXPECT_GT(c.farPlane, far);
+    // Saved and posed again: the same camera.
+    OrbitCamera again = poseCamera(framing, cameraPoseOf(framing, c));
+    EXPECT_EQ(again.view(), c.view());
+    EXPECT_EQ(again.fovYDeg, 20.0f);
+    // Orbiting it makes it an orbit camera from where it was.
+    OrbitCamera orbiting = c;
+    orbiting.orbit(0.0f, 0.0f);
+    EXPECT_FALSE(orbiting.exact);
+    EXPECT_LT(glm::length(orbiting.position() - c.eye), 1e-5f);
+    // Between two keys the eye moves like any channel.
+    SceneKey a, b;
+    a.time = 0.0, b.time = 2.0;
+    a.cameraEye = glm::vec3(0.0f, 0.0f, 1.0f), b.cameraEye = glm::vec3(0.0f, 0.0f, 3.0f);
+    a.cameraFovDeg = 20.0f, b.cameraFovDeg = 40.0f;
+    SceneTimeline t({a, b}, SceneInterpolation::Linear, SceneState{});
+    EXPECT_EQ(t.at(1.0).camera.eye, glm::vec3(0.0f, 0.0f, 2.0f));
+    EXPECT_EQ(t.at(1.0).camera.fovDeg, 30.0f);
+    EXPECT_FALSE(t.at(1.0).camera.up.has_value());
 }

@@ -276,7 +276,7 @@ SceneKey readKey(const Reader& r, const Json& v, const std::string& at)
     if (v.contains("camera")) {
         std::string c = pointerTo(at, "camera");
         const Json& cam = v["camera"];
-        r.object(cam, c, {"yaw", "pitch", "distance", "target"});
+        r.object(cam, c, {"yaw", "pitch", "distance", "target", "eye", "up", "fov"});
         if (cam.contains("yaw"))
             k.cameraYawDeg = r.real(cam["yaw"], pointerTo(c, "yaw"), kSceneCameraYawRange, "degrees");
         if (cam.contains("pitch"))
@@ -286,6 +286,20 @@ SceneKey readKey(const Reader& r, const Json& v, const std::string& at)
                                       "times the default framing's");
         if (cam.contains("target"))
             k.cameraTarget = r.vec3(cam["target"], pointerTo(c, "target"), kPositionRange, "head units");
+        if (cam.contains("eye"))
+            k.cameraEye = r.vec3(cam["eye"], pointerTo(c, "eye"), kPositionRange, "head units");
+        if (cam.contains("up")) {
+            k.cameraUp = r.vec3(cam["up"], pointerTo(c, "up"), kPositionRange, "a direction");
+            if (glm::length(*k.cameraUp) == 0.0f)
+                r.fail(pointerTo(c, "up"), "is [0, 0, 0]: the camera's up needs a direction");
+        }
+        if (cam.contains("fov"))
+            k.cameraFovDeg = r.real(cam["fov"], pointerTo(c, "fov"), kSceneCameraFovRange, "degrees");
+        if (k.cameraEye && k.cameraTarget && *k.cameraEye == *k.cameraTarget)
+            r.fail(pointerTo(c, "eye"), "is the target: the camera needs a direction to look in");
+        if (k.cameraEye && k.cameraTarget && k.cameraUp &&
+            glm::length(glm::cross(*k.cameraUp, *k.cameraTarget - *k.cameraEye)) == 0.0f)
+            r.fail(pointerTo(c, "up"), "is along the line of sight: it gives the camera no roll");
     }
     if (v.contains("sphere"))
         k.sphere = r.sphere(v["sphere"], pointerTo(at, "sphere"));
@@ -628,6 +642,12 @@ std::string sceneJson(const Scene& scene)
             camera["distance"] = num(*k.cameraDistance);
         if (k.cameraTarget)
             camera["target"] = vecJson(&k.cameraTarget->x, 3);
+        if (k.cameraEye)
+            camera["eye"] = vecJson(&k.cameraEye->x, 3);
+        if (k.cameraUp)
+            camera["up"] = vecJson(&k.cameraUp->x, 3);
+        if (k.cameraFovDeg)
+            camera["fov"] = num(*k.cameraFovDeg);
         if (!camera.empty())
             key["camera"] = camera;
         if (k.sphere)

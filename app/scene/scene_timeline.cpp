@@ -16,6 +16,13 @@ OrbitCamera poseCamera(const OrbitCamera& framing, const CameraPose& pose)
     c.pitchDeg = pose.pitchDeg.value_or(framing.pitchDeg);
     c.distance = framing.distance * pose.distance.value_or(1.0f);
     c.target = pose.target.value_or(framing.target);
+    c.fovYDeg = pose.fovDeg.value_or(framing.fovYDeg);
+    if (pose.eye) {
+        c.exact = true;
+        c.eye = *pose.eye;
+        c.up = pose.up.value_or(glm::vec3(0.0f, 1.0f, 0.0f));
+        c.distance = std::max(glm::length(c.eye - c.target), 1e-6f);
+    }
     c.fitPlanes(glm::length(c.target - framing.target));
     return c;
 }
@@ -26,7 +33,10 @@ CameraPose cameraPoseOf(const OrbitCamera& framing, const OrbitCamera& camera)
     return {.yawDeg = clamp(camera.yawDeg, kSceneCameraYawRange),
             .pitchDeg = clamp(camera.pitchDeg, kSceneCameraPitchRange),
             .distance = clamp(camera.distance / std::max(framing.distance, 1e-12f), kSceneCameraDistanceRange),
-            .target = camera.target};
+            .target = camera.target,
+            .eye = camera.exact ? std::optional<glm::vec3>(camera.eye) : std::nullopt,
+            .up = camera.exact ? std::optional<glm::vec3>(camera.up) : std::nullopt,
+            .fovDeg = camera.fovYDeg != framing.fovYDeg ? std::optional<float>(camera.fovYDeg) : std::nullopt};
 }
 
 SceneKey sceneKey(double time, const SceneState& state)
@@ -37,6 +47,9 @@ SceneKey sceneKey(double time, const SceneState& state)
     k.cameraPitchDeg = state.camera.pitchDeg;
     k.cameraDistance = state.camera.distance;
     k.cameraTarget = state.camera.target;
+    k.cameraEye = state.camera.eye;
+    k.cameraUp = state.camera.up;
+    k.cameraFovDeg = state.camera.fovDeg;
     k.sphere = state.sphere;
     k.lightAzimuthDeg = state.light.azimuthDeg;
     k.lightElevationDeg = state.light.elevationDeg;
@@ -67,6 +80,12 @@ SceneTimeline::SceneTimeline(const std::vector<SceneKey>& keys, SceneInterpolati
             cameraDistance_.emplace_back(k.time, *k.cameraDistance);
         if (k.cameraTarget)
             cameraTarget_.emplace_back(k.time, *k.cameraTarget);
+        if (k.cameraEye)
+            cameraEye_.emplace_back(k.time, *k.cameraEye);
+        if (k.cameraUp)
+            cameraUp_.emplace_back(k.time, *k.cameraUp);
+        if (k.cameraFovDeg)
+            cameraFov_.emplace_back(k.time, *k.cameraFovDeg);
         if (k.sphere)
             sphere_.emplace_back(k.time, *k.sphere);
         if (k.lightAzimuthDeg)
@@ -113,6 +132,9 @@ SceneState SceneTimeline::at(double seconds) const
     s.camera.pitchDeg = optional(cameraPitch_, base_.camera.pitchDeg);
     s.camera.distance = optional(cameraDistance_, base_.camera.distance);
     s.camera.target = optional(cameraTarget_, base_.camera.target);
+    s.camera.eye = optional(cameraEye_, base_.camera.eye);
+    s.camera.up = optional(cameraUp_, base_.camera.up);
+    s.camera.fovDeg = optional(cameraFov_, base_.camera.fovDeg);
     s.sphere = sample(sphere_, seconds, base_.sphere);
     s.light.azimuthDeg = sample(lightAzimuth_, seconds, base_.light.azimuthDeg);
     s.light.elevationDeg = sample(lightElevation_, seconds, base_.light.elevationDeg);

@@ -25,6 +25,7 @@ inline constexpr Range kSceneCameraYawRange{-3600.0, 3600.0}; // degrees (no wra
 inline constexpr Range kSceneCameraPitchRange{-85.0, 85.0};   // degrees, OrbitCamera's limits
 inline constexpr Range kSceneCameraDistanceRange{0.1, 10.0};  // times the default framing's distance
 inline constexpr Range kSceneHeadYawRange{-80.0, 80.0};       // degrees, as far as the window turns it
+inline constexpr Range kSceneCameraFovRange{1.0, 170.0};      // degrees, the vertical field of view
 
 // How a channel moves between two keys that set it: straight (linear) or easing out of one key
 // and into the next (smoothstep: every key is a moment of rest).
@@ -37,6 +38,9 @@ struct SceneKey {
     std::optional<float> cameraPitchDeg;   // above the target's horizontal plane
     std::optional<float> cameraDistance;   // times the default framing's distance
     std::optional<glm::vec3> cameraTarget; // head units (default: the framing's target)
+    std::optional<glm::vec3> cameraEye;    // head units: an exact camera (yaw, pitch, distance unused)
+    std::optional<glm::vec3> cameraUp;     // the exact camera's up (default +y)
+    std::optional<float> cameraFovDeg;     // vertical field of view, degrees (default: the framing's)
     std::optional<glm::vec4> sphere;       // xyz, radius (head units; radius 0: none)
     std::optional<float> lightAzimuthDeg;
     std::optional<float> lightElevationDeg;
@@ -50,6 +54,8 @@ struct SceneKey {
 struct CameraPose {
     std::optional<float> yawDeg, pitchDeg, distance; // distance: times the framing's
     std::optional<glm::vec3> target;
+    std::optional<glm::vec3> eye, up; // an eye: the exact camera from it to the target, up its roll
+    std::optional<float> fovDeg;      // vertical
 };
 // `framing` (OrbitCamera::framing) moved to `pose`; near and far planes follow the distance.
 OrbitCamera poseCamera(const OrbitCamera& framing, const CameraPose& pose);
@@ -92,7 +98,8 @@ private:
     SceneState base_;
     double loopPeriod_ = 0.0;
     Track<float> cameraYaw_, cameraPitch_, cameraDistance_, lightAzimuth_, lightElevation_, lightIntensity_, headYaw_;
-    Track<glm::vec3> cameraTarget_, wind_;
+    Track<glm::vec3> cameraTarget_, cameraEye_, cameraUp_, wind_;
+    Track<float> cameraFov_;
     Track<glm::vec4> sphere_;
 };
 

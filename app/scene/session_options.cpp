@@ -126,6 +126,13 @@ SessionCommandLine::SessionCommandLine(CLI::App* cmd, Uses uses) : command_(cmd)
         auto size = wholeWithin(kImageSizeRange.min, kImageSizeRange.max);
         cmd->add_option("--width", width_, "image width in pixels")->check(size)->capture_default_str();
         cmd->add_option("--height", height_, "image height in pixels")->check(size)->capture_default_str();
+        cmd->add_option("--camera-eye", cameraEye_,
+                        "the camera exactly: its eye x,y,z in the head's units, looking at --camera-target (default "
+                        "the framing's target) with --camera-up (default 0,1,0); without it the default framing");
+        cmd->add_option("--camera-target", cameraTarget_, "the point the camera looks at, x,y,z in the head's units");
+        cmd->add_option("--camera-up", cameraUp_, "the exact camera's up direction x,y,z (its roll)");
+        cmd->add_option("--fov", fovDeg_, "the camera's vertical field of view in degrees (default 30)")
+            ->check(CLI::Range(float(kSceneCameraFovRange.min), float(kSceneCameraFovRange.max)));
     }
     cmd->add_option("--hair", hairFiles_,
                     "hair file to load instead of growing guides (TressFX .tfx 2/3/4, cyHair .hair); repeat for a "
@@ -215,6 +222,28 @@ SessionOptions SessionCommandLine::resolve() const
 
     // The timeline: the scene's keys over the command line's base.
     SceneState base;
+    auto point = [&](const std::string& text, const char* option, const char* unit) {
+        std::vector<double> v = parseNumbers(text, 3, "x,y,z", kPositionRange, unit, option);
+        return glm::vec3(float(v[0]), float(v[1]), float(v[2]));
+    };
+    if (given("--camera-eye"))
+        base.camera.eye = point(cameraEye_, "--camera-eye", "head units");
+    if (given("--camera-target"))
+        base.camera.target = point(cameraTarget_, "--camera-target", "head units");
+    if (given("--camera-up")) {
+        if (!given("--camera-eye"))
+            throw UserError("--camera-up: it rolls the exact camera: give --camera-eye too");
+        base.camera.up = point(cameraUp_, "--camera-up", "");
+        if (glm::length(*base.camera.up) == 0.0f)
+            throw UserError("--camera-up: 0,0,0 is no direction");
+    }
+    if (base.camera.eye && base.camera.target && *base.camera.eye == *base.camera.target)
+        throw UserError("--camera-eye: it is the target: the camera needs a direction to look in");
+    if (base.camera.eye && base.camera.target && base.camera.up &&
+        glm::length(glm::cross(*base.camera.up, *base.camera.target - *base.camera.eye)) == 0.0f)
+        throw UserError("--camera-up: it is along the line of sight, so it gives the camera no roll");
+    if (given("--fov"))
+        base.camera.fovDeg = fovDeg_;
     base.sphere = o.source.sphere;
     base.wind = o.settings.sim.wind;
     base.light = o.settings.render.light;
@@ -237,6 +266,13 @@ SessionOptions SessionCommandLine::resolve() const
             k.lightElevationDeg.reset();
         if (explicitly("light_intensity"))
             k.lightIntensity.reset();
+        if (given("--camera-eye")) // the command line's exact camera replaces the scene's camera
+            k.cameraYawDeg.reset(), k.cameraPitchDeg.reset(), k.cameraDistance.reset(), k.cameraEye.reset(),
+                k.cameraUp.reset();
+        if (given("--camera-eye") || given("--camera-target"))
+            k.cameraTarget.reset();
+        if (given("--fov"))
+            k.cameraFovDeg.reset();
     }
     o.timeline = SceneTimeline(keys, o.scene->interpolation, base, o.scene->loop ? o.scene->length() : 0.0);
     return o;

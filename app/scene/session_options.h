@@ -38,9 +38,9 @@ struct SessionOptions {
     HairSource source;
     std::optional<Scene> scene;
     std::filesystem::path sceneFile;
-    // The scene's keys over the command line's base (its sphere, wind and light); a channel the
-    // command line sets explicitly (--wind, --sphere, --light-*, or --set of those settings) holds
-    // the command line's value throughout. Without a scene, the base alone.
+    // The scene's keys over the command line's base (its sphere, wind, light and camera); a channel
+    // the command line sets explicitly (--wind, --sphere, --light-*, --camera-*, --fov, or --set of
+    // those settings) holds the command line's value throughout. Without a scene, the base alone.
     SceneTimeline timeline;
     // The settings the command line or the scene gave a value (the rest are the defaults).
     std::vector<std::string> givenSettings;
@@ -97,6 +97,8 @@ private:
     bool noHair_ = false;
     std::vector<std::string> hairFiles_, partOverrides_;
     std::string sphere_;
+    std::string cameraEye_, cameraTarget_, cameraUp_; // --camera-eye, --camera-target, --camera-up
+    float fovDeg_ = 0.0f;                             // --fov
     PlacementOptions placement_;
     uint32_t width_ = RenderSettings{}.width, height_ = RenderSettings{}.height;
 };

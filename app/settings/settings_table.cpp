@@ -682,6 +682,11 @@ std::vector<SettingSpec> buildSpecs()
     add(field(
         number("streaks", "", fraction, kLive, "", "lighter and darker streaks along strands"),
         [](Settings & x) -> auto& { return x.render.hair.streaks; }));
+    add(field(
+        number("absorption_along", "", fraction, kLive, "",
+               "how much the absorption falls from root to tip (1: from 1.25 to 0.75 times the "
+               "material's, lighter tips; 0: the same all along)"),
+        [](Settings & x) -> auto& { return x.render.hair.along; }));
     return s;
 }
 

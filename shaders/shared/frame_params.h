@@ -69,6 +69,7 @@ struct FrameParams {
     vec3 backgroundBottom;                    // the backdrop's colour at the bottom row (linear RGB)
     float strandLengthJitter; // drawn strands' cut from the tip, at most (strands.h strandLengthFraction)
     vec4 hairVolume; // the hair's rest bounds as a sphere, posed this frame: xyz centre (world), w radius (0: no hair)
+    vec4 hairAlong;  // x: how much the absorption varies along a strand (strandAbsorptionScale), 0..1; yzw unused
 };
 
 // Light i of the frame (kFrameLights of them; 0 the key).
@@ -99,7 +100,7 @@ GPU_NAMESPACE_END
 #ifdef __cplusplus
 // The layouts GLSL gives these blocks, checked where they are defined (C++ only).
 static_assert(sizeof(gpu::FrameLight) == 32);
-static_assert(sizeof(gpu::FrameParams) == 3 * 64 + 6 * 16 + 64 + 64 + 48 + 16 + 80 + 2 * 32 + 16 + 16,
+static_assert(sizeof(gpu::FrameParams) == 3 * 64 + 6 * 16 + 64 + 64 + 48 + 16 + 80 + 2 * 32 + 16 + 16 + 16,
               "FrameParams must match its std140 layout");
 static_assert(offsetof(gpu::FrameParams, unshadowed) == 560);
 static_assert(offsetof(gpu::FrameParams, hair) == 480);

@@ -28,13 +28,15 @@ GPU_FN float hairStreakNoise(uint strand, float x)
 }
 
 // How much strand `strand` at t (0 root .. 1 tip) scales the material's absorption: a per-strand
-// factor (hairVariation), streaks along it (hairStreaks) and lighter toward the tip. The path
-// tracer (reference_path.h) gives its fibres the same absorption.
+// factor (hairVariation), streaks along it (hairStreaks) and lighter toward the tip (hairAlong.x:
+// at 1, 1.25 at the root to 0.75 at the tip; at 0 the same all along). The path tracer
+// (reference_path.h) gives its fibres the same absorption.
 GPU_FN float strandAbsorptionScale(FrameParams frame, uint strand, float t)
 {
     float perStrand = 2.0f * hashToUnit(strand * 2654435761u) - 1.0f;
     float streak = hairStreakNoise(strand, t * 7.0f) + 0.5f * hairStreakNoise(strand + 7919u, t * 19.0f);
-    return exp2(frame.hairVariation * perStrand + 0.6f * frame.hairStreaks * streak) * (1.25f - 0.5f * t);
+    return exp2(frame.hairVariation * perStrand + 0.6f * frame.hairStreaks * streak) *
+           (1.0f + frame.hairAlong.x * (0.25f - 0.5f * t));
 }
 
 // The hair's response S (hair_shading.h: outgoing radiance per unit incoming radiance) at a point
