@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numeric>
 #include <tuple>
 
@@ -348,13 +349,24 @@ HeadRegion headRegion(const Mesh& mesh)
 
 MeshDistance::MeshDistance(const Mesh& mesh) : mesh_(mesh)
 {
-    uint32_t triangles = uint32_t(mesh.triangleCount());
-    order_.resize(triangles);
+    order_.resize(mesh.triangleCount());
     std::iota(order_.begin(), order_.end(), 0u);
-    std::vector<glm::vec3> centroids(triangles);
-    for (uint32_t t = 0; t < triangles; ++t)
-        centroids[t] = (mesh.positions[mesh.indices[3 * t]] + mesh.positions[mesh.indices[3 * t + 1]] +
-                        mesh.positions[mesh.indices[3 * t + 2]]) /
+    init();
+}
+
+MeshDistance::MeshDistance(const Mesh& mesh, std::vector<uint32_t> triangles)
+    : mesh_(mesh), order_(std::move(triangles))
+{
+    init();
+}
+
+void MeshDistance::init()
+{
+    uint32_t triangles = uint32_t(order_.size());
+    std::vector<glm::vec3> centroids(mesh_.triangleCount());
+    for (uint32_t t : order_)
+        centroids[t] = (mesh_.positions[mesh_.indices[3 * t]] + mesh_.positions[mesh_.indices[3 * t + 1]] +
+                        mesh_.positions[mesh_.indices[3 * t + 2]]) /
                        3.0f;
     nodes_.reserve(2 * size_t(triangles) / 2 + 1);
     if (triangles > 0)
@@ -438,6 +450,137 @@ MeshDistance::Closest MeshDistance::closest(glm::vec3 p) const
     }
     best.distance = std::sqrt(best2);
     return best;
+}
+
+template <typename Visit> void MeshDistance::within(glm::vec3 p, float radius2, Visit&& visit) const
+{
+    if (nodes_.empty())
+        return;
+    uint32_t stack[64];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const Node& node = nodes_[stack[--top]];
+        if (boxDistance2(p, node.lo, node.hi) > radius2)
+            continue;
+        if (node.count > 0) {
+            for (uint32_t k = node.first; k < node.first + node.count; ++k)
+                visit(order_[k]);
+            continue;
+        }
+        if (top + 2 > 64)
+            continue;
+        stack[top++] = uint32_t(&node - nodes_.data()) + 1;
+        stack[top++] = node.first;
+    }
+}
+
+bool MeshDistance::hits(glm::vec3 origin, glm::vec3 direction, float length) const
+{
+    if (nodes_.empty())
+        return false;
+    glm::vec3 inverse = 1.0f / direction; // infinities where a component is 0: the slabs still work
+    auto entersBox = [&](const Node& node) {
+        glm::vec3 t0 = (node.lo - origin) * inverse, t1 = (node.hi - origin) * inverse;
+        glm::vec3 near = glm::min(t0, t1), far = glm::max(t0, t1);
+        float enter = std::max({near.x, near.y, near.z, 0.0f}), leave = std::min({far.x, far.y, far.z, length});
+        return !(enter > leave); // NaN (a 0 * infinity on a slab's face) counts as a crossing
+    };
+    uint32_t stack[64];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const Node& node = nodes_[stack[--top]];
+        if (!entersBox(node))
+            continue;
+        if (node.count > 0) {
+            for (uint32_t k = node.first; k < node.first + node.count; ++k) {
+                uint32_t t = order_[k];
+                glm::vec3 a = mesh_.positions[mesh_.indices[3 * t]], b = mesh_.positions[mesh_.indices[3 * t + 1]],
+                          c = mesh_.positions[mesh_.indices[3 * t + 2]];
+                glm::vec3 e1 = b - a, e2 = c - a, h = glm::cross(direction, e2);
+                float det = glm::dot(e1, h);
+                if (!(std::abs(det) > 0.0f))
+                    continue;
+                glm::vec3 s = (origin - a) / det;
+                float u = glm::dot(s, h);
+                if (u < 0.0f || u > 1.0f)
+                    continue;
+                glm::vec3 q = glm::cross(s, e1);
+                float v = glm::dot(direction, q);
+                if (v < 0.0f || u + v > 1.0f)
+                    continue;
+                float along = glm::dot(e2, q);
+                if (along > 0.0f && along <= length)
+                    return true;
+            }
+            continue;
+        }
+        if (top + 2 > 64)
+            continue;
+        stack[top++] = uint32_t(&node - nodes_.data()) + 1;
+        stack[top++] = node.first;
+    }
+    return false;
+}
+
+glm::vec3 MeshDistance::pseudonormal(glm::vec3 q, float tolerance) const
+{
+    glm::vec3 sum(0.0f);
+    within(q, tolerance * tolerance, [&](uint32_t t) {
+        glm::vec3 v[3] = {mesh_.positions[mesh_.indices[3 * t]], mesh_.positions[mesh_.indices[3 * t + 1]],
+                          mesh_.positions[mesh_.indices[3 * t + 2]]};
+        if (glm::length(closestOnTriangle(q, v[0], v[1], v[2]) - q) > tolerance)
+            return;
+        glm::vec3 face = glm::cross(v[1] - v[0], v[2] - v[0]);
+        float length = glm::length(face);
+        if (!(length > 0.0f))
+            return;
+        float angle = 3.14159265f;
+        for (int k = 0; k < 3; ++k)
+            if (glm::length(q - v[k]) <= tolerance) {
+                glm::vec3 e1 = v[(k + 1) % 3] - v[k], e2 = v[(k + 2) % 3] - v[k];
+                float l1 = glm::length(e1), l2 = glm::length(e2);
+                angle =
+                    l1 > 0.0f && l2 > 0.0f ? std::acos(std::clamp(glm::dot(e1, e2) / (l1 * l2), -1.0f, 1.0f)) : 0.0f;
+                break;
+            }
+        sum += angle * face / length;
+    });
+    return sum;
+}
+
+namespace {
+
+// How far apart two closest points may be and be one: a float's rounding at their coordinates,
+// and a ten-thousandth of the distance they were found from.
+float samePoint(glm::vec3 q, float distance)
+{
+    return 1e-4f * distance +
+           16.0f * std::numeric_limits<float>::epsilon() * (std::abs(q.x) + std::abs(q.y) + std::abs(q.z));
+}
+
+} // namespace
+
+glm::vec3 MeshDistance::normal(const Closest& c) const
+{
+    if (c.triangle == UINT32_MAX)
+        return glm::vec3(0.0f, 1.0f, 0.0f);
+    glm::vec3 n = pseudonormal(c.point, samePoint(c.point, 0.0f));
+    if (!(glm::length(n) > 0.0f)) // a triangle of no area: its corners' normals
+        n = mesh_.normals[mesh_.indices[3 * c.triangle]] + mesh_.normals[mesh_.indices[3 * c.triangle + 1]] +
+            mesh_.normals[mesh_.indices[3 * c.triangle + 2]];
+    float length = glm::length(n);
+    return length > 0.0f ? n / length : glm::vec3(0.0f, 1.0f, 0.0f);
+}
+
+float MeshDistance::signedDistance(glm::vec3 p) const
+{
+    Closest c = closest(p);
+    if (c.triangle == UINT32_MAX || !(c.distance > 0.0f))
+        return c.distance;
+    return glm::dot(p - c.point, pseudonormal(c.point, samePoint(c.point, c.distance))) < 0.0f ? -c.distance
+                                                                                               : c.distance;
 }
 
 // ---- Roots against the head ------------------------------------------------------------------------
@@ -801,6 +944,258 @@ GroomPlacement placeGroom(const GroomShape& shape, const Bounds& groomBounds, co
         out.turnedFit = measureRoots(placed(other->placed.placement, roots), distance, diagonal);
     }
     out.fit = measureRoots(placed(out.placement, roots), distance, diagonal);
+    return out;
+}
+
+// ---- Moving a groom onto the scalp --------------------------------------------------------------------
+
+namespace {
+
+// A scalp triangle a root may move onto faces away from the cranium's centre at least this much
+// (the cosine of 72 degrees: the sides of the skull, not the back of an ear).
+constexpr float kScalpFacing = 0.3f;
+
+// The rotation by `angle` about the unit `axis` (Rodrigues).
+glm::dmat3 rotation(glm::dvec3 axis, double angle)
+{
+    double c = std::cos(angle), s = std::sin(angle);
+    glm::dmat3 k(0.0, axis.z, -axis.y, -axis.z, 0.0, axis.x, axis.y, -axis.x, 0.0); // columns: [axis]x
+    return glm::dmat3(1.0) + s * k + (1.0 - c) * (k * k);
+}
+
+// A unit vector perpendicular to the unit `n`.
+glm::dvec3 perpendicular(glm::dvec3 n)
+{
+    glm::dvec3 other = std::abs(n.x) < 0.9 ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 1.0, 0.0);
+    return glm::normalize(glm::cross(n, other));
+}
+
+// The least rotation taking the unit `from` onto the unit `to` (about their common perpendicular):
+// a tangent of `from` goes to the tangent of `to` parallel transport gives.
+glm::dmat3 leastRotation(glm::dvec3 from, glm::dvec3 to)
+{
+    glm::dvec3 axis = glm::cross(from, to);
+    double s = glm::length(axis), c = glm::dot(from, to);
+    if (s < 1e-12)
+        return c > 0.0 ? glm::dmat3(1.0) : rotation(perpendicular(from), 3.14159265358979323846);
+    return rotation(axis / s, std::atan2(s, c));
+}
+
+// Each point moved by `m` about `pivot`, in doubles (so every segment keeps its length to a float's
+// rounding), then shifted by `shift`.
+std::vector<glm::vec3> moved(const std::vector<glm::vec3>& points, glm::dvec3 pivot, const glm::dmat3& m, glm::dvec3 to,
+                             glm::dvec3 shift = glm::dvec3(0.0))
+{
+    std::vector<glm::vec3> out;
+    out.reserve(points.size());
+    for (const glm::vec3& p : points)
+        out.push_back(glm::vec3(to + m * (glm::dvec3(p) - pivot) + shift));
+    return out;
+}
+
+// Of the scalp's triangles, those a root may be moved onto: on the head's skin (the connected
+// part of the mesh, its vertices joined by position, that holds most of the scalp's area: not a
+// hair band, an eye or a collar the rule's plane also cuts), facing away from the cranium's centre
+// (not the back of an ear), and seen from outside (the ray from each one's centre along its normal
+// meets no other triangle: not under a band or a brim). None left: the scalp as the rule gives it.
+std::vector<uint32_t> scalpSurface(const MeshDistance& surface, const Mesh& head, const std::vector<uint32_t>& scalp,
+                                   float diagonal)
+{
+    auto corner = [&](uint32_t t, int k) { return head.positions[head.indices[3 * t + uint32_t(k)]]; };
+    // Connected parts: union-find over the vertices, those at one position joined.
+    std::vector<uint32_t> parent(head.positions.size());
+    std::iota(parent.begin(), parent.end(), 0u);
+    auto find = [&](uint32_t v) {
+        while (parent[v] != v)
+            v = parent[v] = parent[parent[v]];
+        return v;
+    };
+    auto join = [&](uint32_t a, uint32_t b) { parent[find(a)] = find(b); };
+    std::vector<uint32_t> byPosition(head.positions.size());
+    std::iota(byPosition.begin(), byPosition.end(), 0u);
+    auto key = [&](uint32_t v) {
+        const glm::vec3& p = head.positions[v];
+        return std::make_tuple(p.x, p.y, p.z);
+    };
+    std::sort(byPosition.begin(), byPosition.end(), [&](uint32_t a, uint32_t b) { return key(a) < key(b); });
+    for (size_t k = 1; k < byPosition.size(); ++k)
+        if (key(byPosition[k]) == key(byPosition[k - 1]))
+            join(byPosition[k], byPosition[k - 1]);
+    for (size_t t = 0; t < head.triangleCount(); ++t) {
+        join(head.indices[3 * t], head.indices[3 * t + 1]);
+        join(head.indices[3 * t], head.indices[3 * t + 2]);
+    }
+    std::vector<double> area(head.positions.size(), 0.0);
+    for (uint32_t t : scalp)
+        area[find(head.indices[3 * t])] +=
+            0.5 * double(glm::length(glm::cross(corner(t, 1) - corner(t, 0), corner(t, 2) - corner(t, 0))));
+    uint32_t skin = uint32_t(std::max_element(area.begin(), area.end()) - area.begin());
+
+    // The cranium's centre: the sphere through the skull above the eyes (as placeGroom fits it),
+    // else the scalp's centre.
+    HeadRegion region = headRegion(head);
+    float cut = region.top - 0.5f * (region.top - region.neck);
+    std::vector<glm::vec3> top;
+    for (const glm::vec3& v : head.positions)
+        if (v.y >= cut)
+            top.push_back(v);
+    std::optional<Sphere> cranium = fitSphere(top);
+    glm::vec3 centre(0.0f);
+    if (cranium) {
+        centre = cranium->centre;
+    } else {
+        for (uint32_t t : scalp)
+            centre += (corner(t, 0) + corner(t, 1) + corner(t, 2)) / 3.0f;
+        centre /= float(std::max<size_t>(scalp.size(), 1));
+    }
+
+    std::vector<uint32_t> out;
+    out.reserve(scalp.size());
+    for (uint32_t t : scalp) {
+        if (find(head.indices[3 * t]) != skin)
+            continue;
+        glm::vec3 a = corner(t, 0), b = corner(t, 1), c = corner(t, 2), middle = (a + b + c) / 3.0f;
+        glm::vec3 n = glm::cross(b - a, c - a);
+        float length = glm::length(n), away = glm::length(middle - centre);
+        if (!(length > 0.0f) || !(away > 0.0f))
+            continue;
+        n /= length;
+        if (glm::dot(n, (middle - centre) / away) < kScalpFacing)
+            continue;
+        if (!surface.hits(middle + 1e-4f * diagonal * n, n, 2.0f * diagonal))
+            out.push_back(t);
+    }
+    return out.empty() ? scalp : out;
+}
+
+} // namespace
+
+std::string GroomTransfer::describe() const
+{
+    std::string text =
+        std::to_string(moved) + " of " + std::to_string(roots) + " roots moved onto the scalp (farther than " +
+        percent(beyond) + " of the head's size from its surface after the fit), by median " + percent(median) +
+        " and at most " + percent(max) + " of the head's size; " + std::to_string(turned) +
+        " strands turned out of the head about their roots, " + std::to_string(lifted) + " lifted along the normal";
+    if (lifted > 0)
+        text += " (at most " + percent(liftMax) + ")";
+    return text;
+}
+
+nlohmann::json GroomTransfer::toJson() const
+{
+    return {{"roots", roots},
+            {"moved", moved},
+            {"moved_beyond", beyond},
+            {"displacement", {{"median", median}, {"max", max}}},
+            {"turned", turned},
+            {"lifted", lifted},
+            {"lift_max", liftMax},
+            {"inside_deeper_than", kStrandInside},
+            {"unit", "fraction of the head's bounding-box diagonal"}};
+}
+
+GroomTransfer transferStrands(std::vector<std::vector<glm::vec3>>& strands, const Mesh& head,
+                              const std::vector<uint32_t>& scalp, float beyond, bool keepAllOut,
+                              const std::vector<bool>& movable)
+{
+    GroomTransfer out;
+    float diagonal = head.bounds().diagonal();
+    if (!(diagonal > 0.0f))
+        return out;
+    MeshDistance surface(head);
+    std::optional<MeshDistance> onto;
+    out.beyond = beyond;
+    float near = beyond * diagonal, deep = kStrandInside * diagonal;
+    // How deep the deepest vertex past the root lies inside the head (<= deep: none inside), and which.
+    auto deepest = [&](const std::vector<glm::vec3>& points, size_t* which = nullptr) {
+        float depth = -INFINITY;
+        for (size_t i = 1; i < points.size(); ++i) {
+            float d = -surface.signedDistance(points[i]);
+            if (d > depth) {
+                depth = d;
+                if (which)
+                    *which = i;
+            }
+        }
+        return depth;
+    };
+    std::vector<float> displacement;
+    for (size_t s = 0; s < strands.size(); ++s) {
+        std::vector<glm::vec3>& points = strands[s];
+        if (points.empty() || (!movable.empty() && !movable[s]))
+            continue;
+        ++out.roots;
+        glm::vec3 root = points.front();
+        MeshDistance::Closest from = surface.closest(root);
+        bool move = from.distance > near;
+        if (move && !onto)
+            onto.emplace(head, scalpSurface(surface, head, scalp, diagonal));
+        MeshDistance::Closest to = move ? onto->closest(root) : from;
+        if (to.triangle == UINT32_MAX)
+            continue; // no scalp (the caller refuses before asking), or no surface
+        if (!move && !keepAllOut)
+            continue;
+        glm::dvec3 n1(move ? onto->normal(to) : surface.normal(from)), r1(move ? to.point : root);
+        std::vector<glm::vec3> carried = points;
+        if (move) {
+            carried = moved(points, glm::dvec3(root), leastRotation(glm::dvec3(surface.normal(from)), n1), r1);
+            carried.front() = to.point;
+        }
+        size_t k = 0;
+        float depth = deepest(carried, &k);
+        if (depth > deep) {
+            // The least turn about the root toward the normal, in the plane of the normal and the
+            // deepest vertex: sixteen steps up to standing along the normal, then halving the step.
+            glm::dvec3 u = glm::dvec3(carried[k]) - r1;
+            glm::dvec3 axis = glm::cross(u, n1);
+            axis = glm::length(axis) > 1e-12 * glm::length(u) ? glm::normalize(axis) : perpendicular(n1);
+            double most = std::acos(std::clamp(glm::dot(glm::normalize(u), n1), -1.0, 1.0));
+            auto turned = [&](double angle) { return moved(carried, r1, rotation(axis, angle), r1); };
+            std::optional<double> good;
+            double bad = 0.0;
+            for (int step = 1; step <= 16 && !good; ++step) {
+                double angle = most * step / 16.0;
+                if (deepest(turned(angle)) <= deep)
+                    good = angle;
+                else
+                    bad = angle;
+            }
+            if (good) {
+                for (int halving = 0; halving < 6; ++halving) {
+                    double angle = 0.5 * (bad + *good);
+                    (deepest(turned(angle)) <= deep ? *good : bad) = angle;
+                }
+                carried = turned(*good);
+                carried.front() = glm::vec3(r1);
+                ++out.turned;
+            } else {
+                // Lifted along the normal: the depth first, doubled until out, then halving the gap.
+                auto lifted = [&](double h) { return moved(carried, r1, glm::dmat3(1.0), r1, h * n1); };
+                double low = 0.0, high = double(depth);
+                while (deepest(lifted(high)) > deep && high < double(diagonal)) {
+                    low = high;
+                    high *= 2.0;
+                }
+                for (int halving = 0; halving < 12; ++halving) {
+                    double h = 0.5 * (low + high);
+                    (deepest(lifted(h)) <= deep ? high : low) = h;
+                }
+                carried = lifted(high);
+                ++out.lifted;
+                out.liftMax = std::max(out.liftMax, float(high) / diagonal);
+            }
+        }
+        if (move)
+            displacement.push_back(glm::length(carried.front() - root) / diagonal);
+        points = std::move(carried);
+    }
+    out.moved = displacement.size();
+    if (!displacement.empty()) {
+        std::sort(displacement.begin(), displacement.end());
+        out.median = displacement[displacement.size() / 2];
+        out.max = displacement.back();
+    }
     return out;
 }
 

@@ -174,6 +174,8 @@ GroomedHead buildLoadedHead(Head head, const std::vector<HairPartSource>& parts,
             .scale = 1.0f, .offset = glm::vec3(0.0f), .zUpToYUp = lead.zUp, .mirrorZ = lead.mirroredZ};
         scene.placement = placeGroom(shape, groomBounds, defaults, scene.head.mesh, request);
         const GroomPlacement& placed = *scene.placement;
+        // Most roots off the surface after the best fit: no groom to move onto the scalp, but
+        // another head's, another part of the body's or a misread file's.
         std::string where = "the groom's roots are not on the head: " + placed.describe() + " leaves " +
                             percent(1.0f - placed.fit.onSurface) + " of them farther than " + percent(kRootOnSurface) +
                             " of the head's size from its surface (median " + percent(placed.fit.median) + ")";
@@ -182,19 +184,28 @@ GroomedHead buildLoadedHead(Head head, const std::vector<HairPartSource>& parts,
         for (const HairPartSource& part : parts)
             if (!part.placement)
                 file += (file.empty() ? "" : " + ") + part.file.string();
-        if (placed.method != GroomPlacement::Method::Given && !placed.fit.onHead())
-            throw UserError(file + ": " + where +
-                            "; place it by hand with --hair-scale S, --hair-offset X,Y,Z, --hair-z-up true|false, "
-                            "--hair-mirror-z true|false and --hair-half-turn true|false (in a scene: hair's scale, "
-                            "offset, z_up, mirror_z, half_turn)");
-        if (!placed.fit.onHead())
-            scene.warnings.push_back(file + ": " + where);
+        if (placed.method != GroomPlacement::Method::Given && placed.fit.offHead())
+            throw UserError(file + ": " + where + ", more than the " + percent(1.0f - kRootsOffHead) +
+                            " that can be moved onto the scalp; place it by hand with --hair-scale S, --hair-offset "
+                            "X,Y,Z, --hair-z-up true|false, --hair-mirror-z true|false and --hair-half-turn "
+                            "true|false (in a scene: hair's scale, offset, z_up, mirror_z, half_turn)");
+        if (placed.fit.offHead())
+            scene.warnings.push_back(file + ": " + where + "; kept as given, not moved onto the scalp");
         if (std::string ambiguous = placed.ambiguity(); !ambiguous.empty())
             scene.warnings.push_back(file + ": " + ambiguous);
     }
 
     float headDiagonal = scene.head.mesh.bounds().diagonal();
     scene.loaded.shortThreshold = shortStrandLength(headDiagonal, verticesPerStrand);
+    // Every strand resampled, then the groom's moved onto the scalp where its roots are off it.
+    struct Resampled {
+        uint32_t part = 0;
+        uint32_t pinnedRoot = 0;
+        bool pinnedTip = false;
+    };
+    std::vector<Resampled> resampled;
+    std::vector<std::vector<glm::vec3>> strandPoints;
+    std::vector<bool> movable;
     for (uint32_t index = 0; index < parts.size(); ++index) {
         const HairPartSource& source = parts[index];
         const HairAsset& asset = assets[index];
@@ -239,9 +250,37 @@ GroomedHead buildLoadedHead(Head head, const std::vector<HairPartSource>& parts,
                                     std::to_string(asset.strands.size()) + " in the file) is " +
                                     std::to_string(length) + " long, too short to split into " +
                                     std::to_string(verticesPerStrand - 1) + " segments in floats at its position");
-            scene.strands.add(points, index, rigid ? verticesPerStrand : strand.pinnedRoot, strand.pinnedTip && !rigid);
+            resampled.push_back({.part = index,
+                                 .pinnedRoot = rigid ? verticesPerStrand : strand.pinnedRoot,
+                                 .pinnedTip = strand.pinnedTip && !rigid});
+            strandPoints.push_back(std::move(points));
+            movable.push_back(!source.placement);
         }
     }
+    // The groom's own parts (not those placed apart by hand), unless the fit left most roots off
+    // the head (a placement given by hand, kept as given).
+    if (scene.placement && !scene.placement->fit.offHead()) {
+        // A groom fitted to this head (or placed by hand) was made for another: its roots off the
+        // surface move, and every strand is kept out of the head. One as in its file is on its own
+        // head: only roots off the head move.
+        GroomPlacement::Method method = scene.placement->method;
+        bool foreign = method == GroomPlacement::Method::Fitted || method == GroomPlacement::Method::Given;
+        float beyond = foreign ? kRootMoved : kRootOnSurface;
+        std::vector<uint32_t> scalp = scalpTriangles(scene.head.mesh, scene.scalp);
+        if (scalp.empty()) {
+            MeshDistance surface(scene.head.mesh);
+            size_t off = 0;
+            for (size_t s = 0; s < strandPoints.size(); ++s)
+                off += movable[s] && surface.closest(strandPoints[s].front()).distance > beyond * headDiagonal ? 1 : 0;
+            if (off > 0)
+                throw UserError(parts.front().file.string() + ": " + std::to_string(off) +
+                                " of the groom's roots lie off the head after the fit, and the head has no scalp to "
+                                "move them onto: its scalp rule selects no triangle (its description's scalp)");
+        }
+        scene.transfer = transferStrands(strandPoints, scene.head.mesh, scalp, beyond, foreign, movable);
+    }
+    for (size_t s = 0; s < strandPoints.size(); ++s)
+        scene.strands.add(strandPoints[s], resampled[s].part, resampled[s].pinnedRoot, resampled[s].pinnedTip);
     if (scene.strands.strandCount() == 0)
         throw UserError(parts.front().file.string() + ": every strand has no length: nothing to draw or simulate");
     shrinkCollidersToRestPose(scene.colliders, scene.strands);
@@ -276,6 +315,8 @@ std::vector<std::string> describeLoadedHair(const GroomedHead& scene)
                   percent(kRootOnSurface));
     char threshold[32];
     std::snprintf(threshold, sizeof(threshold), "%.3g", double(scene.loaded.shortThreshold));
+    if (scene.transfer && scene.transfer->moved > 0)
+        out.push_back("hair transfer: " + scene.transfer->describe());
     out.push_back("hair strands: " + std::to_string(scene.strands.strandCount()) + " simulated, " +
                   std::to_string(scene.loaded.rigid) + " of them kept rigid (shorter than " + threshold +
                   " head units), " + std::to_string(scene.loaded.dropped) + " dropped (no length), " +
@@ -300,6 +341,7 @@ nlohmann::json loadedHairJson(const GroomedHead& scene)
              {{"shorter_than", scene.loaded.shortThreshold},
               {"kept_rigid", scene.loaded.rigid},
               {"dropped_zero_length", scene.loaded.dropped}}},
+            {"transfer", scene.transfer ? scene.transfer->toJson() : nlohmann::json(nullptr)},
             {"pinned_tips", scene.loaded.pinnedTips},
             {"warnings", scene.warnings}};
 }

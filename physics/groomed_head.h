@@ -37,6 +37,7 @@ struct GroomedHead {
     float unitsPerMetre = 1.0f;
     StrandSet strands;
     std::optional<GroomPlacement> placement; // loaded hair: how it was placed, the roots against the head
+    std::optional<GroomTransfer> transfer;   // loaded hair: the strands moved onto the scalp after the fit
     LoadedStrands loaded;
     // Warnings for the person (roots off the head under a placement given by hand), one line each.
     std::vector<std::string> warnings;
@@ -58,11 +59,13 @@ struct HairPartSource {
 };
 
 // Loads the head and the hair files (each a part), resampled to `verticesPerStrand`, placed
-// together on the head (assets/placement.h: `request` fixes what the user gave). An automatic
-// placement that leaves more than a tenth of the roots off the head is refused (UserError naming
-// the options that place a groom by hand: a groom half on the head draws hair through the face);
-// a placement by hand that does is kept, with a warning. Strands of no
-// length are dropped and strands too short to simulate kept rigid, both counted (`loaded`).
+// together on the head (assets/placement.h: `request` fixes what the user gave), then the strands
+// whose roots the placement leaves off the surface moved onto the scalp (transferStrands:
+// `transfer`). An automatic placement that leaves most roots off the head is refused (UserError
+// naming the options that place a groom by hand: that is no groom for this head, or a misread
+// file), and so is a groom to move onto a head whose scalp rule selects nothing; a placement by
+// hand that leaves most roots off is kept as given, with a warning. Strands of no length are
+// dropped and strands too short to simulate kept rigid, both counted (`loaded`).
 GroomedHead buildLoadedHead(const std::filesystem::path& headFile, const std::vector<HairPartSource>& parts,
                             uint32_t verticesPerStrand, const PlacementRequest& request = {});
 GroomedHead buildLoadedHead(Head head, const std::vector<HairPartSource>& parts, uint32_t verticesPerStrand,
@@ -71,7 +74,8 @@ GroomedHead buildLoadedHead(Head head, const std::vector<HairPartSource>& parts,
 // What loading did, for a person, one line each (grown hair: a line only when some of its guides
 // are rigid, "hair strands: 120 of 400 grown guides rigid (shorter than 4 cm: ...)"): "hair placement: fitted to
 // the scalp: scale 0.4, offset (...), y-up; roots: median 0.3% of the head's size from its
-// surface, 98.2% within 2%" and "hair strands: 12 kept rigid (shorter than 0.9 head units), ...".
+// surface, 98.2% within 2%", "hair transfer: 312 of 3000 roots moved onto the scalp ..." (when
+// any was) and "hair strands: 12 kept rigid (shorter than 0.9 head units), ...".
 std::vector<std::string> describeLoadedHair(const GroomedHead& scene);
 // The same as JSON (null for grown hair).
 nlohmann::json loadedHairJson(const GroomedHead& scene);

@@ -14,8 +14,11 @@
 #include "test_support.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <fstream>
+#include <functional>
 
 using namespace wisp;
 using wisp::test::Strands;
@@ -84,7 +87,93 @@ std::string errorOf(const std::function<void()>& f)
     return "";
 }
 
+// The box [-1, 1]^3, wound counter-clockwise seen from outside: with each face's own four corners
+// (split, each with its face's normal) or with its eight corners shared.
+Mesh boxMesh(bool split)
+{
+    Mesh m;
+    for (int axis = 0; axis < 3; ++axis)
+        for (float side : {-1.0f, 1.0f}) {
+            glm::vec3 n(0.0f), u(0.0f), v(0.0f);
+            n[axis] = side;
+            u[(axis + 1) % 3] = 1.0f;
+            v[(axis + 2) % 3] = 1.0f;
+            if (side < 0.0f)
+                std::swap(u, v);
+            uint32_t first = uint32_t(m.positions.size());
+            for (glm::vec2 c : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)}) {
+                m.positions.push_back(n + c.x * u + c.y * v);
+                m.normals.push_back(n);
+            }
+            for (uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u})
+                m.indices.push_back(first + k);
+        }
+    if (!split) { // one vertex per corner
+        std::vector<glm::vec3> corners;
+        for (uint32_t& index : m.indices) {
+            glm::vec3 p = m.positions[index];
+            auto it = std::find(corners.begin(), corners.end(), p);
+            index = uint32_t(it - corners.begin());
+            if (it == corners.end())
+                corners.push_back(p);
+        }
+        m.positions = corners;
+        m.normals = computeVertexNormals(m.positions, m.indices);
+    }
+    m.sourceVertices = m.positions.size();
+    return m;
+}
+
+// The signed distance to the box [-1, 1]^3.
+float boxDistance(glm::vec3 p)
+{
+    glm::vec3 q = glm::abs(p) - glm::vec3(1.0f);
+    return glm::length(glm::max(q, glm::vec3(0.0f))) + std::min(std::max({q.x, q.y, q.z}), 0.0f);
+}
+
 } // namespace
+
+TEST(MeshDistance, SignedDistanceAgreesWithAnAnalyticBoxAndSphere)
+{
+    // Points everywhere around and inside, the box's edges and corners included: the pseudonormal
+    // tells inside from outside where a face's or a vertex's normal alone would not.
+    uint32_t state = 777;
+    auto next = [&] { return gpu::hashToUnit(state++); };
+    for (bool split : {true, false}) {
+        Mesh box = boxMesh(split);
+        MeshDistance distance(box);
+        for (int k = 0; k < 400; ++k) {
+            glm::vec3 p = -2.0f + 4.0f * glm::vec3(next(), next(), next());
+            EXPECT_NEAR(distance.signedDistance(p), boxDistance(p), 1e-5f) << p.x << " " << p.y << " " << p.z;
+        }
+        // Beyond each corner and edge, and just inside them.
+        for (glm::vec3 p : {glm::vec3(1.5f, 1.5f, 1.5f), glm::vec3(-1.2f, 1.3f, 0.0f), glm::vec3(0.99f, 0.99f, 0.99f),
+                            glm::vec3(0.0f, -0.999f, 0.999f)})
+            EXPECT_NEAR(distance.signedDistance(p), boxDistance(p), 1e-5f) << p.x << " " << p.y << " " << p.z;
+    }
+    // A latitude-longitude sphere: its seam's vertices are split, its poles' triangles have no area.
+    Mesh sphere = makeSphereMesh(24, 48);
+    MeshDistance distance(sphere);
+    for (int k = 0; k < 400; ++k) {
+        glm::vec3 d = glm::normalize(glm::vec3(next(), next(), next()) - 0.5f);
+        float radius = 0.2f + 1.6f * next();
+        if (std::abs(radius - 1.0f) < 0.02f)
+            continue;
+        float sd = distance.signedDistance(radius * d);
+        EXPECT_NEAR(sd, radius - 1.0f, 0.01f) << "radius " << radius;
+        EXPECT_EQ(sd < 0.0f, radius < 1.0f) << "radius " << radius;
+    }
+    // Above and below the top pole, where 48 triangles meet (the bottom pole's ring is not one
+    // point in floats: sin(pi) rounds to -8.7e-8, which winds its slivers inward).
+    EXPECT_NEAR(distance.signedDistance(glm::vec3(0.0f, 1.05f, 0.0f)), 0.05f, 1e-6f);
+    EXPECT_NEAR(distance.signedDistance(glm::vec3(0.0f, 0.95f, 0.0f)), -0.05f, 1e-3f); // to the facets below
+    EXPECT_NEAR(glm::length(distance.normal(distance.closest(glm::vec3(0.0f, 2.0f, 0.0f))) - glm::vec3(0, 1, 0)), 0.0f,
+                1e-5f);
+    // A subset's distances are to its triangles alone.
+    MeshDistance top(sphere, {0u, 1u, 2u});
+    EXPECT_GT(top.closest(glm::vec3(0.0f, -1.0f, 0.0f)).distance, 1.9f);
+    EXPECT_LT(top.closest(glm::vec3(0.0f, 1.0f, 0.0f)).distance, 1e-6f);
+}
 
 TEST(MeshDistance, ClosestPointsMatchBruteForce)
 {
@@ -377,4 +466,152 @@ TEST(ShortStrands, AreKeptRigidAndStrandsOfNoLengthDropped)
         buildLoadedHead(defaultHeadPath(), {{.file = dir / "none.tfx", .placement = std::nullopt, .settings = {}}}, 4);
     });
     EXPECT_NE(e.find("none.tfx"), std::string::npos) << e;
+}
+
+namespace {
+
+// The default head's grown groom stretched unevenly (wider, shorter, deeper) and moved up and
+// aside: a groom of a head of another shape, which no scale, turn and offset lands root by root.
+glm::vec3 stretched(glm::vec3 p)
+{
+    return glm::vec3(1.15f * p.x, 0.88f * p.y, 1.08f * p.z) + glm::vec3(0.01f, 0.25f, -0.02f);
+}
+
+// Every root within `rootsWithin` of the head's diagonal of its surface, and no vertex past the
+// root deeper inside it than kStrandInside (of the strands `checked` takes; all without it).
+void expectOnAndOutOfTheHead(const GroomedHead& scene, float rootsWithin, const std::string& name,
+                             const std::function<bool(size_t)>& checked = {})
+{
+    const Mesh& mesh = scene.head.mesh;
+    MeshDistance surface(mesh);
+    float diagonal = mesh.bounds().diagonal();
+    uint32_t v = scene.strands.verticesPerStrand;
+    float worstRoot = 0.0f, deepest = 0.0f;
+    for (size_t s = 0; s < scene.strands.strandCount(); ++s) {
+        worstRoot = std::max(worstRoot, surface.closest(scene.strands.rest[s * v]).distance / diagonal);
+        for (uint32_t i = 1; i < v && (!checked || checked(s)); ++i)
+            deepest = std::max(deepest, -surface.signedDistance(scene.strands.rest[s * v + i]) / diagonal);
+    }
+    EXPECT_LE(worstRoot, rootsWithin) << name;
+    EXPECT_LE(deepest, kStrandInside * 1.001f) << name;
+}
+
+} // namespace
+
+TEST(Transfer, AGroomOfAnotherShapeIsMovedOntoTheScalpKeepingEverySegment)
+{
+    const uint32_t v = 12;
+    Strands groom = test::grownStrands(400, v, stretched);
+    TempDir dir;
+    test::writeTfx4(dir / "stretched.tfx", groom);
+    GroomedHead scene = buildLoadedHead(
+        defaultHeadPath(), {{.file = dir / "stretched.tfx", .placement = std::nullopt, .settings = {}}}, v);
+    const GroomPlacement& g = *scene.placement;
+    ASSERT_EQ(g.method, GroomPlacement::Method::Fitted) << g.describe();
+    EXPECT_GT(g.fit.max, 0.01f) << "the rigid fit leaves roots off the head";
+    ASSERT_TRUE(scene.transfer.has_value());
+    const GroomTransfer& t = *scene.transfer;
+    EXPECT_EQ(t.roots, groom.size());
+    EXPECT_GT(t.moved, groom.size() / 10);
+    EXPECT_LT(t.moved, groom.size());
+    EXPECT_GT(t.median, kRootMoved);
+    EXPECT_FLOAT_EQ(t.beyond, kRootMoved);
+    EXPECT_GE(t.max, t.median);
+    EXPECT_GE(t.max, g.fit.max * 0.9f) << "the farthest root moved about as far as it lay";
+    expectOnAndOutOfTheHead(scene, 0.005f, "stretched");
+    // Each strand's segments keep their lengths: those of the file's strand placed and resampled.
+    ASSERT_EQ(scene.strands.strandCount(), groom.size());
+    float worst = 0.0f;
+    for (size_t s = 0; s < groom.size(); ++s) {
+        std::vector<glm::vec3> placedStrand;
+        for (const glm::vec3& p : groom[s])
+            placedStrand.push_back(applyPlacement(g.placement, p));
+        std::vector<glm::vec3> expected = resampleStrand(placedStrand, v);
+        for (uint32_t i = 1; i < v; ++i) {
+            float want = glm::length(expected[i] - expected[i - 1]);
+            float got = glm::length(scene.strands.rest[s * v + i] - scene.strands.rest[s * v + i - 1]);
+            worst = std::max(worst, std::abs(got - want) / want);
+        }
+    }
+    EXPECT_LT(worst, 1e-5f);
+    // Said: one line, and as JSON.
+    std::vector<std::string> lines = describeLoadedHair(scene);
+    ASSERT_GE(lines.size(), 2u);
+    EXPECT_EQ(lines[1].rfind("hair transfer: " + std::to_string(t.moved) + " of 400 roots moved onto the scalp", 0), 0u)
+        << lines[1];
+    EXPECT_NE(lines[1].find("by median "), std::string::npos) << lines[1];
+    nlohmann::json j = loadedHairJson(scene);
+    EXPECT_EQ(j["transfer"]["moved"], t.moved);
+    EXPECT_FLOAT_EQ(j["transfer"]["displacement"]["max"].get<float>(), t.max);
+
+    // On its own head nothing moves: the groom stays as in the file.
+    Strands own = test::grownStrands(200, v, [](glm::vec3 p) { return p; });
+    test::writeTfx4(dir / "own.tfx", own);
+    GroomedHead home =
+        buildLoadedHead(defaultHeadPath(), {{.file = dir / "own.tfx", .placement = std::nullopt, .settings = {}}}, v);
+    EXPECT_EQ(home.placement->method, GroomPlacement::Method::File);
+    EXPECT_EQ(home.transfer->moved, 0u);
+    EXPECT_EQ(home.transfer->turned + home.transfer->lifted, 0u);
+    for (size_t s = 0; s < own.size(); ++s)
+        EXPECT_LT(glm::length(home.strands.rest[s * v + v - 1] - own[s][v - 1]), 1e-5f);
+    EXPECT_EQ(describeLoadedHair(home)[1].find("hair transfer"), std::string::npos);
+
+    // On its own head with a few strands pulled 5% of the head away: still as in the file; those
+    // move back onto the scalp (nearer where they grew than where they were pulled), and are kept
+    // out of the head; the rest stay exactly where they are.
+    Strands pulled = own;
+    glm::vec3 centre = defaultHead().mesh.bounds().center();
+    float diagonal = defaultHead().mesh.bounds().diagonal();
+    for (size_t s = 0; s < pulled.size(); s += 20)
+        for (glm::vec3& p : pulled[s])
+            p += 0.05f * diagonal * glm::normalize(pulled[s][0] - centre);
+    test::writeTfx4(dir / "pulled.tfx", pulled);
+    GroomedHead back = buildLoadedHead(defaultHeadPath(),
+                                       {{.file = dir / "pulled.tfx", .placement = std::nullopt, .settings = {}}}, v);
+    EXPECT_EQ(back.placement->method, GroomPlacement::Method::File);
+    EXPECT_EQ(back.transfer->moved, (pulled.size() + 19) / 20);
+    EXPECT_NEAR(back.transfer->median, 0.05f, 0.01f);
+    EXPECT_FLOAT_EQ(back.transfer->beyond, kRootOnSurface);
+    for (size_t s = 0; s < pulled.size(); ++s)
+        if (s % 20 != 0)
+            EXPECT_EQ(back.strands.rest[s * v + v - 1], home.strands.rest[s * v + v - 1]);
+        else
+            EXPECT_LT(glm::length(back.strands.rest[s * v] - own[s][0]), 0.04f * diagonal);
+    expectOnAndOutOfTheHead(back, kRootOnSurface, "pulled", [](size_t s) { return s % 20 == 0; });
+}
+
+TEST(Transfer, AHeadWithNoScalpToMoveOntoIsRefusedSayingSo)
+{
+    TempDir dir;
+    nlohmann::json head = nlohmann::json::parse(std::ifstream(defaultHeadPath()));
+    head["mesh"] = (defaultHeadPath().parent_path() / head["mesh"].get<std::string>()).string();
+    head["scalp"]["plane_point"] = {0.0, 5.0, 0.0}; // above the head: no triangle
+    std::ofstream(dir / "bald.json") << head.dump();
+    test::writeTfx4(dir / "stretched.tfx", test::grownStrands(200, 8, stretched));
+    std::string e = errorOf([&] {
+        buildLoadedHead(dir / "bald.json", {{.file = dir / "stretched.tfx", .placement = std::nullopt, .settings = {}}},
+                        8);
+    });
+    EXPECT_NE(e.find("stretched.tfx: "), std::string::npos) << e;
+    EXPECT_NE(e.find("the head has no scalp to move them onto: its scalp rule selects no triangle"), std::string::npos)
+        << e;
+    EXPECT_EQ(std::count(e.begin(), e.end(), '\n'), 0) << e;
+}
+
+TEST(Transfer, SintelsGroomIsMovedOntoTheTressFxBustAndTheDefaultHead)
+{
+    WISP_REQUIRE_DATA(hair, "sintel/sintel_hair_11400x16.tfx");
+    WISP_REQUIRE_DATA(bust, "tressfx-text/head_max4.obj");
+    for (const std::filesystem::path& headFile : {bust, defaultHeadPath()}) {
+        GroomedHead scene = buildLoadedHead(headFile, {{.file = hair, .placement = std::nullopt, .settings = {}}}, 16);
+        std::string name = headFile.filename().string();
+        EXPECT_EQ(scene.placement->method, GroomPlacement::Method::Fitted)
+            << name << ": " << scene.placement->describe();
+        ASSERT_TRUE(scene.transfer.has_value()) << name;
+        EXPECT_GT(scene.transfer->moved, 0u) << name;
+        EXPECT_EQ(scene.transfer->roots, scene.strands.strandCount()) << name;
+        expectOnAndOutOfTheHead(scene, 0.005f, name);
+        for (const std::string& line : describeLoadedHair(scene))
+            std::printf("%s: %s\n", name.c_str(), line.c_str());
+    }
 }

@@ -1,7 +1,7 @@
 // app/commands/inspect.cpp: the `inspect` subcommand: a mesh's counts and bounds; a groom's counts, bounds,
 // units, up axis, pinned tips, lengths and short strands; with --head, the groom placed as `render`
-// and `simulate` would place it (the same GroomedHead), its roots against the head and its side
-// standoff (physics/groom_metrics.h).
+// and `simulate` would place it (the same GroomedHead), its roots against the head, the strands
+// moved onto its scalp and its side standoff (physics/groom_metrics.h).
 #include "app/commands/inspect.h"
 
 #include "app/scene/session_options.h"
@@ -79,6 +79,7 @@ int inspectGroomOnHead(const InspectOptions& o, const PlacementRequest& request)
         {"strands", scene.strands.strandCount()},
         {"vertices_per_strand", o.verticesPerStrand},
         {"placement", scene.placement->toJson()},
+        {"transfer", scene.transfer ? scene.transfer->toJson() : nlohmann::json(nullptr)},
         {"short_strands",
          {{"shorter_than", scene.loaded.shortThreshold},
           {"reference", "head diagonal"},
