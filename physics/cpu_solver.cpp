@@ -68,7 +68,8 @@ std::vector<RestVertex> restVertices(const StrandSet& strands)
 
 CpuSolver::CpuSolver(const StrandSet& strands, const SimSetup& setup, const glm::mat4& headTransform)
     : strands_(strands), setup_(setup), rest_(restVertices(strands)), state_(initialState(strands, headTransform)),
-      grid_(setup.params.gridNodeCount), gridVelocity_(setup.params.gridNodeCount), reached_(setup.params.gridNodeCount)
+      sdf_(setup.sdf ? buildMeshSdf(*setup.sdf) : MeshSdf{}), grid_(setup.params.gridNodeCount),
+      gridVelocity_(setup.params.gridNodeCount), reached_(setup.params.gridNodeCount)
 {
 }
 
@@ -89,6 +90,7 @@ void CpuSolver::step(const SimStep& first)
 void CpuSolver::integrateStrand(uint32_t s, const SimStep& step)
 {
     const SimParams& params = setup_.params;
+    [[maybe_unused]] const float* sdfField = sdf_.values.data();
     std::vector<vec4>& positions = state_.positions;
     std::vector<vec4>& velocities = state_.velocities;
     std::vector<vec4>& tangents = state_.tangents;
@@ -99,16 +101,17 @@ void CpuSolver::integrateStrand(uint32_t s, const SimStep& step)
         velocities[g] = vec4(v.velocity, 0.0f);
         tangents[g] = vec4(v.tangent, 0.0f);
     };
-    StrandWalk walk =
-        strandWalkBegin(params, step, strands_.strands[s], vec3(positions[base]), rest_[base].position, step.time);
+    StrandWalk walk = strandWalkBegin(params, step, sdfField, strands_.strands[s], vec3(positions[base]),
+                                      rest_[base].position, step.time);
     for (uint32_t i = 1; i < V; ++i) {
         uint32_t g = base + i;
-        write(g - 1, strandWalkStep(params, step, walk, i, V, vec3(positions[g]), vec3(velocities[g]), rest_[g],
-                                    rest_[g - 1].position));
+        write(g - 1, strandWalkStep(params, step, sdfField, walk, i, V, vec3(positions[g]), vec3(velocities[g]),
+                                    rest_[g], rest_[g - 1].position));
     }
-    write(base + V - 1, strandWalkTip(params, step, walk));
+    write(base + V - 1, strandWalkTip(params, step, sdfField, walk));
     if (pinnedAtBothEnds(strands_.strands[s], V)) {
-        strandBend(params, step, StrandRef{&positions, &velocities, &rest_, base}, strands_.strands[s], V, walk.finite);
+        strandBend(params, step, sdfField, StrandRef{&positions, &velocities, &rest_, base}, strands_.strands[s], V,
+                   walk.finite);
         for (uint32_t i = 0; i < V; ++i) {
             uint32_t j = std::min(i + 1u, V - 1u);
             tangents[base + i] = vec4(normalize(vec3(positions[base + j]) - vec3(positions[base + j - 1u])), 0.0f);
@@ -118,8 +121,8 @@ void CpuSolver::integrateStrand(uint32_t s, const SimStep& step)
     if (!walk.finite) {
         for (uint32_t i = 0; i < V; ++i) {
             uint32_t j = base + std::min(i + 1u, V - 1u); // the segment ending at vertex j
-            write(base + i,
-                  restVertex(params, step, rest_[base + i].position, rest_[j - 1].position, rest_[j].position));
+            write(base + i, restVertex(params, step, sdfField, rest_[base + i].position, rest_[j - 1].position,
+                                       rest_[j].position));
         }
         state_.nonfiniteResets += 1;
     }
@@ -141,6 +144,7 @@ void CpuSolver::gridClear()
 void CpuSolver::gridSplat(const SimStep& step)
 {
     const SimParams& params = setup_.params;
+    [[maybe_unused]] const float* sdfField = sdf_.values.data();
     for (size_t g = 0; g < state_.positions.size(); ++g) {
         GridCell cell = gridCell(vec3(state_.positions[g]), step.gridOrigin, params.gridCellSize);
         if (!cellInside(cell.base, params.gridResolution))
@@ -171,6 +175,7 @@ void CpuSolver::gridNormalize()
 void CpuSolver::gridGather(const SimStep& step)
 {
     const SimParams& params = setup_.params;
+    [[maybe_unused]] const float* sdfField = sdf_.values.data();
     for (size_t g = 0; g < state_.positions.size(); ++g) {
         if (state_.positions[g].w == 0.0f)
             continue;
@@ -182,7 +187,7 @@ void CpuSolver::gridGather(const SimStep& step)
             vec4 node = gridVelocity_[gridIndex(cell.base + cornerOffset(k), params.gridResolution)];
             gs = gridAccumulate(gs, cell.frac, k, vec3(node), node.w);
         }
-        vec3 v = gridGatherVelocity(params, step, GridRef{&gridVelocity_, params.gridResolution}, cell,
+        vec3 v = gridGatherVelocity(params, step, sdfField, GridRef{&gridVelocity_, params.gridResolution}, cell,
                                     vec3(state_.positions[g]), vec3(state_.velocities[g]), gs);
         state_.velocities[g] = vec4(v, 0.0f);
     }

@@ -4,6 +4,7 @@
 // readable statement of the algorithm. Single-threaded and meant for small workloads.
 #pragma once
 
+#include "physics/mesh_sdf.h"
 #include "physics/simulation.h"
 
 #include <cstdint>
@@ -35,6 +36,7 @@ private:
     const SimSetup& setup_;
     std::vector<gpu::RestVertex> rest_;
     SimState state_;
+    MeshSdf sdf_; // the head mesh's field, built by the GPU kernels' twin (empty: none)
     std::vector<gpu::GridNode> grid_;
     std::vector<glm::vec4> gridVelocity_;
     std::vector<uint8_t> reached_;  // 1: the node is in touched_

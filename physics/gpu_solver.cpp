@@ -101,6 +101,12 @@ GpuSolver::GpuSolver(const vk::Context& ctx, const StrandSet& strands, const Sim
         grids_[i] = ctx.createBufferWithData(
             {.size = gridBytes, .usage = kStorageCopy, .name = i == 0 ? "grid.sums.0" : "grid.sums.1"}, zeroGrid.data(),
             gridBytes);
+    // The head mesh's field, built here by its own kernels when the setup asks for one.
+    if (setup.sdf)
+        sdf_ = std::make_unique<GpuMeshSdf>(ctx, *setup.sdf);
+    float none = 0.0f;
+    sdfNone_ = ctx.createBufferWithData({.size = sizeof(float), .usage = vk::kStorage, .name = "sim.sdf.none"}, &none,
+                                        sizeof(float));
     gpu::SimCounters zero{};
     counters_ = ctx.createBufferWithData(
         {.size = sizeof(gpu::SimCounters), .usage = kStorageCopy, .name = "sim.counters"}, &zero, sizeof(zero));
@@ -183,7 +189,8 @@ ComputeStage GpuSolver::stage(Stage stage, const gpu::SimStep& step, uint32_t tu
                      storageBuffer(kSimBindingTangents, tangentsTrack_, writtenByIntegrate),
                      storageBuffer(kSimBindingGrid, sums, writtenByIntegrate), // splatted, then gathered
                      storageBuffer(kSimBindingGridNext, next, integrate ? ComputeRead : ComputeWrite), // zeroed
-                     storageBuffer(kSimBindingCounters, countersTrack_, writtenByIntegrate)},
+                     storageBuffer(kSimBindingCounters, countersTrack_, writtenByIntegrate),
+                     constantBuffer(kSimBindingSdf, sdf_ ? sdf_->field() : sdfNone_.get())},
             .record = [this, integrate, step, groups](StageCommands& c) {
                 c.dispatch(integrate ? integrate_ : gather_, step, groups);
             }};

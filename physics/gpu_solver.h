@@ -14,9 +14,11 @@
 #include "gpu/pass.h"
 #include "gpu/resources.h"
 #include "gpu/timestamps.h"
+#include "physics/gpu_mesh_sdf.h"
 #include "physics/simulation.h"
 
 #include <array>
+#include <memory>
 
 namespace wisp {
 
@@ -65,6 +67,8 @@ public:
     const SimSetup& setup() const { return setup_; }
     const vk::Buffer& positions() const { return positions_; }
     const vk::Buffer& params() const { return params_; } // the SimParams uniform block (colliders)
+    // The head mesh's field the solver reads (built with it; none without setup.sdf).
+    const GpuMeshSdf* meshSdf() const { return sdf_.get(); }
     // For passes that read the simulation's output in the same frame.
     TrackedBuffer& positionsTrack() { return positionsTrack_; }
     uint32_t vertexCount() const { return vertexCount_; }
@@ -92,6 +96,8 @@ private:
     mutable vk::Buffer readback_; // host-visible, reused by every readState/readGrid
     StageLayout layout_;
     vk::ComputeKernel integrate_, gather_;
+    std::unique_ptr<GpuMeshSdf> sdf_; // the head mesh's field (setup.sdf), built by its kernels
+    vk::Buffer sdfNone_;              // one float bound in its place when there is none
 };
 
 } // namespace wisp

@@ -14,7 +14,7 @@ namespace wisp {
 
 // Cells along the mesh's longest extent: the setting's range and default.
 inline constexpr uint32_t kSdfResolutionMin = 16;
-inline constexpr uint32_t kSdfResolutionMax = 512;
+inline constexpr uint32_t kSdfResolutionMax = 256;
 inline constexpr uint32_t kSdfResolutionDefault = 96;
 // The most triangles a field takes (a key's triangle bits).
 inline constexpr uint32_t kSdfMaxTriangleBits = 24;

@@ -18,6 +18,19 @@ uint64_t solverDeviceBytes(uint64_t strands, uint32_t verticesPerStrand, uint64_
            sizeof(gpu::SimCounters);
 }
 
+SimSetup makeSimSetup(const SimSettings& settings, const StrandSet& strands,
+                      const std::vector<gpu::Ellipsoid>& colliders, float unitsPerMetre, const Mesh& head)
+{
+    SimSetup setup = makeSimSetup(settings, strands, colliders, unitsPerMetre);
+    if (settings.sdfResolution > 0) {
+        // The band reaches past the margin the penalty acts in, at any resolution.
+        setup.sdf = std::make_shared<const SdfPlan>(
+            planMeshSdf(head, settings.sdfResolution, 2.0f * setup.params.collisionMargin));
+        setup.params.sdf = setup.sdf->grid;
+    }
+    return setup;
+}
+
 SimSetup makeSimSetup(const SimSettings& s, const StrandSet& strands, const std::vector<gpu::Ellipsoid>& colliders,
                       float unitsPerMetre)
 {

@@ -4,9 +4,11 @@
 // `wisp simulate` reports.
 #pragma once
 
+#include "physics/mesh_sdf.h"
 #include "physics/strand_set.h"
 #include "shaders/shared/sim.h"
 
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -23,6 +25,9 @@ struct SimSettings {
     float gridRepulsion = 0.0f;           // volume keeping: blend toward moving down the density gradient, [0, 1]
     float penaltyStiffness = 4000.0f;     // 1/s²
     float collisionMarginMetres = 0.003f; // colliders act this far outside their surface
+    // The head mesh's signed distance field, cells along the mesh's longest extent (0: none, the
+    // ellipsoids and the sphere alone keep the hair out).
+    uint32_t sdfResolution = kSdfResolutionDefault;
     // Every part's parameters when set, over each part's own (PartSettings: grown hair's, or a
     // loaded groom's styled defaults); a part's own override (--part) still wins.
     std::optional<float> globalStiffness, localStiffness, ftlDamping, drag;
@@ -41,10 +46,16 @@ struct SimSetup {
     float unitsPerMetre = 1.0f;     // the head's units
     glm::vec3 gridCenterHead{0.0f}; // grid centre in head space (the grid follows the head)
     float gridSide = 0.0f;          // asset units
+    // The head mesh's signed distance field to build (params.sdf its grid), or none.
+    std::shared_ptr<const SdfPlan> sdf;
 };
 
 SimSetup makeSimSetup(const SimSettings& settings, const StrandSet& strands,
                       const std::vector<gpu::Ellipsoid>& colliders, float unitsPerMetre);
+// The setup with the head mesh's field (planMeshSdf at `settings.sdfResolution`; 0: none) for
+// the solvers to build and read beside the colliders.
+SimSetup makeSimSetup(const SimSettings& settings, const StrandSet& strands,
+                      const std::vector<gpu::Ellipsoid>& colliders, float unitsPerMetre, const Mesh& head);
 // The largest scale at which no fixed-point grid node can overflow 2^62: every vertex adds at
 // most 1 (density) or maxSpeed (each momentum component) to a node.
 float gridFixedScale(uint64_t vertexCount, float maxSplatSpeed);

@@ -46,6 +46,13 @@ float strandRestLength(uint base, uint i)
     return rest[base + i * kSimStrandBlock].segmentLength;
 }
 
+// The head mesh's signed distance field as mesh_sdf_sample.h reaches it.
+layout(set = 0, binding = kSimBindingSdf, std430) readonly buffer SdfField { float sdfField[]; };
+float sdfFieldAt(uint node)
+{
+    return sdfField[node];
+}
+
 #include "shared/sim_strand.h"
 
 layout(local_size_x = SIM_GROUP_SIZE) in;

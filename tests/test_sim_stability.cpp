@@ -25,7 +25,7 @@ namespace {
 TrialRun runTrial(const GroomedHead& scene, const SimSettings& sim)
 {
     StrandSet strands = test::strandsUnder(scene, sim);
-    SimSetup setup = makeSimSetup(sim, strands, scene.gpuColliders, scene.unitsPerMetre);
+    SimSetup setup = makeSimSetup(sim, strands, scene.gpuColliders, scene.unitsPerMetre, scene.head.mesh);
     CpuSolver cpu(strands, setup, glm::mat4(1.0f));
     const uint32_t steps = test::trialSteps(sim);
     for (int k = -int(test::trialSettleSteps(sim)); k < 0; ++k)

@@ -33,7 +33,7 @@ SimSetup HairSession::makeSetup() const
     // The wind the timeline starts with (steps carry their own; this is the setup's default).
     SimSettings sim = sim_;
     sim.wind = timeline_.at(0.0).wind;
-    return makeSimSetup(sim, scene_.strands, scene_.gpuColliders, scene_.unitsPerMetre);
+    return makeSimSetup(sim, scene_.strands, scene_.gpuColliders, scene_.unitsPerMetre, scene_.head.mesh);
 }
 
 glm::mat4 HairSession::headTransformAt(double seconds) const

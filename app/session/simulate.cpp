@@ -186,6 +186,24 @@ std::vector<DispatchTiming> profilePhysics(const vk::Context& ctx, HairSession& 
     return out;
 }
 
+namespace {
+
+// The head mesh's field the solver reads: its grid and the GPU time its build took (null: none).
+nlohmann::json meshSdfJson(HairSession& session)
+{
+    const GpuMeshSdf* sdf = session.solver() ? session.solver()->meshSdf() : nullptr;
+    if (!sdf)
+        return nullptr;
+    const gpu::SdfGrid& g = sdf->grid();
+    return {{"resolution", session.sim().sdfResolution},
+            {"nodes", {g.dims.x, g.dims.y, g.dims.z}},
+            {"cell", g.origin.w},
+            {"band", g.band.x},
+            {"build_ms", sdf->buildMs()}};
+}
+
+} // namespace
+
 int runSimulate(const vk::Context& ctx, HairSession& session, const SimulateOptions& o)
 {
     const GroomedHead& scene = session.scene();
@@ -201,6 +219,7 @@ int runSimulate(const vk::Context& ctx, HairSession& session, const SimulateOpti
                               {"warmup_steps", o.warmup},
                               {"timed_steps", o.steps},
                               {"device", ctx.report().name},
+                              {"mesh_sdf", meshSdfJson(session)},
                               {"settings", settingsJson(o.settings)}};
         for (const DispatchTiming& t : timings)
             out["ms"][t.name] = {{"median", t.medianMs}, {"p95", t.p95Ms}};
@@ -303,6 +322,7 @@ int runSimulate(const vk::Context& ctx, HairSession& session, const SimulateOpti
                           {"grid_resolution", sim.gridResolution},
                           {"colliders", scene.colliders.size()},
                           {"colliders_fitted", scene.collidersFitted},
+                          {"mesh_sdf", meshSdfJson(session)},
                           {"loaded_hair", loadedHairJson(scene)},
                           {"rigid_strands", rigidStrandsJson(scene)},
                           {"device", ctx.report().name},

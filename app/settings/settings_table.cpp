@@ -395,6 +395,11 @@ std::vector<SettingSpec> buildSpecs()
         number("collision_margin", "m", {0.0, 0.05}, kSolver, "", "how far outside their surface the colliders act"),
         [](Settings & x) -> auto& { return x.sim.collisionMarginMetres; }));
     add(field(
+        integer("sdf_resolution", {0, kSdfResolutionMax}, kSolver, "",
+                "cells of the head mesh's distance field along its longest side, the hair kept out of the mesh "
+                "itself beside the colliders (0: the colliders alone)"),
+        [](Settings & x) -> auto& { return x.sim.sdfResolution; }));
+    add(field(
         partValue("global_stiffness", "", fraction, "--global-stiffness",
                   "pull toward the rest pose per step at the root"),
         [](Settings & x) -> auto& { return x.sim.globalStiffness; }));

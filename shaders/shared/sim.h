@@ -4,18 +4,25 @@
 // asset units / s². A strand is V consecutive vertices, root first.
 #ifndef WISP_SHARED_SIM_H
 #define WISP_SHARED_SIM_H
+#include "mesh_sdf.h"
 #include "prelude.h"
 
 // What a kernel's functions reach as globals in GLSL, the uniform block `params` (SimParams) and
 // the push constants `step` (SimStep), are their first parameters in C++: SIM_CONTEXT declares
-// them, SIM_ARGS passes them (sim_strand.h, sim_grid.h).
+// them, SIM_ARGS passes them (sim_strand.h, sim_grid.h). So with the head mesh's signed distance
+// field (mesh_sdf.h): the kernel's buffer, reached through `sdfFieldAt`, is the C++ functions'
+// `sdfField` (SIM_SDF passes it to mesh_sdf_sample.h's functions).
 #ifdef __cplusplus
-#define SIM_CONTEXT [[maybe_unused]] const SimParams &params, [[maybe_unused]] const SimStep &step,
-#define SIM_ARGS params, step,
+#define SIM_CONTEXT                                                                                                    \
+    [[maybe_unused]] const SimParams &params, [[maybe_unused]] const SimStep &step,                                    \
+        [[maybe_unused]] const float *sdfField,
+#define SIM_ARGS params, step, sdfField,
+#define SIM_SDF sdfField,
 #define GPU_INOUT(T) T&
 #else
 #define SIM_CONTEXT
 #define SIM_ARGS
+#define SIM_SDF
 #define GPU_INOUT(T) inout T
 #endif
 
@@ -41,6 +48,7 @@ GPU_CONST uint kSimBindingTangents = 5;   // vec4[]: xyz unit tangent toward the
 GPU_CONST uint kSimBindingGrid = 6;       // GridNode[] (splat accumulators: this step's)
 GPU_CONST uint kSimBindingGridNext = 7;   // the next step's accumulators, which the gather zeroes
 GPU_CONST uint kSimBindingCounters = 8;   // SimCounters
+GPU_CONST uint kSimBindingSdf = 9;        // float[]: the head mesh's signed distance field (SimParams.sdf)
 
 // An ellipsoid collider: a point p is inside when |R^T (p - center) / radii| < 1.
 struct Ellipsoid {
@@ -82,6 +90,7 @@ struct SimParams {
     uint substeps;             // integrate/FTL substeps per step, each dt long (one dispatch runs them all)
     SimPart parts[kSimMaxParts];
     Ellipsoid colliders[kSimMaxColliders]; // in head space: they move with the head
+    SdfGrid sdf;                           // the head mesh's signed distance field, in head space; dims.x = 0: none
 };
 
 // What changes from step to step (push constants): the head's pose, the user's sphere, time, wind.
@@ -547,7 +556,7 @@ GPU_NAMESPACE_END
 
 #ifdef __cplusplus
 // The layouts GLSL gives these blocks, checked where they are defined (C++ only).
-static_assert(sizeof(gpu::SimParams) == 1744, "SimParams must match its std140 layout");
+static_assert(sizeof(gpu::SimParams) == 1808, "SimParams must match its std140 layout");
 static_assert(offsetof(gpu::SimParams, parts) == 80 && offsetof(gpu::SimParams, colliders) == 208);
 static_assert(sizeof(gpu::SimStep) == 112 && sizeof(gpu::SimStep) <= 128,
               "SimStep must match its push-constant layout");

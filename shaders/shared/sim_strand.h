@@ -25,6 +25,7 @@
 // strandSetVertex(s, i, position, velocity) and strandRestLength(s, i) for its vertex i.
 #ifndef WISP_SHARED_SIM_STRAND_H
 #define WISP_SHARED_SIM_STRAND_H
+#include "mesh_sdf_sample.h"
 #include "sim.h"
 
 GPU_NAMESPACE_BEGIN
@@ -64,6 +65,20 @@ GPU_FN vec3 colliderPenalty(SIM_CONTEXT vec3 x, vec3 restHead)
             clamp(restDepth(params.colliders[c], restHead) + params.collisionMargin, 0.0f, params.collisionMargin);
         if (k.depth > allowed)
             a += params.penaltyStiffness * (k.depth - allowed) * (mat3(step.headTransform) * k.normal);
+    }
+    // The head mesh itself (its field, in head space): the same penalty along the field's gradient
+    // where the vertex lies nearer the surface than the margin, beyond its rest position's own depth
+    // into that shell (roots rest on the scalp, inside it).
+    if (params.sdf.dims.x > 0u) {
+        float d = sdfSample(SIM_SDF params.sdf, local);
+        if (d < params.collisionMargin) {
+            float allowed =
+                clamp(params.collisionMargin - sdfSample(SIM_SDF params.sdf, restHead), 0.0f, params.collisionMargin);
+            float depth = params.collisionMargin - d;
+            vec3 g = sdfGradient(SIM_SDF params.sdf, local);
+            if (depth > allowed && dot(g, g) > 0.0f)
+                a += params.penaltyStiffness * (depth - allowed) * (mat3(step.headTransform) * normalize(g));
+        }
     }
     if (step.sphereRadius > 0.0f) {
         Contact k = sphereContact(step.sphereCenter, step.sphereRadius, x, params.collisionMargin);
