@@ -12,10 +12,11 @@
 
 namespace wisp {
 
-// Cells along the mesh's longest extent: the setting's range and default.
+// Cells along the mesh's longest extent: the setting's range, and the resolution the tests and
+// `--set sdf_resolution=96` use (a cell about 1% of a bust's longest side).
 inline constexpr uint32_t kSdfResolutionMin = 16;
 inline constexpr uint32_t kSdfResolutionMax = 256;
-inline constexpr uint32_t kSdfResolutionDefault = 96;
+inline constexpr uint32_t kSdfResolutionTypical = 96;
 // The most triangles a field takes (a key's triangle bits).
 inline constexpr uint32_t kSdfMaxTriangleBits = 24;
 

@@ -27,7 +27,10 @@ struct SimSettings {
     float collisionMarginMetres = 0.003f; // colliders act this far outside their surface
     // The head mesh's signed distance field, cells along the mesh's longest extent (0: none, the
     // ellipsoids and the sphere alone keep the hair out).
-    uint32_t sdfResolution = kSdfResolutionDefault;
+    // Off by default until growth lays strands over the mesh itself: grown over the ellipsoids, a
+    // rest pose can start inside the mesh, and the field then pulls it against its own shape
+    // (docs/physics.md, "The head mesh's distance field").
+    uint32_t sdfResolution = 0;
     // Every part's parameters when set, over each part's own (PartSettings: grown hair's, or a
     // loaded groom's styled defaults); a part's own override (--part) still wins.
     std::optional<float> globalStiffness, localStiffness, ftlDamping, drag;

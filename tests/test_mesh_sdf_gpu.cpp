@@ -72,7 +72,7 @@ TEST(GpuMeshSdf, SintelsBustBuildsLikeItsTwin)
         GTEST_SKIP() << "Sintel's bust is not in the shared data (" << path << ")";
     vk::Context ctx(test::validatedOptions());
     Mesh mesh = loadMesh(path);
-    SdfPlan plan = planMeshSdf(mesh, kSdfResolutionDefault);
+    SdfPlan plan = planMeshSdf(mesh, kSdfResolutionTypical);
     GpuMeshSdf field(ctx, plan);
     expectSameField(field.read(), buildMeshSdf(plan));
     std::printf("sdf build: %zu triangles, %u x %u x %u nodes, %zu work items: %.1f ms on %s\n", mesh.triangleCount(),

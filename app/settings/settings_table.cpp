@@ -397,7 +397,7 @@ std::vector<SettingSpec> buildSpecs()
     add(field(
         integer("sdf_resolution", {0, kSdfResolutionMax}, kSolver, "",
                 "cells of the head mesh's distance field along its longest side, the hair kept out of the mesh "
-                "itself beside the colliders (0: the colliders alone)"),
+                "itself beside the colliders (0, the default: the colliders alone; 96 is typical)"),
         [](Settings & x) -> auto& { return x.sim.sdfResolution; }));
     add(field(
         partValue("global_stiffness", "", fraction, "--global-stiffness",
