@@ -94,12 +94,13 @@ std::vector<Ellipsoid> fitColliders(const Mesh& mesh)
     return out;
 }
 
-std::vector<std::string> fittedColliderWarnings(const Mesh& mesh)
+std::vector<std::string> fittedColliderWarnings(const Mesh& mesh, const std::vector<Ellipsoid>& colliders,
+                                                const std::vector<uint32_t>& scalpTriangles)
 {
     std::vector<std::string> out;
     if (mesh.positions.empty())
         return out;
-    char text[256];
+    char text[512];
     // Signed volume (the divergence theorem over the triangles, counter-clockwise seen from outside).
     double volume = 0.0;
     for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
@@ -152,23 +153,93 @@ std::vector<std::string> fittedColliderWarnings(const Mesh& mesh)
                       openAbove, openLength);
         out.push_back(text);
     }
+    ColliderFit fit = measureColliderFit(colliders, mesh, scalpTriangles, kFitExposedGap);
+    if (fit.exposed > kFitExposedLimit) {
+        std::snprintf(text, sizeof text,
+                      "the colliders fitted to it hold its scalp badly, as they do a mesh that is no head: %.0f%% of "
+                      "the scalp lies more than %.0f%% of its diagonal outside them all (hair sinks into the mesh "
+                      "there); a head description with its own colliders avoids the fit",
+                      100.0 * double(fit.exposed), 100.0 * double(kFitExposedGap));
+        out.push_back(text);
+    }
     return out;
+}
+
+namespace {
+
+// Points of the scalp: each triangle on a barycentric grid (its corners, edges and inside), each
+// point weighted by its share of the triangle's area. A coarse mesh's faces are sampled, not only
+// its corners: a cube's 8 corners can lie outside a collider that reaches through its faces.
+struct ScalpSamples {
+    std::vector<glm::vec3> points;
+    std::vector<double> weights;
+};
+ScalpSamples sampleScalp(const Mesh& mesh, const std::vector<uint32_t>& scalp)
+{
+    constexpr int kSteps = 4;
+    constexpr int kPerTriangle = (kSteps + 1) * (kSteps + 2) / 2;
+    ScalpSamples out;
+    for (uint32_t t : scalp) {
+        glm::vec3 a = mesh.positions[mesh.indices[3 * t]], b = mesh.positions[mesh.indices[3 * t + 1]],
+                  c = mesh.positions[mesh.indices[3 * t + 2]];
+        double area = 0.5 * double(glm::length(glm::cross(b - a, c - a)));
+        for (int i = 0; i <= kSteps; ++i)
+            for (int j = 0; i + j <= kSteps; ++j) {
+                out.points.push_back(a + (b - a) * (float(i) / float(kSteps)) + (c - a) * (float(j) / float(kSteps)));
+                out.weights.push_back(area / kPerTriangle);
+            }
+    }
+    return out;
+}
+
+// How far `p` lies outside `e`, along the ray from its centre (0 inside): an upper bound of the
+// distance to its surface, exact on a sphere.
+float radialGap(const Ellipsoid& e, const glm::mat3& R, glm::vec3 p)
+{
+    glm::vec3 d = p - e.center;
+    float r = glm::length((glm::transpose(R) * d) / e.radii);
+    return r <= 1.0f ? 0.0f : glm::length(d) * (1.0f - 1.0f / r);
+}
+
+} // namespace
+
+ColliderFit measureColliderFit(const std::vector<Ellipsoid>& colliders, const Mesh& mesh,
+                               const std::vector<uint32_t>& scalp, float gap)
+{
+    ColliderFit fit;
+    float diagonal = std::max(mesh.bounds().diagonal(), 1e-30f);
+    if (mesh.indices.empty() || colliders.empty())
+        return fit;
+    std::vector<gpu::Ellipsoid> gpuColliders;
+    for (const Ellipsoid& e : colliders)
+        gpuColliders.push_back(toGpu(e));
+    std::vector<glm::mat3> rotations;
+    for (const Ellipsoid& e : colliders)
+        rotations.push_back(rotationXyzDegrees(e.rotationDeg));
+    ScalpSamples samples = sampleScalp(mesh, scalp);
+    double area = 0.0, exposedArea = 0.0;
+    for (size_t i = 0; i < samples.points.size(); ++i) {
+        glm::vec3 p = samples.points[i];
+        fit.intrusion = std::max(fit.intrusion, penetrationDepth(gpuColliders, p) / diagonal);
+        float nearest = 1e30f;
+        for (size_t k = 0; k < colliders.size(); ++k)
+            nearest = std::min(nearest, radialGap(colliders[k], rotations[k], p));
+        area += samples.weights[i];
+        exposedArea += nearest > gap * diagonal ? samples.weights[i] : 0.0;
+    }
+    fit.exposed = area > 0.0 ? float(exposedArea / area) : 0.0f;
+    return fit;
 }
 
 void inscribeColliders(std::vector<Ellipsoid>& colliders, const Mesh& mesh, const std::vector<uint32_t>& scalp,
                        float tolerance)
 {
-    std::vector<uint8_t> onScalp(mesh.positions.size(), 0);
-    for (uint32_t t : scalp)
-        for (int c = 0; c < 3; ++c)
-            onScalp[mesh.indices[3 * t + c]] = 1;
+    const std::vector<glm::vec3> points = sampleScalp(mesh, scalp).points;
     for (Ellipsoid& e : colliders) {
         glm::mat3 R = rotationXyzDegrees(e.rotationDeg);
         float scale = 1.0f;
-        for (size_t v = 0; v < mesh.positions.size(); ++v) {
-            if (!onScalp[v])
-                continue;
-            glm::vec3 d = mesh.positions[v] - e.center;
+        for (const glm::vec3& p : points) {
+            glm::vec3 d = p - e.center;
             float distance = glm::length(d);
             float radius = glm::length((glm::transpose(R) * d) / e.radii); // 1 on the surface
             if (radius < scale && distance > 0.0f)

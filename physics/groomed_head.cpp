@@ -34,8 +34,11 @@ void prepareHead(GroomedHead& scene)
         // A mesh that is no head is said to be one, naming it.
         std::string mesh = scene.head.description.meshPath.empty() ? scene.head.description.name
                                                                    : scene.head.description.meshPath.string();
-        for (const std::string& w : fittedColliderWarnings(scene.head.mesh))
-            scene.warnings.push_back(mesh + ": " + w);
+        std::string wrong;
+        for (const std::string& w : fittedColliderWarnings(scene.head.mesh, scene.colliders, scalp))
+            wrong += (wrong.empty() ? "" : "; ") + w;
+        if (!wrong.empty()) // one line for the mesh, whatever is wrong with it
+            scene.warnings.push_back(mesh + ": " + wrong);
     }
     scene.gpuColliders.clear();
     for (const Ellipsoid& e : scene.colliders)

@@ -1,6 +1,7 @@
 // tests/test_head.cpp: the project's own head (models/head.obj + head.json): it loads, looks like
 // a bust in proportions, its scalp rule picks the top and back, its colliders cover the head;
-// the generator rebuilds the committed files byte for byte; bad descriptions are reported.
+// the generator rebuilds the committed files byte for byte; bad descriptions are reported; colliders
+// fitted to a bare mesh that is no head are said to hold it badly.
 #include "assets/head.h"
 #include "core/error.h"
 #include "core/rotation.h"
@@ -10,7 +11,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
+#include <string>
+#include <utility>
 
 using namespace wisp;
 using wisp::test::TempDir;
@@ -204,4 +208,81 @@ TEST(HeadErrors, DescriptionNamingAMissingMesh)
     } catch (const UserError& e) {
         EXPECT_NE(std::string(e.what()).find("gone.obj"), std::string::npos);
     }
+}
+
+// ---- colliders fitted to a bare mesh -----------------------------------------------------------
+
+namespace {
+
+// OBJ text of a closed cube (half side h, its base at y = 0), each face split into n x n quads,
+// counter-clockwise seen from outside.
+std::string cubeObj(float h, int n)
+{
+    std::string obj, faces;
+    char line[96];
+    int next = 1;
+    for (int a = 0; a < 3; ++a)
+        for (int s : {1, -1}) {
+            int u = (a + 1) % 3, v = (a + 2) % 3, base = next;
+            for (int i = 0; i <= n; ++i)
+                for (int j = 0; j <= n; ++j, ++next) {
+                    glm::vec3 p(0.0f);
+                    p[a] = float(s) * h;
+                    p[u] = h * (2.0f * float(i) / float(n) - 1.0f);
+                    p[v] = h * (2.0f * float(j) / float(n) - 1.0f);
+                    std::snprintf(line, sizeof line, "v %.6f %.6f %.6f\n", p.x, p.y + h, p.z);
+                    obj += line;
+                }
+            auto at = [&](int i, int j) { return base + i * (n + 1) + j; };
+            for (int i = 0; i < n; ++i)
+                for (int j = 0; j < n; ++j) {
+                    // e_u x e_v = e_a: (i, j), (i+1, j), (i+1, j+1) turns counter-clockwise seen from +a.
+                    int p0 = at(i, j), p1 = at(i + 1, j), p2 = at(i + 1, j + 1), p3 = at(i, j + 1);
+                    if (s < 0)
+                        std::swap(p1, p3);
+                    std::snprintf(line, sizeof line, "f %d %d %d\nf %d %d %d\n", p0, p1, p2, p0, p2, p3);
+                    faces += line;
+                }
+        }
+    return obj + faces;
+}
+
+// The colliders fitted to `mesh` as a grown groom gets them (physics/groomed_head.cpp), measured.
+struct Fitted {
+    ColliderFit fit;
+    std::vector<std::string> warnings;
+};
+Fitted fitAndMeasure(const Mesh& mesh)
+{
+    std::vector<Ellipsoid> colliders = fitColliders(mesh);
+    std::vector<uint32_t> scalp = scalpTriangles(mesh, defaultScalpRule(colliders.front()));
+    inscribeColliders(colliders, mesh, scalp, kInscribedTolerance * mesh.bounds().diagonal());
+    return {measureColliderFit(colliders, mesh, scalp, kFitExposedGap), fittedColliderWarnings(mesh, colliders, scalp)};
+}
+
+} // namespace
+
+// A cube given as a head: its fitted cranium, pulled under the scalp (the middle of the top face as
+// well as its corners: no root starts inside it), leaves most of the scalp far outside it, where
+// hair sinks into the cube; so does a cube split into 8 x 8 quads per face. The project's head, a
+// bare mesh with fitted colliders, is held well and is said nothing of.
+TEST(FittedColliders, ACubeIsSaidToHoldBadlyAndAHeadIsNot)
+{
+    TempDir dir;
+    writeFile(dir / "cube.obj", cubeObj(0.1f, 1));
+    writeFile(dir / "cube8.obj", cubeObj(0.1f, 8));
+    for (const char* name : {"cube.obj", "cube8.obj"}) {
+        Mesh mesh = loadMesh(dir / name);
+        Fitted cube = fitAndMeasure(mesh);
+        // The scalp outside every collider, within the inscribed tolerance (and a float's rounding).
+        EXPECT_LT(cube.fit.intrusion, 1.01f * kInscribedTolerance) << name;
+        EXPECT_GT(cube.fit.exposed, 3.0f * kFitExposedLimit) << name;
+        ASSERT_EQ(cube.warnings.size(), 1u) << name;
+        EXPECT_NE(cube.warnings[0].find("hold its scalp badly, as they do a mesh that is no head"), std::string::npos)
+            << cube.warnings[0];
+    }
+    Fitted head = fitAndMeasure(loadMesh(std::filesystem::path(WISP_SOURCE_DIR) / "models" / "head.obj"));
+    EXPECT_LT(head.fit.intrusion, 1.01f * kInscribedTolerance);
+    EXPECT_LT(head.fit.exposed, 0.5f * kFitExposedLimit);
+    EXPECT_TRUE(head.warnings.empty()) << head.warnings.front();
 }
