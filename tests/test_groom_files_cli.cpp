@@ -243,64 +243,65 @@ TEST(GroomCli, InspectCountsTheStrandsInsideTheMesh)
     // 4 cm into a head of diagonal about 0.6 m (the default head's bust).
     EXPECT_GT(j["deepest"].get<double>(), 0.02) << j;
     EXPECT_LT(j["deepest"].get<double>(), 0.2) << j;
+}
 
-    TEST(GroomCli, AGroomOfAnotherShapeIsTransferredSaidAndWrittenAsMoved)
-    {
-        // The default head's grown groom stretched unevenly and moved: fitted, then the roots the fit
-        // leaves off the head moved onto its scalp. inspect, render and simulate say how many and how
-        // far; groom --out writes the moved strands, which read back as they are, nothing moved again.
-        TempDir dir;
-        test::writeTfx4(dir / "stretched.tfx", test::grownStrands(150, 8, [](glm::vec3 p) {
-                            return glm::vec3(1.15f * p.x, 0.88f * p.y, 1.08f * p.z) + glm::vec3(0.01f, 0.25f, -0.02f);
-                        }));
-        std::string hair = " --hair " + quoted(dir / "stretched.tfx") + " --vertices 8";
-        auto r = runWisp("inspect" + hair);
-        ASSERT_EQ(r.status, 0) << r.err;
-        nlohmann::json j = nlohmann::json::parse(r.out);
-        EXPECT_EQ(j["placement"]["method"], "fitted");
-        size_t moved = j["transfer"]["moved"].get<size_t>();
-        EXPECT_GT(moved, 0u) << j["transfer"].dump();
-        EXPECT_EQ(j["transfer"]["roots"], 150);
-        EXPECT_GT(j["transfer"]["displacement"]["median"].get<double>(), 0.0);
-        EXPECT_GE(j["transfer"]["displacement"]["max"].get<double>(),
-                  j["transfer"]["displacement"]["median"].get<double>());
+TEST(GroomCli, AGroomOfAnotherShapeIsTransferredSaidAndWrittenAsMoved)
+{
+    // The default head's grown groom stretched unevenly and moved: fitted, then the roots the fit
+    // leaves off the head moved onto its scalp. inspect, render and simulate say how many and how
+    // far; groom --out writes the moved strands, which read back as they are, nothing moved again.
+    TempDir dir;
+    test::writeTfx4(dir / "stretched.tfx", test::grownStrands(150, 8, [](glm::vec3 p) {
+                        return glm::vec3(1.15f * p.x, 0.88f * p.y, 1.08f * p.z) + glm::vec3(0.01f, 0.25f, -0.02f);
+                    }));
+    std::string hair = " --hair " + quoted(dir / "stretched.tfx") + " --vertices 8";
+    auto r = runWisp("inspect" + hair);
+    ASSERT_EQ(r.status, 0) << r.err;
+    nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["placement"]["method"], "fitted");
+    size_t moved = j["transfer"]["moved"].get<size_t>();
+    EXPECT_GT(moved, 0u) << j["transfer"].dump();
+    EXPECT_EQ(j["transfer"]["roots"], 150);
+    EXPECT_GT(j["transfer"]["displacement"]["median"].get<double>(), 0.0);
+    EXPECT_GE(j["transfer"]["displacement"]["max"].get<double>(),
+              j["transfer"]["displacement"]["median"].get<double>());
 
-        r = runWisp("render" + hair + " --set strands_per_guide=2 --width 64 --height 48 --frames 0 --out " +
-                    quoted(dir / "p.png"));
-        ASSERT_EQ(r.status, 0) << r.err;
-        EXPECT_NE(r.out.find("\nhair transfer: " + std::to_string(moved) + " of 150 roots moved onto the scalp"),
-                  std::string::npos)
-            << r.out;
-        r = runWisp("simulate --steps 1 --json" + hair);
-        ASSERT_EQ(r.status, 0) << r.err;
-        EXPECT_EQ(nlohmann::json::parse(r.out)["loaded_hair"]["transfer"]["moved"], moved);
+    r = runWisp("render" + hair + " --set strands_per_guide=2 --width 64 --height 48 --frames 0 --out " +
+                quoted(dir / "p.png"));
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("\nhair transfer: " + std::to_string(moved) + " of 150 roots moved onto the scalp"),
+              std::string::npos)
+        << r.out;
+    r = runWisp("simulate --steps 1 --json" + hair);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(nlohmann::json::parse(r.out)["loaded_hair"]["transfer"]["moved"], moved);
 
-        r = runWisp("groom --out " + quoted(dir / "moved.tfx") + hair);
-        ASSERT_EQ(r.status, 0) << r.err;
-        r = runWisp("inspect --hair " + quoted(dir / "moved.tfx") + " --vertices 8");
-        ASSERT_EQ(r.status, 0) << r.err;
-        j = nlohmann::json::parse(r.out);
-        EXPECT_EQ(j["placement"]["method"], "file") << j["placement"].dump();
-        EXPECT_EQ(j["transfer"]["moved"], 0) << j["transfer"].dump();
-        EXPECT_EQ(j["transfer"]["turned"], 0) << j["transfer"].dump();
-        EXPECT_EQ(j["transfer"]["lifted"], 0) << j["transfer"].dump();
-        // The file holds the transferred strands, and loaded again they are those strands.
-        GroomedHead scene = buildLoadedHead(
-            defaultHeadPath(), {{.file = dir / "stretched.tfx", .placement = std::nullopt, .settings = {}}}, 8);
-        GroomedHead again = buildLoadedHead(
-            defaultHeadPath(), {{.file = dir / "moved.tfx", .placement = std::nullopt, .settings = {}}}, 8);
-        HairAsset file = loadHairAsset(dir / "moved.tfx");
-        ASSERT_EQ(file.strands.size(), scene.strands.strandCount());
-        ASSERT_EQ(again.strands.rest.size(), scene.strands.rest.size());
-        // (Loaded again, each strand is only resampled by arc length, which cuts its corners anew.)
-        float worstFile = 0.0f, worstAgain = 0.0f;
-        for (size_t s = 0; s < file.strands.size(); ++s) {
-            std::vector<glm::vec3> resampled = resampleStrand(file.strands[s].points, 8);
-            for (size_t i = 0; i < 8; ++i) {
-                worstFile = std::max(worstFile, glm::length(file.strands[s].points[i] - scene.strands.rest[s * 8 + i]));
-                worstAgain = std::max(worstAgain, glm::length(again.strands.rest[s * 8 + i] - resampled[i]));
-            }
+    r = runWisp("groom --out " + quoted(dir / "moved.tfx") + hair);
+    ASSERT_EQ(r.status, 0) << r.err;
+    r = runWisp("inspect --hair " + quoted(dir / "moved.tfx") + " --vertices 8");
+    ASSERT_EQ(r.status, 0) << r.err;
+    j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["placement"]["method"], "file") << j["placement"].dump();
+    EXPECT_EQ(j["transfer"]["moved"], 0) << j["transfer"].dump();
+    EXPECT_EQ(j["transfer"]["turned"], 0) << j["transfer"].dump();
+    EXPECT_EQ(j["transfer"]["lifted"], 0) << j["transfer"].dump();
+    // The file holds the transferred strands, and loaded again they are those strands.
+    GroomedHead scene = buildLoadedHead(
+        defaultHeadPath(), {{.file = dir / "stretched.tfx", .placement = std::nullopt, .settings = {}}}, 8);
+    GroomedHead again =
+        buildLoadedHead(defaultHeadPath(), {{.file = dir / "moved.tfx", .placement = std::nullopt, .settings = {}}}, 8);
+    HairAsset file = loadHairAsset(dir / "moved.tfx");
+    ASSERT_EQ(file.strands.size(), scene.strands.strandCount());
+    ASSERT_EQ(again.strands.rest.size(), scene.strands.rest.size());
+    // (Loaded again, each strand is only resampled by arc length, which cuts its corners anew.)
+    float worstFile = 0.0f, worstAgain = 0.0f;
+    for (size_t s = 0; s < file.strands.size(); ++s) {
+        std::vector<glm::vec3> resampled = resampleStrand(file.strands[s].points, 8);
+        for (size_t i = 0; i < 8; ++i) {
+            worstFile = std::max(worstFile, glm::length(file.strands[s].points[i] - scene.strands.rest[s * 8 + i]));
+            worstAgain = std::max(worstAgain, glm::length(again.strands.rest[s * 8 + i] - resampled[i]));
         }
-        EXPECT_EQ(worstFile, 0.0f);
-        EXPECT_LT(worstAgain, 1e-6f);
     }
+    EXPECT_EQ(worstFile, 0.0f);
+    EXPECT_LT(worstAgain, 1e-6f);
+}
