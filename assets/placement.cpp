@@ -4,6 +4,8 @@
 // surface by iterated closest points), a fitted groom turned to face the way the head faces.
 #include "assets/placement.h"
 
+#include "assets/signed_distance.h"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -574,15 +576,6 @@ glm::vec3 MeshDistance::normal(const Closest& c) const
     return length > 0.0f ? n / length : glm::vec3(0.0f, 1.0f, 0.0f);
 }
 
-float MeshDistance::signedDistance(glm::vec3 p) const
-{
-    Closest c = closest(p);
-    if (c.triangle == UINT32_MAX || !(c.distance > 0.0f))
-        return c.distance;
-    return glm::dot(p - c.point, pseudonormal(c.point, samePoint(c.point, c.distance))) < 0.0f ? -c.distance
-                                                                                               : c.distance;
-}
-
 // ---- Roots against the head ------------------------------------------------------------------------
 
 RootFit measureRoots(const std::vector<glm::vec3>& roots, const MeshDistance& head, float headDiagonal)
@@ -1104,6 +1097,7 @@ GroomTransfer transferStrands(std::vector<std::vector<glm::vec3>>& strands, cons
     if (!(diagonal > 0.0f))
         return out;
     MeshDistance surface(head);
+    MeshSignedDistance signedSurface(head);
     std::optional<MeshDistance> onto;
     out.beyond = beyond;
     float near = beyond * diagonal, deep = kStrandInside * diagonal;
@@ -1111,7 +1105,7 @@ GroomTransfer transferStrands(std::vector<std::vector<glm::vec3>>& strands, cons
     auto deepest = [&](const std::vector<glm::vec3>& points, size_t* which = nullptr) {
         float depth = -INFINITY;
         for (size_t i = 1; i < points.size(); ++i) {
-            float d = -surface.signedDistance(points[i]);
+            float d = -signedSurface(points[i]);
             if (d > depth) {
                 depth = d;
                 if (which)

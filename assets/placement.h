@@ -42,12 +42,6 @@ public:
     // The surface's normal at a closest point: the unit angle-weighted pseudonormal there (below),
     // from the triangles' winding, not the file's shading normals.
     glm::vec3 normal(const Closest& c) const;
-    // The distance to the surface, negative inside: the sign of (p - q) against the angle-weighted
-    // pseudonormal at the closest point q (Baerentzen and Aanaes 2005: a face's normal inside it,
-    // its edges' and corners' from every triangle that holds q, each weighted by its angle there),
-    // found from the triangles as nearest to p as q is, so split vertices need no adjacency. Exact
-    // for a closed, consistently wound mesh; outside an open mesh's rim it is the rim's side.
-    float signedDistance(glm::vec3 p) const;
     // Whether the ray from `origin` along `direction` meets a triangle before `length` (in units of
     // `direction`; Moeller and Trumbore 1997).
     bool hits(glm::vec3 origin, glm::vec3 direction, float length) const;

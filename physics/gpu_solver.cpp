@@ -172,8 +172,8 @@ ComputeStage GpuSolver::stage(Stage stage, const gpu::SimStep& step, uint32_t tu
 {
     using enum Access;
     using namespace gpu; // the bindings: shaders/shared/sim.h
-    // Both kernels bind every buffer (shaders/sim_common.glsl, grid_storage.glsl); the ones a kernel
-    // leaves alone are listed as read, the least access.
+    // Both kernels bind every buffer but the mesh's field (shaders/sim_common.glsl, grid_storage.glsl);
+    // the ones a kernel leaves alone are listed as read, the least access.
     bool integrate = stage == Stage::Integrate;
     Access writtenByIntegrate = integrate ? ComputeWrite : ComputeRead;
     TrackedBuffer& sums = gridTracks_[turn];
@@ -182,18 +182,22 @@ ComputeStage GpuSolver::stage(Stage stage, const gpu::SimStep& step, uint32_t tu
     // The integrate's threads take a strand each; the gather's a vertex slot and a node of the next sums.
     uint32_t groups = integrate ? vk::groupCount(p.strandCount, kSimGroupSize)
                                 : vk::groupCount(std::max(slotCount_, p.gridNodeCount), kSimGroupSize);
-    return {.uses = {uniformBlock(kSimBindingParams, params_.get()),
-                     storageBuffer(kSimBindingPositions, positionsTrack_, writtenByIntegrate),
-                     storageBuffer(kSimBindingVelocities, velocitiesTrack_, ComputeWrite),
-                     constantBuffer(kSimBindingRest, rest_.get()), constantBuffer(kSimBindingStrands, strands_.get()),
-                     storageBuffer(kSimBindingTangents, tangentsTrack_, writtenByIntegrate),
-                     storageBuffer(kSimBindingGrid, sums, writtenByIntegrate), // splatted, then gathered
-                     storageBuffer(kSimBindingGridNext, next, integrate ? ComputeRead : ComputeWrite), // zeroed
-                     storageBuffer(kSimBindingCounters, countersTrack_, writtenByIntegrate),
-                     constantBuffer(kSimBindingSdf, sdf_ ? sdf_->field() : sdfNone_.get())},
-            .record = [this, integrate, step, groups](StageCommands& c) {
-                c.dispatch(integrate ? integrate_ : gather_, step, groups);
-            }};
+    ComputeStage out{
+        .uses = {uniformBlock(kSimBindingParams, params_.get()),
+                 storageBuffer(kSimBindingPositions, positionsTrack_, writtenByIntegrate),
+                 storageBuffer(kSimBindingVelocities, velocitiesTrack_, ComputeWrite),
+                 constantBuffer(kSimBindingRest, rest_.get()), constantBuffer(kSimBindingStrands, strands_.get()),
+                 storageBuffer(kSimBindingTangents, tangentsTrack_, writtenByIntegrate),
+                 storageBuffer(kSimBindingGrid, sums, writtenByIntegrate), // splatted, then gathered
+                 storageBuffer(kSimBindingGridNext, next, integrate ? ComputeRead : ComputeWrite), // zeroed
+                 storageBuffer(kSimBindingCounters, countersTrack_, writtenByIntegrate)},
+        .record = [this, integrate, step, groups](StageCommands& c) {
+            c.dispatch(integrate ? integrate_ : gather_, step, groups);
+        }};
+    // The head mesh's field (or a stand-in when there is none): only the integrate reads it.
+    if (integrate)
+        out.uses.push_back(constantBuffer(kSimBindingSdf, sdf_ ? sdf_->field() : sdfNone_.get()));
+    return out;
 }
 
 void GpuSolver::declare(PassIo& io)

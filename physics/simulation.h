@@ -27,9 +27,9 @@ struct SimSettings {
     float collisionMarginMetres = 0.003f; // colliders act this far outside their surface
     // The head mesh's signed distance field, cells along the mesh's longest extent (0: none, the
     // ellipsoids and the sphere alone keep the hair out).
-    // Off by default until growth lays strands over the mesh itself: grown over the ellipsoids, a
-    // rest pose can start inside the mesh, and the field then pulls it against its own shape
-    // (docs/physics.md, "The head mesh's distance field").
+    // Off by default for now: its build and its cost in a step are not yet measured on a GPU, and
+    // growth still lays the rest pose over the ellipsoids (docs/physics.md, "The head mesh's
+    // distance field").
     uint32_t sdfResolution = 0;
     // Every part's parameters when set, over each part's own (PartSettings: grown hair's, or a
     // loaded groom's styled defaults); a part's own override (--part) still wins.

@@ -6,6 +6,7 @@
 // strands too short to simulate.
 #include "assets/head.h"
 #include "assets/placement.h"
+#include "assets/signed_distance.h"
 #include "core/error.h"
 #include "groom_files.h"
 #include "physics/cpu_solver.h"
@@ -133,7 +134,7 @@ float boxDistance(glm::vec3 p)
 
 } // namespace
 
-TEST(MeshDistance, SignedDistanceAgreesWithAnAnalyticBoxAndSphere)
+TEST(MeshDistance, SignedDistanceAgreesWithAnAnalyticBoxAndSphereOnSplitAndSharedVertices)
 {
     // Points everywhere around and inside, the box's edges and corners included: the pseudonormal
     // tells inside from outside where a face's or a vertex's normal alone would not.
@@ -141,33 +142,34 @@ TEST(MeshDistance, SignedDistanceAgreesWithAnAnalyticBoxAndSphere)
     auto next = [&] { return gpu::hashToUnit(state++); };
     for (bool split : {true, false}) {
         Mesh box = boxMesh(split);
-        MeshDistance distance(box);
+        MeshSignedDistance distance(box);
         for (int k = 0; k < 400; ++k) {
             glm::vec3 p = -2.0f + 4.0f * glm::vec3(next(), next(), next());
-            EXPECT_NEAR(distance.signedDistance(p), boxDistance(p), 1e-5f) << p.x << " " << p.y << " " << p.z;
+            EXPECT_NEAR(distance(p), boxDistance(p), 1e-5f) << p.x << " " << p.y << " " << p.z;
         }
         // Beyond each corner and edge, and just inside them.
         for (glm::vec3 p : {glm::vec3(1.5f, 1.5f, 1.5f), glm::vec3(-1.2f, 1.3f, 0.0f), glm::vec3(0.99f, 0.99f, 0.99f),
                             glm::vec3(0.0f, -0.999f, 0.999f)})
-            EXPECT_NEAR(distance.signedDistance(p), boxDistance(p), 1e-5f) << p.x << " " << p.y << " " << p.z;
+            EXPECT_NEAR(distance(p), boxDistance(p), 1e-5f) << p.x << " " << p.y << " " << p.z;
     }
     // A latitude-longitude sphere: its seam's vertices are split, its poles' triangles have no area.
     Mesh sphere = makeSphereMesh(24, 48);
-    MeshDistance distance(sphere);
+    MeshSignedDistance distance(sphere);
+    MeshDistance closest(sphere);
     for (int k = 0; k < 400; ++k) {
         glm::vec3 d = glm::normalize(glm::vec3(next(), next(), next()) - 0.5f);
         float radius = 0.2f + 1.6f * next();
         if (std::abs(radius - 1.0f) < 0.02f)
             continue;
-        float sd = distance.signedDistance(radius * d);
+        float sd = distance(radius * d);
         EXPECT_NEAR(sd, radius - 1.0f, 0.01f) << "radius " << radius;
         EXPECT_EQ(sd < 0.0f, radius < 1.0f) << "radius " << radius;
     }
     // Above and below the top pole, where 48 triangles meet (the bottom pole's ring is not one
     // point in floats: sin(pi) rounds to -8.7e-8, which winds its slivers inward).
-    EXPECT_NEAR(distance.signedDistance(glm::vec3(0.0f, 1.05f, 0.0f)), 0.05f, 1e-6f);
-    EXPECT_NEAR(distance.signedDistance(glm::vec3(0.0f, 0.95f, 0.0f)), -0.05f, 1e-3f); // to the facets below
-    EXPECT_NEAR(glm::length(distance.normal(distance.closest(glm::vec3(0.0f, 2.0f, 0.0f))) - glm::vec3(0, 1, 0)), 0.0f,
+    EXPECT_NEAR(distance(glm::vec3(0.0f, 1.05f, 0.0f)), 0.05f, 1e-6f);
+    EXPECT_NEAR(distance(glm::vec3(0.0f, 0.95f, 0.0f)), -0.05f, 1e-3f); // to the facets below
+    EXPECT_NEAR(glm::length(closest.normal(closest.closest(glm::vec3(0.0f, 2.0f, 0.0f))) - glm::vec3(0, 1, 0)), 0.0f,
                 1e-5f);
     // A subset's distances are to its triangles alone.
     MeshDistance top(sphere, {0u, 1u, 2u});
@@ -484,13 +486,14 @@ void expectOnAndOutOfTheHead(const GroomedHead& scene, float rootsWithin, const 
 {
     const Mesh& mesh = scene.head.mesh;
     MeshDistance surface(mesh);
+    MeshSignedDistance signedSurface(mesh);
     float diagonal = mesh.bounds().diagonal();
     uint32_t v = scene.strands.verticesPerStrand;
     float worstRoot = 0.0f, deepest = 0.0f;
     for (size_t s = 0; s < scene.strands.strandCount(); ++s) {
         worstRoot = std::max(worstRoot, surface.closest(scene.strands.rest[s * v]).distance / diagonal);
         for (uint32_t i = 1; i < v && (!checked || checked(s)); ++i)
-            deepest = std::max(deepest, -surface.signedDistance(scene.strands.rest[s * v + i]) / diagonal);
+            deepest = std::max(deepest, -signedSurface(scene.strands.rest[s * v + i]) / diagonal);
     }
     EXPECT_LE(worstRoot, rootsWithin) << name;
     EXPECT_LE(deepest, kStrandInside * 1.001f) << name;
@@ -519,14 +522,15 @@ TEST(Transfer, AGroomOfAnotherShapeIsMovedOntoTheScalpKeepingEverySegment)
     EXPECT_GE(t.max, t.median);
     EXPECT_GE(t.max, g.fit.max * 0.9f) << "the farthest root moved about as far as it lay";
     expectOnAndOutOfTheHead(scene, 0.005f, "stretched");
-    // Each strand's segments keep their lengths: those of the file's strand placed and resampled.
+    // Each strand's segments keep their lengths: those of the file's strand placed (and resampled
+    // where it has another vertex count; these have the count asked for, so they keep their points).
     ASSERT_EQ(scene.strands.strandCount(), groom.size());
     float worst = 0.0f;
     for (size_t s = 0; s < groom.size(); ++s) {
         std::vector<glm::vec3> placedStrand;
         for (const glm::vec3& p : groom[s])
             placedStrand.push_back(applyPlacement(g.placement, p));
-        std::vector<glm::vec3> expected = resampleStrand(placedStrand, v);
+        std::vector<glm::vec3> expected = placedStrand.size() == v ? placedStrand : resampleStrand(placedStrand, v);
         for (uint32_t i = 1; i < v; ++i) {
             float want = glm::length(expected[i] - expected[i - 1]);
             float got = glm::length(scene.strands.rest[s * v + i] - scene.strands.rest[s * v + i - 1]);
