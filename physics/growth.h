@@ -151,11 +151,12 @@ float polylineLength(const std::vector<glm::vec3>& points);
 void checkGrowth(const GrowthSettings& settings);
 
 // Grown strands shorter than this are rigid: they follow the head and are drawn, not simulated
-// (GroomedHead::loaded.rigid counts them, and the commands report it). It is the length a strand
-// takes to come out of the colliders (the emergence, growth.cpp): a shorter one lies all within
-// it. Longer ones simulate with their first segment pinned: the stability trials' "fur" (the crop
-// at 4 cm, tests/test_sim_stability.cpp) runs every physics setting's extremes with them.
-inline constexpr float kRigidStrandMetres = 0.02f;
+// (GroomedHead::loaded.rigid counts them, and the commands report it). Twice the length a strand
+// takes to come out of the colliders (the emergence, growth.cpp): a strand of 2 to 4 cm, pinned at
+// its first two vertices, has too little length left to leave a collider that passes over it (the
+// sphere swept through the hair, tests/test_physics_scenes.cpp, leaves such strands 1.7% of the
+// head's diagonal inside it), so it follows the head instead.
+inline constexpr float kRigidStrandMetres = 0.04f;
 
 // Grows guides; `colliders` (head space) keep them off the head. The strand set also carries the
 // head's painted scalp (StrandSet::scalpPaint) from the same field.
