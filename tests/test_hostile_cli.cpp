@@ -117,6 +117,24 @@ TEST(HostileDisk, RecordWithAFailedWriteNamesTheFrameOrTheSheet)
     EXPECT_FALSE(std::filesystem::exists(dir / "rec" / "contact_sheet.png"));
 }
 
+// WISP_INJECT_WRITE_FAILURE=5 wisp record --no-hair --frames 3 ... --video v.mp4: the three frames
+// and the sheet are written, then the video (ffmpeg's, into the temporary file) fails: exit 2
+// naming it, no video and no temporary left.
+TEST(HostileDisk, RecordWithAFailedVideoWriteNamesTheVideo)
+{
+    TempDir dir;
+    auto r = runWisp("record --no-hair --frames 3 --width 96 --height 64 --out " + quoted(dir / "rec") + " --video " +
+                         quoted(dir / "v.mp4"),
+                     kInject + "5");
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find("wisp: cannot write " + (dir / "v.mp4").string() + ": No space left on device"),
+              std::string::npos)
+        << r.err;
+    EXPECT_TRUE(std::filesystem::exists(dir / "rec" / "contact_sheet.png"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "v.mp4"));
+    EXPECT_TRUE(partialFiles(dir.path()).empty());
+}
+
 // WISP_INJECT_WRITE_FAILURE=1 wisp sweep --vary divisions=2 ... --out s: results.csv fails, and the
 // sweep leaves nothing (its folder was made for it).
 TEST(HostileDisk, SweepWithAFailedCsvWriteLeavesNothing)
