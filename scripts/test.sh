@@ -6,7 +6,7 @@
 #                                    every suite, then
 #     sync       the GPU suites again with the validation layer's synchronization checks
 #                (WISP_TEST_SYNC_VALIDATION=1). Left out: the suites that run the wisp binary as a
-#                subprocess (BadInput, Cli, Record, Sweep, Window, BsdfCli, Scripts), which do not take the
+#                subprocess (BadInput, Cli, Record, Sweep, Window, BsdfCli, Scripts, Hostile*), which do not take the
 #                tests' context options; Cli.EveryPassIsCleanUnderSynchronizationValidation covers
 #                the binary's passes under the same checks in the first round.
 #     sanitize   the CPU suites built with ASan and UBSan in build-asan/ (scripts/sanitize.sh),
@@ -42,7 +42,7 @@ cd "${WISP_BUILD_DIR:-$root/build}"
 step tests ctest --output-on-failure -j "$jobs" "$@"
 if [ "$ci" = 1 ]; then
   step sync env WISP_TEST_SYNC_VALIDATION=1 ctest --output-on-failure -j "$jobs" -L gpu \
-    -E '^(BadInput|Cli|Record|Sweep|Window|BsdfCli|Scripts)\.'
+    -E '^(BadInput|Cli|Record|Sweep|Window|BsdfCli|Scripts|Hostile[A-Za-z]*)\.'
   step sanitize "$root/scripts/sanitize.sh" \
     -E '^(Table/EveryPhysicsSetting\.|CpuReference\.RepulsionAndFrictionAreStableAtEveryAllowedValue$)'
   step fuzz "$root/scripts/fuzz.sh" 12
