@@ -5,6 +5,7 @@
 #include "assets/placement.h"
 
 #include "assets/signed_distance.h"
+#include "shaders/shared/mesh_sdf.h"
 
 #include <nlohmann/json.hpp>
 
@@ -20,35 +21,11 @@ namespace wisp {
 
 namespace {
 
-// Closest point of triangle abc to p (Ericson, Real-Time Collision Detection, 5.1.5).
+// Closest point of triangle abc to p: the shared header's (Ericson, Real-Time Collision Detection,
+// 5.1.5), which the mesh's distance field computes on the GPU too.
 glm::vec3 closestOnTriangle(glm::vec3 p, glm::vec3 a, glm::vec3 b, glm::vec3 c)
 {
-    glm::vec3 ab = b - a, ac = c - a, ap = p - a;
-    float d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
-    if (d1 <= 0.0f && d2 <= 0.0f)
-        return a;
-    glm::vec3 bp = p - b;
-    float d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
-    if (d3 >= 0.0f && d4 <= d3)
-        return b;
-    float vc = d1 * d4 - d3 * d2;
-    if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f)
-        return a + ab * (d1 / (d1 - d3));
-    glm::vec3 cp = p - c;
-    float d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
-    if (d6 >= 0.0f && d5 <= d6)
-        return c;
-    float vb = d5 * d2 - d1 * d6;
-    if (vb <= 0.0f && d2 >= 0.0f && d6 <= 0.0f)
-        return a + ac * (d2 / (d2 - d6));
-    float va = d3 * d6 - d5 * d4;
-    if (va <= 0.0f && (d4 - d3) >= 0.0f && (d5 - d6) >= 0.0f)
-        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    float denom = va + vb + vc;
-    if (!(std::abs(denom) > 0.0f))
-        return a; // a degenerate triangle: its first corner
-    float v = vb / denom, w = vc / denom;
-    return a + ab * v + ac * w;
+    return glm::vec3(gpu::sdfClosestOnTriangle(p, a, b, c));
 }
 
 float boxDistance2(glm::vec3 p, glm::vec3 lo, glm::vec3 hi)
